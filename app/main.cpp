@@ -1,0 +1,214 @@
+// cdbench command line: parses options, wires scenes to pipelines, prints results.
+// Nothing algorithmic lives here.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <numeric>
+
+#include "bruteforce/sweep_oracle.h"
+#include "core/build_info.h"
+#include "core/error.h"
+#include "frame_range.h"
+#include "io/scene.h"
+#include "pipeline/pipeline.h"
+#include "report.h"
+
+using namespace cdb;
+
+namespace {
+
+struct CommonOptions {
+  std::string scene = "funnel";
+  std::string device = "auto";
+  std::string frames;
+  std::string scenes_dir;
+  int morton_bits = 63;
+  uint32_t rebuild_every = 0;
+};
+
+void add_common(CLI::App* cmd, CommonOptions& o) {
+  cmd->add_option("--scene", o.scene, "scene name, .json descriptor, or directory of mesh frames")
+      ->capture_default_str();
+  cmd->add_option("--device", o.device, "cuda, cpu, or auto (cuda when a GPU is present)")
+      ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
+      ->capture_default_str();
+  cmd->add_option("--frames", o.frames, "frame range A:B (half-open), A: or A; default all");
+  cmd->add_option("--scenes-dir", o.scenes_dir, "where named scenes live");
+  cmd->add_option("--morton-bits", o.morton_bits, "Morton code width")
+      ->check(CLI::IsMember({30, 63}))
+      ->capture_default_str();
+  cmd->add_option("--rebuild-every", o.rebuild_every,
+                  "bvh pipeline: rebuild every K frames (0: build on the first frame only)")
+      ->capture_default_str();
+}
+
+std::string resolve_device(const std::string& device) {
+  if (device != "auto") return device;
+  return cuda_device_info().available ? "cuda" : "cpu";
+}
+
+PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
+                           const std::string& device) {
+  PipelineConfig c;
+  c.name = pipeline;
+  c.device = device;
+  c.morton_bits = o.morton_bits == 30 ? MortonBits::b30 : MortonBits::b63;
+  c.rebuild_every = o.rebuild_every;
+  return c;
+}
+
+Scene load_scene(const CommonOptions& o) {
+  return open_scene(o.scene, o.scenes_dir.empty() ? default_scenes_dir()
+                                                  : std::filesystem::path(o.scenes_dir));
+}
+
+void print_environment(const std::string& device) {
+  const BuildInfo& b = build_info();
+  std::printf("cdbench %s  commit %s  %s  %s%s%s\n", CDBENCH_VERSION, b.git_sha, b.build_type,
+              b.cxx_compiler, *b.cuda_compiler ? "  nvcc " : "", b.cuda_compiler);
+  const CudaDeviceInfo info = cuda_device_info();
+  if (device == "cuda")
+    std::printf("device: %s (driver %d, runtime %d, %.1f GiB)\n", info.name.c_str(),
+                info.driver_version, info.runtime_version, double(info.total_bytes) / (1 << 30));
+  else
+    std::printf("device: cpu (%d OpenMP threads)%s%s\n", omp_threads(),
+                info.available ? "" : "; no GPU: ", info.available ? "" : info.reason.c_str());
+}
+
+int run_command(const CommonOptions& o, const std::string& pipeline_name, uint32_t warmup,
+                bool per_frame) {
+  const std::string device = resolve_device(o.device);
+  print_environment(device);
+  Scene scene = load_scene(o);
+  const Topology& topo = scene.source->topology();
+  const FrameRange range = parse_frame_range(o.frames, scene.source->num_frames());
+  std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
+              scene.name.c_str(), scene.description.c_str(), topo.faces.size(),
+              topo.num_vertices, range.first, range.last);
+  auto pipeline = make_pipeline(make_config(o, pipeline_name, device));
+  pipeline->set_topology(topo);
+  std::printf("pipeline: %s on %s\n", pipeline_name.c_str(), device.c_str());
+  std::vector<vec3f> vertices;
+  std::vector<FrameStats> frames;
+  for (uint32_t f = range.first; f < range.last; ++f) {
+    scene.source->frame(f, vertices);
+    frames.push_back(pipeline->run_frame(vertices));
+    if (per_frame) print_frame_line(f, frames.back());
+  }
+  print_summary(frames, warmup, pipeline->memory());
+  return 0;
+}
+
+int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
+                   size_t brute_limit) {
+  const std::string device = resolve_device(o.device);
+  print_environment(device);
+  Scene scene = load_scene(o);
+  const Topology& topo = scene.source->topology();
+  const FrameRange range = parse_frame_range(o.frames, scene.source->num_frames());
+  if (pipelines.empty())
+    for (const auto& n : pipeline_names())
+      if (n != oracle_pipeline()) pipelines.push_back(n);
+  const bool brute_oracle = topo.faces.size() <= brute_limit;
+  std::printf("verify: scene %s (%zu triangles), frames %u:%u, device %s, oracle %s\n",
+              scene.name.c_str(), topo.faces.size(), range.first, range.last, device.c_str(),
+              brute_oracle ? "brute force (same device)" : "sort-and-sweep (cpu)");
+  std::unique_ptr<Pipeline> oracle;
+  if (brute_oracle) {
+    oracle = make_pipeline(make_config(o, oracle_pipeline(), device));
+    oracle->set_topology(topo);
+  }
+  std::vector<std::unique_ptr<Pipeline>> runs;
+  for (const auto& name : pipelines) {
+    runs.push_back(make_pipeline(make_config(o, name, device)));
+    runs.back()->set_topology(topo);
+  }
+  std::vector<uint64_t> mismatched_frames(pipelines.size(), 0);
+  std::vector<vec3f> vertices;
+  for (uint32_t f = range.first; f < range.last; ++f) {
+    scene.source->frame(f, vertices);
+    std::vector<PrimPair> expected;
+    if (oracle) {
+      oracle->run_frame(vertices);
+      expected = oracle->sorted_pairs();
+    } else {
+      expected = sweep_oracle_pairs(topo, vertices);
+    }
+    for (size_t p = 0; p < runs.size(); ++p) {
+      runs[p]->run_frame(vertices);
+      const PairSetDiff d = diff_pair_sets(expected, runs[p]->sorted_pairs());
+      if (!d.equal()) {
+        ++mismatched_frames[p];
+        print_mismatch(pipelines[p], f, d);
+      }
+    }
+  }
+  bool ok = true;
+  for (size_t p = 0; p < runs.size(); ++p) {
+    std::printf("  %-12s %s (%u frames)\n", pipelines[p].c_str(),
+                mismatched_frames[p] ? "MISMATCH" : "exact", range.last - range.first);
+    ok = ok && mismatched_frames[p] == 0;
+  }
+  std::printf("verify: %s\n", ok ? "all pipelines match the oracle" : "FAILED");
+  return ok ? 0 : 1;
+}
+
+int scenes_list(const CommonOptions& o) {
+  const auto dir = o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir);
+  for (const auto& name : list_scenes(dir)) {
+    const Scene s = open_scene(name, dir);
+    std::printf("%-14s %9zu triangles %5u frames  %s\n", name.c_str(),
+                s.source->topology().faces.size(), s.source->num_frames(), s.description.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"cdbench: GPU broad-phase collision detection benchmark for deforming meshes"};
+  app.require_subcommand(1);
+  CommonOptions o;
+
+  auto* run = app.add_subcommand("run", "run one pipeline on a scene and print timings");
+  add_common(run, o);
+  std::string pipeline = "bvh";
+  uint32_t warmup = 1;
+  bool quiet = false;
+  run->add_option("--pipeline", pipeline, "bvh, reference or brute")->capture_default_str();
+  run->add_option("--warmup", warmup, "frames left out of the summary statistics")
+      ->capture_default_str();
+  run->add_flag("--quiet", quiet, "no per-frame lines");
+
+  auto* verify = app.add_subcommand("verify", "compare pipelines with the exact oracle, frame by frame");
+  add_common(verify, o);
+  std::vector<std::string> pipelines;
+  size_t brute_limit = 30000;
+  verify->add_option("--pipelines", pipelines, "pipelines to check (default: all)");
+  verify->add_option("--brute-limit", brute_limit,
+                     "largest triangle count for the O(N^2) oracle; above it, CPU sort-and-sweep")
+      ->capture_default_str();
+
+  auto* scenes = app.add_subcommand("scenes", "list the named scenes");
+  scenes->add_option("--scenes-dir", o.scenes_dir, "where named scenes live");
+  auto* list = scenes->add_subcommand("list", "list scenes with sizes");
+  scenes->require_subcommand(1);
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*run) return run_command(o, pipeline, warmup, !quiet);
+    if (*verify) return verify_command(o, pipelines, brute_limit);
+    if (*list) return scenes_list(o);
+  } catch (const Error& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "cdbench: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "cdbench: error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

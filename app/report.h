@@ -1,0 +1,17 @@
+#pragma once
+// Human-readable output of the CLI: per-frame lines, run summary, mismatch reports.
+#include <string>
+#include <vector>
+
+#include "core/pair_set.h"
+#include "exec/memory.h"
+#include "pipeline/pipeline.h"
+
+namespace cdb {
+
+int omp_threads();
+void print_frame_line(uint32_t frame, const FrameStats& s);
+void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const MemoryStats& mem);
+void print_mismatch(const std::string& pipeline, uint32_t frame, const PairSetDiff& d);
+
+}  // namespace cdb

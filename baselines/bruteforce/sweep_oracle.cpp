@@ -1,0 +1,36 @@
+#include "bruteforce/sweep_oracle.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "core/aabb.h"
+
+namespace cdb {
+
+std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
+                                         const std::vector<vec3f>& vertices) {
+  const size_t n = topology.faces.size();
+  std::vector<vec4f> lo(n), hi(n);
+  for (size_t f = 0; f < n; ++f) {
+    const Tri t = topology.faces[f];
+    triangle_box(vertices[t.v0], vertices[t.v1], vertices[t.v2], lo[f], hi[f]);
+  }
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](uint32_t a, uint32_t b) { return lo[a].x < lo[b].x; });
+  std::vector<PrimPair> pairs;
+  for (size_t s = 0; s < n; ++s) {
+    const uint32_t i = order[s];
+    for (size_t u = s + 1; u < n; ++u) {
+      const uint32_t j = order[u];
+      if (lo[j].x > hi[i].x) break;
+      if (overlaps(lo[i], hi[i], lo[j], hi[j])) pairs.push_back(make_pair_ordered(i, j));
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(),
+            [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+  return pairs;
+}
+
+}  // namespace cdb

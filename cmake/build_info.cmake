@@ -1,0 +1,20 @@
+# Writes build_info.cpp with the current commit; rewrites it only when the text changes.
+execute_process(COMMAND git -C ${SRC} rev-parse --short=12 HEAD OUTPUT_VARIABLE sha
+                OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0 OR sha STREQUAL "")
+  set(sha "unknown")
+endif()
+execute_process(COMMAND git -C ${SRC} status --porcelain --untracked-files=no OUTPUT_VARIABLE dirty
+                OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+if(NOT dirty STREQUAL "")
+  set(sha "${sha}-dirty")
+endif()
+set(text "#include \"core/build_info.h\"\nnamespace cdb {\nconst BuildInfo& build_info() {\n  static const BuildInfo info{\"${sha}\", \"${CXX}\", \"${CUDA}\", \"${BUILD_TYPE}\"};\n  return info;\n}\n}  // namespace cdb\n")
+if(EXISTS ${OUT})
+  file(READ ${OUT} old)
+else()
+  set(old "")
+endif()
+if(NOT old STREQUAL text)
+  file(WRITE ${OUT} "${text}")
+endif()

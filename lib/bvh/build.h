@@ -1,0 +1,182 @@
+#pragma once
+// Apetrei's agglomerative LBVH build (Apetrei 2014, "Fast and simple agglomerative LBVH
+// construction"; paper §2, Fig. 2.1). One thread per leaf climbs the tree; at each step the
+// current range [l, r] merges towards the neighbour it is more similar to, and internal node
+// k is the split between leaves k and k+1 (k = rightmost leaf of its left child). The first
+// thread to reach a node stops; the second completes it. The handoff goes through
+// atomic_exchange_acq_rel and load_coherent (core/atomics.h): fence, atomic, fence, L1
+// bypass.
+#include <cstdint>
+
+#include "exec/balance.h"
+#include "bvh/lbvh.h"
+#include "bvh/node_ref.h"
+#include "core/atomics.h"
+#include "core/morton.h"
+#include "geometry/mesh.h"
+
+namespace cdb {
+
+struct FaceBoxFn {
+  MeshView mesh;
+  vec4f* lo;
+  vec4f* hi;
+  CDB_HD void operator()(uint32_t f) const { face_box(mesh, f, lo[f], hi[f]); }
+};
+
+// Box of a primitive's centroid, for the Morton normalization. Halving before adding keeps
+// huge coordinates (1e38) finite.
+struct CentroidFn {
+  const vec4f* lo;
+  const vec4f* hi;
+  CDB_HD Aabb<float> operator()(uint32_t i) const {
+    const vec4f a = lo[i], b = hi[i];
+    const vec4f c{a.x * 0.5f + b.x * 0.5f, a.y * 0.5f + b.y * 0.5f, a.z * 0.5f + b.z * 0.5f, 0};
+    return {c, c};
+  }
+};
+
+struct MortonFn {
+  const vec4f* lo;
+  const vec4f* hi;
+  const Aabb<float>* centroid_box;
+  MortonBits bits;
+  uint64_t* keys;
+  uint32_t* iota;
+  CDB_HD void operator()(uint32_t i) const {
+    const Aabb<float> s = *centroid_box;
+    const vec4f a = lo[i], b = hi[i];
+    // (centroid - scene_lo) / extent with every term halved, so that coordinates near the
+    // float limit do not overflow to infinity.
+    const float ex = s.hi.x * 0.5f - s.lo.x * 0.5f, ey = s.hi.y * 0.5f - s.lo.y * 0.5f,
+                ez = s.hi.z * 0.5f - s.lo.z * 0.5f;
+    const float cx = a.x * 0.5f + b.x * 0.5f, cy = a.y * 0.5f + b.y * 0.5f,
+                cz = a.z * 0.5f + b.z * 0.5f;
+    const vec4f u{ex > 0 ? (cx * 0.5f - s.lo.x * 0.5f) / ex : 0.5f,
+                  ey > 0 ? (cy * 0.5f - s.lo.y * 0.5f) / ey : 0.5f,
+                  ez > 0 ? (cz * 0.5f - s.lo.z * 0.5f) / ez : 0.5f, 0};
+    keys[i] = morton_code(u, bits);
+    iota[i] = i;
+  }
+};
+
+struct GatherLeavesFn {
+  const uint32_t* leaf_prim;
+  const vec4f* prim_lo;
+  const vec4f* prim_hi;
+  vec4f* leaf_lo;
+  vec4f* leaf_hi;
+  CDB_HD void operator()(uint32_t i) const {
+    const uint32_t p = leaf_prim[i];
+    leaf_lo[i] = prim_lo[p];
+    leaf_hi[i] = prim_hi[p];
+  }
+};
+
+// Dissimilarity of sorted leaves i and i+1. Equal codes fall back to the index (Karras'
+// augmentation) below every distinct-code value, so identical centroids still give a
+// balanced tree. Any strict order gives a valid tree; ties between equal values resolve to
+// the left neighbour.
+CDB_HD_INLINE uint64_t split_delta(const uint64_t* keys, uint32_t i) {
+  const uint64_t x = keys[i] ^ keys[i + 1];
+  return x != 0 ? (x | (uint64_t(1) << 63)) : uint64_t(i ^ (i + 1));
+}
+
+struct ApetreiBuildFn {
+  uint32_t n;
+  const uint64_t* keys;
+  const vec4f* leaf_lo;
+  const vec4f* leaf_hi;
+  vec4f* node_lo;
+  vec4f* node_hi;
+  uint32_t* left;
+  uint32_t* right;
+  uint32_t* leaf_parent;
+  uint32_t* node_parent;
+  uint32_t* first;
+  uint32_t* last;
+  uint32_t* other_bound;
+  uint32_t* count_log;
+
+  CDB_HD void operator()(uint32_t i) const {
+    uint32_t l = i, r = i;
+    uint32_t current = leaf_ref(i);
+    vec4f lo = leaf_lo[i], hi = leaf_hi[i];
+    for (;;) {
+      const bool parent_is_right_split = l == 0 || (r != n - 1 && split_delta(keys, r) < split_delta(keys, l - 1));
+      uint32_t parent, sibling;
+      if (parent_is_right_split) {
+        parent = r;  // current is the left child of internal node r
+        left[parent] = current;
+        set_parent(current, parent);
+        const uint32_t other = atomic_exchange_acq_rel(&other_bound[parent], l);
+        if (other == kNoNode) return;
+        r = other;
+        sibling = load_coherent(&right[parent]);
+      } else {
+        parent = l - 1;  // current is the right child of internal node l-1
+        right[parent] = current;
+        set_parent(current, parent);
+        const uint32_t other = atomic_exchange_acq_rel(&other_bound[parent], r);
+        if (other == kNoNode) return;
+        l = other;
+        sibling = load_coherent(&left[parent]);
+      }
+      const vec4f slo = is_leaf(sibling) ? leaf_lo[ref_index(sibling)]
+                                         : load_coherent(&node_lo[sibling]);
+      const vec4f shi = is_leaf(sibling) ? leaf_hi[ref_index(sibling)]
+                                         : load_coherent(&node_hi[sibling]);
+      lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), 0};
+      hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), 0};
+      node_lo[parent] = lo;
+      node_hi[parent] = hi;
+      first[parent] = l;
+      last[parent] = r;
+      atomic_add_relaxed(&count_log[l], 1u);
+      current = parent;
+      if (l == 0 && r == n - 1) {
+        node_parent[parent] = kNoNode;
+        return;
+      }
+    }
+  }
+
+  CDB_HD_INLINE void set_parent(uint32_t child, uint32_t parent) const {
+    if (is_leaf(child))
+      leaf_parent[ref_index(child)] = parent;
+    else
+      node_parent[child] = parent;
+  }
+};
+
+// Rebuilds the hierarchy from the mesh: boxes, Morton codes, radix sort, Apetrei build.
+// Leaves end up sorted; internal nodes are in build order until order_depth_first runs.
+template <class Exec>
+void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBits bits) {
+  const uint32_t n = mesh.num_faces;
+  bvh.reserve(exec, n);
+  bvh.morton_bits = bits;
+  if (n == 0) return;
+  exec.for_each_n(n, FaceBoxFn{mesh, bvh.prim_lo.data(), bvh.prim_hi.data()});
+  exec.reduce_box(n, CentroidFn{bvh.prim_lo.data(), bvh.prim_hi.data()}, bvh.centroid_box.data(),
+                  bvh.temp.data(), bvh.temp.size());
+  exec.for_each_n(n, MortonFn{bvh.prim_lo.data(), bvh.prim_hi.data(), bvh.centroid_box.data(), bits,
+                              bvh.morton.data(), bvh.prim_iota.data()});
+  exec.sort_pairs(bvh.morton.data(), bvh.morton_sorted.data(), bvh.prim_iota.data(),
+                  bvh.leaf_prim.data(), n, static_cast<int>(bits), bvh.temp.data(),
+                  bvh.temp.size());
+  exec.for_each_n(n, GatherLeavesFn{bvh.leaf_prim.data(), bvh.prim_lo.data(), bvh.prim_hi.data(),
+                                    bvh.leaf_lo.data(), bvh.leaf_hi.data()});
+  if (n == 1) return;
+  exec.fill(bvh.other_bound.data(), n - 1, kNoNode);
+  exec.fill(bvh.count_log.data(), size_t(n) + 1, 0u);
+  exec.for_each_n(n, ApetreiBuildFn{n, bvh.morton_sorted.data(), bvh.leaf_lo.data(),
+                                    bvh.leaf_hi.data(), bvh.build_lo.data(), bvh.build_hi.data(),
+                                    bvh.build_left.data(), bvh.build_right.data(),
+                                    bvh.leaf_parent.data(), bvh.build_parent.data(),
+                                    bvh.build_first.data(), bvh.build_last.data(),
+                                    bvh.other_bound.data(), bvh.count_log.data()},
+                  Balance::uneven);
+}
+
+}  // namespace cdb

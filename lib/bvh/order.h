@@ -1,0 +1,119 @@
+#pragma once
+// Depth-first layout of the internal nodes by histogram sort (paper §3.2, Fig. 2.3).
+// In depth-first order the leftmost leaves of the visited internal nodes never decrease, so
+// each leaf l is a segment holding the chain of internal nodes whose leftmost leaf is l
+// (count_log[l] of them, its LCL value, counted by the build). An exclusive scan gives
+// offset_log; each segment then numbers its chain top to bottom, and one scatter moves
+// every node with its links to its place. No comparison sort.
+#include <cstdint>
+
+#include "exec/balance.h"
+#include "bvh/lbvh.h"
+#include "bvh/node_ref.h"
+
+namespace cdb {
+
+// Walks segment l's chain bottom-up: the lowest node whose leftmost leaf is l is internal
+// node l (leaf l is its left child), and each next one is the parent.
+struct NumberChainFn {
+  const uint32_t* count_log;
+  const uint32_t* offset_log;
+  const uint32_t* build_parent;
+  uint32_t* new_index;
+  CDB_HD void operator()(uint32_t l) const {
+    const uint32_t c = count_log[l];
+    uint32_t node = l;
+    const uint32_t bottom = offset_log[l] + c - 1;
+    for (uint32_t s = 0; s < c; ++s) {
+      new_index[node] = bottom - s;
+      node = build_parent[node];
+    }
+  }
+};
+
+struct ScatterNodesFn {
+  uint32_t n;
+  const uint32_t* new_index;
+  const vec4f* build_lo;
+  const vec4f* build_hi;
+  const uint32_t* build_left;
+  const uint32_t* build_right;
+  const uint32_t* build_parent;
+  const uint32_t* build_first;
+  const uint32_t* build_last;
+  vec4f* node_lo;
+  vec4f* node_hi;
+  uint32_t* node_left;
+  uint32_t* node_right;
+  uint32_t* node_parent;
+  uint32_t* node_escape;
+  uint32_t* node_first;
+  uint32_t* node_last;
+
+  CDB_HD_INLINE uint32_t remap(uint32_t ref) const {
+    return (ref == kNoNode || is_leaf(ref)) ? ref : new_index[ref];
+  }
+  CDB_HD void operator()(uint32_t k) const {
+    const uint32_t p = new_index[k];
+    node_lo[p] = build_lo[k];
+    node_hi[p] = build_hi[k];
+    node_left[p] = remap(build_left[k]);
+    node_right[p] = remap(build_right[k]);
+    node_parent[p] = remap(build_parent[k]);
+    const uint32_t r = build_last[k];
+    node_first[p] = build_first[k];
+    node_last[p] = r;
+    // Escape (Fig. 2.2): the node after subtree [l, r] in depth-first order is the right
+    // child of internal node r; nothing follows when r is the last leaf.
+    node_escape[p] = r == n - 1 ? kNoNode : remap(build_right[r]);
+  }
+};
+
+struct LinkLeavesFn {
+  uint32_t n;
+  const uint32_t* new_index;
+  const uint32_t* build_right;
+  uint32_t* leaf_parent;
+  uint32_t* leaf_escape;
+  CDB_HD void operator()(uint32_t i) const {
+    const uint32_t esc = i == n - 1 ? kNoNode : build_right[i];
+    leaf_escape[i] = (esc == kNoNode || is_leaf(esc)) ? esc : new_index[esc];
+    leaf_parent[i] = new_index[leaf_parent[i]];
+  }
+};
+
+struct SingleLeafFn {
+  uint32_t* leaf_parent;
+  uint32_t* leaf_escape;
+  CDB_HD void operator()(uint32_t) const {
+    leaf_parent[0] = kNoNode;
+    leaf_escape[0] = kNoNode;
+  }
+};
+
+template <class Exec>
+void order_depth_first(Exec& exec, Lbvh<Exec>& bvh) {
+  const uint32_t n = bvh.num_leaves;
+  if (n == 0) return;
+  if (n == 1) {
+    exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data()});
+    return;
+  }
+  exec.exclusive_scan(bvh.count_log.data(), bvh.offset_log.data(), size_t(n) + 1,
+                      bvh.temp.data(), bvh.temp.size());
+  exec.for_each_n(n, NumberChainFn{bvh.count_log.data(), bvh.offset_log.data(),
+                                   bvh.build_parent.data(), bvh.new_index.data()},
+                  Balance::uneven);
+  exec.for_each_n(n - 1, ScatterNodesFn{n, bvh.new_index.data(), bvh.build_lo.data(),
+                                        bvh.build_hi.data(), bvh.build_left.data(),
+                                        bvh.build_right.data(), bvh.build_parent.data(),
+                                        bvh.build_first.data(), bvh.build_last.data(),
+                                        bvh.node_lo.data(), bvh.node_hi.data(),
+                                        bvh.node_left.data(), bvh.node_right.data(),
+                                        bvh.node_parent.data(), bvh.node_escape.data(),
+                                        bvh.node_first.data(), bvh.node_last.data()});
+  exec.for_each_n(n, LinkLeavesFn{n, bvh.new_index.data(), bvh.build_right.data(),
+                                  bvh.leaf_parent.data(), bvh.leaf_escape.data()});
+}
+
+}  // namespace cdb

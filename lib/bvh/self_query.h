@@ -1,0 +1,40 @@
+#pragma once
+// Stackless self-collision query, the "leaf algorithm" (Damkjær 2007; paper Alg. 1 lines
+// 1-11): leaf i starts at its own escape index, so it only ever meets leaves > i and every
+// pair is reported once. An overlapping internal node descends to its left child, anything
+// else jumps to its escape index.
+#include <cstdint>
+
+#include "exec/balance.h"
+#include "bvh/bvh_view.h"
+#include "core/aabb.h"
+#include "core/pair_sink.h"
+
+namespace cdb {
+
+struct SelfQueryFn {
+  BvhView bvh;
+  PairSink sink;
+  CDB_HD void operator()(uint32_t i) const {
+    const vec4f lo = bvh.leaf_lo[i], hi = bvh.leaf_hi[i];
+    const uint32_t prim = bvh.leaf_prim[i];
+    uint32_t node = bvh.leaf_escape[i];
+    while (node != kNoNode) {
+      const uint32_t k = ref_index(node);
+      if (is_leaf(node)) {
+        if (overlaps(lo, hi, bvh.leaf_lo[k], bvh.leaf_hi[k])) sink.emit(prim, bvh.leaf_prim[k]);
+        node = bvh.leaf_escape[k];
+      } else {
+        node = overlaps(lo, hi, bvh.node_lo[k], bvh.node_hi[k]) ? bvh.node_left[k]
+                                                               : bvh.node_escape[k];
+      }
+    }
+  }
+};
+
+template <class Exec>
+void self_query(Exec& exec, const BvhView& bvh, const PairSink& sink) {
+  exec.for_each_n(bvh.num_leaves, SelfQueryFn{bvh, sink}, Balance::uneven);
+}
+
+}  // namespace cdb

@@ -1,0 +1,75 @@
+#pragma once
+// Atomics and coherent loads usable from functors on both executors.
+//
+// The bottom-up build and refit hand data between threads of different blocks. On the GPU
+// the writer fences before its atomic (release) and the reader fences after it (acquire)
+// and then reads the other thread's data with ld.global.cg, which bypasses the
+// non-coherent L1. Without both, Hopper hands out stale boxes (the paper's public code
+// hangs or corrupts its tree there).
+#include <cstdint>
+
+#include "core/hd.h"
+#include "core/vec.h"
+
+#if !defined(__CUDA_ARCH__)
+#include <atomic>
+#endif
+
+namespace cdb {
+
+CDB_HD_INLINE uint32_t atomic_exchange_acq_rel(uint32_t* p, uint32_t v) {
+#if defined(__CUDA_ARCH__)
+  __threadfence();
+  const uint32_t old = atomicExch(p, v);
+  __threadfence();
+  return old;
+#else
+  return std::atomic_ref<uint32_t>(*p).exchange(v, std::memory_order_acq_rel);
+#endif
+}
+
+CDB_HD_INLINE uint32_t atomic_add_acq_rel(uint32_t* p, uint32_t v) {
+#if defined(__CUDA_ARCH__)
+  __threadfence();
+  const uint32_t old = atomicAdd(p, v);
+  __threadfence();
+  return old;
+#else
+  return std::atomic_ref<uint32_t>(*p).fetch_add(v, std::memory_order_acq_rel);
+#endif
+}
+
+CDB_HD_INLINE uint32_t atomic_add_relaxed(uint32_t* p, uint32_t v) {
+#if defined(__CUDA_ARCH__)
+  return atomicAdd(p, v);
+#else
+  return std::atomic_ref<uint32_t>(*p).fetch_add(v, std::memory_order_relaxed);
+#endif
+}
+
+CDB_HD_INLINE unsigned long long atomic_add_relaxed(unsigned long long* p, unsigned long long v) {
+#if defined(__CUDA_ARCH__)
+  return atomicAdd(p, v);
+#else
+  return std::atomic_ref<unsigned long long>(*p).fetch_add(v, std::memory_order_relaxed);
+#endif
+}
+
+CDB_HD_INLINE uint32_t load_coherent(const uint32_t* p) {
+#if defined(__CUDA_ARCH__)
+  return __ldcg(p);
+#else
+  return *p;
+#endif
+}
+
+CDB_HD_INLINE vec4f load_coherent(const vec4f* p) {
+#if defined(__CUDA_ARCH__)
+  const float4 v = __ldcg(reinterpret_cast<const float4*>(p));
+  return {v.x, v.y, v.z, v.w};
+#else
+  return *p;
+#endif
+}
+
+}  // namespace cdb

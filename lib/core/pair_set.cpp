@@ -1,0 +1,32 @@
+#include "core/pair_set.h"
+
+namespace cdb {
+
+PairSetDiff diff_pair_sets(const std::vector<PrimPair>& expected,
+                           const std::vector<PrimPair>& actual, size_t keep) {
+  PairSetDiff d;
+  d.expected = expected.size();
+  d.actual = actual.size();
+  auto add = [keep](std::vector<PrimPair>& list, uint64_t& count, PrimPair p) {
+    if (list.size() < keep) list.push_back(p);
+    ++count;
+  };
+  size_t i = 0, j = 0;
+  while (i < expected.size() || j < actual.size()) {
+    if (j > 0 && j < actual.size() && pair_key(actual[j]) == pair_key(actual[j - 1])) {
+      add(d.unexpected, d.unexpected_count, actual[j++]);
+      continue;
+    }
+    if (j == actual.size() || (i < expected.size() && pair_key(expected[i]) < pair_key(actual[j]))) {
+      add(d.missing, d.missing_count, expected[i++]);
+    } else if (i == expected.size() || pair_key(actual[j]) < pair_key(expected[i])) {
+      add(d.unexpected, d.unexpected_count, actual[j++]);
+    } else {
+      ++i;
+      ++j;
+    }
+  }
+  return d;
+}
+
+}  // namespace cdb

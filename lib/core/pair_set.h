@@ -1,0 +1,23 @@
+#pragma once
+// Set comparison of two sorted pair lists: what verify and the tests check.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/pair.h"
+
+namespace cdb {
+
+struct PairSetDiff {
+  uint64_t expected = 0, actual = 0;
+  std::vector<PrimPair> missing;     // in expected only (a recall loss), first few kept
+  std::vector<PrimPair> unexpected;  // in actual only (or duplicated), first few kept
+  uint64_t missing_count = 0, unexpected_count = 0;
+  bool equal() const { return missing_count == 0 && unexpected_count == 0; }
+};
+
+// Both inputs sorted by pair_key. Duplicates in `actual` count as unexpected.
+PairSetDiff diff_pair_sets(const std::vector<PrimPair>& expected,
+                           const std::vector<PrimPair>& actual, size_t keep = 8);
+
+}  // namespace cdb

@@ -1,0 +1,26 @@
+#pragma once
+#include "core/hd.h"
+
+namespace cdb {
+
+// Packed 3-vector: vertex positions as they come from meshes.
+template <class T>
+struct vec3 {
+  T x, y, z;
+};
+
+// Padded 4-vector: box corners, so a corner is one 16-byte (float) load on the GPU.
+template <class T>
+struct alignas(4 * sizeof(T)) vec4 {
+  T x, y, z, w;
+};
+
+using vec3f = vec3<float>;
+using vec4f = vec4<float>;
+
+template <class T>
+CDB_HD_INLINE T min_of(T a, T b) { return b < a ? b : a; }
+template <class T>
+CDB_HD_INLINE T max_of(T a, T b) { return a < b ? b : a; }
+
+}  // namespace cdb

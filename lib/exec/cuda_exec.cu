@@ -1,0 +1,166 @@
+#include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_scan.cuh>
+#include <string>
+
+#include "core/error.h"
+#include "exec/cuda_exec.cuh"
+
+namespace cdb {
+
+void cuda_check(cudaError_t status, const char* what) {
+  if (status != cudaSuccess)
+    fail(std::string("CUDA error in ") + what + ": " + cudaGetErrorString(status));
+}
+
+void* CudaMemory::do_allocate(size_t bytes) {
+  void* p = nullptr;
+  const cudaError_t status = cudaMalloc(&p, bytes ? bytes : 1);
+  if (status != cudaSuccess) {
+    size_t free_b = 0, total_b = 0;
+    cudaMemGetInfo(&free_b, &total_b);
+    fail("out of device memory: asked for " + std::to_string(bytes) + " bytes with " +
+         std::to_string(free_b) + " of " + std::to_string(total_b) + " free (" +
+         cudaGetErrorString(status) + ")");
+  }
+  return p;
+}
+
+void CudaMemory::do_deallocate(void* p, size_t) { cudaFree(p); }
+
+__global__ void reduce_box_final_kernel(const Aabb<float>* partials, uint32_t count,
+                                        Aabb<float>* out) {
+  using Reduce = cub::BlockReduce<Aabb<float>, kReduceThreads>;
+  __shared__ typename Reduce::TempStorage storage;
+  Aabb<float> acc = Aabb<float>::empty();
+  for (uint32_t i = threadIdx.x; i < count; i += kReduceThreads) acc.grow(partials[i]);
+  const Aabb<float> total = Reduce(storage).Reduce(acc, BoxUnion{});
+  if (threadIdx.x == 0) *out = total;
+}
+
+void launch_reduce_box_final(const Aabb<float>* partials, uint32_t count, Aabb<float>* out,
+                             cudaStream_t stream) {
+  reduce_box_final_kernel<<<1, kReduceThreads, 0, stream>>>(partials, count, out);
+  cuda_check(cudaGetLastError(), "reduce launch");
+}
+
+CudaExec::CudaExec() {
+  cuda_check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "stream creation");
+}
+
+CudaExec::~CudaExec() {
+  if (stream_) cudaStreamDestroy(stream_);
+}
+
+size_t CudaExec::scan_temp_bytes(size_t n) const {
+  size_t bytes = 0;
+  cuda_check(cub::DeviceScan::ExclusiveSum(nullptr, bytes, static_cast<const uint32_t*>(nullptr),
+                                           static_cast<uint32_t*>(nullptr), int64_t(n), stream_),
+             "scan size query");
+  return bytes;
+}
+
+void CudaExec::exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void* temp,
+                              size_t temp_bytes) const {
+  if (n == 0) return;
+  cuda_check(cub::DeviceScan::ExclusiveSum(temp, temp_bytes, in, out, int64_t(n), stream_),
+             "exclusive scan");
+}
+
+size_t CudaExec::sort_temp_bytes(size_t n) const {
+  size_t bytes = 0;
+  cuda_check(cub::DeviceRadixSort::SortPairs(nullptr, bytes, static_cast<const uint64_t*>(nullptr),
+                                             static_cast<uint64_t*>(nullptr),
+                                             static_cast<const uint32_t*>(nullptr),
+                                             static_cast<uint32_t*>(nullptr), int64_t(n), 0, 64,
+                                             stream_),
+             "sort size query");
+  return bytes;
+}
+
+void CudaExec::sort_pairs(const uint64_t* keys_in, uint64_t* keys_out, const uint32_t* values_in,
+                          uint32_t* values_out, size_t n, int end_bit, void* temp,
+                          size_t temp_bytes) const {
+  if (n == 0) return;
+  cuda_check(cub::DeviceRadixSort::SortPairs(temp, temp_bytes, keys_in, keys_out, values_in,
+                                             values_out, int64_t(n), 0, end_bit, stream_),
+             "radix sort");
+}
+
+void CudaExec::sync() const { cuda_check(cudaStreamSynchronize(stream_), "stream sync"); }
+
+void CudaExec::copy_to_host_bytes(void* dst, const void* src, size_t bytes) const {
+  if (!bytes) return;
+  cuda_check(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToHost, stream_), "copy to host");
+  sync();
+}
+
+void CudaExec::copy_from_host_bytes(void* dst, const void* src, size_t bytes) const {
+  if (!bytes) return;
+  cuda_check(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyHostToDevice, stream_), "copy to device");
+}
+
+void CudaExec::copy_bytes(void* dst, const void* src, size_t bytes) const {
+  if (!bytes) return;
+  cuda_check(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToDevice, stream_), "device copy");
+}
+
+CudaPhaseTimer::CudaPhaseTimer(CudaExec& exec) : stream_(exec.stream()) {
+  cuda_check(cudaEventCreate(&frame_begin_), "event creation");
+  cuda_check(cudaEventCreate(&frame_end_), "event creation");
+}
+
+CudaPhaseTimer::~CudaPhaseTimer() {
+  for (auto e : pool_) cudaEventDestroy(e);
+  cudaEventDestroy(frame_begin_);
+  cudaEventDestroy(frame_end_);
+}
+
+cudaEvent_t CudaPhaseTimer::next_event() {
+  if (used_ == pool_.size()) {
+    cudaEvent_t e;
+    cuda_check(cudaEventCreate(&e), "event creation");
+    pool_.push_back(e);
+  }
+  return pool_[used_++];
+}
+
+void CudaPhaseTimer::start(Phase p) {
+  cudaEvent_t e = next_event();
+  cuda_check(cudaEventRecord(e, stream_), "event record");
+  open_[size_t(p)] = e;
+}
+
+void CudaPhaseTimer::stop(Phase p) {
+  cudaEvent_t e = next_event();
+  cuda_check(cudaEventRecord(e, stream_), "event record");
+  spans_.push_back({p, open_[size_t(p)], e});
+}
+
+void CudaPhaseTimer::start_frame() {
+  used_ = 0;
+  spans_.clear();
+  cuda_check(cudaEventRecord(frame_begin_, stream_), "event record");
+}
+
+void CudaPhaseTimer::stop_frame() {
+  cuda_check(cudaEventRecord(frame_end_, stream_), "event record");
+}
+
+double CudaPhaseTimer::phase_ms(Phase p) const {
+  double total = 0.0;
+  for (const auto& s : spans_) {
+    if (s.phase != p) continue;
+    float ms = 0.0f;
+    cuda_check(cudaEventElapsedTime(&ms, s.begin, s.end), "event timing");
+    total += ms;
+  }
+  return total;
+}
+
+double CudaPhaseTimer::frame_ms() const {
+  float ms = 0.0f;
+  cuda_check(cudaEventElapsedTime(&ms, frame_begin_, frame_end_), "event timing");
+  return ms;
+}
+
+}  // namespace cdb

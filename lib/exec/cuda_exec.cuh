@@ -1,0 +1,168 @@
+#pragma once
+// CUDA executor: runs the functors of lib/ as kernels on one stream; scans and sorts go
+// through CUB with temporary storage the caller provides (queried first, CUB style).
+// Included only by .cu files; host code reaches the CUDA backend through
+// pipeline/backends.h.
+#include <cuda_runtime.h>
+
+#include <cstdint>
+#include <cub/block/block_reduce.cuh>
+#include <vector>
+
+#include "core/aabb.h"
+#include "core/phase.h"
+#include "exec/balance.h"
+#include "exec/memory.h"
+
+namespace cdb {
+
+void cuda_check(cudaError_t status, const char* what);
+
+class CudaMemory final : public MemoryResource {
+ public:
+  bool is_device() const override { return true; }
+
+ private:
+  void* do_allocate(size_t bytes) override;
+  void do_deallocate(void* p, size_t bytes) override;
+};
+
+template <class F>
+__global__ void for_each_kernel(uint32_t n, F f) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) f(i);
+}
+
+struct BoxUnion {
+  __device__ Aabb<float> operator()(const Aabb<float>& a, const Aabb<float>& b) const {
+    Aabb<float> r = a;
+    r.grow(b);
+    return r;
+  }
+};
+
+inline constexpr uint32_t kReduceThreads = 256;
+inline constexpr uint32_t kReduceBlocks = 512;
+
+template <class F>
+__global__ void __launch_bounds__(kReduceThreads)
+    reduce_box_partials_kernel(uint32_t n, F box_of, Aabb<float>* partials) {
+  using Reduce = cub::BlockReduce<Aabb<float>, kReduceThreads>;
+  __shared__ typename Reduce::TempStorage storage;
+  Aabb<float> acc = Aabb<float>::empty();
+  for (uint32_t i = blockIdx.x * kReduceThreads + threadIdx.x; i < n;
+       i += gridDim.x * kReduceThreads)
+    acc.grow(box_of(i));
+  const Aabb<float> block = Reduce(storage).Reduce(acc, BoxUnion{});
+  if (threadIdx.x == 0) partials[blockIdx.x] = block;
+}
+
+void launch_reduce_box_final(const Aabb<float>* partials, uint32_t count, Aabb<float>* out,
+                             cudaStream_t stream);
+
+template <class T>
+struct FillFn {
+  T* p;
+  T v;
+  __device__ void operator()(uint32_t i) const { p[i] = v; }
+};
+
+class CudaExec {
+ public:
+  static constexpr bool is_device = true;
+
+  CudaExec();
+  ~CudaExec();
+  CudaExec(const CudaExec&) = delete;
+  CudaExec& operator=(const CudaExec&) = delete;
+
+  MemoryResource& memory() { return memory_; }
+  cudaStream_t stream() const { return stream_; }
+  const char* name() const { return "cuda"; }
+
+  template <class F>
+  void for_each_n(size_t n, const F& f, Balance = Balance::even) const {
+    if (n == 0) return;
+    constexpr uint32_t threads = 256;
+    const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
+    for_each_kernel<<<blocks, threads, 0, stream_>>>(static_cast<uint32_t>(n), f);
+    cuda_check(cudaGetLastError(), "kernel launch");
+  }
+
+  size_t scan_temp_bytes(size_t n) const;
+  void exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void* temp,
+                      size_t temp_bytes) const;
+
+  size_t sort_temp_bytes(size_t n) const;
+  void sort_pairs(const uint64_t* keys_in, uint64_t* keys_out, const uint32_t* values_in,
+                  uint32_t* values_out, size_t n, int end_bit, void* temp,
+                  size_t temp_bytes) const;
+
+  size_t reduce_temp_bytes(size_t) const { return kReduceBlocks * sizeof(Aabb<float>); }
+  template <class F>
+  void reduce_box(size_t n, const F& box_of, Aabb<float>* out, void* temp, size_t) const {
+    auto* partials = static_cast<Aabb<float>*>(temp);
+    const uint32_t blocks = static_cast<uint32_t>(
+        n == 0 ? 1 : std::min<size_t>(kReduceBlocks, (n + kReduceThreads - 1) / kReduceThreads));
+    reduce_box_partials_kernel<<<blocks, kReduceThreads, 0, stream_>>>(uint32_t(n), box_of,
+                                                                        partials);
+    cuda_check(cudaGetLastError(), "reduce launch");
+    launch_reduce_box_final(partials, blocks, out, stream_);
+  }
+
+  template <class T>
+  void fill(T* p, size_t n, const T& v) const {
+    for_each_n(n, FillFn<T>{p, v});
+  }
+  template <class T>
+  void copy_to_host(T* dst, const T* src, size_t n) const {
+    copy_to_host_bytes(dst, src, n * sizeof(T));
+  }
+  template <class T>
+  void copy_from_host(T* dst, const T* src, size_t n) const {
+    copy_from_host_bytes(dst, src, n * sizeof(T));
+  }
+  template <class T>
+  void copy(T* dst, const T* src, size_t n) const {
+    copy_bytes(dst, src, n * sizeof(T));
+  }
+  void sync() const;
+
+ private:
+  void copy_to_host_bytes(void* dst, const void* src, size_t bytes) const;
+  void copy_from_host_bytes(void* dst, const void* src, size_t bytes) const;
+  void copy_bytes(void* dst, const void* src, size_t bytes) const;
+  cudaStream_t stream_ = nullptr;
+  CudaMemory memory_;
+};
+
+// Phase timer from CUDA events on the executor's stream; a phase that runs several times
+// in a frame (a query re-run after its pair buffer grew) adds up.
+class CudaPhaseTimer {
+ public:
+  explicit CudaPhaseTimer(CudaExec& exec);
+  ~CudaPhaseTimer();
+  CudaPhaseTimer(const CudaPhaseTimer&) = delete;
+  CudaPhaseTimer& operator=(const CudaPhaseTimer&) = delete;
+  void start(Phase p);
+  void stop(Phase p);
+  void start_frame();
+  void stop_frame();
+  double phase_ms(Phase p) const;
+  double frame_ms() const;
+
+ private:
+  struct Span {
+    Phase phase;
+    cudaEvent_t begin, end;
+  };
+  cudaEvent_t next_event();
+  cudaStream_t stream_;
+  std::vector<cudaEvent_t> pool_;
+  size_t used_ = 0;
+  std::vector<Span> spans_;
+  std::array<cudaEvent_t, kPhaseCount> open_{};
+  cudaEvent_t frame_begin_ = nullptr, frame_end_ = nullptr;
+};
+
+}  // namespace cdb

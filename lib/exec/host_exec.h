@@ -1,0 +1,122 @@
+#pragma once
+// Host executor: the same functors the CUDA executor runs, over OpenMP threads. It is the
+// backend CI tests, so it implements every primitive for real (no shortcuts).
+#include <omp.h>
+
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <new>
+
+#include "core/aabb.h"
+#include "core/phase.h"
+#include "exec/balance.h"
+#include "exec/memory.h"
+
+namespace cdb {
+
+class HostMemory final : public MemoryResource {
+ public:
+  bool is_device() const override { return false; }
+
+ private:
+  void* do_allocate(size_t bytes) override {
+    return ::operator new(bytes ? bytes : 1, std::align_val_t(64));
+  }
+  void do_deallocate(void* p, size_t) override { ::operator delete(p, std::align_val_t(64)); }
+};
+
+class HostExec {
+ public:
+  static constexpr bool is_device = false;
+
+  MemoryResource& memory() { return memory_; }
+  const char* name() const { return "cpu"; }
+
+  template <class F>
+  void for_each_n(size_t n, const F& f, Balance balance = Balance::even) const {
+    const int64_t count = static_cast<int64_t>(n);
+    if (balance == Balance::even) {
+#pragma omp parallel for schedule(static)
+      for (int64_t i = 0; i < count; ++i) f(static_cast<uint32_t>(i));
+    } else {
+#pragma omp parallel for schedule(dynamic, 64)
+      for (int64_t i = 0; i < count; ++i) f(static_cast<uint32_t>(i));
+    }
+  }
+
+  size_t scan_temp_bytes(size_t) const { return 0; }
+  void exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void*, size_t) const;
+
+  size_t sort_temp_bytes(size_t n) const { return n * (sizeof(uint64_t) + sizeof(uint32_t)); }
+  // Stable LSD radix sort of (key, value) on key bits [0, end_bit).
+  void sort_pairs(const uint64_t* keys_in, uint64_t* keys_out, const uint32_t* values_in,
+                  uint32_t* values_out, size_t n, int end_bit, void* temp,
+                  size_t temp_bytes) const;
+
+  size_t reduce_temp_bytes(size_t) const { return 0; }
+  template <class F>
+  void reduce_box(size_t n, const F& box_of, Aabb<float>* out, void*, size_t) const {
+    Aabb<float> total = Aabb<float>::empty();
+#pragma omp parallel
+    {
+      Aabb<float> local = Aabb<float>::empty();
+#pragma omp for schedule(static) nowait
+      for (int64_t i = 0; i < static_cast<int64_t>(n); ++i) local.grow(box_of(uint32_t(i)));
+#pragma omp critical
+      total.grow(local);
+    }
+    *out = total;
+  }
+
+  template <class T>
+  void fill(T* p, size_t n, const T& v) const {
+    for_each_n(n, [=](uint32_t i) { p[i] = v; });
+  }
+  template <class T>
+  void copy_to_host(T* dst, const T* src, size_t n) const {
+    if (n) std::memcpy(dst, src, n * sizeof(T));
+  }
+  template <class T>
+  void copy_from_host(T* dst, const T* src, size_t n) const {
+    if (n) std::memcpy(dst, src, n * sizeof(T));
+  }
+  template <class T>
+  void copy(T* dst, const T* src, size_t n) const {
+    if (n) std::memcpy(dst, src, n * sizeof(T));
+  }
+  void sync() const {}
+
+ private:
+  HostMemory memory_;
+};
+
+// Wall-clock phase timer for the host executor.
+class HostPhaseTimer {
+ public:
+  explicit HostPhaseTimer(HostExec&) {}
+  void start(Phase p) { begin_[size_t(p)] = clock::now(); }
+  void stop(Phase p) {
+    ms_[size_t(p)] +=
+        std::chrono::duration<double, std::milli>(clock::now() - begin_[size_t(p)]).count();
+  }
+  void start_frame() {
+    ms_.fill(0.0);
+    frame_begin_ = clock::now();
+  }
+  void stop_frame() {
+    frame_ms_ = std::chrono::duration<double, std::milli>(clock::now() - frame_begin_).count();
+  }
+  // Valid once the executor has synchronized after stop_frame().
+  double phase_ms(Phase p) const { return ms_[size_t(p)]; }
+  double frame_ms() const { return frame_ms_; }
+
+ private:
+  using clock = std::chrono::steady_clock;
+  std::array<clock::time_point, kPhaseCount> begin_{};
+  std::array<double, kPhaseCount> ms_{};
+  clock::time_point frame_begin_{};
+  double frame_ms_ = 0.0;
+};
+
+}  // namespace cdb

@@ -1,0 +1,113 @@
+#pragma once
+#include <cstddef>
+#include <cstdio>
+#include <string>
+#include <utility>
+
+namespace cdb {
+
+// Accounting every executor's allocator shares: bytes in use, peak, and how many times a
+// buffer had to grow after the run started (each growth is also logged to stderr).
+struct MemoryStats {
+  size_t current_bytes = 0;
+  size_t peak_bytes = 0;
+  size_t allocations = 0;
+  size_t growths = 0;
+};
+
+class MemoryResource {
+ public:
+  virtual ~MemoryResource() = default;
+  virtual bool is_device() const = 0;
+  void* allocate(size_t bytes) {
+    void* p = do_allocate(bytes);
+    stats_.current_bytes += bytes;
+    if (stats_.current_bytes > stats_.peak_bytes) stats_.peak_bytes = stats_.current_bytes;
+    ++stats_.allocations;
+    return p;
+  }
+  void deallocate(void* p, size_t bytes) {
+    if (!p) return;
+    do_deallocate(p, bytes);
+    stats_.current_bytes -= bytes;
+  }
+  void note_growth(const char* what, size_t old_count, size_t new_count) {
+    ++stats_.growths;
+    if (verbose_growth_)
+      std::fprintf(stderr, "cdbench: grew %s from %zu to %zu elements\n", what, old_count,
+                   new_count);
+  }
+  const MemoryStats& stats() const { return stats_; }
+  void set_verbose_growth(bool on) { verbose_growth_ = on; }
+
+ private:
+  virtual void* do_allocate(size_t bytes) = 0;
+  virtual void do_deallocate(void* p, size_t bytes) = 0;
+  MemoryStats stats_;
+  bool verbose_growth_ = true;
+};
+
+// A typed buffer in an executor's memory. Contents are not preserved when it grows: every
+// user refills what it reserves.
+template <class T>
+class Array {
+ public:
+  Array() = default;
+  explicit Array(MemoryResource& mr, const char* name = "buffer") : mr_(&mr), name_(name) {}
+  Array(const Array&) = delete;
+  Array& operator=(const Array&) = delete;
+  Array(Array&& o) noexcept { swap(o); }
+  Array& operator=(Array&& o) noexcept {
+    swap(o);
+    return *this;
+  }
+  ~Array() { release(); }
+
+  void bind(MemoryResource& mr, const char* name) {
+    release();
+    mr_ = &mr;
+    name_ = name;
+  }
+
+  // Makes room for n elements. A first reservation is the planned allocation; a later one
+  // that needs more is a growth and is counted and logged.
+  void reserve(size_t n) {
+    if (n <= capacity_) {
+      size_ = n;
+      return;
+    }
+    const size_t old = capacity_;
+    release();
+    ptr_ = static_cast<T*>(mr_->allocate(n * sizeof(T)));
+    capacity_ = n;
+    size_ = n;
+    if (old > 0) mr_->note_growth(name_, old, n);
+  }
+
+  T* data() { return ptr_; }
+  const T* data() const { return ptr_; }
+  size_t size() const { return size_; }
+  size_t capacity() const { return capacity_; }
+  size_t bytes() const { return capacity_ * sizeof(T); }
+
+ private:
+  void release() {
+    if (ptr_) mr_->deallocate(ptr_, capacity_ * sizeof(T));
+    ptr_ = nullptr;
+    capacity_ = size_ = 0;
+  }
+  void swap(Array& o) {
+    std::swap(mr_, o.mr_);
+    std::swap(name_, o.name_);
+    std::swap(ptr_, o.ptr_);
+    std::swap(size_, o.size_);
+    std::swap(capacity_, o.capacity_);
+  }
+  MemoryResource* mr_ = nullptr;
+  const char* name_ = "buffer";
+  T* ptr_ = nullptr;
+  size_t size_ = 0;
+  size_t capacity_ = 0;
+};
+
+}  // namespace cdb

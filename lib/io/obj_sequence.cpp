@@ -1,0 +1,86 @@
+#include "io/obj_sequence.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+
+#include "core/error.h"
+
+namespace cdb {
+
+void read_mesh_file(const std::filesystem::path& file, Topology& topology,
+                    std::vector<vec3f>& positions) {
+  if (!std::filesystem::is_regular_file(file)) fail(file.string() + ": no such file");
+  Assimp::Importer importer;
+  // Triangulate polygons only: no vertex joining, no degenerate removal, no reordering,
+  // so face i of the file is triangle i of the scene.
+  const aiScene* scene = importer.ReadFile(file.string(), aiProcess_Triangulate);
+  if (!scene) fail(file.string() + ": cannot read mesh: " + importer.GetErrorString());
+  if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) fail(file.string() + ": incomplete mesh file");
+  topology.faces.clear();
+  positions.clear();
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    const uint32_t base = uint32_t(positions.size());
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v)
+      positions.push_back({mesh->mVertices[v].x, mesh->mVertices[v].y, mesh->mVertices[v].z});
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines carry no triangle
+      topology.faces.push_back(
+          {base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+    }
+  }
+  topology.num_vertices = uint32_t(positions.size());
+  // assimp reads some garbage as an empty mesh; a mesh file without triangles is an error.
+  if (topology.faces.empty()) fail(file.string() + ": no triangles in this file (malformed or empty mesh)");
+}
+
+namespace {
+
+class MeshSequence final : public FrameSource {
+ public:
+  explicit MeshSequence(const std::filesystem::path& dir) : dir_(dir) {
+    if (!std::filesystem::is_directory(dir)) fail(dir.string() + ": not a directory");
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+      std::string ext = e.path().extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+      if (e.is_regular_file() && ext == ".obj") files_.push_back(e.path());
+    }
+    std::sort(files_.begin(), files_.end());
+    if (files_.empty()) fail(dir.string() + ": no .obj frames in this directory");
+    std::vector<vec3f> positions;
+    read_mesh_file(files_[0], topology_, positions);
+    check_frame(positions, topology_, files_[0].string(), 0);
+  }
+  const Topology& topology() const override { return topology_; }
+  uint32_t num_frames() const override { return uint32_t(files_.size()); }
+  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+    Topology t;
+    read_mesh_file(files_.at(k), t, out);
+    const std::string where = files_[k].string();
+    if (t.faces.size() != topology_.faces.size())
+      fail(where + ": frame " + std::to_string(k) + " has " + std::to_string(t.faces.size()) +
+           " triangles, frame 0 has " + std::to_string(topology_.faces.size()) +
+           " (topology must stay fixed)");
+    check_frame(out, topology_, where, k);
+  }
+  std::string describe() const override {
+    return "mesh sequence " + dir_.string() + ": " + std::to_string(files_.size()) + " frames";
+  }
+
+ private:
+  std::filesystem::path dir_;
+  std::vector<std::filesystem::path> files_;
+  Topology topology_;
+};
+
+}  // namespace
+
+std::unique_ptr<FrameSource> open_mesh_sequence(const std::filesystem::path& dir) {
+  return std::make_unique<MeshSequence>(dir);
+}
+
+}  // namespace cdb

@@ -1,0 +1,26 @@
+#pragma once
+// Resolves what --scene names: a directory of mesh frames, a scene descriptor (.json), or
+// the name of a descriptor in the scenes directory.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/frame_source.h"
+
+namespace cdb {
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::unique_ptr<FrameSource> source;
+};
+
+Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_dir);
+
+// Default scenes directory: $CDBENCH_SCENES, else the source tree's scenes/.
+std::filesystem::path default_scenes_dir();
+
+std::vector<std::string> list_scenes(const std::filesystem::path& scenes_dir);
+
+}  // namespace cdb

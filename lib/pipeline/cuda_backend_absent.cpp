@@ -1,0 +1,17 @@
+// Compiled instead of cuda_backend.cu when the build found no CUDA compiler.
+#include "core/error.h"
+#include "pipeline/pipeline.h"
+
+namespace cdb {
+
+std::unique_ptr<Pipeline> make_cuda_pipeline(const PipelineConfig&) {
+  fail("--device cuda: this cdbench was built without CUDA (no nvcc found at configure time)");
+}
+
+CudaDeviceInfo cuda_device_info() {
+  CudaDeviceInfo info;
+  info.reason = "built without CUDA";
+  return info;
+}
+
+}  // namespace cdb

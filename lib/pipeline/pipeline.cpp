@@ -1,0 +1,31 @@
+#include "pipeline/pipeline.h"
+
+#include "core/error.h"
+
+namespace cdb {
+
+const std::vector<std::string>& pipeline_names() {
+  static const std::vector<std::string> names = {"bvh", "reference", "brute"};
+  return names;
+}
+
+std::unique_ptr<Pipeline> make_pipeline(const PipelineConfig& config) {
+  bool known = false;
+  for (const auto& n : pipeline_names()) known = known || n == config.name;
+  if (!known) {
+    std::string list;
+    for (const auto& n : pipeline_names()) list += (list.empty() ? "" : ", ") + n;
+    fail("unknown pipeline '" + config.name + "' (known: " + list + ")");
+  }
+  std::unique_ptr<Pipeline> p;
+  if (config.device == "cpu")
+    p = make_host_pipeline(config);
+  else if (config.device == "cuda")
+    p = make_cuda_pipeline(config);
+  else
+    fail("unknown device '" + config.device + "' (known: cuda, cpu)");
+  if (!p) fail("pipeline '" + config.name + "' is not available on " + config.device);
+  return p;
+}
+
+}  // namespace cdb

@@ -1,0 +1,67 @@
+#pragma once
+// What the CLI, the verifier and the tests see of a broad phase: a state machine that is
+// given the topology once and then one frame of vertex positions at a time.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/morton.h"
+#include "core/pair.h"
+#include "core/phase.h"
+#include "exec/memory.h"
+#include "geometry/mesh.h"
+
+namespace cdb {
+
+struct PipelineConfig {
+  std::string name = "bvh";     // see pipeline_names()
+  std::string device = "cuda";  // cuda | cpu
+  MortonBits morton_bits = MortonBits::b63;
+  // bvh: rebuild the hierarchy every this many frames (0: only on the first frame).
+  uint32_t rebuild_every = 0;
+  // Initial pair capacity per triangle; the buffer grows (logged, counted) when exceeded.
+  double pairs_per_triangle = 8.0;
+};
+
+struct FrameStats {
+  uint64_t pairs = 0;
+  std::array<double, kPhaseCount> phase_ms{};
+  double total_ms = 0.0;  // the frame without its upload
+  uint32_t query_reruns = 0;  // queries re-run because the pair buffer had to grow
+  std::string op;             // what the frame did to the hierarchy: build, refit, none
+};
+
+class Pipeline {
+ public:
+  virtual ~Pipeline() = default;
+  virtual void set_topology(const Topology& topology) = 0;
+  virtual FrameStats run_frame(const std::vector<vec3f>& vertices) = 0;
+  // The last frame's pairs, sorted, for verification (a download; not part of a frame).
+  virtual std::vector<PrimPair> sorted_pairs() = 0;
+  virtual MemoryStats memory() const = 0;
+};
+
+// Pipelines the factory knows, in the order verify runs them.
+const std::vector<std::string>& pipeline_names();
+
+// The oracle pipeline's name.
+inline const char* oracle_pipeline() { return "brute"; }
+
+std::unique_ptr<Pipeline> make_pipeline(const PipelineConfig& config);
+
+// Per-backend factories (pipeline/host_backend.cpp, pipeline/cuda_backend.cu).
+std::unique_ptr<Pipeline> make_host_pipeline(const PipelineConfig& config);
+std::unique_ptr<Pipeline> make_cuda_pipeline(const PipelineConfig& config);
+
+// The GPU this process would run on, or why there is none.
+struct CudaDeviceInfo {
+  bool available = false;
+  std::string name, reason;
+  int driver_version = 0, runtime_version = 0;
+  size_t total_bytes = 0;
+};
+CudaDeviceInfo cuda_device_info();
+
+}  // namespace cdb

@@ -1,0 +1,17 @@
+#pragma once
+// Built-in procedural scenes, deterministic from their parameters (seed included).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/frame_source.h"
+
+namespace cdb {
+
+// Known generators: soup, cloth-wave, funnel. Unknown parameters are an error.
+std::unique_ptr<FrameSource> make_generator(const std::string& name, const nlohmann::json& params);
+const std::vector<std::string>& generator_names();
+
+}  // namespace cdb

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# CLI smoke and bad-input tests: exit codes and messages that name the file, frame and field.
+set -u
+cdbench=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+check() {  # check NAME EXPECTED_RC PATTERN -- CMD...
+  local name=$1 want_rc=$2 pattern=$3; shift 4
+  "$@" >"$tmp/out" 2>&1; local rc=$?
+  if [[ $rc -ne $want_rc ]] || ! grep -qE -- "$pattern" "$tmp/out"; then
+    echo "FAIL $name: rc=$rc (want $want_rc), pattern '$pattern'"; sed 's/^/    /' "$tmp/out" | tail -20
+    failures=$((failures + 1))
+  else
+    echo "ok   $name"
+  fi
+}
+
+check "run default scene on cpu" 0 "summary: 19 frames measured" -- "$cdbench" run --device cpu --quiet
+check "run prints environment" 0 "commit [0-9a-f]+" -- "$cdbench" run --device cpu --quiet --frames 0:2
+check "verify all pipelines" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:5
+check "verify with sweep oracle" 0 "sort-and-sweep" -- "$cdbench" verify --device cpu --frames 0:2 --brute-limit 10
+check "unknown pipeline" 2 "unknown pipeline 'nope'" -- "$cdbench" run --device cpu --pipeline nope
+check "unknown scene" 2 "unknown scene 'nowhere'" -- "$cdbench" run --device cpu --scene nowhere
+check "frame range past the end" 2 "only 20 frames" -- "$cdbench" run --device cpu --frames 0:99
+check "bad frame range" 2 "expected A:B" -- "$cdbench" run --device cpu --frames x:y
+
+mkdir -p "$tmp/seq"
+for f in 0 1; do
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 %d\nf 1 2 3\nf 1 2 4\n' "$f" >"$tmp/seq/frame_000$f.obj"
+done
+check "obj sequence runs" 0 "frames 0:2" -- "$cdbench" run --device cpu --scene "$tmp/seq"
+check "obj sequence verifies" 0 "all pipelines match" -- "$cdbench" verify --device cpu --scene "$tmp/seq"
+
+cp -r "$tmp/seq" "$tmp/nan"
+printf 'v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n' >"$tmp/nan/frame_0001.obj"
+check "NaN vertex names file, frame, vertex" 2 "frame_0001.obj: frame 1, vertex 2: non-finite" -- "$cdbench" run --device cpu --scene "$tmp/nan"
+
+cp -r "$tmp/seq" "$tmp/count"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 2 3\nf 1 2 4\nf 1 2 5\n' >"$tmp/count/frame_0001.obj"
+check "changed topology names frame" 2 "frame_0001.obj: frame 1 has 3 triangles, frame 0 has 2" -- "$cdbench" run --device cpu --scene "$tmp/count"
+
+mkdir -p "$tmp/bad"
+printf 'this is not a mesh\n{{{\n' >"$tmp/bad/frame_0000.obj"
+check "malformed OBJ names file" 2 "frame_0000.obj" -- "$cdbench" run --device cpu --scene "$tmp/bad"
+
+mkdir -p "$tmp/empty"
+check "empty directory" 2 "no .obj frames" -- "$cdbench" run --device cpu --scene "$tmp/empty"
+
+printf '{"generator": "funnel", "params": {"res": 8, "frames": 3, "colour": 1}}' >"$tmp/typo.json"
+check "unknown generator parameter" 2 "parameter 'colour': unknown parameter" -- "$cdbench" run --device cpu --scene "$tmp/typo.json"
+printf '{"generator": "funnel", "extra": 1}' >"$tmp/key.json"
+check "unknown descriptor key" 2 "/extra: unknown key" -- "$cdbench" run --device cpu --scene "$tmp/key.json"
+printf '{"generator": ' >"$tmp/broken.json"
+check "malformed JSON" 2 "broken.json: malformed JSON" -- "$cdbench" run --device cpu --scene "$tmp/broken.json"
+printf '{"generator": "soup", "params": {"triangles": 0}}' >"$tmp/empty.json"
+check "empty scene runs" 0 "pairs +0" -- "$cdbench" run --device cpu --scene "$tmp/empty.json"
+printf '{"generator": "soup", "params": {"triangles": 1}}' >"$tmp/one.json"
+check "one triangle verifies" 0 "all pipelines match" -- "$cdbench" verify --device cpu --scene "$tmp/one.json"
+
+if [[ $failures -ne 0 ]]; then echo "$failures CLI test(s) failed"; exit 1; fi
+echo "all CLI tests passed"

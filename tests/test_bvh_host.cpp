@@ -1,0 +1,46 @@
+#include "bvh_cases.h"
+#include "core/error.h"
+#include "exec/host_exec.h"
+
+namespace cdb::test {
+
+class HostSoup : public testing::TestWithParam<SoupCase> {};
+
+TEST_P(HostSoup, TreeValidAndPairsExact) { check_soup_case<HostExec>(GetParam()); }
+
+INSTANTIATE_TEST_SUITE_P(Soups, HostSoup, testing::ValuesIn(soup_cases()), case_name);
+
+TEST(HostPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
+  auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 6}});
+  check_pipelines_on("cpu", *wave, 0.01);
+  auto funnel = make_generator("funnel", {{"res", 20}, {"frames", 6}});
+  check_pipelines_on("cpu", *funnel, 8.0);
+}
+
+TEST(HostPipelines, PairBufferGrowthIsCountedNotTruncated) {
+  auto soup = make_generator("soup", {{"triangles", 500}, {"distribution", "identical"}});
+  PipelineConfig cfg;
+  cfg.device = "cpu";
+  cfg.pairs_per_triangle = 0.0;
+  auto p = make_pipeline(cfg);
+  p->set_topology(soup->topology());
+  std::vector<vec3f> v;
+  soup->frame(0, v);
+  const FrameStats s = p->run_frame(v);
+  EXPECT_EQ(s.pairs, 500ull * 499 / 2);
+  EXPECT_GE(s.query_reruns, 1u);
+  EXPECT_GE(p->memory().growths, 1u);
+  EXPECT_EQ(p->sorted_pairs().size(), 500ull * 499 / 2);
+}
+
+TEST(HostPipelines, UnknownPipelineAndDeviceAreErrors) {
+  PipelineConfig cfg;
+  cfg.device = "cpu";
+  cfg.name = "nope";
+  EXPECT_THROW(make_pipeline(cfg), Error);
+  cfg.name = "bvh";
+  cfg.device = "tpu";
+  EXPECT_THROW(make_pipeline(cfg), Error);
+}
+
+}  // namespace cdb::test
