@@ -26,6 +26,7 @@ struct CommonOptions {
   std::string scenes_dir;
   int morton_bits = 63;
   uint32_t rebuild_every = 0;
+  uint32_t front_cycle = 4;
 };
 
 void add_common(CLI::App* cmd, CommonOptions& o) {
@@ -42,6 +43,10 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--rebuild-every", o.rebuild_every,
                   "bvh pipeline: rebuild every K frames (0: build on the first frame only)")
       ->capture_default_str();
+  cmd->add_option("--front-cycle", o.front_cycle,
+                  "front pipelines: frames per maintenance cycle (update on the last, preserve on the others)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
 }
 
 std::string resolve_device(const std::string& device) {
@@ -56,6 +61,7 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.device = device;
   c.morton_bits = o.morton_bits == 30 ? MortonBits::b30 : MortonBits::b63;
   c.rebuild_every = o.rebuild_every;
+  c.front_cycle = o.front_cycle;
   return c;
 }
 
@@ -177,7 +183,8 @@ int main(int argc, char** argv) {
   std::string pipeline = "bvh";
   uint32_t warmup = 1;
   bool quiet = false;
-  run->add_option("--pipeline", pipeline, "bvh, reference or brute")->capture_default_str();
+  run->add_option("--pipeline", pipeline,
+                  "bvh, unordered, static, periodic, reference, a, b or brute")->capture_default_str();
   run->add_option("--warmup", warmup, "frames left out of the summary statistics")
       ->capture_default_str();
   run->add_flag("--quiet", quiet, "no per-frame lines");

@@ -11,11 +11,14 @@ namespace cdb {
 int omp_threads() { return omp_get_max_threads(); }
 
 void print_frame_line(uint32_t frame, const FrameStats& s) {
-  std::printf("frame %4u  %-6s %9.3f ms  pairs %10llu", frame, s.op.c_str(), s.total_ms,
+  std::printf("frame %4u  %-15s %9.3f ms  pairs %10llu", frame, s.op.c_str(), s.total_ms,
               static_cast<unsigned long long>(s.pairs));
+  if (s.front_internal + s.front_external)
+    std::printf("  front %llu+%llu  Q %.3f", static_cast<unsigned long long>(s.front_internal),
+                static_cast<unsigned long long>(s.front_external), s.q_root);
   for (size_t p = 1; p < kPhaseCount; ++p)
     if (s.phase_ms[p] > 0) std::printf("  %s %.3f", kPhaseNames[p], s.phase_ms[p]);
-  if (s.query_reruns) std::printf("  (pair buffer grew, query re-ran %u)", s.query_reruns);
+  if (s.query_reruns) std::printf("  (a buffer grew, re-ran %u)", s.query_reruns);
   std::printf("\n");
 }
 
@@ -60,6 +63,11 @@ void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const
     if (s.mean > 0) std::printf("  %-8s    mean %.3f  median %.3f ms\n", kPhaseNames[p], s.mean, s.median);
   }
   std::printf("  pairs       mean %.0f per frame\n", pairs / double(total.size()));
+  const FrameStats& last = frames.back();
+  if (last.front_internal + last.front_external)
+    std::printf("  front       %llu internal + %llu external nodes at the end, Q(root) %.3f\n",
+                static_cast<unsigned long long>(last.front_internal),
+                static_cast<unsigned long long>(last.front_external), last.q_root);
   std::printf("  memory      peak %.2f MiB, %zu allocations, %zu growths, %u query re-runs\n",
               double(mem.peak_bytes) / (1 << 20), mem.allocations, mem.growths, reruns);
 }

@@ -114,17 +114,15 @@ void check_soup_case(const SoupCase& c) {
 // Every pipeline, through the public factory, on every frame of a scene, against the
 // sweep oracle; with a pair buffer far too small at the start so it must grow. The O(N^2)
 // brute pipeline joins only up to brute_limit triangles.
-inline void check_pipelines_on(const std::string& device, FrameSource& source,
-                               double pairs_per_triangle, size_t brute_limit = 100000) {
+inline void check_pipelines_on(const PipelineConfig& base, FrameSource& source,
+                               size_t brute_limit = 100000) {
   const Topology& topo = source.topology();
   std::vector<std::string> names;
   std::vector<std::unique_ptr<Pipeline>> pipelines;
   for (const auto& name : pipeline_names()) {
     if (name == oracle_pipeline() && topo.faces.size() > brute_limit) continue;
-    PipelineConfig cfg;
+    PipelineConfig cfg = base;
     cfg.name = name;
-    cfg.device = device;
-    cfg.pairs_per_triangle = pairs_per_triangle;
     names.push_back(name);
     pipelines.push_back(make_pipeline(cfg));
     pipelines.back()->set_topology(topo);
@@ -135,12 +133,33 @@ inline void check_pipelines_on(const std::string& device, FrameSource& source,
     const auto expected = sweep_oracle_pairs(topo, v);
     for (size_t p = 0; p < pipelines.size(); ++p) {
       const FrameStats s = pipelines[p]->run_frame(v);
-      ASSERT_EQ(s.pairs, expected.size()) << names[p] << " frame " << f;
+      ASSERT_EQ(s.pairs, expected.size()) << names[p] << " frame " << f << " (" << s.op << ")";
       const PairSetDiff d = diff_pair_sets(expected, pipelines[p]->sorted_pairs());
-      ASSERT_TRUE(d.equal()) << names[p] << " frame " << f << ": " << d.missing_count
+      ASSERT_TRUE(d.equal()) << names[p] << " frame " << f << " (" << s.op << "): " << d.missing_count
                              << " missing, " << d.unexpected_count << " unexpected";
     }
   }
+}
+
+inline PipelineConfig config_for(const std::string& device, double pairs_per_triangle,
+                                 double front_per_triangle = 8.0, uint32_t front_cycle = 4) {
+  PipelineConfig c;
+  c.device = device;
+  c.pairs_per_triangle = pairs_per_triangle;
+  c.front_per_triangle = front_per_triangle;
+  c.front_cycle = front_cycle;
+  return c;
+}
+
+// Scenes whose motion makes fronts sprout and prune: a rolling cloth, the funnel, and a
+// soup whose jitter is larger than its triangles.
+inline std::vector<std::unique_ptr<FrameSource>> front_scenes(uint32_t cloth_res, uint32_t frames) {
+  std::vector<std::unique_ptr<FrameSource>> s;
+  s.push_back(make_generator("cloth-wave", {{"res", cloth_res}, {"frames", frames}}));
+  s.push_back(make_generator("funnel", {{"res", cloth_res}, {"frames", frames}}));
+  s.push_back(make_generator("soup", {{"triangles", 3000}, {"distribution", "clustered"},
+                                      {"jitter", 3.0}, {"frames", frames}, {"seed", 5}}));
+  return s;
 }
 
 }  // namespace cdb::test

@@ -27,9 +27,9 @@ INSTANTIATE_TEST_SUITE_P(Soups, CudaSoup, testing::ValuesIn(soup_cases()), case_
 TEST(CudaPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   auto wave = make_generator("cloth-wave", {{"res", 64}, {"frames", 8}});
-  check_pipelines_on("cuda", *wave, 0.01);
+  check_pipelines_on(config_for("cuda", 0.01), *wave);
   auto funnel = make_generator("funnel", {{"res", 48}, {"frames", 20}});
-  check_pipelines_on("cuda", *funnel, 8.0);
+  check_pipelines_on(config_for("cuda", 8.0), *funnel);
 }
 
 TEST(CudaPipelines, LargeUniformSoupRepeatedBuildsAreExact) {
@@ -37,7 +37,20 @@ TEST(CudaPipelines, LargeUniformSoupRepeatedBuildsAreExact) {
   // Many rebuilds of a 1M-triangle scene: a missing fence in the bottom-up build shows up
   // as an occasional corrupt tree, so repeat.
   auto soup = make_generator("soup", {{"triangles", 1000000}, {"frames", 4}});
-  check_pipelines_on("cuda", *soup, 8.0);
+  check_pipelines_on(config_for("cuda", 8.0), *soup);
 }
+
+class CudaFrontCycles : public testing::TestWithParam<uint32_t> {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_P(CudaFrontCycles, AllPipelinesExactEveryFrame) {
+  for (auto& scene : front_scenes(96, 16)) check_pipelines_on(config_for("cuda", 0.5, 0.05, GetParam()), *scene);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cycles, CudaFrontCycles, testing::Values(1u, 2u, 3u, 5u));
 
 }  // namespace cdb::test

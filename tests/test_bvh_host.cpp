@@ -12,9 +12,43 @@ INSTANTIATE_TEST_SUITE_P(Soups, HostSoup, testing::ValuesIn(soup_cases()), case_
 
 TEST(HostPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 6}});
-  check_pipelines_on("cpu", *wave, 0.01);
+  check_pipelines_on(config_for("cpu", 0.01), *wave);
   auto funnel = make_generator("funnel", {{"res", 20}, {"frames", 6}});
-  check_pipelines_on("cpu", *funnel, 8.0);
+  check_pipelines_on(config_for("cpu", 8.0), *funnel);
+}
+
+// Every front operation sequence: update every frame (cycle 1), alternating (2), and
+// longer cycles (3, 5: periodic's generate-instead-of-update); fronts that start far too
+// small so they must grow while sprouting.
+class HostFrontCycles : public testing::TestWithParam<uint32_t> {};
+
+TEST_P(HostFrontCycles, AllPipelinesExactEveryFrame) {
+  for (auto& scene : front_scenes(24, 12)) check_pipelines_on(config_for("cpu", 0.5, 0.05, GetParam()), *scene);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cycles, HostFrontCycles, testing::Values(1u, 2u, 3u, 5u));
+
+TEST(HostFrontPipelines, RecordTheOperationsOfTheirCycle) {
+  auto wave = make_generator("cloth-wave", {{"res", 16}, {"frames", 9}});
+  const std::vector<std::pair<std::string, std::vector<std::string>>> expected_ops = {
+      {"a", {"build+generate", "refit+preserve", "refit+update", "refit+preserve", "refit+update"}},
+      {"periodic", {"build+generate", "refit+preserve", "refit+update", "refit+preserve", "refit+generate"}},
+      {"reference", {"build+generate", "build+generate", "build+generate", "build+generate", "build+generate"}},
+  };
+  for (const auto& [name, ops] : expected_ops) {
+    PipelineConfig cfg = config_for("cpu", 8.0, 8.0, 2);
+    cfg.name = name;
+    auto p = make_pipeline(cfg);
+    p->set_topology(wave->topology());
+    std::vector<vec3f> v;
+    for (uint32_t f = 0; f < ops.size(); ++f) {
+      wave->frame(f, v);
+      const FrameStats s = p->run_frame(v);
+      EXPECT_EQ(s.op, ops[f]) << name << " frame " << f;
+      EXPECT_GT(s.front_internal + s.front_external, 0u) << name;
+      if (name != "unordered") EXPECT_GT(s.q_root, 0.0) << name;
+    }
+  }
 }
 
 TEST(HostPipelines, PairBufferGrowthIsCountedNotTruncated) {

@@ -68,7 +68,7 @@ struct Lbvh {
     size_t t = exec.sort_temp_bytes(n);
     t = t > exec.scan_temp_bytes(size_t(n) + 1) ? t : exec.scan_temp_bytes(size_t(n) + 1);
     t = t > exec.reduce_temp_bytes(n) ? t : exec.reduce_temp_bytes(n);
-    temp.reserve(t);
+    temp.reserve(t > 256 ? t : 256);
   }
 
   BvhView view() const {

@@ -5,11 +5,14 @@
 namespace cdb {
 
 // The timed phases of a frame. Each pipeline times the ones it runs; the rest read 0.
-enum class Phase : int { upload, boxes, build, order, refit, query, count };
+enum class Phase : int {
+  upload, boxes, build, order, refit, query, generate, preserve, update, balance, front_order, count
+};
 
 inline constexpr size_t kPhaseCount = static_cast<size_t>(Phase::count);
 
 inline constexpr std::array<const char*, kPhaseCount> kPhaseNames = {
-    "upload", "boxes", "build", "order", "refit", "query"};
+    "upload", "boxes", "build", "order", "refit", "query",
+    "generate", "preserve", "update", "balance", "front_order"};
 
 }  // namespace cdb

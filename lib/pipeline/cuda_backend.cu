@@ -1,13 +1,13 @@
 #include "core/error.h"
 #include "exec/cuda_exec.cuh"
-#include "pipeline/broad_phase.h"
+#include "pipeline/registry.h"
 
 namespace cdb {
 
 std::unique_ptr<Pipeline> make_cuda_pipeline(const PipelineConfig& config) {
   const CudaDeviceInfo info = cuda_device_info();
   if (!info.available) fail("--device cuda: " + info.reason);
-  return make_broad_phase<CudaExec, CudaPhaseTimer>(config);
+  return make_pipeline_on<CudaExec, CudaPhaseTimer>(config);
 }
 
 CudaDeviceInfo cuda_device_info() {

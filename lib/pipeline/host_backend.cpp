@@ -1,11 +1,11 @@
 #include "core/error.h"
 #include "exec/host_exec.h"
-#include "pipeline/broad_phase.h"
+#include "pipeline/registry.h"
 
 namespace cdb {
 
 std::unique_ptr<Pipeline> make_host_pipeline(const PipelineConfig& config) {
-  return make_broad_phase<HostExec, HostPhaseTimer>(config);
+  return make_pipeline_on<HostExec, HostPhaseTimer>(config);
 }
 
 }  // namespace cdb

@@ -23,6 +23,11 @@ struct PipelineConfig {
   uint32_t rebuild_every = 0;
   // Initial pair capacity per triangle; the buffer grows (logged, counted) when exceeded.
   double pairs_per_triangle = 8.0;
+  // Initial front capacity per triangle and kind (internal, external); grows the same way.
+  double front_per_triangle = 8.0;
+  // Front pipelines: frames per maintenance cycle; the last frame of a cycle updates the
+  // fronts (pipeline b also balances first), the others preserve them.
+  uint32_t front_cycle = 4;
 };
 
 struct FrameStats {
@@ -30,7 +35,9 @@ struct FrameStats {
   std::array<double, kPhaseCount> phase_ms{};
   double total_ms = 0.0;  // the frame without its upload
   uint32_t query_reruns = 0;  // queries re-run because the pair buffer had to grow
-  std::string op;             // what the frame did to the hierarchy: build, refit, none
+  std::string op;             // what the frame did: hierarchy (build/refit) + front operation
+  uint64_t front_internal = 0, front_external = 0;  // front sizes after the frame
+  double q_root = 0.0;  // Formula 1 at the root (internal / external front nodes), when ordered
 };
 
 class Pipeline {

@@ -1,0 +1,84 @@
+#pragma once
+// BVTT fronts for self-collision (paper §3.3, Alg. 1). front(i, j) pairs a query leaf i
+// (Morton order) with a BVH node j. For each leaf i, the nodes j of its front partition the
+// leaves (i, N-1]: they are where the leaf algorithm stopped descending (a leaf, or an
+// internal node whose box missed leaf i's). Because they partition that range, any
+// traversal started from them under refit reports exactly the pairs of leaf i.
+// Fronts are stored apart by the kind of j: the internal front (j internal) and the
+// external front (j a leaf), SoA.
+#include <cstdint>
+
+#include "bvh/node_ref.h"
+#include "core/atomics.h"
+#include "exec/memory.h"
+
+namespace cdb {
+
+enum FrontKind : int { kInternalFront = 0, kExternalFront = 1 };
+
+CDB_HD_INLINE int front_kind(uint32_t ref) { return is_leaf(ref) ? kExternalFront : kInternalFront; }
+
+// Where an operation appends the fronts it produces: per kind a counter (every push
+// counted, pushes past capacity not stored: the caller grows and re-runs), and, for ordered
+// pipelines, the count log of the histogram sort (front nodes per BVH node j).
+struct FrontSink {
+  uint32_t* prim[2];
+  uint32_t* node[2];
+  uint8_t* mark[2];
+  unsigned long long* count;  // count[kind]
+  unsigned long long capacity[2];
+  uint32_t* count_log[2];     // null for unordered fronts
+
+  // mark: 1 = produced by sprouting, 0 = kept by pruning (the paper's opt mark).
+  CDB_HD_INLINE void push(uint32_t i, uint32_t ref, uint8_t m) const {
+    const int k = front_kind(ref);
+    const unsigned long long slot = atomic_add_relaxed(&count[k], 1ull);
+    if (slot < capacity[k]) {
+      prim[k][slot] = i;
+      node[k][slot] = ref;
+      mark[k][slot] = m;
+    }
+    if (count_log[k]) atomic_add_relaxed(&count_log[k][ref_index(ref)], 1u);
+  }
+};
+
+// One kind of front: current (ordered or not), the append target of the last operation,
+// and the ordered copy the histogram sort scatters into.
+template <class Exec>
+struct FrontArrays {
+  void bind(MemoryResource& mr, int kind) {
+    const bool in = kind == kInternalFront;
+    prim.bind(mr, in ? "front_internal.prim" : "front_external.prim");
+    node.bind(mr, in ? "front_internal.node" : "front_external.node");
+    raw_prim.bind(mr, in ? "front_internal.raw_prim" : "front_external.raw_prim");
+    raw_node.bind(mr, in ? "front_internal.raw_node" : "front_external.raw_node");
+    raw_mark.bind(mr, in ? "front_internal.raw_mark" : "front_external.raw_mark");
+    sorted_prim.bind(mr, in ? "front_internal.sorted_prim" : "front_external.sorted_prim");
+    sorted_node.bind(mr, in ? "front_internal.sorted_node" : "front_external.sorted_node");
+    count_log.bind(mr, in ? "front_internal.count_log" : "front_external.count_log");
+    offset_log.bind(mr, in ? "front_internal.offset_log" : "front_external.offset_log");
+    cursor_front.bind(mr, in ? "front_internal.cursor_front" : "front_external.cursor_front");
+    cursor_back.bind(mr, in ? "front_internal.cursor_back" : "front_external.cursor_back");
+  }
+  // Capacity for front nodes (all buffers of the kind) and segment count (BVH nodes).
+  void reserve(size_t capacity, size_t segments) {
+    for (auto* a : {&prim, &node, &raw_prim, &raw_node, &sorted_prim, &sorted_node})
+      a->reserve(capacity);
+    raw_mark.reserve(capacity);
+    count_log.reserve(segments + 1);
+    offset_log.reserve(segments + 1);
+    cursor_front.reserve(segments);
+    cursor_back.reserve(segments);
+  }
+  size_t capacity() const { return prim.capacity(); }
+
+  Array<uint32_t> prim, node;          // the current front
+  Array<uint32_t> raw_prim, raw_node;  // produced by generate/update, unordered
+  Array<uint8_t> raw_mark;
+  Array<uint32_t> sorted_prim, sorted_node;
+  Array<uint32_t> count_log, offset_log;  // order log: front nodes per BVH node, its scan
+  Array<uint32_t> cursor_front, cursor_back;
+  size_t size = 0;  // nodes in the current front (host copy from the frame's read-back)
+};
+
+}  // namespace cdb

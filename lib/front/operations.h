@@ -1,0 +1,136 @@
+#pragma once
+// The front operations of Fig. 4 as functors: (1) generate, (2) preserve, (3) update
+// (sprout/prune, Alg. 1 lines 12-47) and the opt marks of (4) balance. Leaf i's box is
+// tested against node boxes; pairs go to a PairSink in input triangle indices.
+#include <cstdint>
+
+#include "bvh/bvh_view.h"
+#include "core/aabb.h"
+#include "core/pair_sink.h"
+#include "front/front.h"
+
+namespace cdb {
+
+// What the front kernels read of the tree beyond BvhView: parent links for pruning.
+struct FrontTree {
+  BvhView bvh;
+  const uint32_t* leaf_parent;
+  const uint32_t* node_parent;
+
+  CDB_HD_INLINE bool overlaps_node(const vec4f& lo, const vec4f& hi, uint32_t ref) const {
+    const uint32_t k = ref_index(ref);
+    return is_leaf(ref) ? overlaps(lo, hi, bvh.leaf_lo[k], bvh.leaf_hi[k])
+                        : overlaps(lo, hi, bvh.node_lo[k], bvh.node_hi[k]);
+  }
+  CDB_HD_INLINE uint32_t escape(uint32_t ref) const {
+    return is_leaf(ref) ? bvh.leaf_escape[ref_index(ref)] : bvh.node_escape[ref];
+  }
+  CDB_HD_INLINE uint32_t parent(uint32_t ref) const {
+    return is_leaf(ref) ? leaf_parent[ref_index(ref)] : node_parent[ref];
+  }
+};
+
+// Stackless traversal of the nodes from `node` up to (not including) `end` in depth-first
+// order: overlapping internal nodes descend, everything else is a stop node. Leaves that
+// overlap are pairs. Stop nodes are pushed to the sink when one is given.
+template <bool kRecord>
+CDB_HD_INLINE void traverse_range(const FrontTree& t, uint32_t i, const vec4f& lo, const vec4f& hi,
+                                  uint32_t node, uint32_t end, const PairSink& pairs,
+                                  const FrontSink& front) {
+  const uint32_t prim = t.bvh.leaf_prim[i];
+  while (node != end) {
+    const uint32_t k = ref_index(node);
+    if (is_leaf(node)) {
+      if (overlaps(lo, hi, t.bvh.leaf_lo[k], t.bvh.leaf_hi[k])) pairs.emit(prim, t.bvh.leaf_prim[k]);
+      if (kRecord) front.push(i, node, 1);
+      node = t.bvh.leaf_escape[k];
+    } else if (overlaps(lo, hi, t.bvh.node_lo[k], t.bvh.node_hi[k])) {
+      node = t.bvh.node_left[k];
+    } else {
+      if (kRecord) front.push(i, node, 1);
+      node = t.bvh.node_escape[k];
+    }
+  }
+}
+
+// (1) Generate: the leaf algorithm from leaf i's escape index, recording its stop nodes.
+struct GenerateFrontFn {
+  FrontTree tree;
+  PairSink pairs;
+  FrontSink front;
+  CDB_HD void operator()(uint32_t i) const {
+    const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
+    traverse_range<true>(tree, i, lo, hi, tree.bvh.leaf_escape[i], kNoNode, pairs, front);
+  }
+};
+
+// (2) Preserve: traverse from every stored front node; the front is not rewritten.
+struct PreserveFrontFn {
+  FrontTree tree;
+  PairSink pairs;
+  const uint32_t* prim;
+  const uint32_t* node;
+  CDB_HD void operator()(uint32_t e) const {
+    const uint32_t i = prim[e], j = node[e];
+    const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
+    if (is_leaf(j)) {
+      if (tree.overlaps_node(lo, hi, j)) pairs.emit(tree.bvh.leaf_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
+    } else if (tree.overlaps_node(lo, hi, j)) {
+      traverse_range<false>(tree, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
+                            FrontSink{});
+    }
+  }
+};
+
+// (3) Update: an overlapping front node sprouts (its subtree's stop nodes replace it); a
+// missing one prunes: it climbs while it is a left child whose parent also misses, and the
+// node it ends on is kept only if it is a left child or its parent overlaps. A right child
+// under a missing parent is dropped: the leftmost front node of that parent's subtree climbs
+// to it, so the front stays a partition of (i, N-1]. The climb never reaches a node holding
+// leaf i: such a node contains leaf i's box and so always overlaps.
+struct UpdateFrontFn {
+  FrontTree tree;
+  PairSink pairs;
+  FrontSink front;
+  const uint32_t* prim;
+  const uint32_t* node;
+  CDB_HD void operator()(uint32_t e) const {
+    const uint32_t i = prim[e], j = node[e];
+    const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
+    if (tree.overlaps_node(lo, hi, j)) {
+      if (is_leaf(j)) {
+        pairs.emit(tree.bvh.leaf_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
+        front.push(i, j, 1);
+      } else {
+        traverse_range<true>(tree, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
+                             front);
+      }
+      return;
+    }
+    uint32_t child = j, father = tree.parent(j);
+    while (father != kNoNode && tree.bvh.node_left[father] == child &&
+           !tree.overlaps_node(lo, hi, father)) {
+      child = father;
+      father = tree.parent(father);
+    }
+    if (father == kNoNode || tree.bvh.node_left[father] == child || tree.overlaps_node(lo, hi, father))
+      front.push(i, child, 0);
+  }
+};
+
+// (4) Balance: the opt mark each front node will take in the coming update (1 = sprout),
+// counted per BVH node for the histogram sort.
+struct MarkFrontFn {
+  FrontTree tree;
+  const uint32_t* prim;
+  const uint32_t* node;
+  uint8_t* mark;
+  uint32_t* count_log;
+  CDB_HD void operator()(uint32_t e) const {
+    const uint32_t i = prim[e], j = node[e];
+    mark[e] = tree.overlaps_node(tree.bvh.leaf_lo[i], tree.bvh.leaf_hi[i], j) ? 1 : 0;
+    atomic_add_relaxed(&count_log[ref_index(j)], 1u);
+  }
+};
+
+}  // namespace cdb

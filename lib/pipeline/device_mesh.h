@@ -1,0 +1,111 @@
+#pragma once
+// Pieces every pipeline's frame loop shares: the mesh on the executor, the ordered LBVH's
+// per-frame upkeep, and the pair buffer with its counters.
+#include <string>
+#include <vector>
+
+#include "bvh/build.h"
+#include "bvh/lbvh.h"
+#include "bvh/order.h"
+#include "bvh/refit.h"
+#include "core/error.h"
+#include "core/pair_sink.h"
+#include "geometry/mesh.h"
+
+namespace cdb {
+
+template <class Exec>
+class DeviceMesh {
+ public:
+  explicit DeviceMesh(Exec& exec) {
+    vertices_.bind(exec.memory(), "mesh.vertices");
+    faces_.bind(exec.memory(), "mesh.faces");
+  }
+  void set_topology(Exec& exec, const Topology& topology) {
+    if (topology.faces.size() > kMaxLeaves) fail("scene has more triangles than 2^31-1");
+    num_vertices_ = topology.num_vertices;
+    num_faces_ = static_cast<uint32_t>(topology.faces.size());
+    vertices_.reserve(num_vertices_);
+    faces_.reserve(num_faces_);
+    exec.copy_from_host(faces_.data(), topology.faces.data(), num_faces_);
+  }
+  void upload(Exec& exec, const std::vector<vec3f>& vertices) {
+    if (vertices.size() != num_vertices_)
+      fail("frame has " + std::to_string(vertices.size()) + " vertices, topology has " +
+           std::to_string(num_vertices_));
+    exec.copy_from_host(vertices_.data(), vertices.data(), num_vertices_);
+  }
+  MeshView view() const { return {vertices_.data(), faces_.data(), num_faces_}; }
+  uint32_t num_faces() const { return num_faces_; }
+
+ private:
+  Array<vec3f> vertices_;
+  Array<Tri> faces_;
+  uint32_t num_vertices_ = 0, num_faces_ = 0;
+};
+
+// Rebuild (build + depth-first order) or refit the hierarchy; returns which ran.
+template <class Exec, class Timer>
+std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const MeshView& mesh,
+                             bool rebuild, MortonBits bits) {
+  if (!rebuild) {
+    timer.start(Phase::refit);
+    refit(exec, bvh, mesh);
+    timer.stop(Phase::refit);
+    return "refit";
+  }
+  timer.start(Phase::build);
+  build_hierarchy(exec, bvh, mesh, bits);
+  timer.stop(Phase::build);
+  timer.start(Phase::order);
+  order_depth_first(exec, bvh);
+  timer.stop(Phase::order);
+  return "build";
+}
+
+// The pair buffer: pairs plus a small block of device counters read back once a frame
+// (counters[0] = pairs; pipelines may use the rest).
+template <class Exec>
+class PairBuffer {
+ public:
+  static constexpr size_t kCounters = 4;
+  explicit PairBuffer(Exec& exec) {
+    pairs_.bind(exec.memory(), "pairs");
+    counters_.bind(exec.memory(), "counters");
+  }
+  void reserve(size_t capacity) {
+    pairs_.reserve(std::max<size_t>(1024, capacity));
+    counters_.reserve(kCounters);
+  }
+  void reset_counters(Exec& exec) { exec.fill(counters_.data(), kCounters, 0ull); }
+  PairSink sink() { return {pairs_.data(), counters_.data(), pairs_.capacity()}; }
+  unsigned long long* counter(size_t k) { return counters_.data() + k; }
+  // The frame's one synchronization: all counters at once.
+  std::array<unsigned long long, kCounters> read_counters(Exec& exec) {
+    std::array<unsigned long long, kCounters> c{};
+    exec.copy_to_host(c.data(), counters_.data(), kCounters);
+    last_count_ = c[0];
+    return c;
+  }
+  // After a read-back: if the pairs did not fit, grow to the measured need (logged,
+  // counted) and say so; the caller re-runs the query.
+  bool grow_if_needed() {
+    if (last_count_ <= pairs_.capacity()) return false;
+    pairs_.reserve(size_t(last_count_ + last_count_ / 4));
+    return true;
+  }
+  uint64_t count() const { return last_count_; }
+  std::vector<PrimPair> sorted_pairs(Exec& exec) const {
+    std::vector<PrimPair> out(last_count_);
+    exec.copy_to_host(out.data(), pairs_.data(), last_count_);
+    std::sort(out.begin(), out.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+    return out;
+  }
+
+ private:
+  Array<PrimPair> pairs_;
+  Array<unsigned long long> counters_;
+  uint64_t last_count_ = 0;
+};
+
+}  // namespace cdb

@@ -1,0 +1,239 @@
+#pragma once
+// Front-based pipelines (paper Fig. 4, §5.2) as one state machine over the executor. Each
+// frame: refit (or rebuild), then one front operation — (1) generate, (2) preserve,
+// (3) update, with (4) balance before it in pipeline b — decided on the host from the frame
+// counter (no device round trip needed for the decision). Produced fronts are ordered by
+// histogram sort unless the strategy is `unordered`. One read-back a frame: pair and front
+// counters together; an overflow grows the buffer (logged, counted) and re-runs the
+// operation from the untouched current front.
+#include <algorithm>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "front/front.h"
+#include "front/operations.h"
+#include "front/ordering.h"
+#include "pipeline/device_mesh.h"
+#include "pipeline/pipeline.h"
+
+namespace cdb {
+
+struct FrontPlan {
+  bool ordered = true;             // histogram-sort fronts after producing them
+  bool balance = false;            // (4) before every (3)
+  bool periodic = false;           // (1) instead of (3) every second cycle
+  bool rebuild_every_frame = false;  // the reference strategy
+};
+
+template <class Exec, class Timer>
+class FrontPipeline final : public Pipeline {
+ public:
+  FrontPipeline(const PipelineConfig& config, FrontPlan plan)
+      : config_(config), plan_(plan), timer_(exec_), mesh_(exec_), bvh_(exec_), pairs_(exec_) {
+    front_[kInternalFront].bind(exec_.memory(), kInternalFront);
+    front_[kExternalFront].bind(exec_.memory(), kExternalFront);
+    if (config_.front_cycle == 0) fail("--front-cycle must be at least 1");
+  }
+
+  void set_topology(const Topology& topology) override {
+    mesh_.set_topology(exec_, topology);
+    const uint32_t n = mesh_.num_faces();
+    bvh_.reserve(exec_, n);
+    pairs_.reserve(size_t(config_.pairs_per_triangle * n));
+    const size_t cap = std::max<size_t>(1024, size_t(config_.front_per_triangle * n));
+    front_[kInternalFront].reserve(cap, n > 1 ? n - 1 : 1);
+    front_[kExternalFront].reserve(cap, std::max<uint32_t>(n, 1));
+    frame_ = 0;
+    exec_.sync();
+  }
+
+  FrameStats run_frame(const std::vector<vec3f>& vertices) override {
+    FrameStats stats;
+    timer_.start_frame();
+    timer_.start(Phase::upload);
+    mesh_.upload(exec_, vertices);
+    timer_.stop(Phase::upload);
+    const MeshView mesh = mesh_.view();
+    const bool rebuild = frame_ == 0 || plan_.rebuild_every_frame ||
+                         (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
+    stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, rebuild, config_.morton_bits);
+    if (rebuild) generated_at_ = frame_;
+    const Op op = choose_op(rebuild);
+    if (op == Op::update && plan_.balance) balance();
+    for (;;) {
+      pairs_.reset_counters(exec_);
+      run_op(op);
+      timer_.stop_frame();
+      const auto c = pairs_.read_counters(exec_);
+      bool again = pairs_.grow_if_needed();
+      if (op != Op::preserve) again = grow_front_if_needed(c) || again;
+      if (!again) {
+        if (op != Op::preserve) adopt_produced_front(c);
+        break;
+      }
+      ++stats.query_reruns;
+    }
+    if (op == Op::generate) generated_at_ = frame_;
+    stats.op += std::string("+") + op_name(op);
+    stats.pairs = pairs_.count();
+    stats.front_internal = front_[kInternalFront].size;
+    stats.front_external = front_[kExternalFront].size;
+    stats.q_root = plan_.ordered && stats.front_external
+                       ? double(stats.front_internal) / double(stats.front_external)
+                       : 0.0;
+    for (size_t p = 0; p < kPhaseCount; ++p) stats.phase_ms[p] = timer_.phase_ms(Phase(p));
+    stats.total_ms = timer_.frame_ms() - stats.phase_ms[size_t(Phase::upload)];
+    ++frame_;
+    return stats;
+  }
+
+  std::vector<PrimPair> sorted_pairs() override { return pairs_.sorted_pairs(exec_); }
+  MemoryStats memory() const override { return const_cast<Exec&>(exec_).memory().stats(); }
+
+ private:
+  enum class Op { generate, preserve, update };
+  static const char* op_name(Op op) {
+    return op == Op::generate ? "generate" : op == Op::preserve ? "preserve" : "update";
+  }
+
+  Op choose_op(bool rebuilt) const {
+    if (rebuilt) return Op::generate;
+    const uint64_t since = frame_ - generated_at_;
+    if (since % config_.front_cycle != 0) return Op::preserve;
+    if (plan_.periodic && (since / config_.front_cycle) % 2 == 0) return Op::generate;
+    return Op::update;
+  }
+
+  FrontTree tree() const {
+    return {bvh_.view(), bvh_.leaf_parent.data(), bvh_.node_parent.data()};
+  }
+
+  FrontSink produce_sink() {
+    FrontSink s{};
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      s.prim[k] = f.raw_prim.data();
+      s.node[k] = f.raw_node.data();
+      s.mark[k] = f.raw_mark.data();
+      s.capacity[k] = f.raw_prim.capacity();
+      s.count_log[k] = plan_.ordered ? f.count_log.data() : nullptr;
+    }
+    s.count = pairs_.counter(1);
+    return s;
+  }
+
+  size_t segments(int k) const {
+    const uint32_t n = bvh_.num_leaves;
+    return k == kInternalFront ? (n > 1 ? n - 1 : 0) : n;
+  }
+
+  void zero_count_logs() {
+    for (int k = 0; k < 2; ++k) exec_.fill(front_[k].count_log.data(), segments(k) + 1, 0u);
+  }
+
+  void run_op(Op op) {
+    const FrontTree t = tree();
+    const uint32_t n = bvh_.num_leaves;
+    if (op == Op::preserve) {
+      timer_.start(Phase::preserve);
+      for (int k = 0; k < 2; ++k)
+        exec_.for_each_n(front_[k].size, PreserveFrontFn{t, pairs_.sink(), front_[k].prim.data(),
+                                                         front_[k].node.data()},
+                         Balance::uneven);
+      timer_.stop(Phase::preserve);
+      return;
+    }
+    const Phase phase = op == Op::generate ? Phase::generate : Phase::update;
+    timer_.start(phase);
+    if (plan_.ordered) zero_count_logs();
+    const FrontSink sink = produce_sink();
+    if (op == Op::generate) {
+      exec_.for_each_n(n, GenerateFrontFn{t, pairs_.sink(), sink}, Balance::uneven);
+    } else {
+      for (int k = 0; k < 2; ++k)
+        exec_.for_each_n(front_[k].size, UpdateFrontFn{t, pairs_.sink(), sink, front_[k].prim.data(),
+                                                       front_[k].node.data()},
+                         Balance::uneven);
+    }
+    timer_.stop(phase);
+    if (!plan_.ordered) return;
+    timer_.start(Phase::front_order);
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      order_front(exec_, f, segments(k), pairs_.counter(1 + k), f.raw_prim.data(), f.raw_node.data(),
+                  f.raw_mark.data(), f.raw_prim.capacity(), bvh_.temp.data(), bvh_.temp.size());
+    }
+    timer_.stop(Phase::front_order);
+  }
+
+  // (4) Balance: mark each current front node with the branch it will take, then reorder
+  // the current front by node key and mark. The front's content is unchanged.
+  void balance() {
+    timer_.start(Phase::balance);
+    const FrontTree t = tree();
+    zero_count_logs();
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      exec_.for_each_n(f.size, MarkFrontFn{t, f.prim.data(), f.node.data(), f.raw_mark.data(),
+                                           f.count_log.data()});
+      exec_.fill(pairs_.counter(3), 1, static_cast<unsigned long long>(f.size));
+      order_front(exec_, f, segments(k), pairs_.counter(3), f.prim.data(), f.node.data(),
+                  f.raw_mark.data(), f.size, bvh_.temp.data(), bvh_.temp.size());
+      std::swap(f.prim, f.sorted_prim);
+      std::swap(f.node, f.sorted_node);
+      match_capacity(f);
+    }
+    timer_.stop(Phase::balance);
+  }
+
+  bool grow_front_if_needed(const std::array<unsigned long long, PairBuffer<Exec>::kCounters>& c) {
+    bool grew = false;
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      const unsigned long long need = c[1 + k];
+      if (need <= f.raw_prim.capacity()) continue;
+      const size_t cap = size_t(need + need / 4);
+      for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node}) a->reserve(cap);
+      f.raw_mark.reserve(cap);
+      grew = true;
+    }
+    return grew;
+  }
+
+  void adopt_produced_front(const std::array<unsigned long long, PairBuffer<Exec>::kCounters>& c) {
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      if (plan_.ordered) {
+        std::swap(f.prim, f.sorted_prim);
+        std::swap(f.node, f.sorted_node);
+      } else {
+        std::swap(f.prim, f.raw_prim);
+        std::swap(f.node, f.raw_node);
+      }
+      f.size = size_t(c[1 + k]);
+      match_capacity(f);
+    }
+  }
+
+  // Scratch buffers swapped with the current front keep up with its capacity, so a front
+  // that grew does not make its next operation overflow again. Contents are scratch.
+  void match_capacity(FrontArrays<Exec>& f) {
+    const size_t cap = std::max({f.prim.capacity(), f.raw_prim.capacity(), f.sorted_prim.capacity()});
+    for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node})
+      if (a->capacity() < cap) a->reserve(cap);
+    if (f.raw_mark.capacity() < cap) f.raw_mark.reserve(cap);
+  }
+
+  PipelineConfig config_;
+  FrontPlan plan_;
+  Exec exec_;
+  Timer timer_;
+  DeviceMesh<Exec> mesh_;
+  Lbvh<Exec> bvh_;
+  PairBuffer<Exec> pairs_;
+  FrontArrays<Exec> front_[2];
+  uint64_t frame_ = 0, generated_at_ = 0;
+};
+
+}  // namespace cdb
