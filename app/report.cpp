@@ -58,9 +58,15 @@ void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const
   std::printf("  first frame %.3f ms (%s)\n", frames[0].total_ms, frames[0].op.c_str());
   std::printf("  per frame   mean %.3f  median %.3f  p95 %.3f  min %.3f ms (upload excluded)\n",
               t.mean, t.median, t.p95, t.min);
+  // Per phase, over the frames where it ran (a front update runs one frame in a cycle).
   for (size_t p = 0; p < kPhaseCount; ++p) {
-    const Stat s = stat_of(phase[p]);
-    if (s.mean > 0) std::printf("  %-8s    mean %.3f  median %.3f ms\n", kPhaseNames[p], s.mean, s.median);
+    std::vector<double> ran;
+    for (double ms : phase[p])
+      if (ms > 0) ran.push_back(ms);
+    if (ran.empty()) continue;
+    const Stat s = stat_of(ran);
+    std::printf("  %-11s mean %.3f  median %.3f  p95 %.3f ms  (%zu frames)\n", kPhaseNames[p], s.mean,
+                s.median, s.p95, ran.size());
   }
   std::printf("  pairs       mean %.0f per frame\n", pairs / double(total.size()));
   const FrameStats& last = frames.back();
