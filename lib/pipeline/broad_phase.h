@@ -43,11 +43,7 @@ class BroadPhase final : public Pipeline {
 
   FrameStats run_frame(const std::vector<vec3f>& vertices) override {
     FrameStats stats;
-    timer_.start_frame();
-    timer_.start(Phase::upload);
-    mesh_.upload(exec_, vertices);
-    timer_.stop(Phase::upload);
-    const MeshView mesh = mesh_.view();
+    const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
     if (method_ == BroadPhaseMethod::brute) {
       timer_.start(Phase::boxes);
       exec_.for_each_n(mesh.num_faces, FaceBoxFn{mesh, prim_lo_.data(), prim_hi_.data()});
@@ -69,8 +65,7 @@ class BroadPhase final : public Pipeline {
       pairs_.read_counters(exec_);
     } while (pairs_.grow_if_needed() && ++stats.query_reruns);
     stats.pairs = pairs_.count();
-    for (size_t p = 0; p < kPhaseCount; ++p) stats.phase_ms[p] = timer_.phase_ms(Phase(p));
-    stats.total_ms = timer_.frame_ms() - stats.phase_ms[size_t(Phase::upload)];
+    record_timings(timer_, stats);
     ++frame_;
     return stats;
   }

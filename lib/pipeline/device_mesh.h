@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/pair_sink.h"
 #include "geometry/mesh.h"
+#include "pipeline/pipeline.h"
 
 namespace cdb {
 
@@ -43,6 +44,25 @@ class DeviceMesh {
   Array<Tri> faces_;
   uint32_t num_vertices_ = 0, num_faces_ = 0;
 };
+
+// Starts a frame's timing and uploads its vertices (timed apart: upload is left out of the
+// frame total, since simulators hold their vertices on the device already).
+template <class Exec, class Timer>
+MeshView begin_frame(Exec& exec, Timer& timer, DeviceMesh<Exec>& mesh,
+                     const std::vector<vec3f>& vertices) {
+  timer.start_frame();
+  timer.start(Phase::upload);
+  mesh.upload(exec, vertices);
+  timer.stop(Phase::upload);
+  return mesh.view();
+}
+
+// Copies the frame's phase times into its stats, after the frame's read-back.
+template <class Timer>
+void record_timings(const Timer& timer, FrameStats& stats) {
+  for (size_t p = 0; p < kPhaseCount; ++p) stats.phase_ms[p] = timer.phase_ms(Phase(p));
+  stats.total_ms = timer.frame_ms() - stats.phase_ms[size_t(Phase::upload)];
+}
 
 // Rebuild (build + depth-first order) or refit the hierarchy; returns which ran.
 template <class Exec, class Timer>

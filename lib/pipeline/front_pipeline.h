@@ -50,11 +50,7 @@ class FrontPipeline final : public Pipeline {
 
   FrameStats run_frame(const std::vector<vec3f>& vertices) override {
     FrameStats stats;
-    timer_.start_frame();
-    timer_.start(Phase::upload);
-    mesh_.upload(exec_, vertices);
-    timer_.stop(Phase::upload);
-    const MeshView mesh = mesh_.view();
+    const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
     const bool rebuild = frame_ == 0 || plan_.rebuild_every_frame ||
                          (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
     stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, rebuild, config_.morton_bits);
@@ -82,8 +78,7 @@ class FrontPipeline final : public Pipeline {
     stats.q_root = plan_.ordered && stats.front_external
                        ? double(stats.front_internal) / double(stats.front_external)
                        : 0.0;
-    for (size_t p = 0; p < kPhaseCount; ++p) stats.phase_ms[p] = timer_.phase_ms(Phase(p));
-    stats.total_ms = timer_.frame_ms() - stats.phase_ms[size_t(Phase::upload)];
+    record_timings(timer_, stats);
     ++frame_;
     return stats;
   }
