@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
   std::string pipeline = "bvh";
   uint32_t warmup = 1;
   bool quiet = false;
-  run->add_option("--pipeline", pipeline, "bvh, reference or brute")->capture_default_str();
+  run->add_option("--pipeline", pipeline, "bvh, reference, sweep, hash or brute")->capture_default_str();
   run->add_option("--warmup", warmup, "frames left out of the summary statistics")
       ->capture_default_str();
   run->add_flag("--quiet", quiet, "no per-frame lines");

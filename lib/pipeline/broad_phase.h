@@ -1,7 +1,8 @@
 #pragma once
 // The frame loop shared by the pipelines of this file, written once over the executor:
-// upload vertices, update or rebuild the ordered LBVH, run the self query into a growing
-// pair buffer. One host synchronization a frame: the pair-count read-back.
+// upload vertices, update or rebuild the ordered LBVH (or the sweep's sorted boxes, or the
+// hash grid), run the query into a growing pair buffer. One host synchronization a frame,
+// the pair-count read-back; the hash adds one, its entry count.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -14,13 +15,17 @@
 #include "bvh/self_query.h"
 #include "core/error.h"
 #include "core/pair_sink.h"
+#include "hash/spatial_hash.h"
 #include "pipeline/pipeline.h"
+#include "sweep/sweep.h"
 
 namespace cdb {
 
 enum class BroadPhaseMethod {
   bvh,        // build once (and every rebuild_every frames), refit otherwise
   reference,  // rebuild every frame
+  sweep,      // sort-and-sweep along the axis of largest centroid variance, every frame
+  hash,       // uniform-grid spatial hashing (kDet style), every frame
   brute,      // O(N^2) oracle
 };
 
@@ -28,7 +33,12 @@ template <class Exec, class Timer>
 class BroadPhase final : public Pipeline {
  public:
   BroadPhase(const PipelineConfig& config, BroadPhaseMethod method)
-      : config_(config), method_(method), timer_(exec_), bvh_(exec_) {
+      : config_(config),
+        method_(method),
+        timer_(exec_),
+        bvh_(exec_),
+        sweep_(exec_),
+        hash_(exec_) {
     MemoryResource& mr = exec_.memory();
     vertices_.bind(mr, "mesh.vertices");
     faces_.bind(mr, "mesh.faces");
@@ -47,11 +57,21 @@ class BroadPhase final : public Pipeline {
     exec_.copy_from_host(faces_.data(), topology.faces.data(), num_faces_);
     pair_count_.reserve(1);
     pairs_.reserve(std::max<size_t>(1024, size_t(config_.pairs_per_triangle * num_faces_)));
-    if (method_ == BroadPhaseMethod::brute) {
-      prim_lo_.reserve(num_faces_);
-      prim_hi_.reserve(num_faces_);
-    } else {
-      bvh_.reserve(exec_, num_faces_);
+    switch (method_) {
+      case BroadPhaseMethod::brute:
+        prim_lo_.reserve(num_faces_);
+        prim_hi_.reserve(num_faces_);
+        break;
+      case BroadPhaseMethod::sweep:
+        sweep_.reserve(exec_, num_faces_);
+        break;
+      case BroadPhaseMethod::hash:
+        hash_.reserve(exec_, num_faces_);
+        break;
+      case BroadPhaseMethod::bvh:
+      case BroadPhaseMethod::reference:
+        bvh_.reserve(exec_, num_faces_);
+        break;
     }
     frame_ = 0;
     exec_.sync();
@@ -94,6 +114,24 @@ class BroadPhase final : public Pipeline {
       timer_.stop(Phase::boxes);
       return "none";
     }
+    if (method_ == BroadPhaseMethod::sweep) {
+      timer_.start(Phase::boxes);
+      sweep_boxes(exec_, sweep_, mesh);
+      timer_.stop(Phase::boxes);
+      timer_.start(Phase::build);
+      sweep_sort(exec_, sweep_, num_faces_);
+      timer_.stop(Phase::build);
+      return "sort";
+    }
+    if (method_ == BroadPhaseMethod::hash) {
+      timer_.start(Phase::boxes);
+      hash_boxes(exec_, hash_, mesh);
+      timer_.stop(Phase::boxes);
+      timer_.start(Phase::build);
+      const uint32_t regrids = hash_build(exec_, hash_, num_faces_);
+      timer_.stop(Phase::build);
+      return regrids == 0 ? "hash" : "rehash";
+    }
     const bool rebuild = method_ == BroadPhaseMethod::reference || frame_ == 0 ||
                          (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
     if (!rebuild) {
@@ -119,10 +157,21 @@ class BroadPhase final : public Pipeline {
       timer_.start(Phase::query);
       exec_.fill(pair_count_.data(), 1, 0ull);
       const PairSink sink{pairs_.data(), pair_count_.data(), pairs_.capacity()};
-      if (method_ == BroadPhaseMethod::brute)
-        brute_force_pairs(exec_, num_faces_, prim_lo_.data(), prim_hi_.data(), sink);
-      else
-        self_query(exec_, bvh_.view(), sink);
+      switch (method_) {
+        case BroadPhaseMethod::brute:
+          brute_force_pairs(exec_, num_faces_, prim_lo_.data(), prim_hi_.data(), sink);
+          break;
+        case BroadPhaseMethod::sweep:
+          sweep_pairs(exec_, sweep_, num_faces_, sink);
+          break;
+        case BroadPhaseMethod::hash:
+          hash_pairs(exec_, hash_, num_faces_, sink);
+          break;
+        case BroadPhaseMethod::bvh:
+        case BroadPhaseMethod::reference:
+          self_query(exec_, bvh_.view(), sink);
+          break;
+      }
       timer_.stop(Phase::query);
       timer_.stop_frame();
       unsigned long long count = 0;
@@ -139,6 +188,8 @@ class BroadPhase final : public Pipeline {
   Exec exec_;
   Timer timer_;
   Lbvh<Exec> bvh_;
+  SweepAndPrune<Exec> sweep_;
+  SpatialHash<Exec> hash_;
   Array<vec3f> vertices_;
   Array<Tri> faces_;
   Array<PrimPair> pairs_;
@@ -155,6 +206,10 @@ std::unique_ptr<Pipeline> make_broad_phase(const PipelineConfig& config) {
     return std::make_unique<BroadPhase<Exec, Timer>>(config, BroadPhaseMethod::bvh);
   if (config.name == "reference")
     return std::make_unique<BroadPhase<Exec, Timer>>(config, BroadPhaseMethod::reference);
+  if (config.name == "sweep")
+    return std::make_unique<BroadPhase<Exec, Timer>>(config, BroadPhaseMethod::sweep);
+  if (config.name == "hash")
+    return std::make_unique<BroadPhase<Exec, Timer>>(config, BroadPhaseMethod::hash);
   if (config.name == "brute")
     return std::make_unique<BroadPhase<Exec, Timer>>(config, BroadPhaseMethod::brute);
   return nullptr;

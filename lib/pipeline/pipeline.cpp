@@ -5,7 +5,7 @@
 namespace cdb {
 
 const std::vector<std::string>& pipeline_names() {
-  static const std::vector<std::string> names = {"bvh", "reference", "brute"};
+  static const std::vector<std::string> names = {"bvh", "reference", "sweep", "hash", "brute"};
   return names;
 }
 
