@@ -1,5 +1,6 @@
 // The host property tests, run on the CUDA executor (ctest label gpu). Without a GPU each
 // test is reported as skipped, with the reason, never as passed.
+#include "baseline_cases.h"
 #include "bvh_cases.h"
 #include "exec/cuda_exec.cuh"
 
@@ -23,6 +24,24 @@ class CudaSoup : public testing::TestWithParam<SoupCase> {
 TEST_P(CudaSoup, TreeValidAndPairsExact) { check_soup_case<CudaExec>(GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(Soups, CudaSoup, testing::ValuesIn(soup_cases()), case_name);
+
+class CudaBaselines : public testing::TestWithParam<BaselineCase> {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_P(CudaBaselines, SweepAndHashExact) { check_baselines<CudaExec>(GetParam().make()); }
+
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaBaselines, testing::ValuesIn(baseline_cases()),
+                         baseline_case_name);
+
+TEST(CudaBaselinesGrid, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  EXPECT_EQ(check_baselines<CudaExec>(soup_with_giants(3000, 10, false)), 0u);
+  EXPECT_GT(check_baselines<CudaExec>(soup_with_giants(3000, 100, false)), 0u);
+}
 
 TEST(CudaPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;

@@ -1,3 +1,4 @@
+#include "baseline_cases.h"
 #include "bvh_cases.h"
 #include "core/error.h"
 #include "exec/host_exec.h"
@@ -9,6 +10,18 @@ class HostSoup : public testing::TestWithParam<SoupCase> {};
 TEST_P(HostSoup, TreeValidAndPairsExact) { check_soup_case<HostExec>(GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(Soups, HostSoup, testing::ValuesIn(soup_cases()), case_name);
+
+class HostBaselines : public testing::TestWithParam<BaselineCase> {};
+
+TEST_P(HostBaselines, SweepAndHashExact) { check_baselines<HostExec>(GetParam().make()); }
+
+INSTANTIATE_TEST_SUITE_P(Scenes, HostBaselines, testing::ValuesIn(baseline_cases()),
+                         baseline_case_name);
+
+TEST(HostBaselinesGrid, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
+  EXPECT_EQ(check_baselines<HostExec>(soup_with_giants(3000, 10, false)), 0u);
+  EXPECT_GT(check_baselines<HostExec>(soup_with_giants(3000, 100, false)), 0u);
+}
 
 TEST(HostPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 6}});

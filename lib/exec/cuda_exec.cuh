@@ -57,6 +57,32 @@ __global__ void __launch_bounds__(kReduceThreads)
   if (threadIdx.x == 0) partials[blockIdx.x] = block;
 }
 
+// Generic reduction (CudaExec::reduce): per-block partials, then one block combines them;
+// both in a fixed order, so results are reproducible run to run.
+template <class T, class F, class Op>
+__global__ void __launch_bounds__(kReduceThreads)
+    reduce_partials_kernel(uint32_t n, F map, Op op, T identity, T* partials) {
+  using Reduce = cub::BlockReduce<T, kReduceThreads>;
+  __shared__ typename Reduce::TempStorage storage;
+  T acc = identity;
+  for (uint32_t i = blockIdx.x * kReduceThreads + threadIdx.x; i < n;
+       i += gridDim.x * kReduceThreads)
+    acc = op(acc, map(i));
+  const T block = Reduce(storage).Reduce(acc, op);
+  if (threadIdx.x == 0) partials[blockIdx.x] = block;
+}
+
+template <class T, class Op>
+__global__ void __launch_bounds__(kReduceThreads)
+    reduce_final_kernel(const T* partials, uint32_t count, Op op, T identity, T* out) {
+  using Reduce = cub::BlockReduce<T, kReduceThreads>;
+  __shared__ typename Reduce::TempStorage storage;
+  T acc = identity;
+  for (uint32_t i = threadIdx.x; i < count; i += kReduceThreads) acc = op(acc, partials[i]);
+  const T total = Reduce(storage).Reduce(acc, op);
+  if (threadIdx.x == 0) *out = total;
+}
+
 void launch_reduce_box_final(const Aabb<float>* partials, uint32_t count, Aabb<float>* out,
                              cudaStream_t stream);
 
@@ -108,6 +134,24 @@ class CudaExec {
                                                                         partials);
     cuda_check(cudaGetLastError(), "reduce launch");
     launch_reduce_box_final(partials, blocks, out, stream_);
+  }
+
+  // Generic reduction of map(i) under an associative, commutative op.
+  template <class T>
+  size_t reduce_temp_bytes_of(size_t) const {
+    return kReduceBlocks * sizeof(T);
+  }
+  template <class T, class F, class Op>
+  void reduce(size_t n, const F& map, const Op& op, const T& identity, T* out, void* temp,
+              size_t) const {
+    auto* partials = static_cast<T*>(temp);
+    const uint32_t blocks = static_cast<uint32_t>(
+        n == 0 ? 1 : std::min<size_t>(kReduceBlocks, (n + kReduceThreads - 1) / kReduceThreads));
+    reduce_partials_kernel<<<blocks, kReduceThreads, 0, stream_>>>(uint32_t(n), map, op,
+                                                                    identity, partials);
+    cuda_check(cudaGetLastError(), "reduce launch");
+    reduce_final_kernel<<<1, kReduceThreads, 0, stream_>>>(partials, blocks, op, identity, out);
+    cuda_check(cudaGetLastError(), "reduce launch");
   }
 
   template <class T>

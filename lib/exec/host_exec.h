@@ -69,6 +69,31 @@ class HostExec {
     *out = total;
   }
 
+  // Generic reduction of map(i) under an associative, commutative op. A fixed number of
+  // chunks combined in order, so the result does not depend on the thread count.
+  static constexpr size_t kReduceChunks = 64;
+  template <class T>
+  size_t reduce_temp_bytes_of(size_t) const {
+    return kReduceChunks * sizeof(T);
+  }
+  template <class T, class F, class Op>
+  void reduce(size_t n, const F& map, const Op& op, const T& identity, T* out, void* temp,
+              size_t) const {
+    T* partial = static_cast<T*>(temp);
+    const int64_t chunks = static_cast<int64_t>(kReduceChunks);
+#pragma omp parallel for schedule(static)
+    for (int64_t c = 0; c < chunks; ++c) {
+      T acc = identity;
+      const size_t end = n * size_t(c + 1) / kReduceChunks;
+      for (size_t i = n * size_t(c) / kReduceChunks; i < end; ++i)
+        acc = op(acc, map(static_cast<uint32_t>(i)));
+      partial[c] = acc;
+    }
+    T total = identity;
+    for (int64_t c = 0; c < chunks; ++c) total = op(total, partial[c]);
+    *out = total;
+  }
+
   template <class T>
   void fill(T* p, size_t n, const T& v) const {
     for_each_n(n, [=](uint32_t i) { p[i] = v; });

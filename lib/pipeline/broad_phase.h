@@ -1,7 +1,8 @@
 #pragma once
 // Pipelines without fronts, written once over the executor: upload vertices, update or
-// rebuild the ordered LBVH, run the self query into a growing pair buffer. One host
-// synchronization a frame: the pair-count read-back.
+// rebuild the ordered LBVH (or the sweep's sorted boxes, or the hash grid), run the query
+// into a growing pair buffer. One host synchronization a frame, the pair-count read-back;
+// the hash adds one, its entry count.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -10,11 +11,15 @@
 #include "bvh/self_query.h"
 #include "pipeline/device_mesh.h"
 #include "pipeline/pipeline.h"
+#include "hash/spatial_hash.h"
+#include "sweep/sweep.h"
 
 namespace cdb {
 
 enum class BroadPhaseMethod {
   bvh,    // build once (and every rebuild_every frames), refit otherwise
+  sweep,  // sort-and-sweep along the axis of largest centroid variance, every frame
+  hash,   // uniform-grid spatial hashing (kDet style), every frame
   brute,  // O(N^2) oracle
 };
 
@@ -22,7 +27,14 @@ template <class Exec, class Timer>
 class BroadPhase final : public Pipeline {
  public:
   BroadPhase(const PipelineConfig& config, BroadPhaseMethod method)
-      : config_(config), method_(method), timer_(exec_), mesh_(exec_), bvh_(exec_), pairs_(exec_) {
+      : config_(config),
+        method_(method),
+        timer_(exec_),
+        mesh_(exec_),
+        bvh_(exec_),
+        sweep_(exec_),
+        hash_(exec_),
+        pairs_(exec_) {
     prim_lo_.bind(exec_.memory(), "brute.lo");
     prim_hi_.bind(exec_.memory(), "brute.hi");
   }
@@ -31,11 +43,20 @@ class BroadPhase final : public Pipeline {
     mesh_.set_topology(exec_, topology);
     const uint32_t n = mesh_.num_faces();
     pairs_.reserve(size_t(config_.pairs_per_triangle * n));
-    if (method_ == BroadPhaseMethod::brute) {
-      prim_lo_.reserve(n);
-      prim_hi_.reserve(n);
-    } else {
-      bvh_.reserve(exec_, n);
+    switch (method_) {
+      case BroadPhaseMethod::brute:
+        prim_lo_.reserve(n);
+        prim_hi_.reserve(n);
+        break;
+      case BroadPhaseMethod::sweep:
+        sweep_.reserve(exec_, n);
+        break;
+      case BroadPhaseMethod::hash:
+        hash_.reserve(exec_, n);
+        break;
+      case BroadPhaseMethod::bvh:
+        bvh_.reserve(exec_, n);
+        break;
     }
     frame_ = 0;
     exec_.sync();
@@ -44,22 +65,24 @@ class BroadPhase final : public Pipeline {
   FrameStats run_frame(const std::vector<vec3f>& vertices) override {
     FrameStats stats;
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
-    if (method_ == BroadPhaseMethod::brute) {
-      timer_.start(Phase::boxes);
-      exec_.for_each_n(mesh.num_faces, FaceBoxFn{mesh, prim_lo_.data(), prim_hi_.data()});
-      timer_.stop(Phase::boxes);
-      stats.op = "none";
-    } else {
-      const bool rebuild = frame_ == 0 || (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
-      stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, rebuild, config_.morton_bits);
-    }
+    stats.op = prepare(mesh);
     do {
       timer_.start(Phase::query);
       pairs_.reset_counters(exec_);
-      if (method_ == BroadPhaseMethod::brute)
-        brute_force_pairs(exec_, mesh.num_faces, prim_lo_.data(), prim_hi_.data(), pairs_.sink());
-      else
-        self_query(exec_, bvh_.view(), pairs_.sink());
+      switch (method_) {
+        case BroadPhaseMethod::brute:
+          brute_force_pairs(exec_, mesh.num_faces, prim_lo_.data(), prim_hi_.data(), pairs_.sink());
+          break;
+        case BroadPhaseMethod::sweep:
+          sweep_pairs(exec_, sweep_, mesh.num_faces, pairs_.sink());
+          break;
+        case BroadPhaseMethod::hash:
+          hash_pairs(exec_, hash_, mesh.num_faces, pairs_.sink());
+          break;
+        case BroadPhaseMethod::bvh:
+          self_query(exec_, bvh_.view(), pairs_.sink());
+          break;
+      }
       timer_.stop(Phase::query);
       timer_.stop_frame();
       pairs_.read_counters(exec_);
@@ -74,12 +97,46 @@ class BroadPhase final : public Pipeline {
   MemoryStats memory() const override { return const_cast<Exec&>(exec_).memory().stats(); }
 
  private:
+  // The per-frame upkeep of the method's structure; returns what ran.
+  std::string prepare(const MeshView& mesh) {
+    switch (method_) {
+      case BroadPhaseMethod::brute:
+        timer_.start(Phase::boxes);
+        exec_.for_each_n(mesh.num_faces, FaceBoxFn{mesh, prim_lo_.data(), prim_hi_.data()});
+        timer_.stop(Phase::boxes);
+        return "none";
+      case BroadPhaseMethod::sweep:
+        timer_.start(Phase::boxes);
+        sweep_boxes(exec_, sweep_, mesh);
+        timer_.stop(Phase::boxes);
+        timer_.start(Phase::build);
+        sweep_sort(exec_, sweep_, mesh.num_faces);
+        timer_.stop(Phase::build);
+        return "sort";
+      case BroadPhaseMethod::hash: {
+        timer_.start(Phase::boxes);
+        hash_boxes(exec_, hash_, mesh);
+        timer_.stop(Phase::boxes);
+        timer_.start(Phase::build);
+        const uint32_t regrids = hash_build(exec_, hash_, mesh.num_faces);
+        timer_.stop(Phase::build);
+        return regrids == 0 ? "hash" : "rehash";
+      }
+      case BroadPhaseMethod::bvh:
+        break;
+    }
+    const bool rebuild = frame_ == 0 || (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
+    return update_hierarchy(exec_, timer_, bvh_, mesh, rebuild, config_.morton_bits);
+  }
+
   PipelineConfig config_;
   BroadPhaseMethod method_;
   Exec exec_;
   Timer timer_;
   DeviceMesh<Exec> mesh_;
   Lbvh<Exec> bvh_;
+  SweepAndPrune<Exec> sweep_;
+  SpatialHash<Exec> hash_;
   PairBuffer<Exec> pairs_;
   Array<vec4f> prim_lo_, prim_hi_;
   uint64_t frame_ = 0;

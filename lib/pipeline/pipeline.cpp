@@ -5,8 +5,8 @@
 namespace cdb {
 
 const std::vector<std::string>& pipeline_names() {
-  static const std::vector<std::string> names = {"bvh",       "unordered", "static", "periodic",
-                                                  "reference", "a",         "b",      "brute"};
+  static const std::vector<std::string> names = {
+      "bvh", "unordered", "static", "periodic", "reference", "a", "b", "sweep", "hash", "brute"};
   return names;
 }
 

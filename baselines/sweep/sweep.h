@@ -1,0 +1,211 @@
+#pragma once
+// GPU sort-and-sweep baseline (issue 6). Per frame: triangle boxes; the axis along which
+// the box centroids vary most (picked on the device, no host round trip); boxes sorted by
+// their minimum along that axis; then one thread per sorted box walks forward while the
+// next box's minimum is within its maximum, testing full 3D overlap.
+//
+// Exact for closed boxes: the sorted minima are non-decreasing as floats, so for an
+// overlapping pair (a before b) lo(b) <= hi(a) and every box between them also starts at
+// or before hi(a); the walk from a reaches b, and each pair is tested only from the earlier
+// of its two boxes.
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+
+#include "bvh/build.h"
+#include "core/aabb.h"
+#include "core/pair_sink.h"
+#include "exec/balance.h"
+#include "exec/memory.h"
+#include "geometry/mesh.h"
+
+namespace cdb {
+
+// Sums and squared sums of the box centroids per axis. Doubles, and shifted by the first
+// box's centroid, so that 1e20-scale coordinates neither overflow nor cancel.
+struct CentroidMoments {
+  double sum[3];
+  double sq[3];
+};
+
+struct MomentsSum {
+  CDB_HD CentroidMoments operator()(const CentroidMoments& a, const CentroidMoments& b) const {
+    CentroidMoments r;
+    for (int k = 0; k < 3; ++k) {
+      r.sum[k] = a.sum[k] + b.sum[k];
+      r.sq[k] = a.sq[k] + b.sq[k];
+    }
+    return r;
+  }
+};
+
+CDB_HD_INLINE double box_centre(const vec4f& lo, const vec4f& hi, int axis) {
+  const float l = axis == 0 ? lo.x : axis == 1 ? lo.y : lo.z;
+  const float h = axis == 0 ? hi.x : axis == 1 ? hi.y : hi.z;
+  return 0.5 * (double(l) + double(h));
+}
+
+struct CentroidMomentsFn {
+  const vec4f* lo;
+  const vec4f* hi;
+  CDB_HD CentroidMoments operator()(uint32_t i) const {
+    CentroidMoments m;
+    const vec4f a = lo[i], b = hi[i], a0 = lo[0], b0 = hi[0];
+    for (int k = 0; k < 3; ++k) {
+      const double d = box_centre(a, b, k) - box_centre(a0, b0, k);
+      m.sum[k] = d;
+      m.sq[k] = d * d;
+    }
+    return m;
+  }
+};
+
+// One thread: the axis of largest centroid variance (ties keep the lower axis).
+struct PickAxisFn {
+  const CentroidMoments* moments;
+  uint32_t n;
+  uint32_t* axis;
+  CDB_HD void operator()(uint32_t) const {
+    const CentroidMoments m = *moments;
+    uint32_t best = 0;
+    double best_var = -1.0;
+    for (uint32_t k = 0; k < 3; ++k) {
+      const double mean = m.sum[k] / n;
+      const double var = m.sq[k] / n - mean * mean;
+      if (var > best_var) {
+        best_var = var;
+        best = k;
+      }
+    }
+    *axis = best;
+  }
+};
+
+CDB_HD_INLINE float axis_of(const vec4f& v, uint32_t axis) {
+  return axis == 0 ? v.x : axis == 1 ? v.y : v.z;
+}
+
+// Float to an unsigned integer of the same order (sign bit flipped for positives, all bits
+// for negatives). -0 sorts just before +0; they compare equal as floats, so the sorted
+// minima stay non-decreasing, which is all the sweep needs.
+CDB_HD_INLINE uint32_t ordered_key(float f) {
+#if defined(__CUDA_ARCH__)
+  const uint32_t bits = __float_as_uint(f);
+#else
+  uint32_t bits;
+  std::memcpy(&bits, &f, sizeof(bits));
+#endif
+  return (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
+}
+
+struct SweepKeyFn {
+  const vec4f* lo;
+  const uint32_t* axis;
+  uint64_t* keys;
+  uint32_t* iota;
+  CDB_HD void operator()(uint32_t i) const {
+    keys[i] = ordered_key(axis_of(lo[i], *axis));
+    iota[i] = i;
+  }
+};
+
+// Boxes in sorted order, so the sweep reads consecutive memory.
+struct GatherSortedFn {
+  const uint32_t* order;
+  const vec4f* lo;
+  const vec4f* hi;
+  vec4f* sorted_lo;
+  vec4f* sorted_hi;
+  CDB_HD void operator()(uint32_t s) const {
+    const uint32_t p = order[s];
+    sorted_lo[s] = lo[p];
+    sorted_hi[s] = hi[p];
+  }
+};
+
+struct SweepFn {
+  uint32_t n;
+  const uint32_t* axis;
+  const uint32_t* order;
+  const vec4f* lo;  // sorted
+  const vec4f* hi;  // sorted
+  PairSink sink;
+  CDB_HD void operator()(uint32_t s) const {
+    const uint32_t ax = *axis;
+    const vec4f alo = lo[s], ahi = hi[s];
+    const float end = axis_of(ahi, ax);
+    for (uint32_t t = s + 1; t < n; ++t) {
+      const vec4f blo = lo[t];
+      if (axis_of(blo, ax) > end) break;
+      if (overlaps(alo, ahi, blo, hi[t])) sink.emit(order[s], order[t]);
+    }
+  }
+};
+
+// Workspace of the sweep, sized once from the triangle count; a larger scene later is a
+// logged growth.
+template <class Exec>
+struct SweepAndPrune {
+  explicit SweepAndPrune(Exec& exec) {
+    MemoryResource& mr = exec.memory();
+    lo.bind(mr, "sweep.lo");
+    hi.bind(mr, "sweep.hi");
+    sorted_lo.bind(mr, "sweep.sorted_lo");
+    sorted_hi.bind(mr, "sweep.sorted_hi");
+    keys.bind(mr, "sweep.keys");
+    sorted_keys.bind(mr, "sweep.sorted_keys");
+    iota.bind(mr, "sweep.iota");
+    order.bind(mr, "sweep.order");
+    moments.bind(mr, "sweep.moments");
+    axis.bind(mr, "sweep.axis");
+    temp.bind(mr, "sweep.temp");
+  }
+
+  void reserve(Exec& exec, uint32_t n) {
+    for (auto* a : {&lo, &hi, &sorted_lo, &sorted_hi}) a->reserve(n);
+    keys.reserve(n);
+    sorted_keys.reserve(n);
+    iota.reserve(n);
+    order.reserve(n);
+    moments.reserve(1);
+    axis.reserve(1);
+    const size_t sort_bytes = exec.sort_temp_bytes(n);
+    const size_t reduce_bytes = exec.template reduce_temp_bytes_of<CentroidMoments>(n);
+    temp.reserve(sort_bytes > reduce_bytes ? sort_bytes : reduce_bytes);
+  }
+
+  Array<vec4f> lo, hi, sorted_lo, sorted_hi;
+  Array<uint64_t> keys, sorted_keys;
+  Array<uint32_t> iota, order;
+  Array<CentroidMoments> moments;
+  Array<uint32_t> axis;
+  Array<std::byte> temp;
+};
+
+template <class Exec>
+void sweep_boxes(Exec& exec, SweepAndPrune<Exec>& s, const MeshView& mesh) {
+  exec.for_each_n(mesh.num_faces, FaceBoxFn{mesh, s.lo.data(), s.hi.data()});
+}
+
+// Axis choice, keys, sort, gather.
+template <class Exec>
+void sweep_sort(Exec& exec, SweepAndPrune<Exec>& s, uint32_t n) {
+  if (n == 0) return;
+  exec.reduce(n, CentroidMomentsFn{s.lo.data(), s.hi.data()}, MomentsSum{}, CentroidMoments{},
+              s.moments.data(), s.temp.data(), s.temp.size());
+  exec.for_each_n(1, PickAxisFn{s.moments.data(), n, s.axis.data()});
+  exec.for_each_n(n, SweepKeyFn{s.lo.data(), s.axis.data(), s.keys.data(), s.iota.data()});
+  exec.sort_pairs(s.keys.data(), s.sorted_keys.data(), s.iota.data(), s.order.data(), n, 32,
+                  s.temp.data(), s.temp.size());
+  exec.for_each_n(n, GatherSortedFn{s.order.data(), s.lo.data(), s.hi.data(),
+                                    s.sorted_lo.data(), s.sorted_hi.data()});
+}
+
+template <class Exec>
+void sweep_pairs(Exec& exec, const SweepAndPrune<Exec>& s, uint32_t n, const PairSink& sink) {
+  exec.for_each_n(n, SweepFn{n, s.axis.data(), s.order.data(), s.sorted_lo.data(),
+                             s.sorted_hi.data(), sink},
+                  Balance::uneven);
+}
+
+}  // namespace cdb
