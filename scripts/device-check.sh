@@ -14,7 +14,7 @@ if [[ "${SKIP_TESTS:-0}" != 1 ]]; then
   "$bin/test_bvh_cuda" 2>&1 | grep -v "^cdbench: grew" | tee "$out/gpu-tests.log" | grep -E "^\[  (PASSED|FAILED|SKIPPED)|tests ran|Failure|FAILED"
 fi
 echo "=== verify"
-for s in funnel cloth-wave random-100k; do "$bin/cdbench" verify --device cuda --scene $s --brute-limit 200000 2>/dev/null | tail -10; done | tee "$out/verify.log"
+for s in ${VERIFY_SCENES:-funnel cloth-wave random-100k}; do "$bin/cdbench" verify --device cuda --scene $s --brute-limit 200000 2>/dev/null | tail -10; done | tee "$out/verify.log"
 echo "=== bench"
 for s in ${BENCH_SCENES:-cloth-100k}; do
   for p in ${BENCH_PIPELINES:-bvh unordered static periodic reference a b}; do
