@@ -14,6 +14,7 @@
 #include "front/front.h"
 #include "front/operations.h"
 #include "front/ordering.h"
+#include "front/radix_ordering.h"
 #include "pipeline/device_mesh.h"
 #include "pipeline/pipeline.h"
 
@@ -24,6 +25,7 @@ struct FrontPlan {
   bool balance = false;            // (4) before every (3)
   bool periodic = false;           // (1) instead of (3) every second cycle
   bool rebuild_every_frame = false;  // the reference strategy
+  bool radix_sort = false;  // order with a radix sort instead of the histogram (Fig. 6 baseline)
 };
 
 template <class Exec, class Timer>
@@ -33,6 +35,7 @@ class FrontPipeline final : public Pipeline {
       : config_(config), plan_(plan), timer_(exec_), mesh_(exec_), bvh_(exec_), pairs_(exec_) {
     front_[kInternalFront].bind(exec_.memory(), kInternalFront);
     front_[kExternalFront].bind(exec_.memory(), kExternalFront);
+    radix_.bind(exec_.memory());
     if (config_.front_cycle == 0) fail("--front-cycle must be at least 1");
   }
 
@@ -44,6 +47,7 @@ class FrontPipeline final : public Pipeline {
     const size_t cap = std::max<size_t>(1024, size_t(config_.front_per_triangle * n));
     front_[kInternalFront].reserve(cap, n > 1 ? n - 1 : 1);
     front_[kExternalFront].reserve(cap, std::max<uint32_t>(n, 1));
+    if (plan_.radix_sort) radix_.reserve(exec_, cap);
     frame_ = 0;
     exec_.sync();
   }
@@ -153,6 +157,19 @@ class FrontPipeline final : public Pipeline {
     }
     timer_.stop(phase);
     if (!plan_.ordered) return;
+    if (plan_.radix_sort) {
+      // The sort needs the produced sizes on the host: one more read-back on these frames.
+      const auto c = pairs_.read_counters(exec_);
+      timer_.start(Phase::front_order);
+      for (int k = 0; k < 2; ++k) {
+        FrontArrays<Exec>& f = front_[k];
+        if (c[1 + k] <= f.raw_prim.capacity())
+          radix_order_front(exec_, f, radix_, size_t(c[1 + k]), key_bits(k), f.raw_prim.data(),
+                            f.raw_node.data(), f.raw_mark.data());
+      }
+      timer_.stop(Phase::front_order);
+      return;
+    }
     timer_.start(Phase::front_order);
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
@@ -160,6 +177,12 @@ class FrontPipeline final : public Pipeline {
                   f.raw_mark.data(), f.raw_prim.capacity(), bvh_.temp.data(), bvh_.temp.size());
     }
     timer_.stop(Phase::front_order);
+  }
+
+  int key_bits(int k) const {
+    int bits = 1;
+    while (bits < 63 && (uint64_t(1) << bits) < 2 * uint64_t(segments(k)) + 2) ++bits;
+    return bits;
   }
 
   // (4) Balance: mark each current front node with the branch it will take, then reorder
@@ -172,9 +195,14 @@ class FrontPipeline final : public Pipeline {
       FrontArrays<Exec>& f = front_[k];
       exec_.for_each_n(f.size, MarkFrontFn{t, f.prim.data(), f.node.data(), f.raw_mark.data(),
                                            f.count_log.data()});
-      exec_.fill(pairs_.counter(3), 1, static_cast<unsigned long long>(f.size));
-      order_front(exec_, f, segments(k), pairs_.counter(3), f.prim.data(), f.node.data(),
-                  f.raw_mark.data(), f.size, bvh_.temp.data(), bvh_.temp.size());
+      if (plan_.radix_sort) {
+        radix_order_front(exec_, f, radix_, f.size, key_bits(k), f.prim.data(), f.node.data(),
+                          f.raw_mark.data());
+      } else {
+        exec_.fill(pairs_.counter(3), 1, static_cast<unsigned long long>(f.size));
+        order_front(exec_, f, segments(k), pairs_.counter(3), f.prim.data(), f.node.data(),
+                    f.raw_mark.data(), f.size, bvh_.temp.data(), bvh_.temp.size());
+      }
       std::swap(f.prim, f.sorted_prim);
       std::swap(f.node, f.sorted_node);
       match_capacity(f);
@@ -228,6 +256,7 @@ class FrontPipeline final : public Pipeline {
   Lbvh<Exec> bvh_;
   PairBuffer<Exec> pairs_;
   FrontArrays<Exec> front_[2];
+  RadixScratch<Exec> radix_;
   uint64_t frame_ = 0, generated_at_ = 0;
 };
 

@@ -21,6 +21,9 @@ std::unique_ptr<Pipeline> make_pipeline_on(const PipelineConfig& c) {
     // ordering only
   } else if (c.name == "b" || c.name == "static") {
     plan.balance = true;  // the paper's static strategy is pipeline b (§5.2, Fig. 5)
+  } else if (c.name == "radix-order") {
+    plan.balance = true;  // static with radix-sorted instead of histogram-sorted fronts
+    plan.radix_sort = true;
   } else if (c.name == "periodic") {
     plan.balance = true;
     plan.periodic = true;

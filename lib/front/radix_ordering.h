@@ -1,0 +1,70 @@
+#pragma once
+// The radix-sort baseline of the paper's Fig. 6: the same front order as the histogram sort
+// (by BVH node key, prune-marked before sprout-marked within a node), obtained by a CUB /
+// host radix sort of (2 j + mark) keys and a gather. It needs the front's size on the host.
+#include <cstdint>
+
+#include "exec/balance.h"
+#include "exec/memory.h"
+#include "front/front.h"
+
+namespace cdb {
+
+struct RadixKeyFn {
+  const uint32_t* node;
+  const uint8_t* mark;
+  uint64_t* keys;
+  uint32_t* iota;
+  CDB_HD void operator()(uint32_t e) const {
+    keys[e] = (uint64_t(ref_index(node[e])) << 1) | mark[e];
+    iota[e] = e;
+  }
+};
+
+struct GatherFrontFn {
+  const uint32_t* perm;
+  const uint32_t* prim;
+  const uint32_t* node;
+  uint32_t* out_prim;
+  uint32_t* out_node;
+  CDB_HD void operator()(uint32_t e) const {
+    out_prim[e] = prim[perm[e]];
+    out_node[e] = node[perm[e]];
+  }
+};
+
+// Scratch of the radix path, sized for a front capacity.
+template <class Exec>
+struct RadixScratch {
+  void bind(MemoryResource& mr) {
+    keys.bind(mr, "radix.keys");
+    keys_sorted.bind(mr, "radix.keys_sorted");
+    iota.bind(mr, "radix.iota");
+    perm.bind(mr, "radix.perm");
+    temp.bind(mr, "radix.temp");
+  }
+  void reserve(Exec& exec, size_t capacity) {
+    keys.reserve(capacity);
+    keys_sorted.reserve(capacity);
+    iota.reserve(capacity);
+    perm.reserve(capacity);
+    temp.reserve(std::max<size_t>(256, exec.sort_temp_bytes(capacity)));
+  }
+  Array<uint64_t> keys, keys_sorted;
+  Array<uint32_t> iota, perm;
+  Array<std::byte> temp;
+};
+
+// Sorts n front nodes (prim, node, mark) into f.sorted_*; key_bits covers 2 * segments.
+template <class Exec>
+void radix_order_front(Exec& exec, FrontArrays<Exec>& f, RadixScratch<Exec>& r, size_t n, int key_bits,
+                       const uint32_t* prim, const uint32_t* node, const uint8_t* mark) {
+  if (n == 0) return;
+  if (n > r.keys.capacity()) r.reserve(exec, n + n / 4);  // counted growth, with headroom
+  exec.for_each_n(n, RadixKeyFn{node, mark, r.keys.data(), r.iota.data()});
+  exec.sort_pairs(r.keys.data(), r.keys_sorted.data(), r.iota.data(), r.perm.data(), n, key_bits,
+                  r.temp.data(), r.temp.size());
+  exec.for_each_n(n, GatherFrontFn{r.perm.data(), prim, node, f.sorted_prim.data(), f.sorted_node.data()});
+}
+
+}  // namespace cdb
