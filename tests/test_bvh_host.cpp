@@ -59,7 +59,9 @@ TEST(HostFrontPipelines, RecordTheOperationsOfTheirCycle) {
       const FrameStats s = p->run_frame(v);
       EXPECT_EQ(s.op, ops[f]) << name << " frame " << f;
       EXPECT_GT(s.front_internal + s.front_external, 0u) << name;
-      if (name != "unordered") EXPECT_GT(s.q_root, 0.0) << name;
+      if (name != "unordered") {
+        EXPECT_GT(s.q_root, 0.0) << name;
+      }
     }
   }
 }
