@@ -17,6 +17,7 @@
 #include "core/pair_sink.h"
 #include "exec/balance.h"
 #include "exec/memory.h"
+#include "geometry/gather_boxes.h"
 #include "geometry/mesh.h"
 
 namespace cdb {
@@ -109,20 +110,6 @@ struct SweepKeyFn {
   }
 };
 
-// Boxes in sorted order, so the sweep reads consecutive memory.
-struct GatherSortedFn {
-  const uint32_t* order;
-  const vec4f* lo;
-  const vec4f* hi;
-  vec4f* sorted_lo;
-  vec4f* sorted_hi;
-  CDB_HD void operator()(uint32_t s) const {
-    const uint32_t p = order[s];
-    sorted_lo[s] = lo[p];
-    sorted_hi[s] = hi[p];
-  }
-};
-
 struct SweepFn {
   uint32_t n;
   const uint32_t* axis;
@@ -197,7 +184,7 @@ void sweep_sort(Exec& exec, SweepAndPrune<Exec>& s, uint32_t n) {
   exec.for_each_n(n, SweepKeyFn{s.lo.data(), s.axis.data(), s.keys.data(), s.iota.data()});
   exec.sort_pairs(s.keys.data(), s.sorted_keys.data(), s.iota.data(), s.order.data(), n, 32,
                   s.temp.data(), s.temp.size());
-  exec.for_each_n(n, GatherSortedFn{s.order.data(), s.lo.data(), s.hi.data(),
+  exec.for_each_n(n, GatherBoxesFn{s.order.data(), s.lo.data(), s.hi.data(),
                                     s.sorted_lo.data(), s.sorted_hi.data()});
 }
 

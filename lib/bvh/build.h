@@ -13,6 +13,7 @@
 #include "bvh/node_ref.h"
 #include "core/atomics.h"
 #include "core/morton.h"
+#include "geometry/gather_boxes.h"
 #include "geometry/mesh.h"
 
 namespace cdb {
@@ -57,19 +58,6 @@ struct MortonFn {
                   ez > 0 ? (cz * 0.5f - s.lo.z * 0.5f) / ez : 0.5f, 0};
     keys[i] = morton_code(u, bits);
     iota[i] = i;
-  }
-};
-
-struct GatherLeavesFn {
-  const uint32_t* leaf_prim;
-  const vec4f* prim_lo;
-  const vec4f* prim_hi;
-  vec4f* leaf_lo;
-  vec4f* leaf_hi;
-  CDB_HD void operator()(uint32_t i) const {
-    const uint32_t p = leaf_prim[i];
-    leaf_lo[i] = prim_lo[p];
-    leaf_hi[i] = prim_hi[p];
   }
 };
 
@@ -165,7 +153,7 @@ void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBi
   exec.sort_pairs(bvh.morton.data(), bvh.morton_sorted.data(), bvh.prim_iota.data(),
                   bvh.leaf_prim.data(), n, static_cast<int>(bits), bvh.temp.data(),
                   bvh.temp.size());
-  exec.for_each_n(n, GatherLeavesFn{bvh.leaf_prim.data(), bvh.prim_lo.data(), bvh.prim_hi.data(),
+  exec.for_each_n(n, GatherBoxesFn{bvh.leaf_prim.data(), bvh.prim_lo.data(), bvh.prim_hi.data(),
                                     bvh.leaf_lo.data(), bvh.leaf_hi.data()});
   if (n == 1) return;
   exec.fill(bvh.other_bound.data(), n - 1, kNoNode);
