@@ -27,6 +27,7 @@ struct CommonOptions {
   int morton_bits = 63;
   uint32_t rebuild_every = 0;
   uint32_t front_cycle = 4;
+  PipelineConfig restructure;  // the restructure_* and threshold_* fields
 };
 
 void add_common(CLI::App* cmd, CommonOptions& o) {
@@ -47,6 +48,27 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "front pipelines: frames per maintenance cycle (update on the last, preserve on the others)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  PipelineConfig& r = o.restructure;
+  cmd->add_option("--restructure-quality", r.restructure_quality,
+                  "pipeline c: a subtree is degraded when its Q exceeds this times Q(root) after the last rebuild")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--restructure-min-leaves", r.restructure_min_leaves,
+                  "pipeline c: smallest candidate subtree, in leaves")
+      ->check(CLI::Range(2u, 0x7FFFFFFFu))
+      ->capture_default_str();
+  cmd->add_option("--restructure-max-fraction", r.restructure_max_fraction,
+                  "pipeline c: largest candidate subtree, as a share of all leaves")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--threshold-refit", r.threshold_refit,
+                  "pipeline c, Formula 2: below this share of leaves in candidates, only refit")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--threshold-build", r.threshold_build,
+                  "pipeline c, Formula 2: from this share of leaves in candidates on, rebuild instead of restructuring")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
 }
 
 std::string resolve_device(const std::string& device) {
@@ -62,6 +84,11 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.morton_bits = o.morton_bits == 30 ? MortonBits::b30 : MortonBits::b63;
   c.rebuild_every = o.rebuild_every;
   c.front_cycle = o.front_cycle;
+  c.restructure_quality = o.restructure.restructure_quality;
+  c.restructure_min_leaves = o.restructure.restructure_min_leaves;
+  c.restructure_max_fraction = o.restructure.restructure_max_fraction;
+  c.threshold_refit = o.restructure.threshold_refit;
+  c.threshold_build = o.restructure.threshold_build;
   return c;
 }
 

@@ -18,6 +18,10 @@ void print_frame_line(uint32_t frame, const FrameStats& s) {
                 static_cast<unsigned long long>(s.front_external), s.q_root);
   for (size_t p = 1; p < kPhaseCount; ++p)
     if (s.phase_ms[p] > 0) std::printf("  %s %.3f", kPhaseNames[p], s.phase_ms[p]);
+  if (!s.decision.empty()) std::printf("  decision %s", s.decision.c_str());
+  if (s.candidates)
+    std::printf("  candidates %llu (%llu leaves, mean Q %.3f)", static_cast<unsigned long long>(s.candidates),
+                static_cast<unsigned long long>(s.candidate_leaves), s.q_candidates);
   if (s.query_reruns) std::printf("  (a buffer grew, re-ran %u)", s.query_reruns);
   std::printf("\n");
 }
@@ -52,7 +56,13 @@ void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const
     for (size_t p = 0; p < kPhaseCount; ++p) phase[p].push_back(frames[f].phase_ms[p]);
     pairs += double(frames[f].pairs);
   }
-  for (const auto& f : frames) reruns += f.query_reruns;
+  size_t decided[3] = {0, 0, 0};  // refit, restructure, rebuild
+  for (const auto& f : frames) {
+    reruns += f.query_reruns;
+    decided[0] += f.decision == "refit";
+    decided[1] += f.decision == "restructure";
+    decided[2] += f.decision == "rebuild";
+  }
   const Stat t = stat_of(total);
   std::printf("summary: %zu frames measured (first %zu left out as warm-up)\n", total.size(), skip);
   std::printf("  first frame %.3f ms (%s)\n", frames[0].total_ms, frames[0].op.c_str());
@@ -74,6 +84,9 @@ void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const
     std::printf("  front       %llu internal + %llu external nodes at the end, Q(root) %.3f\n",
                 static_cast<unsigned long long>(last.front_internal),
                 static_cast<unsigned long long>(last.front_external), last.q_root);
+  if (decided[0] + decided[1] + decided[2])
+    std::printf("  formula 2   %zu refit, %zu restructure, %zu rebuild decisions\n", decided[0],
+                decided[1], decided[2]);
   std::printf("  memory      peak %.2f MiB, %zu allocations, %zu growths, %u query re-runs\n",
               double(mem.peak_bytes) / (1 << 20), mem.allocations, mem.growths, reruns);
 }

@@ -17,8 +17,8 @@ echo "=== verify"
 for s in ${VERIFY_SCENES:-funnel cloth-wave random-100k}; do "$bin/cdbench" verify --device cuda --scene $s --brute-limit 200000 2>/dev/null | tail -10; done | tee "$out/verify.log"
 echo "=== bench"
 for s in ${BENCH_SCENES:-cloth-100k}; do
-  for p in ${BENCH_PIPELINES:-bvh unordered static periodic reference a b}; do
+  for p in ${BENCH_PIPELINES:-bvh unordered static periodic restructure reference a b c radix-order}; do
     echo "--- $s $p"
-    "$bin/cdbench" run --device cuda --scene $s --pipeline $p --quiet 2>/dev/null | grep -E "commit|first frame|per frame|  [a-z_]+ +mean|pairs |front |memory"
+    "$bin/cdbench" run --device cuda --scene $s --pipeline $p --quiet 2>/dev/null | grep -E "commit|first frame|per frame|  [a-z_]+ +mean|pairs |front |formula|memory"
   done
 done 2>&1 | tee "$out/bench.log"

@@ -10,6 +10,7 @@
 #include "bvh/build.h"
 #include "bvh/order.h"
 #include "bvh/refit.h"
+#include "bvh/restructure.h"
 #include "bvh/self_query.h"
 #include "bvh_checks.h"
 #include "core/pair_set.h"
@@ -160,6 +161,138 @@ inline std::vector<std::unique_ptr<FrameSource>> front_scenes(uint32_t cloth_res
   s.push_back(make_generator("soup", {{"triangles", 3000}, {"distribution", "clustered"},
                                       {"jitter", 3.0}, {"frames", frames}, {"seed", 5}}));
   return s;
+}
+
+// Runs one pipeline over every frame of a scene against the sweep oracle; returns the
+// frames' stats for the caller to check which operations ran.
+inline std::vector<FrameStats> run_exact(const PipelineConfig& cfg, FrameSource& source) {
+  const Topology& topo = source.topology();
+  auto p = make_pipeline(cfg);
+  p->set_topology(topo);
+  std::vector<FrameStats> out;
+  std::vector<vec3f> v;
+  for (uint32_t f = 0; f < source.num_frames(); ++f) {
+    source.frame(f, v);
+    const auto expected = sweep_oracle_pairs(topo, v);
+    out.push_back(p->run_frame(v));
+    const FrameStats& s = out.back();
+    EXPECT_EQ(s.pairs, expected.size()) << cfg.name << " frame " << f << " (" << s.op << ")";
+    const PairSetDiff d = diff_pair_sets(expected, p->sorted_pairs());
+    EXPECT_TRUE(d.equal()) << cfg.name << " frame " << f << " (" << s.op << "): " << d.missing_count
+                           << " missing, " << d.unexpected_count << " unexpected";
+    if (!d.equal()) break;
+  }
+  return out;
+}
+
+// Pipeline c with Formula 2 forced into each branch by extreme settings: quality factor 0
+// makes every subtree with fronts degraded; thresholds pick the branch. Every frame must
+// stay exact and the forced decision must actually be taken.
+inline void check_forced_decisions(const std::string& device, FrameSource& source, uint32_t cycle) {
+  struct Forced {
+    const char* decision;
+    double refit, build;
+    const char* op;  // what a frame with that decision runs
+  };
+  for (const Forced& f : {Forced{"restructure", 0.0, 1.01, "refit+restructure"},
+                          Forced{"rebuild", 0.0, 0.0, "build+generate"},
+                          Forced{"refit", 1.01, 1.01, nullptr}}) {
+    PipelineConfig cfg = config_for(device, 0.5, 0.05, cycle);
+    cfg.name = "c";
+    cfg.restructure_quality = 0.0;
+    cfg.restructure_min_leaves = 4;
+    cfg.threshold_refit = f.refit;
+    cfg.threshold_build = f.build;
+    const auto frames = run_exact(cfg, source);
+    size_t taken = 0;
+    for (const auto& s : frames) {
+      EXPECT_TRUE(s.decision.empty() || s.decision == f.decision) << s.decision;
+      if (s.decision != f.decision) continue;
+      ++taken;
+      if (f.op) EXPECT_EQ(s.op, f.op);
+    }
+    EXPECT_GT(taken, 0u) << "forced decision " << f.decision << " never taken (cycle " << cycle << ")";
+  }
+  // A quality factor nothing reaches: inspections find no candidate, nothing is decided.
+  PipelineConfig cfg = config_for(device, 8.0, 8.0, cycle);
+  cfg.name = "restructure";
+  cfg.restructure_quality = 1e9;
+  for (const auto& s : run_exact(cfg, source)) {
+    EXPECT_EQ(s.candidates, 0u);
+    EXPECT_TRUE(s.decision.empty());
+  }
+}
+
+// Restructures hand-picked subtrees of a refitted tree — all nodes of a given depth,
+// including the leftmost (first leaf 0) and rightmost (escape past the end) ones — and
+// checks the tree against the reference and the self query against the oracle.
+template <class Exec>
+void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
+  const Topology& topo = source.topology();
+  Exec exec;
+  Lbvh<Exec> bvh(exec);
+  RestructureScratch<Exec> rs(exec);
+  Array<vec3f> vertices(exec.memory(), "test.vertices");
+  Array<Tri> faces(exec.memory(), "test.faces");
+  Array<PrimPair> pairs(exec.memory(), "test.pairs");
+  Array<unsigned long long> count(exec.memory(), "test.count");
+  vertices.reserve(topo.num_vertices);
+  faces.reserve(topo.faces.size());
+  count.reserve(1);
+  exec.copy_from_host(faces.data(), topo.faces.data(), topo.faces.size());
+  const MeshView mesh{vertices.data(), faces.data(), uint32_t(topo.faces.size())};
+  std::vector<vec3f> v;
+  const uint32_t n = uint32_t(topo.faces.size());
+  rs.reserve(exec, n, 2);
+  for (uint32_t f = 0; f < source.num_frames(); ++f) {
+    source.frame(f, v);
+    exec.copy_from_host(vertices.data(), v.data(), v.size());
+    if (f == 0) {
+      build_hierarchy(exec, bvh, mesh, MortonBits::b63);
+      order_depth_first(exec, bvh);
+      continue;
+    }
+    refit(exec, bvh, mesh);
+    HostBvh before = download(exec, bvh);
+    // Nodes at `depth` (root 0) with at least two leaves, found by walking down.
+    std::vector<uint32_t> level = {0}, picked;
+    for (uint32_t d = 0; d < depth; ++d) {
+      std::vector<uint32_t> next;
+      for (uint32_t k : level)
+        for (uint32_t c : {before.node_left[k], before.node_right[k]})
+          if (!is_leaf(c)) next.push_back(c);
+      level = next;
+    }
+    uint32_t leaves = 0;
+    for (uint32_t k : level) {
+      picked.push_back(k);
+      leaves += before.node_last[k] - before.node_first[k] + 1;
+    }
+    ASSERT_FALSE(picked.empty());
+    exec.copy_from_host(rs.node.data(), picked.data(), picked.size());
+    describe_candidates(exec, bvh, rs, uint32_t(picked.size()));
+    restructure_subtrees(exec, bvh, rs, uint32_t(picked.size()), leaves);
+    HostBvh after = download(exec, bvh);
+    after.count_log.clear();
+    ASSERT_EQ(check_bvh(after, topo, v), "") << "frame " << f;
+    for (uint32_t k : picked) {
+      EXPECT_EQ(after.node_first[k], before.node_first[k]);
+      EXPECT_EQ(after.node_last[k], before.node_last[k]);
+      EXPECT_EQ(after.node_escape[k], before.node_escape[k]);
+      EXPECT_EQ(after.node_parent[k], before.node_parent[k]);
+    }
+    const std::vector<PrimPair> expected = sweep_oracle_pairs(topo, v);
+    pairs.reserve(expected.size() + 1);
+    exec.fill(count.data(), 1, 0ull);
+    self_query(exec, bvh.view(), PairSink{pairs.data(), count.data(), pairs.capacity()});
+    unsigned long long found = 0;
+    exec.copy_to_host(&found, count.data(), 1);
+    ASSERT_EQ(found, expected.size()) << "frame " << f;
+    std::vector<PrimPair> got(found);
+    exec.copy_to_host(got.data(), pairs.data(), found);
+    std::sort(got.begin(), got.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+    ASSERT_TRUE(diff_pair_sets(expected, got).equal()) << "frame " << f;
+  }
 }
 
 }  // namespace cdb::test

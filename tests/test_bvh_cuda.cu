@@ -72,4 +72,30 @@ TEST_P(CudaFrontCycles, AllPipelinesExactEveryFrame) {
 
 INSTANTIATE_TEST_SUITE_P(Cycles, CudaFrontCycles, testing::Values(1u, 2u, 3u, 5u));
 
+TEST(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  for (uint32_t depth : {0u, 1u, 4u, 9u}) {
+    auto wave = make_generator("cloth-wave", {{"res", 128}, {"frames", 4}});
+    check_restructure_subtrees<CudaExec>(*wave, depth);
+    auto soup = make_generator("soup", {{"triangles", 200000}, {"distribution", "clustered"},
+                                        {"jitter", 3.0}, {"frames", 3}, {"seed", 9}});
+    check_restructure_subtrees<CudaExec>(*soup, depth);
+  }
+  auto same = make_generator("soup", {{"triangles", 1500}, {"distribution", "identical"}, {"frames", 2}});
+  check_restructure_subtrees<CudaExec>(*same, 3);
+}
+
+class CudaForcedDecisions : public testing::TestWithParam<uint32_t> {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_P(CudaForcedDecisions, EveryBranchOfFormula2IsExact) {
+  for (auto& scene : front_scenes(96, 16)) check_forced_decisions("cuda", *scene, GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Cycles, CudaForcedDecisions, testing::Values(1u, 2u));
+
 }  // namespace cdb::test

@@ -66,6 +66,26 @@ TEST(HostFrontPipelines, RecordTheOperationsOfTheirCycle) {
   }
 }
 
+TEST(HostRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
+  for (uint32_t depth : {0u, 1u, 3u, 6u}) {
+    auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 4}});
+    check_restructure_subtrees<HostExec>(*wave, depth);
+    auto soup = make_generator("soup", {{"triangles", 2000}, {"distribution", "clustered"},
+                                        {"jitter", 3.0}, {"frames", 3}, {"seed", 9}});
+    check_restructure_subtrees<HostExec>(*soup, depth);
+  }
+  auto same = make_generator("soup", {{"triangles", 300}, {"distribution", "identical"}, {"frames", 2}});
+  check_restructure_subtrees<HostExec>(*same, 2);
+}
+
+class HostForcedDecisions : public testing::TestWithParam<uint32_t> {};
+
+TEST_P(HostForcedDecisions, EveryBranchOfFormula2IsExact) {
+  for (auto& scene : front_scenes(24, 8)) check_forced_decisions("cpu", *scene, GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Cycles, HostForcedDecisions, testing::Values(1u, 2u));
+
 TEST(HostPipelines, PairBufferGrowthIsCountedNotTruncated) {
   auto soup = make_generator("soup", {{"triangles", 500}, {"distribution", "identical"}});
   PipelineConfig cfg;

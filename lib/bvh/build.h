@@ -70,8 +70,9 @@ CDB_HD_INLINE uint64_t split_delta(const uint64_t* keys, uint32_t i) {
   return x != 0 ? (x | (uint64_t(1) << 63)) : uint64_t(i ^ (i + 1));
 }
 
-struct ApetreiBuildFn {
-  uint32_t n;
+// The arrays Apetrei's climb reads and writes, in build numbering (internal node k = split
+// between sorted leaves k and k+1).
+struct ApetreiTree {
   const uint64_t* keys;
   const vec4f* leaf_lo;
   const vec4f* leaf_hi;
@@ -86,49 +87,6 @@ struct ApetreiBuildFn {
   uint32_t* other_bound;
   uint32_t* count_log;
 
-  CDB_HD void operator()(uint32_t i) const {
-    uint32_t l = i, r = i;
-    uint32_t current = leaf_ref(i);
-    vec4f lo = leaf_lo[i], hi = leaf_hi[i];
-    for (;;) {
-      const bool parent_is_right_split = l == 0 || (r != n - 1 && split_delta(keys, r) < split_delta(keys, l - 1));
-      uint32_t parent, sibling;
-      if (parent_is_right_split) {
-        parent = r;  // current is the left child of internal node r
-        left[parent] = current;
-        set_parent(current, parent);
-        const uint32_t other = atomic_exchange_acq_rel(&other_bound[parent], l);
-        if (other == kNoNode) return;
-        r = other;
-        sibling = load_coherent(&right[parent]);
-      } else {
-        parent = l - 1;  // current is the right child of internal node l-1
-        right[parent] = current;
-        set_parent(current, parent);
-        const uint32_t other = atomic_exchange_acq_rel(&other_bound[parent], r);
-        if (other == kNoNode) return;
-        l = other;
-        sibling = load_coherent(&left[parent]);
-      }
-      const vec4f slo = is_leaf(sibling) ? leaf_lo[ref_index(sibling)]
-                                         : load_coherent(&node_lo[sibling]);
-      const vec4f shi = is_leaf(sibling) ? leaf_hi[ref_index(sibling)]
-                                         : load_coherent(&node_hi[sibling]);
-      lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), 0};
-      hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), 0};
-      node_lo[parent] = lo;
-      node_hi[parent] = hi;
-      first[parent] = l;
-      last[parent] = r;
-      atomic_add_relaxed(&count_log[l], 1u);
-      current = parent;
-      if (l == 0 && r == n - 1) {
-        node_parent[parent] = kNoNode;
-        return;
-      }
-    }
-  }
-
   CDB_HD_INLINE void set_parent(uint32_t child, uint32_t parent) const {
     if (is_leaf(child))
       leaf_parent[ref_index(child)] = parent;
@@ -136,6 +94,77 @@ struct ApetreiBuildFn {
       node_parent[child] = parent;
   }
 };
+
+// Leaf i's climb over the sorted leaves [s, t]: the whole tree (s = 0, t = N-1) or one
+// subtree being restructured (bvh/restructure.h), whose root stops the climb. Only keys in
+// [s, t] are read.
+CDB_HD_INLINE void apetrei_climb(const ApetreiTree& a, uint32_t i, uint32_t s, uint32_t t) {
+  uint32_t l = i, r = i;
+  uint32_t current = leaf_ref(i);
+  vec4f lo = a.leaf_lo[i], hi = a.leaf_hi[i];
+  for (;;) {
+    const bool parent_is_right_split =
+        l == s || (r != t && split_delta(a.keys, r) < split_delta(a.keys, l - 1));
+    uint32_t parent, sibling;
+    if (parent_is_right_split) {
+      parent = r;  // current is the left child of internal node r
+      a.left[parent] = current;
+      a.set_parent(current, parent);
+      const uint32_t other = atomic_exchange_acq_rel(&a.other_bound[parent], l);
+      if (other == kNoNode) return;
+      r = other;
+      sibling = load_coherent(&a.right[parent]);
+    } else {
+      parent = l - 1;  // current is the right child of internal node l-1
+      a.right[parent] = current;
+      a.set_parent(current, parent);
+      const uint32_t other = atomic_exchange_acq_rel(&a.other_bound[parent], r);
+      if (other == kNoNode) return;
+      l = other;
+      sibling = load_coherent(&a.left[parent]);
+    }
+    const vec4f slo = is_leaf(sibling) ? a.leaf_lo[ref_index(sibling)]
+                                       : load_coherent(&a.node_lo[sibling]);
+    const vec4f shi = is_leaf(sibling) ? a.leaf_hi[ref_index(sibling)]
+                                       : load_coherent(&a.node_hi[sibling]);
+    lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), 0};
+    hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), 0};
+    a.node_lo[parent] = lo;
+    a.node_hi[parent] = hi;
+    a.first[parent] = l;
+    a.last[parent] = r;
+    atomic_add_relaxed(&a.count_log[l], 1u);
+    current = parent;
+    if (l == s && r == t) {
+      a.node_parent[parent] = kNoNode;
+      return;
+    }
+  }
+}
+
+struct ApetreiBuildFn {
+  ApetreiTree tree;
+  uint32_t n;
+  CDB_HD void operator()(uint32_t i) const { apetrei_climb(tree, i, 0, n - 1); }
+};
+
+// The build scratch of an Lbvh as Apetrei's climb sees it, with `keys` sorted by leaf.
+template <class Exec>
+ApetreiTree apetrei_tree(Lbvh<Exec>& bvh, const uint64_t* keys) {
+  return {keys,
+          bvh.leaf_lo.data(),
+          bvh.leaf_hi.data(),
+          bvh.build_lo.data(),
+          bvh.build_hi.data(),
+          bvh.build_left.data(),
+          bvh.build_right.data(),
+          bvh.leaf_parent.data(),
+          bvh.build_parent.data(),
+          bvh.build_first.data(),
+          bvh.build_last.data(),
+          bvh.other_bound.data(),
+          bvh.count_log.data()};
+}
 
 // Rebuilds the hierarchy from the mesh: boxes, Morton codes, radix sort, Apetrei build.
 // Leaves end up sorted; internal nodes are in build order until order_depth_first runs.
@@ -158,12 +187,7 @@ void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBi
   if (n == 1) return;
   exec.fill(bvh.other_bound.data(), n - 1, kNoNode);
   exec.fill(bvh.count_log.data(), size_t(n) + 1, 0u);
-  exec.for_each_n(n, ApetreiBuildFn{n, bvh.morton_sorted.data(), bvh.leaf_lo.data(),
-                                    bvh.leaf_hi.data(), bvh.build_lo.data(), bvh.build_hi.data(),
-                                    bvh.build_left.data(), bvh.build_right.data(),
-                                    bvh.leaf_parent.data(), bvh.build_parent.data(),
-                                    bvh.build_first.data(), bvh.build_last.data(),
-                                    bvh.other_bound.data(), bvh.count_log.data()},
+  exec.for_each_n(n, ApetreiBuildFn{apetrei_tree(bvh, bvh.morton_sorted.data()), n},
                   Balance::uneven);
 }
 

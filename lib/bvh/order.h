@@ -13,32 +13,19 @@
 
 namespace cdb {
 
-// Walks segment l's chain bottom-up: the lowest node whose leftmost leaf is l is internal
-// node l (leaf l is its left child), and each next one is the parent.
-struct NumberChainFn {
+// Build-numbered tree -> depth-first layout, for the whole tree or for one subtree whose
+// leaves are [s, t] (bvh/restructure.h). Only three things differ for a subtree: nodes whose
+// range ends at leaf t escape to `last_escape` (what followed the subtree before), the
+// subtree root keeps the parent it had (`root_parent`), and indices start at its root's.
+struct DepthFirstLayout {
   const uint32_t* count_log;
   const uint32_t* offset_log;
   const uint32_t* build_parent;
   uint32_t* new_index;
-  CDB_HD void operator()(uint32_t l) const {
-    const uint32_t c = count_log[l];
-    uint32_t node = l;
-    const uint32_t bottom = offset_log[l] + c - 1;
-    for (uint32_t s = 0; s < c; ++s) {
-      new_index[node] = bottom - s;
-      node = build_parent[node];
-    }
-  }
-};
-
-struct ScatterNodesFn {
-  uint32_t n;
-  const uint32_t* new_index;
   const vec4f* build_lo;
   const vec4f* build_hi;
   const uint32_t* build_left;
   const uint32_t* build_right;
-  const uint32_t* build_parent;
   const uint32_t* build_first;
   const uint32_t* build_last;
   vec4f* node_lo;
@@ -49,37 +36,72 @@ struct ScatterNodesFn {
   uint32_t* node_escape;
   uint32_t* node_first;
   uint32_t* node_last;
+  uint32_t* leaf_parent;
+  uint32_t* leaf_escape;
 
   CDB_HD_INLINE uint32_t remap(uint32_t ref) const {
     return (ref == kNoNode || is_leaf(ref)) ? ref : new_index[ref];
   }
-  CDB_HD void operator()(uint32_t k) const {
+  // Walks segment l's chain bottom-up: the lowest node whose leftmost leaf is l is internal
+  // node l (leaf l is its left child), and each next one is the parent. `base` is the
+  // index of the segment's first node.
+  CDB_HD_INLINE void number_chain(uint32_t l, uint32_t base) const {
+    const uint32_t c = count_log[l];
+    uint32_t node = l;
+    const uint32_t bottom = base + c - 1;
+    for (uint32_t s = 0; s < c; ++s) {
+      new_index[node] = bottom - s;
+      node = build_parent[node];
+    }
+  }
+  CDB_HD_INLINE void place_node(uint32_t k, uint32_t t, uint32_t last_escape,
+                                uint32_t root_parent) const {
     const uint32_t p = new_index[k];
     node_lo[p] = build_lo[k];
     node_hi[p] = build_hi[k];
     node_left[p] = remap(build_left[k]);
     node_right[p] = remap(build_right[k]);
-    node_parent[p] = remap(build_parent[k]);
+    const uint32_t parent = build_parent[k];
+    node_parent[p] = parent == kNoNode ? root_parent : new_index[parent];
     const uint32_t r = build_last[k];
     node_first[p] = build_first[k];
     node_last[p] = r;
     // Escape (Fig. 2.2): the node after subtree [l, r] in depth-first order is the right
-    // child of internal node r; nothing follows when r is the last leaf.
-    node_escape[p] = r == n - 1 ? kNoNode : remap(build_right[r]);
+    // child of internal node r; past the last leaf it is whatever followed the whole range.
+    node_escape[p] = r == t ? last_escape : remap(build_right[r]);
+  }
+  CDB_HD_INLINE void link_leaf(uint32_t i, uint32_t t, uint32_t last_escape) const {
+    leaf_escape[i] = i == t ? last_escape : remap(build_right[i]);
+    leaf_parent[i] = new_index[leaf_parent[i]];
   }
 };
 
-struct LinkLeavesFn {
+template <class Exec>
+DepthFirstLayout depth_first_layout(Lbvh<Exec>& bvh) {
+  return {bvh.count_log.data(),    bvh.offset_log.data(),  bvh.build_parent.data(),
+          bvh.new_index.data(),    bvh.build_lo.data(),    bvh.build_hi.data(),
+          bvh.build_left.data(),   bvh.build_right.data(), bvh.build_first.data(),
+          bvh.build_last.data(),   bvh.node_lo.data(),     bvh.node_hi.data(),
+          bvh.node_left.data(),    bvh.node_right.data(),  bvh.node_parent.data(),
+          bvh.node_escape.data(),  bvh.node_first.data(),  bvh.node_last.data(),
+          bvh.leaf_parent.data(),  bvh.leaf_escape.data()};
+}
+
+struct NumberChainFn {
+  DepthFirstLayout layout;
+  CDB_HD void operator()(uint32_t l) const { layout.number_chain(l, layout.offset_log[l]); }
+};
+
+struct ScatterNodesFn {
+  DepthFirstLayout layout;
   uint32_t n;
-  const uint32_t* new_index;
-  const uint32_t* build_right;
-  uint32_t* leaf_parent;
-  uint32_t* leaf_escape;
-  CDB_HD void operator()(uint32_t i) const {
-    const uint32_t esc = i == n - 1 ? kNoNode : build_right[i];
-    leaf_escape[i] = (esc == kNoNode || is_leaf(esc)) ? esc : new_index[esc];
-    leaf_parent[i] = new_index[leaf_parent[i]];
-  }
+  CDB_HD void operator()(uint32_t k) const { layout.place_node(k, n - 1, kNoNode, kNoNode); }
+};
+
+struct LinkLeavesFn {
+  DepthFirstLayout layout;
+  uint32_t n;
+  CDB_HD void operator()(uint32_t i) const { layout.link_leaf(i, n - 1, kNoNode); }
 };
 
 struct SingleLeafFn {
@@ -101,19 +123,10 @@ void order_depth_first(Exec& exec, Lbvh<Exec>& bvh) {
   }
   exec.exclusive_scan(bvh.count_log.data(), bvh.offset_log.data(), size_t(n) + 1,
                       bvh.temp.data(), bvh.temp.size());
-  exec.for_each_n(n, NumberChainFn{bvh.count_log.data(), bvh.offset_log.data(),
-                                   bvh.build_parent.data(), bvh.new_index.data()},
-                  Balance::uneven);
-  exec.for_each_n(n - 1, ScatterNodesFn{n, bvh.new_index.data(), bvh.build_lo.data(),
-                                        bvh.build_hi.data(), bvh.build_left.data(),
-                                        bvh.build_right.data(), bvh.build_parent.data(),
-                                        bvh.build_first.data(), bvh.build_last.data(),
-                                        bvh.node_lo.data(), bvh.node_hi.data(),
-                                        bvh.node_left.data(), bvh.node_right.data(),
-                                        bvh.node_parent.data(), bvh.node_escape.data(),
-                                        bvh.node_first.data(), bvh.node_last.data()});
-  exec.for_each_n(n, LinkLeavesFn{n, bvh.new_index.data(), bvh.build_right.data(),
-                                  bvh.leaf_parent.data(), bvh.leaf_escape.data()});
+  const DepthFirstLayout layout = depth_first_layout(bvh);
+  exec.for_each_n(n, NumberChainFn{layout}, Balance::uneven);
+  exec.for_each_n(n - 1, ScatterNodesFn{layout, n});
+  exec.for_each_n(n, LinkLeavesFn{layout, n});
 }
 
 }  // namespace cdb

@@ -88,38 +88,40 @@ struct PreserveFrontFn {
 // under a missing parent is dropped: the leftmost front node of that parent's subtree climbs
 // to it, so the front stays a partition of (i, N-1]. The climb never reaches a node holding
 // leaf i: such a node contains leaf i's box and so always overlaps.
+CDB_HD_INLINE void update_front_node(const FrontTree& tree, const PairSink& pairs,
+                                     const FrontSink& front, uint32_t i, uint32_t j) {
+  const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
+  if (tree.overlaps_node(lo, hi, j)) {
+    if (is_leaf(j)) {
+      pairs.emit(tree.bvh.leaf_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
+      front.push(i, j, 1);
+    } else {
+      traverse_range<true>(tree, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
+                           front);
+    }
+    return;
+  }
+  uint32_t child = j, father = tree.parent(j);
+  while (father != kNoNode && tree.bvh.node_left[father] == child &&
+         !tree.overlaps_node(lo, hi, father)) {
+    child = father;
+    father = tree.parent(father);
+  }
+  if (father == kNoNode || tree.bvh.node_left[father] == child || tree.overlaps_node(lo, hi, father))
+    front.push(i, child, 0);
+}
+
 struct UpdateFrontFn {
   FrontTree tree;
   PairSink pairs;
   FrontSink front;
   const uint32_t* prim;
   const uint32_t* node;
-  CDB_HD void operator()(uint32_t e) const {
-    const uint32_t i = prim[e], j = node[e];
-    const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
-    if (tree.overlaps_node(lo, hi, j)) {
-      if (is_leaf(j)) {
-        pairs.emit(tree.bvh.leaf_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
-        front.push(i, j, 1);
-      } else {
-        traverse_range<true>(tree, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
-                             front);
-      }
-      return;
-    }
-    uint32_t child = j, father = tree.parent(j);
-    while (father != kNoNode && tree.bvh.node_left[father] == child &&
-           !tree.overlaps_node(lo, hi, father)) {
-      child = father;
-      father = tree.parent(father);
-    }
-    if (father == kNoNode || tree.bvh.node_left[father] == child || tree.overlaps_node(lo, hi, father))
-      front.push(i, child, 0);
-  }
+  CDB_HD void operator()(uint32_t e) const { update_front_node(tree, pairs, front, prim[e], node[e]); }
 };
 
 // (4) Balance: the opt mark each front node will take in the coming update (1 = sprout),
-// counted per BVH node for the histogram sort.
+// counted per BVH node for the histogram sort (count_log null when another sort orders).
 struct MarkFrontFn {
   FrontTree tree;
   const uint32_t* prim;
@@ -129,7 +131,7 @@ struct MarkFrontFn {
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t i = prim[e], j = node[e];
     mark[e] = tree.overlaps_node(tree.bvh.leaf_lo[i], tree.bvh.leaf_hi[i], j) ? 1 : 0;
-    atomic_add_relaxed(&count_log[ref_index(j)], 1u);
+    if (count_log) atomic_add_relaxed(&count_log[ref_index(j)], 1u);
   }
 };
 

@@ -88,7 +88,7 @@ std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const Me
 template <class Exec>
 class PairBuffer {
  public:
-  static constexpr size_t kCounters = 4;
+  static constexpr size_t kCounters = 8;
   explicit PairBuffer(Exec& exec) {
     pairs_.bind(exec.memory(), "pairs");
     counters_.bind(exec.memory(), "counters");
@@ -105,8 +105,10 @@ class PairBuffer {
     std::array<unsigned long long, kCounters> c{};
     exec.copy_to_host(c.data(), counters_.data(), kCounters);
     last_count_ = c[0];
+    last_ = c;
     return c;
   }
+  const std::array<unsigned long long, kCounters>& last_counters() const { return last_; }
   // After a read-back: if the pairs did not fit, grow to the measured need (logged,
   // counted) and say so; the caller re-runs the query.
   bool grow_if_needed() {
@@ -126,6 +128,7 @@ class PairBuffer {
   Array<PrimPair> pairs_;
   Array<unsigned long long> counters_;
   uint64_t last_count_ = 0;
+  std::array<unsigned long long, kCounters> last_{};
 };
 
 }  // namespace cdb

@@ -1,11 +1,12 @@
 #pragma once
 // Front-based pipelines (paper Fig. 4, §5.2) as one state machine over the executor. Each
 // frame: refit (or rebuild), then one front operation — (1) generate, (2) preserve,
-// (3) update, with (4) balance before it in pipeline b — decided on the host from the frame
-// counter (no device round trip needed for the decision). Produced fronts are ordered by
-// histogram sort unless the strategy is `unordered`. One read-back a frame: pair and front
-// counters together; an overflow grows the buffer (logged, counted) and re-runs the
-// operation from the untouched current front.
+// (3) update, with (4) balance before it in pipeline b, or (5) restructure in pipeline c —
+// decided on the host from the frame counter and, in c, from the counters of the last
+// inspection (already read back with that frame's counters). Produced fronts are ordered by
+// histogram sort unless the strategy is `unordered`. One read-back a frame: pair, front and
+// inspection counters together; an overflow grows the buffer (logged, counted) and re-runs
+// the operation from the untouched current front.
 #include <algorithm>
 #include <string>
 #include <utility>
@@ -14,7 +15,9 @@
 #include "front/front.h"
 #include "front/operations.h"
 #include "front/ordering.h"
+#include "front/quality.h"
 #include "front/radix_ordering.h"
+#include "front/restructure_front.h"
 #include "pipeline/device_mesh.h"
 #include "pipeline/pipeline.h"
 
@@ -26,17 +29,20 @@ struct FrontPlan {
   bool periodic = false;           // (1) instead of (3) every second cycle
   bool rebuild_every_frame = false;  // the reference strategy
   bool radix_sort = false;  // order with a radix sort instead of the histogram (Fig. 6 baseline)
+  bool restructure = false;  // pipeline c: inspect quality, Formula 2, (5) restructure
 };
 
 template <class Exec, class Timer>
 class FrontPipeline final : public Pipeline {
  public:
   FrontPipeline(const PipelineConfig& config, FrontPlan plan)
-      : config_(config), plan_(plan), timer_(exec_), mesh_(exec_), bvh_(exec_), pairs_(exec_) {
+      : config_(config), plan_(plan), timer_(exec_), mesh_(exec_), bvh_(exec_), pairs_(exec_),
+        restructure_(exec_) {
     front_[kInternalFront].bind(exec_.memory(), kInternalFront);
     front_[kExternalFront].bind(exec_.memory(), kExternalFront);
     radix_.bind(exec_.memory());
     if (config_.front_cycle == 0) fail("--front-cycle must be at least 1");
+    if (plan_.restructure) check_restructure_config(config_);
   }
 
   void set_topology(const Topology& topology) override {
@@ -48,22 +54,29 @@ class FrontPipeline final : public Pipeline {
     front_[kInternalFront].reserve(cap, n > 1 ? n - 1 : 1);
     front_[kExternalFront].reserve(cap, std::max<uint32_t>(n, 1));
     if (plan_.radix_sort) radix_.reserve(exec_, cap);
+    if (plan_.restructure) restructure_.reserve(exec_, n, config_.restructure_min_leaves);
     frame_ = 0;
+    pending_ = {};
+    q_ref_ = 0.0;
     exec_.sync();
   }
 
   FrameStats run_frame(const std::vector<vec3f>& vertices) override {
     FrameStats stats;
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
-    const bool rebuild = frame_ == 0 || plan_.rebuild_every_frame ||
+    const Decision decision = decide(stats);
+    const bool rebuild = frame_ == 0 || plan_.rebuild_every_frame || decision == Decision::rebuild ||
                          (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
     stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, rebuild, config_.morton_bits);
     if (rebuild) generated_at_ = frame_;
-    const Op op = choose_op(rebuild);
+    const Op op = !rebuild && decision == Decision::restructure ? Op::restructure : choose_op(rebuild);
     if (op == Op::update && plan_.balance) balance();
+    if (op == Op::restructure) restructure_tree_and_classify_fronts();
+    const bool inspect = plan_.restructure && q_ref_ > 0.0 && (op == Op::update || op == Op::restructure);
     for (;;) {
       pairs_.reset_counters(exec_);
       run_op(op);
+      if (inspect) inspect_quality();
       timer_.stop_frame();
       const auto c = pairs_.read_counters(exec_);
       bool again = pairs_.grow_if_needed();
@@ -82,6 +95,15 @@ class FrontPipeline final : public Pipeline {
     stats.q_root = plan_.ordered && stats.front_external
                        ? double(stats.front_internal) / double(stats.front_external)
                        : 0.0;
+    if (plan_.restructure && rebuild) q_ref_ = stats.q_root;
+    if (inspect) {
+      const auto c = pairs_.last_counters();
+      pending_.count = uint32_t(std::min<unsigned long long>(c[4], restructure_.max_candidates));
+      pending_.leaves = uint32_t(c[5]);
+      stats.candidates = c[4];
+      stats.candidate_leaves = c[5];
+      stats.q_candidates = c[4] ? double(c[6]) / 1000.0 / double(c[4]) : 0.0;
+    }
     record_timings(timer_, stats);
     ++frame_;
     return stats;
@@ -91,9 +113,71 @@ class FrontPipeline final : public Pipeline {
   MemoryStats memory() const override { return const_cast<Exec&>(exec_).memory().stats(); }
 
  private:
-  enum class Op { generate, preserve, update };
+  enum class Op { generate, preserve, update, restructure };
   static const char* op_name(Op op) {
-    return op == Op::generate ? "generate" : op == Op::preserve ? "preserve" : "update";
+    return op == Op::generate   ? "generate"
+           : op == Op::preserve ? "preserve"
+           : op == Op::update   ? "update"
+                                : "restructure";
+  }
+
+  enum class Decision { none, refit, restructure, rebuild };
+
+  static void check_restructure_config(const PipelineConfig& c) {
+    if (c.restructure_min_leaves < 2) fail("--restructure-min-leaves must be at least 2");
+    if (!(c.restructure_max_fraction > 0.0 && c.restructure_max_fraction <= 1.0))
+      fail("--restructure-max-fraction must be in (0, 1]");
+    if (!(c.restructure_quality >= 0.0)) fail("--restructure-quality must be at least 0");
+    if (!(c.threshold_refit >= 0.0) || !(c.threshold_build >= c.threshold_refit))
+      fail("thresholds must satisfy 0 <= --threshold-refit <= --threshold-build");
+  }
+
+  // Formula 2 (paper §4.2) on the candidates of the last inspection, as a share of the
+  // leaves. The paper prints the rebuild and restructure branches the other way round;
+  // restructuring many subtrees costs more than a rebuild and restructuring few is what it
+  // is for, so here a large share rebuilds (docs/design.md).
+  Decision decide(FrameStats& stats) {
+    if (!plan_.restructure || pending_.count == 0) return Decision::none;
+    const double share = double(pending_.leaves) / double(std::max<uint32_t>(bvh_.num_leaves, 1));
+    const Decision d = share < config_.threshold_refit   ? Decision::refit
+                       : share < config_.threshold_build ? Decision::restructure
+                                                         : Decision::rebuild;
+    stats.decision = d == Decision::refit ? "refit" : d == Decision::restructure ? "restructure" : "rebuild";
+    restructuring_ = pending_;
+    pending_ = {};
+    return d;
+  }
+
+  // (5), first half: candidates described from the refitted tree, fronts classified against
+  // the old node ranges, then the candidate subtrees rebuilt. The front update that follows
+  // (run_op) may be re-run on overflow; this part must not be.
+  void restructure_tree_and_classify_fronts() {
+    timer_.start(Phase::restructure);
+    describe_candidates(exec_, bvh_, restructure_, restructuring_.count);
+    const CandidateView cand = restructure_.view();
+    for (int k = 0; k < 2; ++k)
+      exec_.for_each_n(front_[k].size, ClassifyFrontFn{bvh_.node_first.data(), bvh_.node_last.data(),
+                                                       cand, front_[k].prim.data(),
+                                                       front_[k].node.data()});
+    restructure_subtrees(exec_, bvh_, restructure_, restructuring_.count, restructuring_.leaves);
+    timer_.stop(Phase::restructure);
+  }
+
+  void inspect_quality() {
+    const uint32_t n = bvh_.num_leaves;
+    if (n < 2) return;
+    timer_.start(Phase::inspect);
+    const uint32_t max_leaves = std::max<uint32_t>(
+        config_.restructure_min_leaves, uint32_t(config_.restructure_max_fraction * double(n)));
+    exec_.for_each_n(n - 1, InspectQualityFn{bvh_.node_first.data(), bvh_.node_last.data(),
+                                             bvh_.node_parent.data(),
+                                             front_[kInternalFront].offset_log.data(),
+                                             front_[kExternalFront].offset_log.data(),
+                                             float(config_.restructure_quality * q_ref_),
+                                             config_.restructure_min_leaves, max_leaves,
+                                             restructure_.max_candidates, restructure_.node.data(),
+                                             pairs_.counter(4)});
+    timer_.stop(Phase::inspect);
   }
 
   Op choose_op(bool rebuilt) const {
@@ -116,7 +200,7 @@ class FrontPipeline final : public Pipeline {
       s.node[k] = f.raw_node.data();
       s.mark[k] = f.raw_mark.data();
       s.capacity[k] = f.raw_prim.capacity();
-      s.count_log[k] = plan_.ordered ? f.count_log.data() : nullptr;
+      s.count_log[k] = histogram_sorted() ? f.count_log.data() : nullptr;
     }
     s.count = pairs_.counter(1);
     return s;
@@ -126,6 +210,8 @@ class FrontPipeline final : public Pipeline {
     const uint32_t n = bvh_.num_leaves;
     return k == kInternalFront ? (n > 1 ? n - 1 : 0) : n;
   }
+
+  bool histogram_sorted() const { return plan_.ordered && !plan_.radix_sort; }
 
   void zero_count_logs() {
     for (int k = 0; k < 2; ++k) exec_.fill(front_[k].count_log.data(), segments(k) + 1, 0u);
@@ -145,10 +231,16 @@ class FrontPipeline final : public Pipeline {
     }
     const Phase phase = op == Op::generate ? Phase::generate : Phase::update;
     timer_.start(phase);
-    if (plan_.ordered) zero_count_logs();
+    if (histogram_sorted()) zero_count_logs();
     const FrontSink sink = produce_sink();
     if (op == Op::generate) {
       exec_.for_each_n(n, GenerateFrontFn{t, pairs_.sink(), sink}, Balance::uneven);
+    } else if (op == Op::restructure) {
+      for (int k = 0; k < 2; ++k)
+        exec_.for_each_n(front_[k].size,
+                         RestructuredUpdateFn{t, pairs_.sink(), sink, restructure_.view(),
+                                              front_[k].prim.data(), front_[k].node.data()},
+                         Balance::uneven);
     } else {
       for (int k = 0; k < 2; ++k)
         exec_.for_each_n(front_[k].size, UpdateFrontFn{t, pairs_.sink(), sink, front_[k].prim.data(),
@@ -190,11 +282,11 @@ class FrontPipeline final : public Pipeline {
   void balance() {
     timer_.start(Phase::balance);
     const FrontTree t = tree();
-    zero_count_logs();
+    if (histogram_sorted()) zero_count_logs();
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
       exec_.for_each_n(f.size, MarkFrontFn{t, f.prim.data(), f.node.data(), f.raw_mark.data(),
-                                           f.count_log.data()});
+                                           histogram_sorted() ? f.count_log.data() : nullptr});
       if (plan_.radix_sort) {
         radix_order_front(exec_, f, radix_, f.size, key_bits(k), f.prim.data(), f.node.data(),
                           f.raw_mark.data());
@@ -257,6 +349,13 @@ class FrontPipeline final : public Pipeline {
   PairBuffer<Exec> pairs_;
   FrontArrays<Exec> front_[2];
   RadixScratch<Exec> radix_;
+  RestructureScratch<Exec> restructure_;
+  struct Candidates {
+    uint32_t count = 0, leaves = 0;
+  };
+  Candidates pending_;        // found by the last inspection, decided on next frame
+  Candidates restructuring_;  // being restructured this frame
+  double q_ref_ = 0.0;        // Q of the root after the last rebuild (pipeline c)
   uint64_t frame_ = 0, generated_at_ = 0;
 };
 

@@ -28,6 +28,17 @@ struct PipelineConfig {
   // Front pipelines: frames per maintenance cycle; the last frame of a cycle updates the
   // fronts (pipeline b also balances first), the others preserve them.
   uint32_t front_cycle = 4;
+  // Pipeline c / restructure (paper §4.1-4.2, docs/design.md "Quality and restructuring").
+  // A node is degraded when its Q (Formula 1) exceeds restructure_quality times Q of the
+  // root right after the last rebuild; candidates are the topmost degraded subtrees of
+  // restructure_min_leaves to restructure_max_fraction * N leaves. Formula 2 on the share
+  // of leaves inside candidates: below threshold_refit only refit, below threshold_build
+  // restructure the candidates, otherwise rebuild.
+  double restructure_quality = 1.5;
+  uint32_t restructure_min_leaves = 32;
+  double restructure_max_fraction = 0.25;
+  double threshold_refit = 0.01;
+  double threshold_build = 0.5;
 };
 
 struct FrameStats {
@@ -38,6 +49,11 @@ struct FrameStats {
   std::string op;             // what the frame did: hierarchy (build/refit) + front operation
   uint64_t front_internal = 0, front_external = 0;  // front sizes after the frame
   double q_root = 0.0;  // Formula 1 at the root (internal / external front nodes), when ordered
+  // Pipeline c: what this frame's inspection found (candidates, their leaves, their mean Q)
+  // and the Formula 2 decision taken at its start on the previous inspection ("" if none).
+  uint64_t candidates = 0, candidate_leaves = 0;
+  double q_candidates = 0.0;
+  std::string decision;
 };
 
 class Pipeline {

@@ -27,6 +27,9 @@ std::unique_ptr<Pipeline> make_pipeline_on(const PipelineConfig& c) {
   } else if (c.name == "periodic") {
     plan.balance = true;
     plan.periodic = true;
+  } else if (c.name == "c" || c.name == "restructure") {
+    plan.balance = true;  // pipeline c is b plus quality inspection and restructuring (§4)
+    plan.restructure = true;
   } else if (c.name == "reference") {
     plan.rebuild_every_frame = true;
   } else {

@@ -1,0 +1,304 @@
+#pragma once
+// Subtree restructuring (paper §4.2): each candidate subtree — internal node r covering
+// sorted leaves [s, t] — is rebuilt from its own leaves only, by Apetrei's method bottom-up
+// until r is met, and laid out depth-first in place. Leaves outside every candidate, and
+// every node outside the candidates' subtrees, keep their index, box and links: r keeps its
+// index, its leaf range, its parent and its escape, and so its box (the union of the same
+// leaves). Within a candidate the leaves are re-sorted by a Morton code normalized to r's
+// box, which is what recovers quality after the mesh deformed away from the build's order.
+//
+// All candidates are restructured together: one key sort over the candidates' leaves (the
+// candidate's slot in the high bits keeps each within its range), one climb, one scan.
+// The candidate list comes from the quality inspection of an earlier frame
+// (front/quality.h); the host knows its size from that frame's read-back, so nothing here
+// reads back.
+#include <cstdint>
+
+#include "bvh/build.h"
+#include "bvh/lbvh.h"
+#include "bvh/node_ref.h"
+#include "bvh/order.h"
+#include "core/atomics.h"
+#include "core/morton.h"
+#include "exec/balance.h"
+#include "exec/memory.h"
+
+namespace cdb {
+
+// Morton bits of a leaf's key within its candidate; the candidate slot takes the bits above.
+inline constexpr int kRestructureCodeBits = 30;
+
+// The candidates as the front restructure (front/restructure_front.h) and the kernels here
+// see them. Slot k describes the subtree rooted at node[k] over leaves [first[k], last[k]];
+// leaf_slot[l + 1] is k + 1 when leaf l is inside candidate k, 0 otherwise.
+struct CandidateView {
+  const uint32_t* node;
+  const uint32_t* first;
+  const uint32_t* last;
+  const uint32_t* escape;
+  const uint32_t* leaf_slot;
+
+  CDB_HD_INLINE uint32_t slot_of_leaf(uint32_t l) const { return leaf_slot[l + 1]; }
+};
+
+// Candidate list and restructure scratch, sized once per topology.
+template <class Exec>
+struct RestructureScratch {
+  explicit RestructureScratch(Exec& exec) {
+    MemoryResource& mr = exec.memory();
+    node.bind(mr, "restructure.candidate_node");
+    first.bind(mr, "restructure.candidate_first");
+    last.bind(mr, "restructure.candidate_last");
+    escape.bind(mr, "restructure.candidate_escape");
+    parent.bind(mr, "restructure.candidate_parent");
+    size.bind(mr, "restructure.candidate_size");
+    base.bind(mr, "restructure.candidate_base");
+    leaf_tag.bind(mr, "restructure.leaf_tag");
+    leaf_slot.bind(mr, "restructure.leaf_slot");
+    keys.bind(mr, "restructure.keys");
+    keys_sorted.bind(mr, "restructure.keys_sorted");
+    old_leaf.bind(mr, "restructure.old_leaf");
+    old_leaf_sorted.bind(mr, "restructure.old_leaf_sorted");
+    new_leaf.bind(mr, "restructure.new_leaf");
+    moved_prim.bind(mr, "restructure.moved_prim");
+    moved_lo.bind(mr, "restructure.moved_lo");
+    moved_hi.bind(mr, "restructure.moved_hi");
+    temp.bind(mr, "restructure.temp");
+  }
+
+  // Candidates are disjoint subtrees of at least min_leaves leaves each.
+  void reserve(Exec& exec, uint32_t num_leaves, uint32_t min_leaves) {
+    max_candidates = num_leaves / (min_leaves > 1 ? min_leaves : 1) + 1;
+    for (auto* a : {&node, &first, &last, &escape, &parent}) a->reserve(max_candidates);
+    size.reserve(size_t(max_candidates) + 1);
+    base.reserve(size_t(max_candidates) + 1);
+    leaf_tag.reserve(size_t(num_leaves) + 1);
+    leaf_slot.reserve(size_t(num_leaves) + 1);
+    keys.reserve(num_leaves);
+    keys_sorted.reserve(num_leaves);
+    for (auto* a : {&old_leaf, &old_leaf_sorted, &new_leaf, &moved_prim}) a->reserve(num_leaves);
+    moved_lo.reserve(num_leaves);
+    moved_hi.reserve(num_leaves);
+    size_t t = exec.sort_temp_bytes(num_leaves);
+    const size_t scan = exec.scan_temp_bytes(size_t(num_leaves) + 1);
+    temp.reserve(std::max<size_t>({t, scan, 256}));
+  }
+
+  CandidateView view() const {
+    return {node.data(), first.data(), last.data(), escape.data(), leaf_slot.data()};
+  }
+
+  uint32_t max_candidates = 0;
+  Array<uint32_t> node, first, last, escape, parent, size, base;
+  Array<uint32_t> leaf_tag, leaf_slot;
+  Array<uint64_t> keys, keys_sorted;
+  Array<uint32_t> old_leaf, old_leaf_sorted, new_leaf, moved_prim;
+  Array<vec4f> moved_lo, moved_hi;
+  Array<std::byte> temp;
+};
+
+// Per candidate: its range, escape and parent from the current tree, and a +(k+1) / -(k+1)
+// step at its range ends so that a scan tags every leaf with its candidate (ranges are
+// disjoint, so at most one step is open at any leaf).
+struct DescribeCandidateFn {
+  const uint32_t* node_first;
+  const uint32_t* node_last;
+  const uint32_t* node_escape;
+  const uint32_t* node_parent;
+  const uint32_t* cand_node;
+  uint32_t* first;
+  uint32_t* last;
+  uint32_t* escape;
+  uint32_t* parent;
+  uint32_t* size;
+  uint32_t* leaf_tag;
+  CDB_HD void operator()(uint32_t k) const {
+    const uint32_t r = cand_node[k], s = node_first[r], t = node_last[r];
+    first[k] = s;
+    last[k] = t;
+    escape[k] = node_escape[r];
+    parent[k] = node_parent[r];
+    size[k] = t - s + 1;
+    atomic_add_relaxed(&leaf_tag[s], k + 1);
+    atomic_add_relaxed(&leaf_tag[t + 1], 0u - (k + 1));
+  }
+};
+
+// Key of every candidate leaf: slot above a 30-bit Morton code of its centroid in the
+// candidate root's (refitted) box; value: the leaf's current position.
+struct RestructureKeyFn {
+  CandidateView cand;
+  const uint32_t* base;
+  const vec4f* leaf_lo;
+  const vec4f* leaf_hi;
+  const vec4f* node_lo;
+  const vec4f* node_hi;
+  uint64_t* keys;
+  uint32_t* old_leaf;
+  CDB_HD void operator()(uint32_t l) const {
+    const uint32_t tag = cand.slot_of_leaf(l);
+    if (tag == 0) return;
+    const uint32_t k = tag - 1, r = cand.node[k];
+    const vec4f blo = node_lo[r], bhi = node_hi[r], a = leaf_lo[l], b = leaf_hi[l];
+    // Halved terms keep coordinates near the float limit finite, as in MortonFn.
+    const float ex = bhi.x * 0.5f - blo.x * 0.5f, ey = bhi.y * 0.5f - blo.y * 0.5f,
+                ez = bhi.z * 0.5f - blo.z * 0.5f;
+    const float cx = a.x * 0.5f + b.x * 0.5f, cy = a.y * 0.5f + b.y * 0.5f,
+                cz = a.z * 0.5f + b.z * 0.5f;
+    const vec4f u{ex > 0 ? (cx * 0.5f - blo.x * 0.5f) / ex : 0.5f,
+                  ey > 0 ? (cy * 0.5f - blo.y * 0.5f) / ey : 0.5f,
+                  ez > 0 ? (cz * 0.5f - blo.z * 0.5f) / ez : 0.5f, 0};
+    const uint32_t m = base[k] + (l - cand.first[k]);
+    keys[m] = (uint64_t(k) << kRestructureCodeBits) | morton_code(u, MortonBits::b30);
+    old_leaf[m] = l;
+  }
+};
+
+// Sorted entry m goes to leaf position first + (m - base) of its candidate. Moving goes
+// through scratch (leaves are permuted in place).
+struct GatherMovedLeavesFn {
+  CandidateView cand;
+  const uint32_t* base;
+  const uint64_t* keys_sorted;
+  const uint32_t* old_leaf_sorted;
+  const uint32_t* leaf_prim;
+  const vec4f* leaf_lo;
+  const vec4f* leaf_hi;
+  uint32_t* new_leaf;
+  uint32_t* moved_prim;
+  vec4f* moved_lo;
+  vec4f* moved_hi;
+  CDB_HD void operator()(uint32_t m) const {
+    const uint32_t k = uint32_t(keys_sorted[m] >> kRestructureCodeBits);
+    new_leaf[m] = cand.first[k] + (m - base[k]);
+    const uint32_t old = old_leaf_sorted[m];
+    moved_prim[m] = leaf_prim[old];
+    moved_lo[m] = leaf_lo[old];
+    moved_hi[m] = leaf_hi[old];
+  }
+};
+
+struct PlaceMovedLeavesFn {
+  const uint64_t* keys_sorted;
+  const uint32_t* new_leaf;
+  const uint32_t* moved_prim;
+  const vec4f* moved_lo;
+  const vec4f* moved_hi;
+  uint32_t* leaf_prim;
+  vec4f* leaf_lo;
+  vec4f* leaf_hi;
+  uint64_t* keys_by_leaf;
+  CDB_HD void operator()(uint32_t m) const {
+    const uint32_t p = new_leaf[m];
+    leaf_prim[p] = moved_prim[m];
+    leaf_lo[p] = moved_lo[m];
+    leaf_hi[p] = moved_hi[m];
+    keys_by_leaf[p] = keys_sorted[m];
+  }
+};
+
+struct SubtreeClimbFn {
+  ApetreiTree tree;
+  CandidateView cand;
+  const uint64_t* keys_sorted;
+  const uint32_t* new_leaf;
+  CDB_HD void operator()(uint32_t m) const {
+    const uint32_t k = uint32_t(keys_sorted[m] >> kRestructureCodeBits);
+    apetrei_climb(tree, new_leaf[m], cand.first[k], cand.last[k]);
+  }
+};
+
+// Depth-first indices of a subtree's nodes start at its root's index r: segment l of the
+// subtree begins at r + (offset_log[l] - offset_log[s]).
+struct SubtreeLayoutFn {
+  DepthFirstLayout layout;
+  CandidateView cand;
+  const uint64_t* keys_sorted;
+  const uint32_t* new_leaf;
+  CDB_HD void operator()(uint32_t m) const {
+    const uint32_t k = uint32_t(keys_sorted[m] >> kRestructureCodeBits);
+    const uint32_t l = new_leaf[m];
+    layout.number_chain(l, cand.node[k] + (layout.offset_log[l] - layout.offset_log[cand.first[k]]));
+  }
+};
+
+struct SubtreePlaceFn {
+  DepthFirstLayout layout;
+  CandidateView cand;
+  const uint32_t* cand_parent;
+  const uint64_t* keys_sorted;
+  const uint32_t* new_leaf;
+  CDB_HD void operator()(uint32_t m) const {
+    const uint32_t k = uint32_t(keys_sorted[m] >> kRestructureCodeBits);
+    const uint32_t l = new_leaf[m], t = cand.last[k];
+    // Internal node l (split after leaf l) exists for every leaf of the range but the last.
+    if (l != t) layout.place_node(l, t, cand.escape[k], cand_parent[k]);
+    layout.link_leaf(l, t, cand.escape[k]);
+  }
+};
+
+// Describes the `count` candidates listed in scratch.node from the current tree and tags
+// their leaves. Runs before the front restructure reads the old node ranges.
+template <class Exec>
+void describe_candidates(Exec& exec, Lbvh<Exec>& bvh, RestructureScratch<Exec>& rs,
+                         uint32_t count) {
+  const uint32_t n = bvh.num_leaves;
+  if (count == 0 || n < 2) return;
+  exec.fill(rs.leaf_tag.data(), size_t(n) + 1, 0u);
+  exec.fill(rs.size.data() + count, 1, 0u);
+  exec.for_each_n(count, DescribeCandidateFn{bvh.node_first.data(), bvh.node_last.data(),
+                                             bvh.node_escape.data(), bvh.node_parent.data(),
+                                             rs.node.data(), rs.first.data(), rs.last.data(),
+                                             rs.escape.data(), rs.parent.data(), rs.size.data(),
+                                             rs.leaf_tag.data()});
+  exec.exclusive_scan(rs.leaf_tag.data(), rs.leaf_slot.data(), size_t(n) + 1, rs.temp.data(),
+                      rs.temp.size());
+  exec.exclusive_scan(rs.size.data(), rs.base.data(), size_t(count) + 1, rs.temp.data(),
+                      rs.temp.size());
+}
+
+// Restructures the described candidates (`leaves` leaves in all). The tree must be
+// refitted to the current frame first: keys come from its boxes. Leaves of the candidates
+// change position; the scratch keeps which leaf is in which candidate (view().leaf_slot)
+// for the front restructure.
+template <class Exec>
+void restructure_subtrees(Exec& exec, Lbvh<Exec>& bvh, RestructureScratch<Exec>& rs,
+                          uint32_t count, uint32_t leaves) {
+  const uint32_t n = bvh.num_leaves;
+  if (count == 0 || n < 2) return;
+  const CandidateView cand = rs.view();
+  exec.for_each_n(n, RestructureKeyFn{cand, rs.base.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
+                                      bvh.node_lo.data(), bvh.node_hi.data(), rs.keys.data(),
+                                      rs.old_leaf.data()});
+  int slot_bits = 1;
+  while ((uint64_t(1) << slot_bits) < count) ++slot_bits;
+  exec.sort_pairs(rs.keys.data(), rs.keys_sorted.data(), rs.old_leaf.data(),
+                  rs.old_leaf_sorted.data(), leaves, kRestructureCodeBits + slot_bits,
+                  rs.temp.data(), rs.temp.size());
+  exec.for_each_n(leaves, GatherMovedLeavesFn{cand, rs.base.data(), rs.keys_sorted.data(),
+                                              rs.old_leaf_sorted.data(), bvh.leaf_prim.data(),
+                                              bvh.leaf_lo.data(), bvh.leaf_hi.data(),
+                                              rs.new_leaf.data(), rs.moved_prim.data(),
+                                              rs.moved_lo.data(), rs.moved_hi.data()});
+  exec.for_each_n(leaves, PlaceMovedLeavesFn{rs.keys_sorted.data(), rs.new_leaf.data(),
+                                             rs.moved_prim.data(), rs.moved_lo.data(),
+                                             rs.moved_hi.data(), bvh.leaf_prim.data(),
+                                             bvh.leaf_lo.data(), bvh.leaf_hi.data(),
+                                             bvh.morton.data()});
+  // Splits outside the candidates are never touched by the climb; clearing all is cheaper
+  // than scattering the clears.
+  exec.fill(bvh.other_bound.data(), n - 1, kNoNode);
+  exec.fill(bvh.count_log.data(), size_t(n) + 1, 0u);
+  exec.for_each_n(leaves, SubtreeClimbFn{apetrei_tree(bvh, bvh.morton.data()), cand,
+                                         rs.keys_sorted.data(), rs.new_leaf.data()},
+                  Balance::uneven);
+  exec.exclusive_scan(bvh.count_log.data(), bvh.offset_log.data(), size_t(n) + 1, bvh.temp.data(),
+                      bvh.temp.size());
+  const DepthFirstLayout layout = depth_first_layout(bvh);
+  exec.for_each_n(leaves, SubtreeLayoutFn{layout, cand, rs.keys_sorted.data(), rs.new_leaf.data()},
+                  Balance::uneven);
+  exec.for_each_n(leaves, SubtreePlaceFn{layout, cand, rs.parent.data(), rs.keys_sorted.data(),
+                                         rs.new_leaf.data()});
+}
+
+}  // namespace cdb
