@@ -6,7 +6,7 @@ namespace cdb {
 
 const std::vector<std::string>& pipeline_names() {
   static const std::vector<std::string> names = {
-      "bvh", "unordered", "static", "periodic", "reference", "a", "b", "radix-order", "sweep", "hash", "brute"};
+      "bvh", "unordered", "static", "periodic", "reference", "a", "b", "radix-order", "sweep", "hash", "grid", "brute"};
   return names;
 }
 
