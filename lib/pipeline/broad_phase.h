@@ -75,13 +75,13 @@ class BroadPhase final : public Pipeline {
     stats.op = prepare(mesh);
     bool build_grid = method_ == BroadPhaseMethod::grid;
     for (;;) {
-      pairs_.reset_counters(exec_);
       if (build_grid) {
         timer_.start(Phase::build);
         grid_build(exec_, grid_, mesh.num_faces);
         timer_.stop(Phase::build);
       }
       timer_.start(Phase::query);
+      pairs_.reset_counters(exec_);
       switch (method_) {
         case BroadPhaseMethod::brute:
           brute_force_pairs(exec_, mesh.num_faces, prim_lo_.data(), prim_hi_.data(), pairs_.sink());
