@@ -17,6 +17,7 @@
 #include "generators.h"
 #include "grid/uniform_grid.h"
 #include "hash/spatial_hash.h"
+#include "pipeline/pipeline.h"
 #include "sweep/sweep.h"
 
 namespace cdb::test {
@@ -143,6 +144,54 @@ inline SceneFrames multiscale_soup(uint32_t n, uint32_t seed) {
   }
   s.topology.num_vertices = 3 * n;
   return s;
+}
+
+// g^3 pairs of coincident triangles of width 0.2, one per unit lattice point, plus a point
+// triangle pinning the grid's origin at 0 (cell 0.25). Frame 0: each box inside one cell.
+// Frames 1 and 2: shifted by 0.15, each box straddles a cell corner (8 cells), eight times
+// the entries frame 0 planned for.
+inline SceneFrames straddling_pairs(uint32_t g) {
+  SceneFrames s;
+  s.frames.resize(3);
+  s.topology.faces.push_back({0, 0, 0});
+  for (auto& v : s.frames) v.push_back({0.0f, 0.0f, 0.0f});
+  for (uint32_t k = 0; k < g; ++k)
+    for (uint32_t j = 0; j < g; ++j)
+      for (uint32_t i = 0; i < g; ++i) {
+        const uint32_t base = uint32_t(s.frames[0].size());
+        s.topology.faces.push_back({base, base + 1, base + 2});
+        s.topology.faces.push_back({base, base + 1, base + 2});
+        for (uint32_t f = 0; f < 3; ++f) {
+          const float d = f == 0 ? 0.02f : 0.15f, w = 0.2f;
+          const vec3f o{float(i) + d, float(j) + d, float(k) + d};
+          s.frames[f].push_back(o);
+          s.frames[f].push_back({o.x + w, o.y, o.z + w});
+          s.frames[f].push_back({o.x, o.y + w, o.z + 0.5f * w});
+        }
+      }
+  s.topology.num_vertices = uint32_t(s.frames[0].size());
+  return s;
+}
+
+// The grid pipeline through the factory on every frame of `scene`: exact against the
+// oracle; returns each frame's op.
+inline std::vector<std::string> grid_pipeline_ops(const std::string& device,
+                                                  const SceneFrames& scene) {
+  PipelineConfig cfg;
+  cfg.name = "grid";
+  cfg.device = device;
+  auto p = make_pipeline(cfg);
+  p->set_topology(scene.topology);
+  std::vector<std::string> ops;
+  for (const auto& v : scene.frames) {
+    const FrameStats s = p->run_frame(v);
+    const std::vector<PrimPair> expected = sweep_oracle_pairs(scene.topology, v);
+    EXPECT_EQ(s.pairs, expected.size()) << ops.size();
+    EXPECT_TRUE(diff_pair_sets(expected, p->sorted_pairs()).equal()) << ops.size();
+    EXPECT_EQ(s.query_reruns > 0, s.op == "regrid") << ops.size();
+    ops.push_back(s.op);
+  }
+  return ops;
 }
 
 struct BaselineCase {

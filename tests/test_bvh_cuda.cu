@@ -71,6 +71,14 @@ TEST(CudaGridBaseline, WideBoxesGoToCoarserLevelsInFewCells) {
   for (uint32_t c : m.cells) ASSERT_LE(c, kGridMaxCellsPerBox);
 }
 
+// Through the pipeline: a frame whose entries outgrow the plan made from the last frame is
+// re-run (op regrid) and exact; the next frame plans from it and runs once.
+TEST(CudaGridBaseline, PipelineReRunsAFrameThatOutgrowsItsPlan) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  const std::vector<std::string> ops = grid_pipeline_ops("cuda", straddling_pairs(10));
+  EXPECT_EQ(ops, (std::vector<std::string>{"grid", "regrid", "grid"}));
+}
+
 TEST(CudaPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   auto wave = make_generator("cloth-wave", {{"res", 64}, {"frames", 8}});

@@ -49,6 +49,13 @@ TEST(HostGridBaseline, WideBoxesGoToCoarserLevelsInFewCells) {
   for (uint32_t c : m.cells) ASSERT_LE(c, kGridMaxCellsPerBox);
 }
 
+// Through the pipeline: a frame whose entries outgrow the plan made from the last frame is
+// re-run (op regrid) and exact; the next frame plans from it and runs once.
+TEST(HostGridBaseline, PipelineReRunsAFrameThatOutgrowsItsPlan) {
+  const std::vector<std::string> ops = grid_pipeline_ops("cpu", straddling_pairs(10));
+  EXPECT_EQ(ops, (std::vector<std::string>{"grid", "regrid", "grid"}));
+}
+
 TEST(HostPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 6}});
   check_pipelines_on(config_for("cpu", 0.01), *wave);
