@@ -211,7 +211,7 @@ int main(int argc, char** argv) {
   uint32_t warmup = 1;
   bool quiet = false;
   run->add_option("--pipeline", pipeline,
-                  "bvh, unordered, static, periodic, reference, a, b, radix-order, sweep, hash or brute")->capture_default_str();
+                  "bvh, unordered, static, periodic, reference, a, b, radix-order, sweep, hash, grid or brute")->capture_default_str();
   run->add_option("--warmup", warmup, "frames left out of the summary statistics")
       ->capture_default_str();
   run->add_flag("--quiet", quiet, "no per-frame lines");

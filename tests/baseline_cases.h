@@ -1,19 +1,23 @@
 #pragma once
-// Property tests of the sweep and hash baselines, written once over the executor: on
+// Property tests of the sweep, hash and grid baselines, written once over the executor: on
 // nasty soups and on boxes touching exactly along grid-cell boundaries, each must report
 // exactly the sweep oracle's pairs on every frame.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <ostream>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "bruteforce/sweep_oracle.h"
 #include "core/pair_set.h"
 #include "generators.h"
+#include "grid/uniform_grid.h"
 #include "hash/spatial_hash.h"
+#include "pipeline/pipeline.h"
 #include "sweep/sweep.h"
 
 namespace cdb::test {
@@ -87,6 +91,109 @@ inline SceneFrames soup_with_giants(uint64_t small, uint32_t giants, bool far) {
   return s;
 }
 
+// The cube lattice of cube_lattice(), but at coordinates offset + i * edge computed in
+// float: cubes still touch exactly (a shared corner is the same float), while neither the
+// lattice planes nor the grid's origin are round numbers, so every subtraction rounds.
+inline SceneFrames offset_cube_lattice(uint32_t g, float edge, float offset) {
+  SceneFrames s;
+  s.frames.resize(2);
+  for (uint32_t f = 0; f < 2; ++f) {
+    const float e = f == 0 ? edge : 3.0f * edge;
+    std::vector<vec3f>& v = s.frames[f];
+    s.topology.faces.clear();
+    for (uint32_t k = 0; k < g; ++k)
+      for (uint32_t j = 0; j < g; ++j)
+        for (uint32_t i = 0; i < g; ++i)
+          add_cube(s, v, {offset + float(i) * e, offset + float(j) * e, offset + float(k) * e},
+                   {offset + float(i + 1) * e, offset + float(j + 1) * e,
+                    offset + float(k + 1) * e});
+  }
+  s.topology.num_vertices = uint32_t(s.frames[0].size());
+  return s;
+}
+
+// n triangles with every vertex at one point (frame 0 at p, frame 1 at -p): zero-width
+// boxes, a zero-extent scene, all pairs overlapping.
+inline SceneFrames all_at_one_point(uint32_t n, float p) {
+  SceneFrames s;
+  s.frames.resize(2);
+  for (uint32_t t = 0; t < n; ++t) s.topology.faces.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  s.topology.num_vertices = 3 * n;
+  s.frames[0].assign(3 * n, {p, p, p});
+  s.frames[1].assign(3 * n, {-p, -p, -p});
+  return s;
+}
+
+// Triangles whose widths spread log-uniformly over 2^-12..1 in a unit cube: boxes on many
+// grid levels, pairs across levels.
+inline SceneFrames multiscale_soup(uint32_t n, uint32_t seed) {
+  SceneFrames s;
+  s.frames.resize(2);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), exponent(-12.0f, 0.0f);
+  for (uint32_t t = 0; t < n; ++t) {
+    s.topology.faces.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+    const float size = std::exp2(exponent(rng));
+    const vec3f c{unit(rng), unit(rng), unit(rng)};
+    for (int k = 0; k < 3; ++k) {
+      const vec3f d{size * (unit(rng) - 0.5f), size * (unit(rng) - 0.5f),
+                    size * (unit(rng) - 0.5f)};
+      s.frames[0].push_back({c.x + d.x, c.y + d.y, c.z + d.z});
+      s.frames[1].push_back({c.x + 0.5f * d.y, c.y + 0.5f * d.z, c.z + 0.5f * d.x});
+    }
+  }
+  s.topology.num_vertices = 3 * n;
+  return s;
+}
+
+// g^3 pairs of coincident triangles of width 0.2, one per unit lattice point, plus a point
+// triangle pinning the grid's origin at 0 (cell 0.25). Frame 0: each box inside one cell.
+// Frames 1 and 2: shifted by 0.15, each box straddles a cell corner (8 cells), eight times
+// the entries frame 0 planned for.
+inline SceneFrames straddling_pairs(uint32_t g) {
+  SceneFrames s;
+  s.frames.resize(3);
+  s.topology.faces.push_back({0, 0, 0});
+  for (auto& v : s.frames) v.push_back({0.0f, 0.0f, 0.0f});
+  for (uint32_t k = 0; k < g; ++k)
+    for (uint32_t j = 0; j < g; ++j)
+      for (uint32_t i = 0; i < g; ++i) {
+        const uint32_t base = uint32_t(s.frames[0].size());
+        s.topology.faces.push_back({base, base + 1, base + 2});
+        s.topology.faces.push_back({base, base + 1, base + 2});
+        for (uint32_t f = 0; f < 3; ++f) {
+          const float d = f == 0 ? 0.02f : 0.15f, w = 0.2f;
+          const vec3f o{float(i) + d, float(j) + d, float(k) + d};
+          s.frames[f].push_back(o);
+          s.frames[f].push_back({o.x + w, o.y, o.z + w});
+          s.frames[f].push_back({o.x, o.y + w, o.z + 0.5f * w});
+        }
+      }
+  s.topology.num_vertices = uint32_t(s.frames[0].size());
+  return s;
+}
+
+// The grid pipeline through the factory on every frame of `scene`: exact against the
+// oracle; returns each frame's op.
+inline std::vector<std::string> grid_pipeline_ops(const std::string& device,
+                                                  const SceneFrames& scene) {
+  PipelineConfig cfg;
+  cfg.name = "grid";
+  cfg.device = device;
+  auto p = make_pipeline(cfg);
+  p->set_topology(scene.topology);
+  std::vector<std::string> ops;
+  for (const auto& v : scene.frames) {
+    const FrameStats s = p->run_frame(v);
+    const std::vector<PrimPair> expected = sweep_oracle_pairs(scene.topology, v);
+    EXPECT_EQ(s.pairs, expected.size()) << ops.size();
+    EXPECT_TRUE(diff_pair_sets(expected, p->sorted_pairs()).equal()) << ops.size();
+    EXPECT_EQ(s.query_reruns > 0, s.op == "regrid") << ops.size();
+    ops.push_back(s.op);
+  }
+  return ops;
+}
+
 struct BaselineCase {
   std::string name;
   std::function<SceneFrames()> make;
@@ -136,6 +243,13 @@ inline std::vector<BaselineCase> baseline_cases() {
   cases.push_back({"giants_100", [] { return soup_with_giants(3000, 100, false); }});
   cases.push_back({"giants_far_5", [] { return soup_with_giants(1000, 5, true); }});
   cases.push_back({"giants_far_60", [] { return soup_with_giants(1000, 60, true); }});
+  cases.push_back({"giant_1", [] { return soup_with_giants(3000, 1, false); }});
+  cases.push_back({"giant_far_1", [] { return soup_with_giants(3000, 1, true); }});
+  cases.push_back({"cubes_offset_6", [] { return offset_cube_lattice(6, 0.1f, 1000.3f); }});
+  cases.push_back({"cubes_offset_huge_4", [] { return offset_cube_lattice(4, 3e29f, 1e30f); }});
+  cases.push_back({"one_point_300", [] { return all_at_one_point(300, 0.25f); }});
+  cases.push_back({"one_point_1e30_200", [] { return all_at_one_point(200, 1e30f); }});
+  cases.push_back({"multiscale_5000", [] { return multiscale_soup(5000, 3); }});
   return cases;
 }
 
@@ -155,16 +269,65 @@ void expect_pairs(Exec& exec, const std::vector<PrimPair>& expected, const Array
                          << d.unexpected_count << " unexpected";
 }
 
-// Both baselines on every frame; returns how often the hash had to coarsen its grid.
+// How often the hash coarsened its grid and the grid re-ran a frame to a larger plan.
+struct BaselineReruns {
+  uint32_t hash_regrids = 0;
+  uint32_t grid_reruns = 0;
+};
+
+// One grid frame as the pipeline runs it: build and query on the host's plan, read the
+// device totals back, re-run on a larger plan until they fit; returns the re-runs.
 template <class Exec>
-uint32_t check_baselines(const SceneFrames& scene) {
+uint32_t run_grid_frame(Exec& exec, UniformGrid<Exec>& grid, uint32_t n, const PairSink& sink) {
+  for (uint32_t reruns = 0;; ++reruns) {
+    grid_build(exec, grid, n);
+    exec.fill(sink.count, 1, 0ull);
+    grid_pairs(exec, grid, n, sink);
+    unsigned long long totals[kGridTotals] = {};
+    exec.copy_to_host(totals, grid.totals.data(), kGridTotals);
+    if (grid.settle(totals[0], totals[1])) return reruns;
+  }
+}
+
+// The grid's level and cell count of every box after one frame of `scene`.
+struct GridPlacement {
+  std::vector<uint32_t> level, cells;
+};
+
+template <class Exec>
+GridPlacement grid_placement(const SceneFrames& scene) {
+  const Topology& topo = scene.topology;
+  const uint32_t n = uint32_t(topo.faces.size());
+  Exec exec;
+  UniformGrid<Exec> grid(exec);
+  grid.reserve(exec, n);
+  Array<vec3f> vertices(exec.memory(), "test.vertices");
+  Array<Tri> faces(exec.memory(), "test.faces");
+  vertices.reserve(topo.num_vertices);
+  faces.reserve(n);
+  exec.copy_from_host(faces.data(), topo.faces.data(), n);
+  exec.copy_from_host(vertices.data(), scene.frames[0].data(), topo.num_vertices);
+  grid_boxes(exec, grid, MeshView{vertices.data(), faces.data(), n});
+  grid_build(exec, grid, n);
+  GridPlacement p{std::vector<uint32_t>(n), std::vector<uint32_t>(n)};
+  exec.copy_to_host(p.level.data(), grid.level.data(), n);
+  exec.copy_to_host(p.cells.data(), grid.counts.data(), n);
+  return p;
+}
+
+// The baselines on every frame. With `tiny_grid_plan`, the grid starts each frame with a
+// plan of 1024 entries and 1 key bit, so a frame with more must re-run, never truncate.
+template <class Exec>
+BaselineReruns check_baselines(const SceneFrames& scene, bool tiny_grid_plan = false) {
   const Topology& topo = scene.topology;
   const uint32_t n = uint32_t(topo.faces.size());
   Exec exec;
   SweepAndPrune<Exec> sweep(exec);
   SpatialHash<Exec> hash(exec);
+  UniformGrid<Exec> grid(exec);
   sweep.reserve(exec, n);
   hash.reserve(exec, n);
+  grid.reserve(exec, n);
   Array<vec3f> vertices(exec.memory(), "test.vertices");
   Array<Tri> faces(exec.memory(), "test.faces");
   Array<PrimPair> pairs(exec.memory(), "test.pairs");
@@ -173,7 +336,7 @@ uint32_t check_baselines(const SceneFrames& scene) {
   faces.reserve(n);
   count.reserve(1);
   exec.copy_from_host(faces.data(), topo.faces.data(), n);
-  uint32_t regrids = 0;
+  BaselineReruns reruns;
   for (uint32_t f = 0; f < scene.frames.size(); ++f) {
     const std::vector<vec3f>& v = scene.frames[f];
     exec.copy_from_host(vertices.data(), v.data(), v.size());
@@ -189,12 +352,20 @@ uint32_t check_baselines(const SceneFrames& scene) {
     expect_pairs(exec, expected, pairs, count, "sweep frame " + std::to_string(f));
 
     hash_boxes(exec, hash, mesh);
-    regrids += hash_build(exec, hash, n);
+    reruns.hash_regrids += hash_build(exec, hash, n);
     exec.fill(count.data(), 1, 0ull);
     hash_pairs(exec, hash, n, sink);
     expect_pairs(exec, expected, pairs, count, "hash frame " + std::to_string(f));
+
+    grid_boxes(exec, grid, mesh);
+    if (tiny_grid_plan) {
+      grid.planned_entries = 1024;
+      grid.key_bits = 1;
+    }
+    reruns.grid_reruns += run_grid_frame(exec, grid, n, sink);
+    expect_pairs(exec, expected, pairs, count, "grid frame " + std::to_string(f));
   }
-  return regrids;
+  return reruns;
 }
 
 }  // namespace cdb::test

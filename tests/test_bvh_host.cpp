@@ -13,14 +13,47 @@ INSTANTIATE_TEST_SUITE_P(Soups, HostSoup, testing::ValuesIn(soup_cases()), case_
 
 class HostBaselines : public testing::TestWithParam<BaselineCase> {};
 
-TEST_P(HostBaselines, SweepAndHashExact) { check_baselines<HostExec>(GetParam().make()); }
+TEST_P(HostBaselines, SweepHashAndGridExact) { check_baselines<HostExec>(GetParam().make()); }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HostBaselines, testing::ValuesIn(baseline_cases()),
                          baseline_case_name);
 
-TEST(HostBaselinesGrid, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
-  EXPECT_EQ(check_baselines<HostExec>(soup_with_giants(3000, 10, false)), 0u);
-  EXPECT_GT(check_baselines<HostExec>(soup_with_giants(3000, 100, false)), 0u);
+TEST(HostHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
+  EXPECT_EQ(check_baselines<HostExec>(soup_with_giants(3000, 10, false)).hash_regrids, 0u);
+  EXPECT_GT(check_baselines<HostExec>(soup_with_giants(3000, 100, false)).hash_regrids, 0u);
+}
+
+// The grid plans its sort from the last frame: steady frames fit the plan; a plan far too
+// small (1024 entries, 1 key bit) makes each frame re-run once, exactly, never truncate.
+TEST(HostGridBaseline, PlanFromTheLastFrameReRunsWhenShort) {
+  auto soup = [] {
+    return frames_of(*make_generator("soup", {{"triangles", 20000}, {"frames", 4}, {"seed", 9}}));
+  };
+  EXPECT_EQ(check_baselines<HostExec>(soup()).grid_reruns, 0u);
+  EXPECT_EQ(check_baselines<HostExec>(soup(), true).grid_reruns, 4u);
+  EXPECT_EQ(check_baselines<HostExec>(multiscale_soup(5000, 4), true).grid_reruns, 2u);
+}
+
+// A scene-spanning triangle goes to a coarse level in a few cells, the small ones to the
+// finest levels; no box covers more than kGridMaxCellsPerBox cells, however wide.
+TEST(HostGridBaseline, WideBoxesGoToCoarserLevelsInFewCells) {
+  for (bool far : {false, true}) {
+    const GridPlacement p = grid_placement<HostExec>(soup_with_giants(3000, 1, far));
+    const uint32_t small = *std::max_element(p.level.begin(), p.level.end() - 1);
+    EXPECT_LE(small, 1u) << far;
+    EXPECT_GE(p.level.back(), small + 2) << far;
+    for (uint32_t c : p.cells) ASSERT_LE(c, kGridMaxCellsPerBox) << far;
+  }
+  const GridPlacement m = grid_placement<HostExec>(multiscale_soup(5000, 3));
+  EXPECT_GE(*std::max_element(m.level.begin(), m.level.end()), 2u);
+  for (uint32_t c : m.cells) ASSERT_LE(c, kGridMaxCellsPerBox);
+}
+
+// Through the pipeline: a frame whose entries outgrow the plan made from the last frame is
+// re-run (op regrid) and exact; the next frame plans from it and runs once.
+TEST(HostGridBaseline, PipelineReRunsAFrameThatOutgrowsItsPlan) {
+  const std::vector<std::string> ops = grid_pipeline_ops("cpu", straddling_pairs(10));
+  EXPECT_EQ(ops, (std::vector<std::string>{"grid", "regrid", "grid"}));
 }
 
 TEST(HostPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {

@@ -1,17 +1,19 @@
 #pragma once
 // Pipelines without fronts, written once over the executor: upload vertices, update or
-// rebuild the ordered LBVH (or the sweep's sorted boxes, or the hash grid), run the query
-// into a growing pair buffer. One host synchronization a frame, the pair-count read-back;
-// the hash adds one, its entry count.
+// rebuild the ordered LBVH (or the sweep's sorted boxes, the uniform grid, or the hash
+// grid), run the query into a growing pair buffer. One host synchronization a frame, the
+// pair-count read-back (the grid's entry totals ride along with it); the hash adds one,
+// its entry count.
 #include <algorithm>
 #include <string>
 #include <vector>
 
 #include "bruteforce/brute_force.h"
 #include "bvh/self_query.h"
+#include "grid/uniform_grid.h"
+#include "hash/spatial_hash.h"
 #include "pipeline/device_mesh.h"
 #include "pipeline/pipeline.h"
-#include "hash/spatial_hash.h"
 #include "sweep/sweep.h"
 
 namespace cdb {
@@ -19,6 +21,7 @@ namespace cdb {
 enum class BroadPhaseMethod {
   bvh,    // build once (and every rebuild_every frames), refit otherwise
   sweep,  // sort-and-sweep along the axis of largest centroid variance, every frame
+  grid,   // uniform grid with size levels (OTG style), every frame
   hash,   // uniform-grid spatial hashing (kDet style), every frame
   brute,  // O(N^2) oracle
 };
@@ -33,6 +36,7 @@ class BroadPhase final : public Pipeline {
         mesh_(exec_),
         bvh_(exec_),
         sweep_(exec_),
+        grid_(exec_),
         hash_(exec_),
         pairs_(exec_) {
     prim_lo_.bind(exec_.memory(), "brute.lo");
@@ -51,6 +55,9 @@ class BroadPhase final : public Pipeline {
       case BroadPhaseMethod::sweep:
         sweep_.reserve(exec_, n);
         break;
+      case BroadPhaseMethod::grid:
+        grid_.reserve(exec_, n);
+        break;
       case BroadPhaseMethod::hash:
         hash_.reserve(exec_, n);
         break;
@@ -66,7 +73,13 @@ class BroadPhase final : public Pipeline {
     FrameStats stats;
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
     stats.op = prepare(mesh);
-    do {
+    bool build_grid = method_ == BroadPhaseMethod::grid;
+    for (;;) {
+      if (build_grid) {
+        timer_.start(Phase::build);
+        grid_build(exec_, grid_, mesh.num_faces);
+        timer_.stop(Phase::build);
+      }
       timer_.start(Phase::query);
       pairs_.reset_counters(exec_);
       switch (method_) {
@@ -75,6 +88,10 @@ class BroadPhase final : public Pipeline {
           break;
         case BroadPhaseMethod::sweep:
           sweep_pairs(exec_, sweep_, mesh.num_faces, pairs_.sink());
+          break;
+        case BroadPhaseMethod::grid:
+          grid_pairs(exec_, grid_, mesh.num_faces, pairs_.sink());
+          exec_.copy(pairs_.counter(1), grid_.totals.data(), kGridTotals);
           break;
         case BroadPhaseMethod::hash:
           hash_pairs(exec_, hash_, mesh.num_faces, pairs_.sink());
@@ -85,8 +102,20 @@ class BroadPhase final : public Pipeline {
       }
       timer_.stop(Phase::query);
       timer_.stop_frame();
-      pairs_.read_counters(exec_);
-    } while (pairs_.grow_if_needed() && ++stats.query_reruns);
+      const auto c = pairs_.read_counters(exec_);
+      // A grid whose entries outgrew this frame's plan is rebuilt to the measured need
+      // before anything else: its pair count is then incomplete.
+      if (method_ == BroadPhaseMethod::grid) {
+        build_grid = !grid_.settle(c[1], c[2]);
+        if (build_grid) {
+          stats.op = "regrid";
+          ++stats.query_reruns;
+          continue;
+        }
+      }
+      if (!pairs_.grow_if_needed()) break;
+      ++stats.query_reruns;
+    }
     stats.pairs = pairs_.count();
     record_timings(timer_, stats);
     ++frame_;
@@ -113,6 +142,12 @@ class BroadPhase final : public Pipeline {
         sweep_sort(exec_, sweep_, mesh.num_faces);
         timer_.stop(Phase::build);
         return "sort";
+      case BroadPhaseMethod::grid:
+        // The build runs in the frame loop: it is re-run when its entries outgrow the plan.
+        timer_.start(Phase::boxes);
+        grid_boxes(exec_, grid_, mesh);
+        timer_.stop(Phase::boxes);
+        return "grid";
       case BroadPhaseMethod::hash: {
         timer_.start(Phase::boxes);
         hash_boxes(exec_, hash_, mesh);
@@ -136,6 +171,7 @@ class BroadPhase final : public Pipeline {
   DeviceMesh<Exec> mesh_;
   Lbvh<Exec> bvh_;
   SweepAndPrune<Exec> sweep_;
+  UniformGrid<Exec> grid_;
   SpatialHash<Exec> hash_;
   PairBuffer<Exec> pairs_;
   Array<vec4f> prim_lo_, prim_hi_;

@@ -7,7 +7,7 @@ namespace cdb {
 const std::vector<std::string>& pipeline_names() {
   static const std::vector<std::string> names = {
       "bvh",         "unordered", "static", "periodic", "restructure", "reference", "a",
-      "b",           "c",         "radix-order", "sweep", "hash", "brute"};
+      "b",           "c",         "radix-order", "sweep", "hash", "grid", "brute"};
   return names;
 }
 

@@ -12,6 +12,7 @@ template <class Exec, class Timer>
 std::unique_ptr<Pipeline> make_pipeline_on(const PipelineConfig& c) {
   if (c.name == "bvh") return std::make_unique<BroadPhase<Exec, Timer>>(c, BroadPhaseMethod::bvh);
   if (c.name == "sweep") return std::make_unique<BroadPhase<Exec, Timer>>(c, BroadPhaseMethod::sweep);
+  if (c.name == "grid") return std::make_unique<BroadPhase<Exec, Timer>>(c, BroadPhaseMethod::grid);
   if (c.name == "hash") return std::make_unique<BroadPhase<Exec, Timer>>(c, BroadPhaseMethod::hash);
   if (c.name == "brute") return std::make_unique<BroadPhase<Exec, Timer>>(c, BroadPhaseMethod::brute);
   FrontPlan plan;

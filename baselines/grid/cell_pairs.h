@@ -1,0 +1,88 @@
+#pragma once
+// Pair tests of the uniform grid, each overlapping pair reported exactly once.
+//
+// The rule (the standard one for grids, as in OTG and kDet): a pair is reported only from
+// the cell holding m, the minimum corner of the intersection of the two closed boxes.
+// Since m lies in both boxes and grid_coord is monotone, every box is registered in the
+// cell of m on its own level. So:
+// - two boxes of one level meet in exactly one cell that passes the rule, where the
+//   thread of the earlier sorted entry tests the later one (SameLevelPairsFn);
+// - a box a on a finer level than b is tested by a's thread against the cells a's box
+//   covers on b's level (at most 3 per axis: a is narrower than that level's cell); a
+//   covers the cell of m there, b is registered in it, and the rule keeps the one test
+//   that reports it (CoarserLevelPairsFn). b never looks at finer levels.
+// Touching boxes (m on a cell face) and float rounding need no special case: the cell of
+// m is computed by the same function that registered both boxes.
+#include <cstdint>
+
+#include "core/pair_sink.h"
+#include "grid/grid_geometry.h"
+
+namespace cdb {
+
+// One thread per sorted entry: the later entries of its cell.
+struct SameLevelPairsFn {
+  const uint64_t* keys;
+  const uint32_t* boxes;
+  const unsigned long long* total;
+  uint32_t planned;
+  const uint32_t* level;
+  const vec4f* lo;
+  const vec4f* hi;
+  const GridLayout* params;
+  PairSink sink;
+  CDB_HD void operator()(uint32_t k) const {
+    const uint32_t entries = static_cast<uint32_t>(min_of(*total, (unsigned long long)planned));
+    if (k >= entries) return;
+    const uint64_t key = keys[k];
+    const uint32_t a = boxes[k];
+    const vec4f alo = lo[a], ahi = hi[a];
+    const uint32_t l = level[a];
+    for (uint32_t t = k + 1; t < entries && keys[t] == key; ++t) {
+      const uint32_t b = boxes[t];
+      const vec4f blo = lo[b], bhi = hi[b];
+      if (!overlaps(alo, ahi, blo, bhi)) continue;
+      if (grid_key_of_point(*params, l, max_of(alo.x, blo.x), max_of(alo.y, blo.y),
+                            max_of(alo.z, blo.z)) == key)
+        sink.emit(a, b);
+    }
+  }
+};
+
+// One thread per box: the boxes of every coarser, non-empty level in the cells its box
+// covers there. Scenes of one level return at once.
+struct CoarserLevelPairsFn {
+  const uint64_t* keys;
+  const uint32_t* boxes;
+  const uint32_t* level_begin;  // kGridMaxLevels + 1 entries
+  const uint32_t* level;
+  const vec4f* lo;
+  const vec4f* hi;
+  const GridLayout* params;
+  PairSink sink;
+  CDB_HD void operator()(uint32_t a) const {
+    const GridLayout& p = *params;
+    const vec4f alo = lo[a], ahi = hi[a];
+    for (uint32_t l = level[a] + 1; l < p.levels; ++l) {
+      const uint32_t begin = level_begin[l], end = level_begin[l + 1];
+      if (begin == end) continue;
+      const GridRange r = grid_range(p, l, alo, ahi);
+      for (uint32_t z = r.lo[2]; z <= r.hi[2]; ++z)
+        for (uint32_t y = r.lo[1]; y <= r.hi[1]; ++y)
+          for (uint32_t x = r.lo[0]; x <= r.hi[0]; ++x) {
+            const uint64_t key = grid_key(p, l, x, y, z);
+            for (uint32_t t = lower_bound_key(keys, begin, end, key); t < end && keys[t] == key;
+                 ++t) {
+              const uint32_t b = boxes[t];
+              const vec4f blo = lo[b], bhi = hi[b];
+              if (!overlaps(alo, ahi, blo, bhi)) continue;
+              if (grid_key_of_point(p, l, max_of(alo.x, blo.x), max_of(alo.y, blo.y),
+                                    max_of(alo.z, blo.z)) == key)
+                sink.emit(a, b);
+            }
+          }
+    }
+  }
+};
+
+}  // namespace cdb

@@ -1,0 +1,170 @@
+#pragma once
+// Uniform-grid baseline in the spirit of OTG (Wang, Lin, Zhang, Tang 2014), issue 6. Per
+// frame, on either executor: triangle boxes; the cell size and levels from the boxes'
+// statistics (grid_geometry.h); every box registered in each cell of its level that it
+// overlaps; the (cell key, box) entries radix-sorted by key; pair tests per cell, each
+// pair reported once (cell_pairs.h).
+//
+// One host synchronization a frame. The sort needs its length and key bits on the host,
+// and both depend on this frame's boxes; rather than read them back before the sort (the
+// hash baseline's second synchronization), the host plans them from the last frame's
+// values (entries + 1/4, key bits + 1), the device computes the real ones, and they come
+// back with the pair count in the frame's one read-back. If they exceed the plan, the frame
+// is re-run with the measured need (counted as a re-run; a larger entry array is a logged
+// growth). Entries past the plan are counted, never written; nothing is truncated.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "bvh/build.h"
+#include "core/error.h"
+#include "core/pair_sink.h"
+#include "exec/balance.h"
+#include "exec/memory.h"
+#include "geometry/mesh.h"
+#include "grid/cell_pairs.h"
+#include "grid/grid_geometry.h"
+#include "grid/grid_registration.h"
+
+namespace cdb {
+
+// What the device reports for the host's plan: [0] entries, [1] key bits the sort needs.
+inline constexpr size_t kGridTotals = 2;
+
+template <class Exec>
+struct UniformGrid {
+  // Before the first frame's count: cells per box, a generous guess (a box covers 1 to 8
+  // cells on level 0 for typical meshes); frame 0 re-runs if it is short.
+  static constexpr size_t kEntriesPerBoxEstimate = 8;
+  // Entries are indexed with 32 bits.
+  static constexpr size_t kMaxPlan = 0xffffffffull;
+
+  explicit UniformGrid(Exec& exec) {
+    MemoryResource& mr = exec.memory();
+    lo.bind(mr, "grid.lo");
+    hi.bind(mr, "grid.hi");
+    counts.bind(mr, "grid.counts");
+    offsets.bind(mr, "grid.offsets");
+    level.bind(mr, "grid.level");
+    level_begin.bind(mr, "grid.level_begin");
+    scene.bind(mr, "grid.scene");
+    trimmed.bind(mr, "grid.trimmed");
+    params.bind(mr, "grid.params");
+    totals.bind(mr, "grid.totals");
+    keys.bind(mr, "grid.keys");
+    sorted_keys.bind(mr, "grid.sorted_keys");
+    boxes.bind(mr, "grid.boxes");
+    sorted_boxes.bind(mr, "grid.sorted_boxes");
+    temp.bind(mr, "grid.temp");
+  }
+
+  void reserve(Exec& exec, uint32_t n) {
+    for (auto* a : {&lo, &hi}) a->reserve(n);
+    for (auto* a : {&counts, &offsets, &level}) a->reserve(n);
+    level_begin.reserve(kGridMaxLevels + 1);
+    scene.reserve(1);
+    trimmed.reserve(1);
+    params.reserve(1);
+    totals.reserve(kGridTotals);
+    num_boxes = n;
+    planned_entries = std::clamp<size_t>(kEntriesPerBoxEstimate * size_t(n), 1024, kMaxPlan);
+    key_bits = 3 * kGridAxisBits + 1;
+    reserve_entries(exec, planned_entries);
+  }
+
+  void reserve_entries(Exec& exec, size_t entries) {
+    for (auto* a : {&keys, &sorted_keys}) a->reserve(entries);
+    for (auto* a : {&boxes, &sorted_boxes}) a->reserve(entries);
+    size_t t = exec.sort_temp_bytes(entries);
+    t = std::max(t, exec.scan_temp_bytes(num_boxes));
+    t = std::max(t, exec.template reduce_temp_bytes_of<GridScene>(num_boxes));
+    t = std::max(t, exec.template reduce_temp_bytes_of<TrimmedWidths>(num_boxes));
+    t = std::max(t, exec.template reduce_temp_bytes_of<unsigned long long>(num_boxes));
+    temp.reserve(t);
+  }
+
+  // After the frame's read-back of the device totals: whether the last build's plan held
+  // them. Either way, plans the next build (this frame's re-run, or the next frame) from
+  // them; the build grows the entry arrays (logged) if the plan exceeds them.
+  bool settle(unsigned long long entries, unsigned long long bits) {
+    if (entries > kMaxPlan)
+      fail("grid: " + std::to_string(entries) + " cell entries exceed 32-bit offsets");
+    planned_entries = std::clamp<size_t>(size_t(entries + entries / 4), 1024, kMaxPlan);
+    key_bits = static_cast<int>(std::min<unsigned long long>(64, bits + 1));
+    return entries <= built_entries && bits <= uint64_t(built_key_bits);
+  }
+
+  Array<vec4f> lo, hi;
+  Array<uint32_t> counts, offsets, level, level_begin;
+  Array<GridScene> scene;
+  Array<TrimmedWidths> trimmed;
+  Array<GridLayout> params;
+  Array<unsigned long long> totals;
+  Array<uint64_t> keys, sorted_keys;
+  Array<uint32_t> boxes, sorted_boxes;
+  Array<std::byte> temp;
+  uint32_t num_boxes = 0;
+  // The host's plan for the next build's sort (its length and key bits), and the plan the
+  // last build ran with, which its pair tests use.
+  size_t planned_entries = 0;
+  int key_bits = 64;
+  size_t built_entries = 0;
+  int built_key_bits = 64;
+};
+
+template <class Exec>
+void grid_boxes(Exec& exec, UniformGrid<Exec>& g, const MeshView& mesh) {
+  exec.for_each_n(mesh.num_faces, FaceBoxFn{mesh, g.lo.data(), g.hi.data()});
+}
+
+// Cell size and levels, registration, sort: no host synchronization.
+template <class Exec>
+void grid_build(Exec& exec, UniformGrid<Exec>& g, uint32_t n) {
+  if (n == 0) {
+    exec.fill(g.totals.data(), kGridTotals, 0ull);
+    return;
+  }
+  if (g.planned_entries > g.keys.capacity()) g.reserve_entries(exec, g.planned_entries);
+  g.built_entries = g.planned_entries;
+  g.built_key_bits = g.key_bits;
+  const uint32_t planned = static_cast<uint32_t>(g.built_entries);
+  exec.reduce(n, GridSceneFn{g.lo.data(), g.hi.data()}, GridSceneOp{}, GridSceneOp::identity(),
+              g.scene.data(), g.temp.data(), g.temp.size());
+  exec.reduce(n, TrimmedWidthsFn{g.lo.data(), g.hi.data(), g.scene.data(), n}, TrimmedWidthsOp{},
+              TrimmedWidths{0.0, 0ull}, g.trimmed.data(), g.temp.data(), g.temp.size());
+  exec.for_each_n(1, GridLayoutFn{g.scene.data(), g.trimmed.data(), g.params.data(),
+                                  g.totals.data() + 1});
+  exec.for_each_n(n, GridCountFn{g.lo.data(), g.hi.data(), g.params.data(), g.counts.data(),
+                                 g.level.data()});
+  exec.reduce(n, EntryTotalFn{g.counts.data()}, SumOp{}, 0ull, g.totals.data(), g.temp.data(),
+              g.temp.size());
+  exec.exclusive_scan(g.counts.data(), g.offsets.data(), n, g.temp.data(), g.temp.size());
+  exec.for_each_n(n, GridFillFn{g.lo.data(), g.hi.data(), g.params.data(), g.level.data(),
+                                g.offsets.data(), planned, g.keys.data(), g.boxes.data()});
+  const int bits = g.built_key_bits;
+  const uint64_t pad_key = bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
+  exec.for_each_n(planned, GridPadFn{g.totals.data(), pad_key, g.keys.data(), g.boxes.data()});
+  exec.sort_pairs(g.keys.data(), g.sorted_keys.data(), g.boxes.data(), g.sorted_boxes.data(),
+                  planned, bits, g.temp.data(), g.temp.size());
+  exec.for_each_n(kGridMaxLevels + 1, LevelBeginFn{g.sorted_keys.data(), g.totals.data(), planned,
+                                                   g.params.data(), g.level_begin.data()});
+}
+
+template <class Exec>
+void grid_pairs(Exec& exec, const UniformGrid<Exec>& g, uint32_t n, const PairSink& sink) {
+  if (n == 0) return;
+  const uint32_t planned = static_cast<uint32_t>(g.built_entries);
+  exec.for_each_n(planned,
+                  SameLevelPairsFn{g.sorted_keys.data(), g.sorted_boxes.data(), g.totals.data(),
+                                   planned, g.level.data(), g.lo.data(), g.hi.data(),
+                                   g.params.data(), sink},
+                  Balance::uneven);
+  exec.for_each_n(n,
+                  CoarserLevelPairsFn{g.sorted_keys.data(), g.sorted_boxes.data(),
+                                      g.level_begin.data(), g.level.data(), g.lo.data(),
+                                      g.hi.data(), g.params.data(), sink},
+                  Balance::uneven);
+}
+
+}  // namespace cdb
