@@ -3,7 +3,8 @@
 // (bvh/restructure.h), a front node (i, j) whose j lay strictly inside a candidate — a leaf
 // of its range or an internal node below its root — names a node that no longer exists as
 // it was. Valid nodes are kept and go through Algorithm 1 (update) as usual; invalid ones
-// are replaced, per leaf i, by what covers the same leaves in the new subtree:
+// are replaced, per leaf i, by what covers the same leaves in the new subtree (valid nodes
+// are "marked, compacted, and later handled by Algorithm 1 as usual"):
 //  - i outside the candidate: i's invalid nodes partition the candidate's leaves [s, t];
 //    the one starting at s becomes (i, root), the rest are dropped;
 //  - i inside the candidate (the paper's self-collision special case: i's own position was
@@ -11,9 +12,10 @@
 //    by a traversal of the new subtree from leaf i's escape to the subtree's escape, the rest
 //    are dropped. Nodes of i's front beyond t are still valid: they partition (t, N-1], and
 //    a front is valid for whichever primitive sits at position i.
-// So every leaf's front still partitions (i, N-1] and the update stays exact.
+// So every leaf's front still partitions (i, N-1], and traversals from it stay exact.
 // Classification reads the old tree's node ranges and so runs before the BVH restructure;
-// it rewrites the front's node in place.
+// it rewrites the front's node in place, so that a re-run of the front pass after a buffer
+// grew sees the same classification.
 #include <cstdint>
 
 #include "bvh/node_ref.h"
@@ -50,9 +52,12 @@ struct ClassifyFrontFn {
   }
 };
 
-// Algorithm 1 over a classified front: dropped nodes vanish, regenerate nodes traverse the
-// restructured subtree of leaf i, the rest update as usual.
-struct RestructuredUpdateFn {
+// The front pass of operation 5 over a classified front: dropped nodes vanish, regenerate
+// nodes traverse the restructured subtree of leaf i recording its stop nodes, and every
+// other node is kept as it is and traversed as preserve does, for the frame's pairs. The
+// kept nodes are left to the next update (Algorithm 1) to sprout or prune: this pass costs
+// about a preserve plus the front's write, not an update.
+struct RestructureFrontFn {
   FrontTree tree;
   PairSink pairs;
   FrontSink front;
@@ -62,13 +67,19 @@ struct RestructuredUpdateFn {
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t i = prim[e], j = node[e];
     if (j == kFrontDropped) return;
+    const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
     if (j == kFrontRegenerate) {
       const uint32_t c = cand.slot_of_leaf(i) - 1;
-      const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
       traverse_range<true>(tree, i, lo, hi, tree.bvh.leaf_escape[i], cand.escape[c], pairs, front);
       return;
     }
-    update_front_node(tree, pairs, front, i, j);
+    front.push(i, j, 0);
+    if (!tree.overlaps_node(lo, hi, j)) return;
+    if (is_leaf(j))
+      pairs.emit(tree.bvh.leaf_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
+    else
+      traverse_range<false>(tree, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
+                            FrontSink{});
   }
 };
 

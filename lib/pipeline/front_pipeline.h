@@ -72,7 +72,9 @@ class FrontPipeline final : public Pipeline {
     const Op op = !rebuild && decision == Decision::restructure ? Op::restructure : choose_op(rebuild);
     if (op == Op::update && plan_.balance) balance();
     if (op == Op::restructure) restructure_tree_and_classify_fronts();
-    const bool inspect = plan_.restructure && q_ref_ > 0.0 && (op == Op::update || op == Op::restructure);
+    // Inspected after update (the paper's circle 3) only: right after a rebuild Q is the
+    // reference, and a restructure keeps the stale front for the next update to refresh.
+    const bool inspect = plan_.restructure && q_ref_ > 0.0 && op == Op::update;
     for (;;) {
       pairs_.reset_counters(exec_);
       run_op(op);
@@ -149,7 +151,7 @@ class FrontPipeline final : public Pipeline {
   }
 
   // (5), first half: candidates described from the refitted tree, fronts classified against
-  // the old node ranges, then the candidate subtrees rebuilt. The front update that follows
+  // the old node ranges, then the candidate subtrees rebuilt. The front pass that follows
   // (run_op) may be re-run on overflow; this part must not be.
   void restructure_tree_and_classify_fronts() {
     timer_.start(Phase::restructure);
@@ -229,7 +231,9 @@ class FrontPipeline final : public Pipeline {
       timer_.stop(Phase::preserve);
       return;
     }
-    const Phase phase = op == Op::generate ? Phase::generate : Phase::update;
+    const Phase phase = op == Op::generate      ? Phase::generate
+                        : op == Op::restructure ? Phase::restructure
+                                                : Phase::update;
     timer_.start(phase);
     if (histogram_sorted()) zero_count_logs();
     const FrontSink sink = produce_sink();
@@ -238,8 +242,8 @@ class FrontPipeline final : public Pipeline {
     } else if (op == Op::restructure) {
       for (int k = 0; k < 2; ++k)
         exec_.for_each_n(front_[k].size,
-                         RestructuredUpdateFn{t, pairs_.sink(), sink, restructure_.view(),
-                                              front_[k].prim.data(), front_[k].node.data()},
+                         RestructureFrontFn{t, pairs_.sink(), sink, restructure_.view(),
+                                            front_[k].prim.data(), front_[k].node.data()},
                          Balance::uneven);
     } else {
       for (int k = 0; k < 2; ++k)
