@@ -1,0 +1,17 @@
+#include "pipeline/config_json.h"
+
+namespace cdb {
+
+nlohmann::json to_json(const PipelineConfig& c) {
+  return {
+      {"name", c.name},
+      {"device", c.device},
+      {"morton_bits", c.morton_bits == MortonBits::b30 ? 30 : 63},
+      {"rebuild_every", c.rebuild_every},
+      {"pairs_per_triangle", c.pairs_per_triangle},
+      {"front_per_triangle", c.front_per_triangle},
+      {"front_cycle", c.front_cycle},
+  };
+}
+
+}  // namespace cdb
