@@ -4,16 +4,24 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <numeric>
+#include <optional>
 
 #include "bruteforce/sweep_oracle.h"
 #include "core/build_info.h"
 #include "core/error.h"
+#include "cli_params.h"
 #include "frame_range.h"
+#include "io/results_file.h"
 #include "io/scene.h"
+#include "pipeline/config_json.h"
 #include "pipeline/pipeline.h"
+#include "progress.h"
 #include "report.h"
+#include "results_table.h"
+#include "run_loop.h"
 
 using namespace cdb;
 
@@ -83,8 +91,23 @@ void print_environment(const std::string& device) {
                 info.available ? "" : "; no GPU: ", info.available ? "" : info.reason.c_str());
 }
 
-int run_command(const CommonOptions& o, const std::string& pipeline_name, uint32_t warmup,
-                bool per_frame) {
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+      return line.substr(line.find_first_not_of(" \t", line.find(':') + 1));
+  return "unknown cpu";
+}
+
+struct RunOptions {
+  std::string pipeline = "bvh";
+  uint32_t warmup = 1;
+  bool quiet = false;
+  std::string out;
+  bool save_pairs = false;
+};
+
+int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options) {
   const std::string device = resolve_device(o.device);
   print_environment(device);
   Scene scene = load_scene(o);
@@ -93,18 +116,47 @@ int run_command(const CommonOptions& o, const std::string& pipeline_name, uint32
   std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
               scene.name.c_str(), scene.description.c_str(), topo.faces.size(),
               topo.num_vertices, range.first, range.last);
-  auto pipeline = make_pipeline(make_config(o, pipeline_name, device));
+  const PipelineConfig config = make_config(o, r.pipeline, device);
+  auto pipeline = make_pipeline(config);
   pipeline->set_topology(topo);
-  std::printf("pipeline: %s on %s\n", pipeline_name.c_str(), device.c_str());
-  std::vector<vec3f> vertices;
-  std::vector<FrameStats> frames;
-  for (uint32_t f = range.first; f < range.last; ++f) {
-    scene.source->frame(f, vertices);
-    frames.push_back(pipeline->run_frame(vertices));
-    if (per_frame) print_frame_line(f, frames.back());
+  std::printf("pipeline: %s on %s\n", r.pipeline.c_str(), device.c_str());
+
+  std::optional<ResultsFile> out;
+  if (!r.out.empty()) {
+    const CudaDeviceInfo gpu = cuda_device_info();
+    RunInfo info;
+    info.scene = scene.name;
+    info.scene_description = scene.description;
+    info.pipeline = r.pipeline;
+    info.backend = device;
+    info.device_name = device == "cuda" ? gpu.name : cpu_model() + " (" + std::to_string(omp_threads()) + " OpenMP threads)";
+    info.driver_version = device == "cuda" ? gpu.driver_version : 0;
+    info.runtime_version = device == "cuda" ? gpu.runtime_version : 0;
+    info.warmup = r.warmup;
+    info.frame_first = range.first;
+    info.frame_last = range.last;
+    info.triangles = topo.faces.size();
+    info.vertices = topo.num_vertices;
+    info.params_json = nlohmann::json{{"command", "run"},
+                                      {"options", cli_options},
+                                      {"pipeline_config", to_json(config)},
+                                      {"resolved",
+                                       {{"device", device},
+                                        {"scene", scene.name},
+                                        {"scenes_dir", (o.scenes_dir.empty() ? default_scenes_dir()
+                                                                             : std::filesystem::path(o.scenes_dir)).string()},
+                                        {"frame_first", range.first},
+                                        {"frame_last", range.last},
+                                        {"warmup", r.warmup}}}}
+                           .dump();
+    out.emplace(r.out, info);
   }
-  print_summary(frames, warmup, pipeline->memory());
-  return 0;
+  RunLoopOptions loop;
+  loop.warmup = r.warmup;
+  loop.frame_lines = !r.quiet;
+  loop.progress = Progress::mode_for(r.quiet);
+  loop.save_pairs = r.save_pairs;
+  return run_frames(*pipeline, *scene.source, range, out ? &*out : nullptr, loop);
 }
 
 int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
@@ -180,14 +232,15 @@ int main(int argc, char** argv) {
 
   auto* run = app.add_subcommand("run", "run one pipeline on a scene and print timings");
   add_common(run, o);
-  std::string pipeline = "bvh";
-  uint32_t warmup = 1;
-  bool quiet = false;
-  run->add_option("--pipeline", pipeline,
+  RunOptions r;
+  run->add_option("--pipeline", r.pipeline,
                   "bvh, unordered, static, periodic, reference, a, b, radix-order, sweep, hash or brute")->capture_default_str();
-  run->add_option("--warmup", warmup, "frames left out of the summary statistics")
+  run->add_option("--warmup", r.warmup, "frames left out of the summary statistics")
       ->capture_default_str();
-  run->add_flag("--quiet", quiet, "no per-frame lines");
+  run->add_flag("--quiet", r.quiet, "no per-frame lines; no progress lines when stderr is not a terminal");
+  auto* out_option = run->add_option("--out", r.out, "write the results to this HDF5 file (docs/results-format.md)");
+  run->add_flag("--save-pairs", r.save_pairs, "also store each frame's sorted pairs in the results file")
+      ->needs(out_option);
 
   auto* verify = app.add_subcommand("verify", "compare pipelines with the exact oracle, frame by frame");
   add_common(verify, o);
@@ -203,11 +256,18 @@ int main(int argc, char** argv) {
   auto* list = scenes->add_subcommand("list", "list scenes with sizes");
   scenes->require_subcommand(1);
 
+  auto* report = app.add_subcommand("report", "summarize results files as a Markdown (or CSV) table");
+  std::vector<std::string> report_files;
+  bool csv = false;
+  report->add_option("files", report_files, "results files written by run --out")->required();
+  report->add_flag("--csv", csv, "CSV instead of Markdown");
+
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*run) return run_command(o, pipeline, warmup, !quiet);
+    if (*run) return run_command(o, r, options_json(*run));
     if (*verify) return verify_command(o, pipelines, brute_limit);
     if (*list) return scenes_list(o);
+    if (*report) return print_results_table(report_files, csv);
   } catch (const Error& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "cdbench: error: %s\n", e.what());
