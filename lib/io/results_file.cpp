@@ -69,9 +69,16 @@ hid_t file_type_of(ColumnType t, hid_t text_type) {
   return H5T_IEEE_F64LE;
 }
 
+// Groups remember the order their members and attributes were made in, so readers list
+// columns and statistics in the writer's order (frame, t_total_ms, phases, ...), not by name.
 h5::Handle create_group(hid_t loc, const char* name, const std::string& where) {
-  return own(H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-             where + " group " + name, "create");
+  const std::string at = where + ": /" + name;
+  h5::Handle gcpl = own(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, at, "create group properties");
+  check(H5Pset_link_creation_order(gcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), at,
+        "track link order");
+  check(H5Pset_attr_creation_order(gcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), at,
+        "track attribute order");
+  return own(H5Gcreate2(loc, name, H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), H5Gclose, at, "create group");
 }
 
 }  // namespace
