@@ -17,7 +17,9 @@ InterruptScope::InterruptScope() {
   struct sigaction action {};
   action.sa_handler = record;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND;
+  // SA_RESTART: file reads and writes in flight go on rather than fail with EINTR; the
+  // run stops at the next frame boundary anyway.
+  action.sa_flags = SA_RESETHAND | SA_RESTART;
   sigaction(SIGINT, &action, &previous_int_);
   sigaction(SIGTERM, &action, &previous_term_);
 }
