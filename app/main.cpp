@@ -107,6 +107,39 @@ struct RunOptions {
   bool save_pairs = false;
 };
 
+// What the results file records about the run besides its frames.
+RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene, const PipelineConfig& config,
+                 FrameRange range, const nlohmann::json& cli_options) {
+  const bool gpu = config.device == "cuda";
+  const CudaDeviceInfo info = gpu ? cuda_device_info() : CudaDeviceInfo{};
+  RunInfo run;
+  run.scene = scene.name;
+  run.scene_description = scene.description;
+  run.pipeline = r.pipeline;
+  run.backend = config.device;
+  run.device_name = gpu ? info.name : cpu_model() + " (" + std::to_string(omp_threads()) + " OpenMP threads)";
+  run.driver_version = info.driver_version;
+  run.runtime_version = info.runtime_version;
+  run.warmup = r.warmup;
+  run.frame_first = range.first;
+  run.frame_last = range.last;
+  run.triangles = scene.source->topology().faces.size();
+  run.vertices = scene.source->topology().num_vertices;
+  const auto scenes_dir = o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir);
+  run.params_json = nlohmann::json{{"command", "run"},
+                                   {"options", cli_options},
+                                   {"pipeline_config", to_json(config)},
+                                   {"resolved",
+                                    {{"device", config.device},
+                                     {"scene", scene.name},
+                                     {"scenes_dir", scenes_dir.string()},
+                                     {"frame_first", range.first},
+                                     {"frame_last", range.last},
+                                     {"warmup", r.warmup}}}}
+                        .dump();
+  return run;
+}
+
 int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options) {
   const std::string device = resolve_device(o.device);
   print_environment(device);
@@ -122,35 +155,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::printf("pipeline: %s on %s\n", r.pipeline.c_str(), device.c_str());
 
   std::optional<ResultsFile> out;
-  if (!r.out.empty()) {
-    const CudaDeviceInfo gpu = cuda_device_info();
-    RunInfo info;
-    info.scene = scene.name;
-    info.scene_description = scene.description;
-    info.pipeline = r.pipeline;
-    info.backend = device;
-    info.device_name = device == "cuda" ? gpu.name : cpu_model() + " (" + std::to_string(omp_threads()) + " OpenMP threads)";
-    info.driver_version = device == "cuda" ? gpu.driver_version : 0;
-    info.runtime_version = device == "cuda" ? gpu.runtime_version : 0;
-    info.warmup = r.warmup;
-    info.frame_first = range.first;
-    info.frame_last = range.last;
-    info.triangles = topo.faces.size();
-    info.vertices = topo.num_vertices;
-    info.params_json = nlohmann::json{{"command", "run"},
-                                      {"options", cli_options},
-                                      {"pipeline_config", to_json(config)},
-                                      {"resolved",
-                                       {{"device", device},
-                                        {"scene", scene.name},
-                                        {"scenes_dir", (o.scenes_dir.empty() ? default_scenes_dir()
-                                                                             : std::filesystem::path(o.scenes_dir)).string()},
-                                        {"frame_first", range.first},
-                                        {"frame_last", range.last},
-                                        {"warmup", r.warmup}}}}
-                           .dump();
-    out.emplace(r.out, info);
-  }
+  if (!r.out.empty()) out.emplace(r.out, run_info(o, r, scene, config, range, cli_options));
   RunLoopOptions loop;
   loop.warmup = r.warmup;
   loop.frame_lines = !r.quiet;
