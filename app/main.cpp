@@ -4,16 +4,24 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <numeric>
+#include <optional>
 
 #include "bruteforce/sweep_oracle.h"
 #include "core/build_info.h"
 #include "core/error.h"
+#include "cli_params.h"
 #include "frame_range.h"
+#include "io/results_file.h"
 #include "io/scene.h"
+#include "pipeline/config_json.h"
 #include "pipeline/pipeline.h"
+#include "progress.h"
 #include "report.h"
+#include "results_table.h"
+#include "run_loop.h"
 
 using namespace cdb;
 
@@ -71,6 +79,12 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
       ->capture_default_str();
 }
 
+std::string pipeline_list() {
+  std::string list;
+  for (const auto& n : pipeline_names()) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
 std::string resolve_device(const std::string& device) {
   if (device != "auto") return device;
   return cuda_device_info().available ? "cuda" : "cpu";
@@ -110,8 +124,56 @@ void print_environment(const std::string& device) {
                 info.available ? "" : "; no GPU: ", info.available ? "" : info.reason.c_str());
 }
 
-int run_command(const CommonOptions& o, const std::string& pipeline_name, uint32_t warmup,
-                bool per_frame) {
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+      return line.substr(line.find_first_not_of(" \t", line.find(':') + 1));
+  return "unknown cpu";
+}
+
+struct RunOptions {
+  std::string pipeline = "bvh";
+  uint32_t warmup = 1;
+  bool quiet = false;
+  std::string out;
+  bool save_pairs = false;
+};
+
+// What the results file records about the run besides its frames.
+RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene, const PipelineConfig& config,
+                 FrameRange range, const nlohmann::json& cli_options) {
+  const bool gpu = config.device == "cuda";
+  const CudaDeviceInfo info = gpu ? cuda_device_info() : CudaDeviceInfo{};
+  RunInfo run;
+  run.scene = scene.name;
+  run.scene_description = scene.description;
+  run.pipeline = r.pipeline;
+  run.backend = config.device;
+  run.device_name = gpu ? info.name : cpu_model() + " (" + std::to_string(omp_threads()) + " OpenMP threads)";
+  run.driver_version = info.driver_version;
+  run.runtime_version = info.runtime_version;
+  run.warmup = r.warmup;
+  run.frame_first = range.first;
+  run.frame_last = range.last;
+  run.triangles = scene.source->topology().faces.size();
+  run.vertices = scene.source->topology().num_vertices;
+  const auto scenes_dir = o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir);
+  run.params_json = nlohmann::json{{"command", "run"},
+                                   {"options", cli_options},
+                                   {"pipeline_config", to_json(config)},
+                                   {"resolved",
+                                    {{"device", config.device},
+                                     {"scene", scene.name},
+                                     {"scenes_dir", scenes_dir.string()},
+                                     {"frame_first", range.first},
+                                     {"frame_last", range.last},
+                                     {"warmup", r.warmup}}}}
+                        .dump();
+  return run;
+}
+
+int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options) {
   const std::string device = resolve_device(o.device);
   print_environment(device);
   Scene scene = load_scene(o);
@@ -120,18 +182,19 @@ int run_command(const CommonOptions& o, const std::string& pipeline_name, uint32
   std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
               scene.name.c_str(), scene.description.c_str(), topo.faces.size(),
               topo.num_vertices, range.first, range.last);
-  auto pipeline = make_pipeline(make_config(o, pipeline_name, device));
+  const PipelineConfig config = make_config(o, r.pipeline, device);
+  auto pipeline = make_pipeline(config);
   pipeline->set_topology(topo);
-  std::printf("pipeline: %s on %s\n", pipeline_name.c_str(), device.c_str());
-  std::vector<vec3f> vertices;
-  std::vector<FrameStats> frames;
-  for (uint32_t f = range.first; f < range.last; ++f) {
-    scene.source->frame(f, vertices);
-    frames.push_back(pipeline->run_frame(vertices));
-    if (per_frame) print_frame_line(f, frames.back());
-  }
-  print_summary(frames, warmup, pipeline->memory());
-  return 0;
+  std::printf("pipeline: %s on %s\n", r.pipeline.c_str(), device.c_str());
+
+  std::optional<ResultsFile> out;
+  if (!r.out.empty()) out.emplace(r.out, run_info(o, r, scene, config, range, cli_options));
+  RunLoopOptions loop;
+  loop.warmup = r.warmup;
+  loop.frame_lines = !r.quiet;
+  loop.progress = Progress::mode_for(r.quiet);
+  loop.save_pairs = r.save_pairs;
+  return run_frames(*pipeline, *scene.source, range, out ? &*out : nullptr, loop);
 }
 
 int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
@@ -207,14 +270,15 @@ int main(int argc, char** argv) {
 
   auto* run = app.add_subcommand("run", "run one pipeline on a scene and print timings");
   add_common(run, o);
-  std::string pipeline = "bvh";
-  uint32_t warmup = 1;
-  bool quiet = false;
-  run->add_option("--pipeline", pipeline,
-                  "bvh, unordered, static, periodic, reference, a, b, radix-order, sweep, hash, grid or brute")->capture_default_str();
-  run->add_option("--warmup", warmup, "frames left out of the summary statistics")
+  RunOptions r;
+  run->add_option("--pipeline", r.pipeline,
+                  pipeline_list())->capture_default_str();
+  run->add_option("--warmup", r.warmup, "frames left out of the summary statistics")
       ->capture_default_str();
-  run->add_flag("--quiet", quiet, "no per-frame lines");
+  run->add_flag("--quiet", r.quiet, "no per-frame lines; no progress lines when stderr is not a terminal");
+  auto* out_option = run->add_option("--out", r.out, "write the results to this HDF5 file (docs/results-format.md)");
+  run->add_flag("--save-pairs", r.save_pairs, "also store each frame's sorted pairs in the results file")
+      ->needs(out_option);
 
   auto* verify = app.add_subcommand("verify", "compare pipelines with the exact oracle, frame by frame");
   add_common(verify, o);
@@ -230,11 +294,18 @@ int main(int argc, char** argv) {
   auto* list = scenes->add_subcommand("list", "list scenes with sizes");
   scenes->require_subcommand(1);
 
+  auto* report = app.add_subcommand("report", "summarize results files as a Markdown (or CSV) table");
+  std::vector<std::string> report_files;
+  bool csv = false;
+  report->add_option("files", report_files, "results files written by run --out")->required();
+  report->add_flag("--csv", csv, "CSV instead of Markdown");
+
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*run) return run_command(o, pipeline, warmup, !quiet);
+    if (*run) return run_command(o, r, options_json(*run));
     if (*verify) return verify_command(o, pipelines, brute_limit);
     if (*list) return scenes_list(o);
+    if (*report) return print_results_table(report_files, csv);
   } catch (const Error& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "cdbench: error: %s\n", e.what());

@@ -2,6 +2,10 @@
 # CLI smoke and bad-input tests: exit codes and messages that name the file, frame and field.
 set -u
 cdbench=$1
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+python=/usr/bin/python3
+[[ -x $python ]] || python=python3
+read_results=("$python" "$root/scripts/read_results.py")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 failures=0
@@ -57,6 +61,51 @@ printf '{"generator": "soup", "params": {"triangles": 0}}' >"$tmp/empty.json"
 check "empty scene runs" 0 "pairs +0" -- "$cdbench" run --device cpu --scene "$tmp/empty.json"
 printf '{"generator": "soup", "params": {"triangles": 1}}' >"$tmp/one.json"
 check "one triangle verifies" 0 "all pipelines match" -- "$cdbench" verify --device cpu --scene "$tmp/one.json"
+
+# Results files: complete, failed mid-run, interrupted; read back by the script and report.
+out=$tmp/results
+check "run writes a results file" 0 "results: $out/funnel.h5 \(20 frames\)" -- \
+  "$cdbench" run --scene funnel --device cpu --quiet --out "$out/funnel.h5" --save-pairs
+check "results file is complete" 0 "status: complete \(20 frames written\)" -- "${read_results[@]}" "$out/funnel.h5"
+check "results file keeps pairs" 0 "pairs saved for 20 frames" -- "${read_results[@]}" --summary "$out/funnel.h5"
+check "save-pairs needs --out" 107 "--save-pairs requires --out" -- "$cdbench" run --device cpu --save-pairs
+
+mkdir -p "$tmp/midway"
+for f in 0 1 2 3; do
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 %d\nf 1 2 3\nf 1 2 4\n' "$f" >"$tmp/midway/frame_000$f.obj"
+done
+printf 'v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n' >"$tmp/midway/frame_0002.obj"
+check "error mid-run exits non-zero" 2 "frame_0002.obj: frame 2, vertex 2: non-finite" -- \
+  "$cdbench" run --device cpu --scene "$tmp/midway" --out "$out/midway.h5"
+check "failed run leaves an incomplete file" 0 "status: incomplete \(2 frames written\)" -- "${read_results[@]}" "$out/midway.h5"
+check "failed run records the error" 0 "error: frame 2: .*non-finite" -- "${read_results[@]}" --summary "$out/midway.h5"
+
+# Interrupted: a scene far too long to finish, stopped by SIGTERM once it is under way.
+printf '{"generator": "cloth-wave", "params": {"res": 16, "frames": 1000000}}' >"$tmp/endless.json"
+"$cdbench" run --device cpu --scene "$tmp/endless.json" --out "$out/endless.h5" >"$tmp/endless.out" 2>&1 &
+pid=$!
+for _ in $(seq 600); do grep -q "^frame  *2 " "$tmp/endless.out" && break; sleep 0.1; done
+kill -TERM "$pid"
+wait "$pid"; rc=$?
+if [[ $rc -eq 143 ]] && grep -q "interrupted by SIGTERM" "$tmp/endless.out"; then
+  echo "ok   SIGTERM stops the run with 128+15"
+else
+  echo "FAIL SIGTERM stops the run: rc=$rc (want 143)"; tail -5 "$tmp/endless.out" | sed 's/^/    /'
+  failures=$((failures + 1))
+fi
+check "interrupted run leaves an incomplete file" 0 "error: interrupted by SIGTERM after [0-9]+ of 1000000 frames" -- \
+  "${read_results[@]}" --summary "$out/endless.h5"
+
+check "report shows the complete run" 0 "\| funnel \| bvh \| cpu: .* \| complete \|" -- \
+  "$cdbench" report "$out/funnel.h5" "$out/midway.h5" "$out/endless.h5"
+check "report shows the failed run as incomplete" 0 "\| midway \| bvh \|.*\| incomplete \(2/4 frames\): frame 2:" -- \
+  "$cdbench" report "$out/funnel.h5" "$out/midway.h5" "$out/endless.h5"
+check "report shows the interrupted run as incomplete" 0 "\| endless \| bvh \|.*\| incomplete .*SIGTERM" -- \
+  "$cdbench" report "$out/funnel.h5" "$out/midway.h5" "$out/endless.h5"
+check "report as CSV" 0 "midway\.h5,midway,bvh,.*,\"incomplete: frame 2: " -- \
+  "$cdbench" report --csv "$out/funnel.h5" "$out/midway.h5"
+check "report names an unreadable file" 1 "unreadable: .*seq/frame_0000.obj" -- \
+  "$cdbench" report "$out/funnel.h5" "$tmp/seq/frame_0000.obj"
 
 if [[ $failures -ne 0 ]]; then echo "$failures CLI test(s) failed"; exit 1; fi
 echo "all CLI tests passed"

@@ -1,0 +1,148 @@
+#include "results_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/phase.h"
+#include "io/results_reader.h"
+
+namespace cdb {
+namespace {
+
+struct Row {
+  ResultsOverview r;
+  std::string unreadable;  // why, when the file could not be read
+};
+
+std::string number(double x, const char* format = "%.3f") {
+  if (std::isnan(x)) return "";
+  char text[64];
+  std::snprintf(text, sizeof text, format, x);
+  return text;
+}
+
+// Phases in the pipeline's order; names this build does not know go last, by name.
+size_t phase_rank(const std::string& name) {
+  for (size_t p = 0; p < kPhaseCount; ++p)
+    if (name == kPhaseNames[p]) return p;
+  return kPhaseCount;
+}
+
+std::vector<std::string> phases_that_ran(const std::vector<Row>& rows) {
+  std::vector<std::string> phases;
+  for (const Row& row : rows)
+    for (const auto& [phase, mean] : row.r.phase_means)
+      if (std::find(phases.begin(), phases.end(), phase) == phases.end()) phases.push_back(phase);
+  std::sort(phases.begin(), phases.end(), [](const std::string& a, const std::string& b) {
+    const size_t ra = phase_rank(a), rb = phase_rank(b);
+    return ra != rb ? ra < rb : a < b;
+  });
+  return phases;
+}
+
+std::string status_text(const Row& row, bool csv) {
+  if (!row.unreadable.empty()) return "unreadable: " + row.unreadable;
+  if (row.r.status == "complete") return "complete";
+  std::string s = row.r.status;
+  if (!csv)
+    s += " (" + std::to_string(row.r.frames_written) + "/" + std::to_string(row.r.frames_planned) + " frames)";
+  if (!row.r.error.empty()) s += ": " + row.r.error;
+  return s;
+}
+
+std::string markdown_cell(std::string s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '|') out += "\\|";
+    else if (c == '\n') out += ' ';
+    else out += c;
+  }
+  return out;
+}
+
+std::string csv_cell(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+int print_results_table(const std::vector<std::string>& files, bool csv) {
+  std::vector<Row> rows;
+  int rc = 0;
+  for (const auto& f : files) {
+    Row row;
+    try {
+      row.r = read_results_overview(f);
+    } catch (const std::exception& e) {
+      row.r.path = f;
+      row.unreadable = e.what();
+      std::fprintf(stderr, "cdbench: report: %s\n", e.what());
+      rc = 1;
+    }
+    rows.push_back(std::move(row));
+  }
+  const std::vector<std::string> phases = phases_that_ran(rows);
+
+  std::vector<std::string> header = {"file", "scene", "pipeline", "device", "frames", "mean_ms", "median_ms", "p95_ms"};
+  for (const auto& p : phases) header.push_back(p + "_ms");
+  header.insert(header.end(), {"pairs", csv ? "peak_bytes" : "peak_MiB", "status"});
+
+  std::vector<std::vector<std::string>> table;
+  for (const Row& row : rows) {
+    const ResultsOverview& r = row.r;
+    std::vector<std::string> cells = {r.path, r.scene, r.pipeline,
+                                      r.backend.empty() ? "" : r.backend + ": " + r.device_name,
+                                      row.unreadable.empty() ? std::to_string(r.frames_written) : ""};
+    const bool stats = row.unreadable.empty() && r.has_summary && r.measured_frames > 0;
+    const double none = std::nan("");
+    cells.push_back(number(stats ? r.mean_ms : none));
+    cells.push_back(number(stats ? r.median_ms : none));
+    cells.push_back(number(stats ? r.p95_ms : none));
+    for (const auto& p : phases) {
+      double mean = none;
+      for (const auto& [name, m] : r.phase_means)
+        if (name == p) mean = m;
+      cells.push_back(number(mean));
+    }
+    cells.push_back(number(stats ? r.pairs_mean : none, "%.0f"));
+    cells.push_back(!r.has_summary ? "" : csv ? std::to_string(r.peak_bytes) : number(double(r.peak_bytes) / (1 << 20), "%.2f"));
+    cells.push_back(status_text(row, csv));
+    table.push_back(std::move(cells));
+  }
+
+  if (csv) {
+    auto line = [](const std::vector<std::string>& cells) {
+      std::string s;
+      for (size_t i = 0; i < cells.size(); ++i) {
+        if (i) s += ',';
+        s += csv_cell(cells[i]);
+      }
+      std::printf("%s\n", s.c_str());
+    };
+    line(header);
+    for (const auto& cells : table) line(cells);
+    return rc;
+  }
+  auto line = [](const std::vector<std::string>& cells) {
+    std::string s = "|";
+    for (const auto& c : cells) {
+      s += ' ';
+      s += markdown_cell(c);
+      s += " |";
+    }
+    std::printf("%s\n", s.c_str());
+  };
+  line(header);
+  std::string rule = "|";
+  for (size_t i = 0; i < header.size(); ++i) rule += i < 4 || i + 1 == header.size() ? " --- |" : " ---: |";
+  std::printf("%s\n", rule.c_str());
+  for (const auto& cells : table) line(cells);
+  return rc;
+}
+
+}  // namespace cdb

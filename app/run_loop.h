@@ -1,0 +1,28 @@
+#pragma once
+// The frame loop of `cdbench run`: frames through the pipeline, per-frame lines, progress,
+// the results file, and a clean stop on an error or SIGINT/SIGTERM.
+#include <cstdint>
+
+#include "frame_range.h"
+#include "geometry/frame_source.h"
+#include "io/results_file.h"
+#include "pipeline/pipeline.h"
+#include "progress.h"
+
+namespace cdb {
+
+struct RunLoopOptions {
+  uint32_t warmup = 1;
+  bool frame_lines = true;  // one line per frame on stdout
+  Progress::Mode progress = Progress::Mode::off;
+  bool save_pairs = false;  // each frame's sorted pairs into the results file
+};
+
+// Runs the frames of `range`, prints the summary and, given a results file, records every
+// frame and marks it complete. On an error the file is closed as incomplete with the
+// message and the error is rethrown; on SIGINT/SIGTERM (checked between frames) the same,
+// and the return value is 128 + the signal. Returns 0 otherwise.
+int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
+               const RunLoopOptions& options);
+
+}  // namespace cdb

@@ -1,0 +1,40 @@
+#include "io/frame_columns.h"
+
+#include "core/phase.h"
+
+namespace cdb {
+
+const std::vector<FrameColumn>& frame_columns() {
+  static const std::vector<FrameColumn> columns = [] {
+    using T = ColumnType;
+    using R = const FrameRow&;
+    std::vector<FrameColumn> c = {
+        {"frame", T::u32, "frame index in the scene", [](R r) -> ColumnValue { return uint64_t(r.frame); }},
+        {"t_total_ms", T::f64, "frame time without its upload, ms", [](R r) -> ColumnValue { return r.stats.total_ms; }},
+    };
+    for (size_t p = 0; p < kPhaseCount; ++p)
+      c.push_back({std::string("t_") + kPhaseNames[p] + "_ms", T::f64,
+                   std::string("time in phase ") + kPhaseNames[p] + ", ms (0: did not run)",
+                   [p](R r) -> ColumnValue { return r.stats.phase_ms[p]; }});
+    const std::vector<FrameColumn> rest = {
+        {"pairs", T::u64, "pairs reported", [](R r) -> ColumnValue { return r.stats.pairs; }},
+        {"query_reruns", T::u32, "queries re-run because a buffer grew", [](R r) -> ColumnValue { return uint64_t(r.stats.query_reruns); }},
+        {"front_int", T::u64, "internal front nodes after the frame", [](R r) -> ColumnValue { return r.stats.front_internal; }},
+        {"front_ext", T::u64, "external front nodes after the frame", [](R r) -> ColumnValue { return r.stats.front_external; }},
+        {"q_root", T::f64, "Formula 1 at the root (ordered pipelines; else 0)", [](R r) -> ColumnValue { return r.stats.q_root; }},
+        {"candidates", T::u64, "pipeline c: restructure candidates found by this frame's inspection", [](R r) -> ColumnValue { return r.stats.candidates; }},
+        {"candidate_leaves", T::u64, "pipeline c: leaves inside those candidates", [](R r) -> ColumnValue { return r.stats.candidate_leaves; }},
+        {"q_candidates", T::f64, "pipeline c: mean Q (Formula 1) of those candidates", [](R r) -> ColumnValue { return r.stats.q_candidates; }},
+        {"decision", T::text, "pipeline c: Formula 2 decision taken at the frame's start (refit, restructure, rebuild; empty: none)", [](R r) -> ColumnValue { return r.stats.decision; }},
+        {"op", T::text, "what the frame did: hierarchy + front operation", [](R r) -> ColumnValue { return r.stats.op; }},
+        {"device_bytes", T::u64, "executor memory in use after the frame, bytes", [](R r) -> ColumnValue { return uint64_t(r.memory.current_bytes); }},
+        {"device_peak_bytes", T::u64, "executor memory peak so far, bytes", [](R r) -> ColumnValue { return uint64_t(r.memory.peak_bytes); }},
+        {"buffer_growths", T::u64, "buffer growths so far", [](R r) -> ColumnValue { return uint64_t(r.memory.growths); }},
+    };
+    c.insert(c.end(), rest.begin(), rest.end());
+    return c;
+  }();
+  return columns;
+}
+
+}  // namespace cdb

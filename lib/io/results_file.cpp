@@ -1,0 +1,300 @@
+#include "io/results_file.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <limits>
+
+#include "core/build_info.h"
+#include "core/error.h"
+#include "core/phase.h"
+#include "io/frame_columns.h"
+
+namespace cdb {
+namespace {
+
+using h5::check;
+using h5::own;
+using h5::write_attr;
+
+constexpr hsize_t kRowsPerChunk = 1024;
+constexpr unsigned kDeflateLevel = 4;
+// Often enough that a killed run loses little, rarely enough that rewriting a partly
+// filled compressed chunk costs nothing measurable.
+constexpr auto kFlushInterval = std::chrono::seconds(1);
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+std::string host_name() {
+  char name[256] = {};
+  if (gethostname(name, sizeof name - 1) != 0) return "unknown";
+  return name;
+}
+
+bool deflate_available() {
+  unsigned config = 0;
+  return H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0 &&
+         H5Zget_filter_info(H5Z_FILTER_DEFLATE, &config) >= 0 &&
+         (config & H5Z_FILTER_CONFIG_ENCODE_ENABLED);
+}
+
+// Chunked, shuffled and deflated (when the library has zlib) storage of `rank` dimensions.
+h5::Handle chunked_layout(int rank, const hsize_t* chunk, const std::string& where) {
+  h5::Handle dcpl = own(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, where, "create dataset properties");
+  check(H5Pset_chunk(dcpl.get(), rank, chunk), where, "set chunking");
+  if (deflate_available()) {
+    check(H5Pset_shuffle(dcpl.get()), where, "set shuffle filter");
+    check(H5Pset_deflate(dcpl.get(), kDeflateLevel), where, "set deflate filter");
+  }
+  return dcpl;
+}
+
+hid_t file_type_of(ColumnType t, hid_t text_type) {
+  switch (t) {
+    case ColumnType::u32: return H5T_STD_U32LE;
+    case ColumnType::u64: return H5T_STD_U64LE;
+    case ColumnType::f64: return H5T_IEEE_F64LE;
+    case ColumnType::text: return text_type;
+  }
+  return H5T_IEEE_F64LE;
+}
+
+// Groups remember the order their members and attributes were made in, so readers list
+// columns and statistics in the writer's order (frame, t_total_ms, phases, ...), not by name.
+h5::Handle create_group(hid_t loc, const char* name, const std::string& where) {
+  const std::string at = where + ": /" + name;
+  h5::Handle gcpl = own(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, at, "create group properties");
+  check(H5Pset_link_creation_order(gcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), at,
+        "track link order");
+  check(H5Pset_attr_creation_order(gcpl.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), at,
+        "track attribute order");
+  return own(H5Gcreate2(loc, name, H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), H5Gclose, at, "create group");
+}
+
+}  // namespace
+
+ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
+    : path_(path), where_(path.string()) {
+  h5::silence_library_errors();
+  if (path.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(path.parent_path(), ec);
+    if (ec) fail(where_ + ": cannot create directory " + path.parent_path().string() + ": " + ec.message());
+  }
+  // Strong close degree: closing the file closes every object still open in it.
+  h5::Handle fapl = own(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, where_, "create file access properties");
+  check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), where_, "set close degree");
+  file_ = own(H5Fcreate(where_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose, where_,
+              "create results file");
+
+  const hid_t root = file_.get();
+  const std::string at = where_ + ": /";
+  const BuildInfo& b = build_info();
+  write_attr(root, "status", "incomplete", at);
+  write_attr(root, "schema_version", kResultsSchemaVersion, at);
+  write_attr(root, "cdbench_version", CDBENCH_VERSION, at);
+  write_attr(root, "git_sha", b.git_sha, at);
+  write_attr(root, "build_type", b.build_type, at);
+  write_attr(root, "compiler", b.cxx_compiler, at);
+  write_attr(root, "cuda_compiler", b.cuda_compiler, at);
+  write_attr(root, "scene", info.scene, at);
+  write_attr(root, "scene_description", info.scene_description, at);
+  write_attr(root, "pipeline", info.pipeline, at);
+  write_attr(root, "backend", info.backend, at);
+  write_attr(root, "device_name", info.device_name, at);
+  write_attr(root, "driver_version", int64_t(info.driver_version), at);
+  write_attr(root, "runtime_version", int64_t(info.runtime_version), at);
+  write_attr(root, "precision", info.precision, at);
+  write_attr(root, "params_json", info.params_json, at);
+  write_attr(root, "warmup", uint64_t(info.warmup), at);
+  write_attr(root, "frame_first", uint64_t(info.frame_first), at);
+  write_attr(root, "frame_last", uint64_t(info.frame_last), at);
+  write_attr(root, "triangles", info.triangles, at);
+  write_attr(root, "vertices", info.vertices, at);
+  write_attr(root, "host", host_name(), at);
+  write_attr(root, "created_utc", utc_now(), at);
+
+  text_type_ = own(H5Tcopy(H5T_C_S1), H5Tclose, where_, "copy string type");
+  check(H5Tset_size(text_type_.get(), kTextColumnBytes), where_, "set string size");
+  check(H5Tset_strpad(text_type_.get(), H5T_STR_NULLPAD), where_, "set string padding");
+
+  frames_ = create_group(root, "frames", where_);
+  const hsize_t empty = 0, unlimited = H5S_UNLIMITED, chunk = kRowsPerChunk;
+  for (const FrameColumn& c : frame_columns()) {
+    const std::string ds = where_ + ": /frames/" + c.name;
+    h5::Handle space = own(H5Screate_simple(1, &empty, &unlimited), H5Sclose, ds, "create dataspace");
+    h5::Handle dcpl = chunked_layout(1, &chunk, ds);
+    columns_.push_back(own(H5Dcreate2(frames_.get(), c.name.c_str(), file_type_of(c.type, text_type_.get()),
+                                      space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                           H5Dclose, ds, "create dataset"));
+    write_attr(columns_.back().get(), "description", c.description, ds);
+  }
+  create_group(root, "quality", where_);
+  check(H5Fflush(root, H5F_SCOPE_GLOBAL), where_, "flush");
+  last_flush_ = std::chrono::steady_clock::now();
+}
+
+ResultsFile::~ResultsFile() {
+  columns_.clear();
+  pairs_.reset();
+  frames_.reset();
+  text_type_.reset();
+  file_.reset();
+}
+
+void ResultsFile::append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory) {
+  if (!file_) fail(where_ + ": frame " + std::to_string(frame) + ": the results file is already closed");
+  const FrameRow row{frame, stats, memory};
+  const hsize_t size = rows_ + 1, start = rows_, one = 1;
+  h5::Handle mem_space = own(H5Screate_simple(1, &one, nullptr), H5Sclose, where_, "create dataspace");
+  const auto& cols = frame_columns();
+  for (size_t i = 0; i < cols.size(); ++i) {
+    const std::string at = where_ + ": /frames/" + cols[i].name + " frame " + std::to_string(frame);
+    const hid_t ds = columns_[i].get();
+    check(H5Dset_extent(ds, &size), at, "extend dataset");
+    h5::Handle file_space = own(H5Dget_space(ds), H5Sclose, at, "get dataspace");
+    check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &start, nullptr, &one, nullptr), at,
+          "select row");
+    const ColumnValue v = cols[i].value(row);
+    herr_t written = -1;
+    switch (cols[i].type) {
+      case ColumnType::u32: {
+        const uint64_t x = std::get<uint64_t>(v);
+        if (x > std::numeric_limits<uint32_t>::max()) fail(at + ": value " + std::to_string(x) + " does not fit 32 bits");
+        const uint32_t narrow = uint32_t(x);
+        written = H5Dwrite(ds, H5T_NATIVE_UINT32, mem_space.get(), file_space.get(), H5P_DEFAULT, &narrow);
+        break;
+      }
+      case ColumnType::u64: {
+        const uint64_t x = std::get<uint64_t>(v);
+        written = H5Dwrite(ds, H5T_NATIVE_UINT64, mem_space.get(), file_space.get(), H5P_DEFAULT, &x);
+        break;
+      }
+      case ColumnType::f64: {
+        const double x = std::get<double>(v);
+        written = H5Dwrite(ds, H5T_NATIVE_DOUBLE, mem_space.get(), file_space.get(), H5P_DEFAULT, &x);
+        break;
+      }
+      case ColumnType::text: {
+        const std::string& s = std::get<std::string>(v);
+        if (s.size() > kTextColumnBytes)
+          fail(at + ": '" + s + "' is longer than " + std::to_string(kTextColumnBytes) + " bytes");
+        char cell[kTextColumnBytes] = {};
+        s.copy(cell, s.size());
+        written = H5Dwrite(ds, text_type_.get(), mem_space.get(), file_space.get(), H5P_DEFAULT, cell);
+        break;
+      }
+    }
+    check(written, at, "write");
+  }
+  ++rows_;
+  flush_now_and_then();
+}
+
+void ResultsFile::write_pairs(uint32_t frame, const std::vector<PrimPair>& pairs) {
+  if (!file_) fail(where_ + ": frame " + std::to_string(frame) + ": the results file is already closed");
+  if (!pairs_) {
+    pairs_ = create_group(file_.get(), "pairs", where_);
+    write_attr(pairs_.get(), "description",
+               "per frame: sorted pairs (a, b), a < b, of 0-based triangle indices in the input's face order",
+               where_ + ": /pairs");
+  }
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04u", frame);
+  const std::string at = where_ + ": /pairs/" + name;
+  const hsize_t dims[2] = {pairs.size(), 2}, maxdims[2] = {H5S_UNLIMITED, 2};
+  const hsize_t chunk[2] = {std::max<hsize_t>(1, std::min<hsize_t>(pairs.size(), 1 << 16)), 2};
+  h5::Handle space = own(H5Screate_simple(2, dims, maxdims), H5Sclose, at, "create dataspace");
+  h5::Handle dcpl = chunked_layout(2, chunk, at);
+  h5::Handle ds = own(H5Dcreate2(pairs_.get(), name, H5T_STD_U32LE, space.get(), H5P_DEFAULT, dcpl.get(),
+                                 H5P_DEFAULT),
+                      H5Dclose, at, "create dataset");
+  static_assert(sizeof(PrimPair) == 2 * sizeof(uint32_t), "pairs are written as (n, 2) uint32");
+  if (!pairs.empty())
+    check(H5Dwrite(ds.get(), H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, pairs.data()), at, "write");
+  write_attr(ds.get(), "frame", uint64_t(frame), at);
+  flush_now_and_then();
+}
+
+void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) {
+  const std::string at = where_ + ": /summary";
+  h5::Handle g = H5Lexists(file_.get(), "summary", H5P_DEFAULT) > 0
+                     ? own(H5Gopen2(file_.get(), "summary", H5P_DEFAULT), H5Gclose, at, "open group")
+                     : create_group(file_.get(), "summary", where_);
+  const hid_t loc = g.get();
+  const double none = std::nan("");
+  auto put_stat = [&](const std::string& prefix, const Stat& st) {
+    write_attr(loc, (prefix + "_mean").c_str(), st.count ? st.mean : none, at);
+    write_attr(loc, (prefix + "_median").c_str(), st.count ? st.median : none, at);
+    write_attr(loc, (prefix + "_p95").c_str(), st.count ? st.p95 : none, at);
+    write_attr(loc, (prefix + "_min").c_str(), st.count ? st.min : none, at);
+    write_attr(loc, (prefix + "_frames").c_str(), uint64_t(st.count), at);
+  };
+  write_attr(loc, "frames", uint64_t(s.frames), at);
+  write_attr(loc, "warmup", uint64_t(s.warmup), at);
+  write_attr(loc, "measured_frames", uint64_t(s.total.count), at);
+  write_attr(loc, "first_frame_ms", s.frames ? s.first_ms : none, at);
+  write_attr(loc, "first_frame_op", s.first_op, at);
+  put_stat("t_total_ms", s.total);
+  for (size_t p = 0; p < kPhaseCount; ++p) put_stat(std::string("t_") + kPhaseNames[p] + "_ms", s.phase[p]);
+  write_attr(loc, "pairs_mean", s.total.count ? s.pairs_mean : none, at);
+  write_attr(loc, "query_reruns", uint64_t(s.query_reruns), at);
+  write_attr(loc, "decisions_refit", uint64_t(s.decided_refit), at);
+  write_attr(loc, "decisions_restructure", uint64_t(s.decided_restructure), at);
+  write_attr(loc, "decisions_rebuild", uint64_t(s.decided_rebuild), at);
+  write_attr(loc, "peak_bytes", uint64_t(memory.peak_bytes), at);
+  write_attr(loc, "allocations", uint64_t(memory.allocations), at);
+  write_attr(loc, "growths", uint64_t(memory.growths), at);
+}
+
+void ResultsFile::finish(const RunSummary& summary, const MemoryStats& memory) {
+  if (!file_) fail(where_ + ": the results file is already closed");
+  write_summary(summary, memory);
+  close("complete");
+}
+
+void ResultsFile::abandon(const RunSummary& summary, const MemoryStats& memory,
+                          const std::string& error) noexcept {
+  if (!file_) return;
+  try {
+    write_attr(file_.get(), "error", error, where_ + ": /");
+    write_summary(summary, memory);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cdbench: %s\n", e.what());
+  }
+  try {
+    close("incomplete");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cdbench: %s\n", e.what());
+  }
+}
+
+void ResultsFile::close(const char* status) {
+  const std::string at = where_ + ": /";
+  write_attr(file_.get(), "closed_utc", utc_now(), at);
+  write_attr(file_.get(), "status", status, at);
+  columns_.clear();
+  pairs_.reset();
+  frames_.reset();
+  text_type_.reset();
+  if (!file_.reset()) fail(where_ + ": closing the results file failed: " + h5::library_reason());
+}
+
+void ResultsFile::flush_now_and_then() {
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_flush_ < kFlushInterval) return;
+  check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), where_, "flush");
+  last_flush_ = now;
+}
+
+}  // namespace cdb

@@ -1,0 +1,72 @@
+#pragma once
+// One run's results file (HDF5, schema in docs/results-format.md), written as the run
+// goes: the run's attributes and status "incomplete" first, one /frames row per frame,
+// and only a clean end marks it "complete". A run that fails or is interrupted still
+// leaves a readable file that says so.
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/pair.h"
+#include "exec/memory.h"
+#include "io/hdf5_handle.h"
+#include "pipeline/pipeline.h"
+#include "pipeline/run_summary.h"
+
+namespace cdb {
+
+inline constexpr int64_t kResultsSchemaVersion = 1;
+
+// What the caller knows about the run; the writer adds the build (version, commit,
+// compilers), the host and the time.
+struct RunInfo {
+  std::string scene, scene_description;
+  std::string pipeline;
+  std::string backend;      // cuda | cpu
+  std::string device_name;  // the GPU's name, or the CPU model
+  int driver_version = 0, runtime_version = 0;  // CUDA's; 0 on the CPU
+  std::string precision = "fp32";               // of the boxes
+  std::string params_json;  // every parameter of the run, defaults included
+  uint32_t warmup = 0;
+  uint32_t frame_first = 0, frame_last = 0;  // the range asked for, half-open
+  uint64_t triangles = 0, vertices = 0;
+};
+
+class ResultsFile {
+ public:
+  // Creates the file (replacing one of that name; parent directories are made).
+  ResultsFile(const std::filesystem::path& path, const RunInfo& info);
+  // Closes without touching the status: a file never finished stays "incomplete".
+  ~ResultsFile();
+  ResultsFile(const ResultsFile&) = delete;
+  ResultsFile& operator=(const ResultsFile&) = delete;
+
+  void append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory);
+  // /pairs/frame_NNNN: the frame's sorted pairs as an (n, 2) array of triangle indices.
+  void write_pairs(uint32_t frame, const std::vector<PrimPair>& pairs);
+  // Writes /summary, marks the file complete and closes it.
+  void finish(const RunSummary& summary, const MemoryStats& memory);
+  // Writes /summary of the frames so far and the error, leaves the status "incomplete"
+  // and closes the file. Never throws: it runs while another error is on its way out.
+  void abandon(const RunSummary& summary, const MemoryStats& memory, const std::string& error) noexcept;
+
+  uint64_t rows() const { return rows_; }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  void write_summary(const RunSummary& summary, const MemoryStats& memory);
+  void close(const char* status);
+  void flush_now_and_then();
+
+  std::filesystem::path path_;
+  std::string where_;  // the path, for messages
+  h5::Handle file_, frames_, pairs_;
+  std::vector<h5::Handle> columns_;  // one dataset per frame_columns() entry
+  h5::Handle text_type_;
+  uint64_t rows_ = 0;
+  std::chrono::steady_clock::time_point last_flush_;
+};
+
+}  // namespace cdb

@@ -1,0 +1,66 @@
+#include "io/results_reader.h"
+
+#include "core/error.h"
+#include "io/hdf5_handle.h"
+
+namespace cdb {
+
+ResultsOverview read_results_overview(const std::filesystem::path& path) {
+  using h5::own;
+  h5::silence_library_errors();
+  ResultsOverview r;
+  r.path = path.string();
+  const std::string where = r.path;
+  if (!std::filesystem::is_regular_file(path)) fail(where + ": no such file");
+  h5::Handle file = own(H5Fopen(where.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, where,
+                        "open results file");
+  const hid_t root = file.get();
+  const std::string at = where + ": /";
+  if (!h5::has_attr(root, "schema_version")) fail(where + ": not a cdbench results file (no schema_version)");
+  r.schema_version = h5::read_int_attr(root, "schema_version", at);
+  r.status = h5::read_string_attr(root, "status", at);
+  if (h5::has_attr(root, "error")) r.error = h5::read_string_attr(root, "error", at);
+  r.scene = h5::read_string_attr(root, "scene", at);
+  r.pipeline = h5::read_string_attr(root, "pipeline", at);
+  r.backend = h5::read_string_attr(root, "backend", at);
+  r.device_name = h5::read_string_attr(root, "device_name", at);
+  r.frames_planned = uint64_t(h5::read_int_attr(root, "frame_last", at) - h5::read_int_attr(root, "frame_first", at));
+
+  {
+    const std::string ds = where + ": /frames/frame";
+    h5::Handle d = own(H5Dopen2(root, "frames/frame", H5P_DEFAULT), H5Dclose, ds, "open dataset");
+    h5::Handle space = own(H5Dget_space(d.get()), H5Sclose, ds, "get dataspace");
+    hsize_t rows = 0;
+    h5::check(H5Sget_simple_extent_dims(space.get(), &rows, nullptr), ds, "get size");
+    r.frames_written = rows;
+  }
+
+  if (H5Lexists(root, "summary", H5P_DEFAULT) <= 0) return r;
+  const std::string st = where + ": /summary";
+  h5::Handle summary = own(H5Gopen2(root, "summary", H5P_DEFAULT), H5Gclose, st, "open group");
+  const hid_t s = summary.get();
+  r.has_summary = true;
+  r.measured_frames = uint64_t(h5::read_int_attr(s, "measured_frames", st));
+  r.mean_ms = h5::read_double_attr(s, "t_total_ms_mean", st);
+  r.median_ms = h5::read_double_attr(s, "t_total_ms_median", st);
+  r.p95_ms = h5::read_double_attr(s, "t_total_ms_p95", st);
+  r.first_ms = h5::read_double_attr(s, "first_frame_ms", st);
+  r.pairs_mean = h5::read_double_attr(s, "pairs_mean", st);
+  r.peak_bytes = uint64_t(h5::read_int_attr(s, "peak_bytes", st));
+  // Phases are whatever t_<phase>_ms_mean attributes the file has, so files written before
+  // or after a phase was added read the same way.
+  const std::string prefix = "t_", suffix = "_ms_mean";
+  for (const std::string& name : h5::attr_names(s, st)) {
+    if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const std::string phase = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+    if (phase == "total") continue;
+    const std::string frames_attr = prefix + phase + "_ms_frames";
+    if (h5::has_attr(s, frames_attr.c_str()) && h5::read_int_attr(s, frames_attr.c_str(), st) == 0) continue;
+    r.phase_means.emplace_back(phase, h5::read_double_attr(s, name.c_str(), st));
+  }
+  return r;
+}
+
+}  // namespace cdb

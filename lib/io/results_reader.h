@@ -1,0 +1,31 @@
+#pragma once
+// Reads back what `cdbench report` shows of a results file, from the schema alone
+// (docs/results-format.md): the run's attributes, its status, how many frames it wrote and
+// its /summary when there is one.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace cdb {
+
+struct ResultsOverview {
+  std::string path;
+  int64_t schema_version = 0;
+  std::string status;  // complete | incomplete
+  std::string error;   // why an incomplete run stopped, when it said
+  std::string scene, pipeline, backend, device_name;
+  uint64_t frames_planned = 0;  // frame_last - frame_first
+  uint64_t frames_written = 0;  // rows in /frames
+  bool has_summary = false;
+  uint64_t measured_frames = 0;
+  double mean_ms = 0, median_ms = 0, p95_ms = 0, first_ms = 0, pairs_mean = 0;
+  uint64_t peak_bytes = 0;
+  // Mean time of each phase that ran, by phase name, without "total".
+  std::vector<std::pair<std::string, double>> phase_means;
+};
+
+ResultsOverview read_results_overview(const std::filesystem::path& path);
+
+}  // namespace cdb

@@ -1,0 +1,22 @@
+#include "pipeline/config_json.h"
+
+namespace cdb {
+
+nlohmann::json to_json(const PipelineConfig& c) {
+  return {
+      {"name", c.name},
+      {"device", c.device},
+      {"morton_bits", c.morton_bits == MortonBits::b30 ? 30 : 63},
+      {"rebuild_every", c.rebuild_every},
+      {"pairs_per_triangle", c.pairs_per_triangle},
+      {"front_per_triangle", c.front_per_triangle},
+      {"front_cycle", c.front_cycle},
+      {"restructure_quality", c.restructure_quality},
+      {"restructure_min_leaves", c.restructure_min_leaves},
+      {"restructure_max_fraction", c.restructure_max_fraction},
+      {"threshold_refit", c.threshold_refit},
+      {"threshold_build", c.threshold_build},
+  };
+}
+
+}  // namespace cdb

@@ -1,0 +1,50 @@
+#include "pipeline/run_summary.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cdb {
+
+Stat stat_of(std::vector<double> v) {
+  Stat s;
+  s.count = v.size();
+  if (v.empty()) return s;
+  std::sort(v.begin(), v.end());
+  double sum = 0;
+  for (double x : v) sum += x;
+  s.mean = sum / double(v.size());
+  s.median = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  s.p95 = v[std::min(v.size() - 1, size_t(std::ceil(0.95 * double(v.size()))) - 1)];
+  s.min = v.front();
+  return s;
+}
+
+RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup) {
+  RunSummary r;
+  r.frames = frames.size();
+  if (frames.empty()) return r;
+  r.warmup = std::min<size_t>(warmup, frames.size() - 1);
+  r.first_ms = frames[0].total_ms;
+  r.first_op = frames[0].op;
+  std::vector<double> total;
+  std::array<std::vector<double>, kPhaseCount> ran;
+  double pairs = 0;
+  for (size_t f = r.warmup; f < frames.size(); ++f) {
+    total.push_back(frames[f].total_ms);
+    for (size_t p = 0; p < kPhaseCount; ++p)
+      if (frames[f].phase_ms[p] > 0) ran[p].push_back(frames[f].phase_ms[p]);
+    pairs += double(frames[f].pairs);
+  }
+  for (const auto& f : frames) {
+    r.query_reruns += f.query_reruns;
+    r.decided_refit += f.decision == "refit";
+    r.decided_restructure += f.decision == "restructure";
+    r.decided_rebuild += f.decision == "rebuild";
+  }
+  r.total = stat_of(std::move(total));
+  for (size_t p = 0; p < kPhaseCount; ++p) r.phase[p] = stat_of(std::move(ran[p]));
+  r.pairs_mean = pairs / double(r.total.count);
+  return r;
+}
+
+}  // namespace cdb

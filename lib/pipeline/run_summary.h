@@ -1,0 +1,39 @@
+#pragma once
+// Summary statistics of a run's frames: what the CLI prints and the results file stores,
+// computed once so the two always agree.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/phase.h"
+#include "pipeline/pipeline.h"
+
+namespace cdb {
+
+struct Stat {
+  double mean = 0, median = 0, p95 = 0, min = 0;
+  size_t count = 0;  // values the statistics are over; 0 leaves the others at 0
+};
+
+// Mean, median, 95th percentile (nearest rank) and minimum.
+Stat stat_of(std::vector<double> values);
+
+struct RunSummary {
+  size_t frames = 0;     // frames run
+  size_t warmup = 0;     // frames left out of the statistics (never all of them)
+  double first_ms = 0;   // the first frame's total, apart: it builds
+  std::string first_op;
+  Stat total;            // t_total_ms over the measured frames
+  // Per phase over the measured frames where it ran (a front update runs one frame in a
+  // cycle, so zeros would drag its mean down).
+  std::array<Stat, kPhaseCount> phase{};
+  double pairs_mean = 0;
+  uint32_t query_reruns = 0;  // over all frames, warm-up included
+  // Formula 2 decisions of pipeline c over all frames.
+  size_t decided_refit = 0, decided_restructure = 0, decided_rebuild = 0;
+};
+
+RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup);
+
+}  // namespace cdb

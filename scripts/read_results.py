@@ -1,0 +1,117 @@
+#!/usr/bin/python3
+"""Print cdbench results files: the run's attributes, the per-frame table and /summary.
+
+Reads only the schema (docs/results-format.md): every /frames dataset is a column,
+whatever columns a file has. Needs h5py and numpy (Debian: python3-h5py, python3-numpy).
+
+  scripts/read_results.py results/run.h5 [more.h5 ...] [--summary] [--csv]
+"""
+import argparse
+import json
+import math
+import sys
+
+import h5py
+import numpy as np
+
+SUPPORTED_SCHEMA = 1
+HEADER_ATTRS = ["scene", "pipeline", "backend", "device_name", "frame_first", "frame_last",
+                "warmup", "triangles", "git_sha", "cdbench_version", "created_utc", "closed_utc"]
+
+
+def text(value):
+    if isinstance(value, bytes):
+        return value.decode("utf-8", "replace")
+    if isinstance(value, np.generic):
+        return text(value.item())
+    if isinstance(value, float):
+        return "nan" if math.isnan(value) else f"{value:.6g}"
+    return str(value)
+
+
+def frame_columns(f):
+    """The /frames datasets in the writer's order (the group tracks creation order)."""
+    return list(f["frames"].keys())
+
+
+def print_frames(f, csv):
+    names = frame_columns(f)
+    columns = [f["frames"][n][()] for n in names]
+    rows = len(columns[0]) if columns else 0
+    if csv:
+        print(",".join(names))
+        for i in range(rows):
+            print(",".join(text(c[i]) for c in columns))
+        return
+    cells = [[text(c[i]) for c in columns] for i in range(rows)]
+    widths = [max([len(n)] + [len(r[k]) for r in cells]) for k, n in enumerate(names)]
+    print("  ".join(n.rjust(w) for n, w in zip(names, widths)))
+    for r in cells:
+        print("  ".join(c.rjust(w) for c, w in zip(r, widths)))
+
+
+def print_summary(f):
+    if "summary" not in f:
+        print("summary: none (the run stopped before writing it)")
+        return
+    attrs = f["summary"].attrs
+    print(f"summary: {text(attrs['frames'])} frames, {text(attrs['warmup'])} warm-up, "
+          f"first frame {text(attrs['first_frame_ms'])} ms ({text(attrs['first_frame_op'])})")
+    phases = [k[len("t_"):-len("_ms_mean")] for k in attrs if k.startswith("t_") and k.endswith("_ms_mean")]
+    for p in phases:
+        key = f"t_{p}_ms"
+        if int(attrs.get(key + "_frames", 1)) == 0:
+            continue
+        stats = "  ".join(f"{s} {text(attrs[key + '_' + s])}" for s in ("mean", "median", "p95", "min"))
+        print(f"  {p:<12} {stats} ms  ({text(attrs.get(key + '_frames', '?'))} frames)")
+    print(f"  pairs        mean {text(attrs['pairs_mean'])} per frame")
+    print(f"  memory       peak {text(attrs['peak_bytes'])} bytes, {text(attrs['growths'])} growths, "
+          f"{text(attrs['query_reruns'])} query re-runs")
+
+
+def show(path, args):
+    with h5py.File(path, "r") as f:
+        version = int(f.attrs.get("schema_version", 0))
+        if version == 0:
+            raise ValueError(f"{path}: not a cdbench results file (no schema_version attribute)")
+        if version > SUPPORTED_SCHEMA:
+            print(f"{path}: schema_version {version} is newer than this script's {SUPPORTED_SCHEMA}; "
+                  "reading what it knows", file=sys.stderr)
+        status = text(f.attrs["status"])
+        rows = len(f["frames/frame"])
+        print(f"== {path}")
+        print(f"status: {status} ({rows} frames written)")
+        if "error" in f.attrs:
+            print(f"error: {text(f.attrs['error'])}")
+        for name in HEADER_ATTRS:
+            if name in f.attrs:
+                print(f"{name}: {text(f.attrs[name])}")
+        if args.params:
+            print("params: " + json.dumps(json.loads(text(f.attrs["params_json"])), indent=2, sort_keys=True))
+        if not args.summary:
+            print_frames(f, args.csv)
+        print_summary(f)
+        if "pairs" in f:
+            print(f"pairs saved for {len(f['pairs'])} frames")
+        return status
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("files", nargs="+", help="results files written by cdbench run --out")
+    parser.add_argument("--summary", action="store_true", help="no per-frame table")
+    parser.add_argument("--csv", action="store_true", help="per-frame table as CSV")
+    parser.add_argument("--params", action="store_true", help="print every parameter of the run")
+    args = parser.parse_args()
+    rc = 0
+    for path in args.files:
+        try:
+            show(path, args)
+        except (OSError, KeyError, ValueError) as e:
+            print(f"read_results: {path}: {e}", file=sys.stderr)
+            rc = 1
+    return rc
+
+
+if __name__ == "__main__":
+    sys.exit(main())

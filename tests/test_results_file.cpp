@@ -1,0 +1,329 @@
+// The results file: runs a small pipeline on the CPU, writes every frame, and reads the
+// file back with the plain HDF5 C API to check attributes, row counts and values.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "generators.h"
+#include "io/frame_columns.h"
+#include "io/results_file.h"
+#include "io/results_reader.h"
+#include "pipeline/run_summary.h"
+
+namespace cdb::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class TempDir {
+ public:
+  TempDir() {
+    path_ = fs::temp_directory_path() / ("cdb_results_test_" + std::to_string(getpid()));
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+// Plain C API reads, independent of the writer's helpers.
+struct File {
+  hid_t id;
+  explicit File(const fs::path& p) : id(H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT)) {}
+  ~File() {
+    if (id >= 0) H5Fclose(id);
+  }
+};
+
+std::string string_attr(hid_t loc, const char* obj, const char* name) {
+  hid_t a = H5Aopen_by_name(loc, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+  if (a < 0) return "<missing>";
+  hid_t t = H5Aget_type(a);
+  char* text = nullptr;
+  std::string value = "<unreadable>";
+  if (H5Tis_variable_str(t) > 0) {
+    hid_t mem = H5Tcopy(H5T_C_S1);
+    H5Tset_size(mem, H5T_VARIABLE);
+    H5Tset_cset(mem, H5T_CSET_UTF8);
+    if (H5Aread(a, mem, &text) >= 0 && text) value = text;
+    H5free_memory(text);
+    H5Tclose(mem);
+  }
+  H5Tclose(t);
+  H5Aclose(a);
+  return value;
+}
+
+double number_attr(hid_t loc, const char* obj, const char* name) {
+  hid_t a = H5Aopen_by_name(loc, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+  double v = -12345;
+  if (a >= 0) {
+    H5Aread(a, H5T_NATIVE_DOUBLE, &v);
+    H5Aclose(a);
+  }
+  return v;
+}
+
+hsize_t rows_of(hid_t file, const std::string& dataset) {
+  hid_t d = H5Dopen2(file, dataset.c_str(), H5P_DEFAULT);
+  if (d < 0) return hsize_t(-1);
+  hid_t s = H5Dget_space(d);
+  hsize_t dims[2] = {0, 0};
+  H5Sget_simple_extent_dims(s, dims, nullptr);
+  H5Sclose(s);
+  H5Dclose(d);
+  return dims[0];
+}
+
+std::vector<double> numbers(hid_t file, const std::string& dataset) {
+  std::vector<double> v(rows_of(file, dataset));
+  hid_t d = H5Dopen2(file, dataset.c_str(), H5P_DEFAULT);
+  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Dclose(d);
+  return v;
+}
+
+std::vector<uint64_t> integers(hid_t file, const std::string& dataset) {
+  std::vector<uint64_t> v(rows_of(file, dataset));
+  hid_t d = H5Dopen2(file, dataset.c_str(), H5P_DEFAULT);
+  H5Dread(d, H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Dclose(d);
+  return v;
+}
+
+std::vector<std::string> texts(hid_t file, const std::string& dataset) {
+  const hsize_t n = rows_of(file, dataset);
+  hid_t d = H5Dopen2(file, dataset.c_str(), H5P_DEFAULT);
+  hid_t t = H5Dget_type(d);
+  const size_t width = H5Tget_size(t);
+  std::vector<char> raw(n * width);
+  H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data());
+  H5Tclose(t);
+  H5Dclose(d);
+  std::vector<std::string> out;
+  for (hsize_t i = 0; i < n; ++i) out.emplace_back(raw.data() + i * width, strnlen(raw.data() + i * width, width));
+  return out;
+}
+
+struct RecordedRun {
+  std::vector<FrameStats> frames;
+  std::vector<MemoryStats> memory;
+  std::vector<std::vector<PrimPair>> pairs;
+  MemoryStats final_memory;
+};
+
+RunInfo info_for(const std::string& pipeline, uint32_t frames) {
+  RunInfo info;
+  info.scene = "funnel-test";
+  info.scene_description = "small funnel";
+  info.pipeline = pipeline;
+  info.backend = "cpu";
+  info.device_name = "test cpu";
+  info.params_json = R"({"pipeline": {"name": ")" + pipeline + R"("}, "warmup": 1})";
+  info.warmup = 1;
+  info.frame_first = 0;
+  info.frame_last = frames;
+  info.triangles = 123;
+  info.vertices = 45;
+  return info;
+}
+
+// Runs `frames` frames of a small funnel through `pipeline`, appending each to `out`.
+RecordedRun run_into(ResultsFile& out, const std::string& pipeline, uint32_t frames, bool with_pairs) {
+  auto scene = make_generator("funnel", {{"res", 12}, {"frames", 8}});
+  PipelineConfig cfg;
+  cfg.name = pipeline;
+  cfg.device = "cpu";
+  cfg.front_cycle = 2;
+  auto p = make_pipeline(cfg);
+  p->set_topology(scene->topology());
+  RecordedRun run;
+  std::vector<vec3f> v;
+  for (uint32_t f = 0; f < frames; ++f) {
+    scene->frame(f, v);
+    run.frames.push_back(p->run_frame(v));
+    run.memory.push_back(p->memory());
+    out.append_frame(f, run.frames.back(), run.memory.back());
+    if (with_pairs) {
+      run.pairs.push_back(p->sorted_pairs());
+      out.write_pairs(f, run.pairs.back());
+    }
+  }
+  run.final_memory = p->memory();
+  return run;
+}
+
+TEST(ResultsFile, CompleteRunMatchesFrameStats) {
+  TempDir dir;
+  const fs::path path = dir / "nested/run.h5";
+  const uint32_t n = 5;
+  RecordedRun run;
+  {
+    ResultsFile out(path, info_for("b", n));
+    run = run_into(out, "b", n, true);
+    out.finish(summarize_run(run.frames, 1), run.final_memory);
+  }
+  File f(path);
+  ASSERT_GE(f.id, 0) << path;
+  EXPECT_EQ(string_attr(f.id, "/", "status"), "complete");
+  EXPECT_EQ(number_attr(f.id, "/", "schema_version"), double(kResultsSchemaVersion));
+  EXPECT_EQ(string_attr(f.id, "/", "scene"), "funnel-test");
+  EXPECT_EQ(string_attr(f.id, "/", "pipeline"), "b");
+  EXPECT_EQ(string_attr(f.id, "/", "backend"), "cpu");
+  EXPECT_EQ(string_attr(f.id, "/", "device_name"), "test cpu");
+  EXPECT_EQ(number_attr(f.id, "/", "warmup"), 1);
+  EXPECT_EQ(number_attr(f.id, "/", "triangles"), 123);
+  EXPECT_NE(string_attr(f.id, "/", "git_sha"), "<missing>");
+  EXPECT_NE(string_attr(f.id, "/", "compiler"), "<missing>");
+  EXPECT_NE(string_attr(f.id, "/", "cdbench_version"), "<missing>");
+  EXPECT_EQ(string_attr(f.id, "/", "created_utc").size(), 20u);
+  EXPECT_EQ(string_attr(f.id, "/", "error"), "<missing>");
+  const auto params = nlohmann::json::parse(string_attr(f.id, "/", "params_json"));
+  EXPECT_EQ(params["pipeline"]["name"], "b");
+  EXPECT_GT(H5Lexists(f.id, "quality", H5P_DEFAULT), 0);
+
+  for (const FrameColumn& c : frame_columns())
+    EXPECT_EQ(rows_of(f.id, "frames/" + c.name), n) << c.name;
+
+  const auto frame = integers(f.id, "frames/frame");
+  const auto total = numbers(f.id, "frames/t_total_ms");
+  const auto pairs = integers(f.id, "frames/pairs");
+  const auto reruns = integers(f.id, "frames/query_reruns");
+  const auto front_int = integers(f.id, "frames/front_int");
+  const auto front_ext = integers(f.id, "frames/front_ext");
+  const auto q_root = numbers(f.id, "frames/q_root");
+  const auto op = texts(f.id, "frames/op");
+  const auto bytes = integers(f.id, "frames/device_bytes");
+  const auto peak = integers(f.id, "frames/device_peak_bytes");
+  for (uint32_t i = 0; i < n; ++i) {
+    const FrameStats& s = run.frames[i];
+    EXPECT_EQ(frame[i], i);
+    EXPECT_EQ(total[i], s.total_ms) << "frame " << i;
+    EXPECT_EQ(pairs[i], s.pairs) << "frame " << i;
+    EXPECT_EQ(reruns[i], s.query_reruns) << "frame " << i;
+    EXPECT_EQ(front_int[i], s.front_internal) << "frame " << i;
+    EXPECT_EQ(front_ext[i], s.front_external) << "frame " << i;
+    EXPECT_EQ(q_root[i], s.q_root) << "frame " << i;
+    EXPECT_EQ(op[i], s.op) << "frame " << i;
+    EXPECT_EQ(bytes[i], run.memory[i].current_bytes) << "frame " << i;
+    EXPECT_EQ(peak[i], run.memory[i].peak_bytes) << "frame " << i;
+    for (size_t p = 0; p < kPhaseCount; ++p)
+      EXPECT_EQ(numbers(f.id, std::string("frames/t_") + kPhaseNames[p] + "_ms")[i], s.phase_ms[p])
+          << kPhaseNames[p] << " frame " << i;
+  }
+  EXPECT_EQ(op[0], "build+generate");
+  EXPECT_GT(front_int[0], 0u);
+
+  const RunSummary expected = summarize_run(run.frames, 1);
+  EXPECT_EQ(number_attr(f.id, "summary", "frames"), n);
+  EXPECT_EQ(number_attr(f.id, "summary", "warmup"), 1);
+  EXPECT_EQ(number_attr(f.id, "summary", "t_total_ms_mean"), expected.total.mean);
+  EXPECT_EQ(number_attr(f.id, "summary", "t_total_ms_p95"), expected.total.p95);
+  EXPECT_EQ(number_attr(f.id, "summary", "first_frame_ms"), run.frames[0].total_ms);
+  EXPECT_EQ(number_attr(f.id, "summary", "t_refit_ms_frames"), double(expected.phase[size_t(Phase::refit)].count));
+  EXPECT_TRUE(std::isnan(number_attr(f.id, "summary", "t_build_ms_mean")))
+      << "build runs only on frame 0, a warm-up frame";
+  EXPECT_EQ(number_attr(f.id, "summary", "peak_bytes"), double(run.final_memory.peak_bytes));
+
+  for (uint32_t i = 0; i < n; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "pairs/frame_%04u", i);
+    ASSERT_EQ(rows_of(f.id, name), run.pairs[i].size()) << name;
+    std::vector<PrimPair> stored(run.pairs[i].size());
+    hid_t d = H5Dopen2(f.id, name, H5P_DEFAULT);
+    H5Dread(d, H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, stored.data());
+    H5Dclose(d);
+    for (size_t k = 0; k < stored.size(); ++k)
+      ASSERT_TRUE(stored[k].a == run.pairs[i][k].a && stored[k].b == run.pairs[i][k].b) << name << " row " << k;
+  }
+
+  const ResultsOverview o = read_results_overview(path);
+  EXPECT_EQ(o.status, "complete");
+  EXPECT_EQ(o.frames_written, n);
+  EXPECT_EQ(o.frames_planned, n);
+  EXPECT_EQ(o.mean_ms, expected.total.mean);
+  EXPECT_FALSE(o.phase_means.empty());
+  for (const auto& [phase, mean] : o.phase_means) EXPECT_FALSE(std::isnan(mean)) << phase;
+}
+
+TEST(ResultsFile, AbandonedRunKeepsItsFramesAndSaysWhy) {
+  TempDir dir;
+  const fs::path path = dir / "abandoned.h5";
+  {
+    ResultsFile out(path, info_for("bvh", 10));
+    const RecordedRun run = run_into(out, "bvh", 3, false);
+    out.abandon(summarize_run(run.frames, 1), run.final_memory, "frame 3: something broke");
+  }
+  File f(path);
+  ASSERT_GE(f.id, 0);
+  EXPECT_EQ(string_attr(f.id, "/", "status"), "incomplete");
+  EXPECT_EQ(string_attr(f.id, "/", "error"), "frame 3: something broke");
+  EXPECT_EQ(rows_of(f.id, "frames/t_total_ms"), 3u);
+  EXPECT_EQ(number_attr(f.id, "summary", "frames"), 3);
+  EXPECT_EQ(H5Lexists(f.id, "pairs", H5P_DEFAULT), 0);
+  const ResultsOverview o = read_results_overview(path);
+  EXPECT_EQ(o.status, "incomplete");
+  EXPECT_EQ(o.frames_written, 3u);
+  EXPECT_EQ(o.frames_planned, 10u);
+}
+
+TEST(ResultsFile, UnfinishedFileStaysIncomplete) {
+  TempDir dir;
+  const fs::path path = dir / "unfinished.h5";
+  {
+    ResultsFile out(path, info_for("sweep", 4));
+    run_into(out, "sweep", 2, false);
+  }
+  File f(path);
+  ASSERT_GE(f.id, 0);
+  EXPECT_EQ(string_attr(f.id, "/", "status"), "incomplete");
+  EXPECT_EQ(rows_of(f.id, "frames/op"), 2u);
+  EXPECT_EQ(H5Lexists(f.id, "summary", H5P_DEFAULT), 0);
+  const ResultsOverview o = read_results_overview(path);
+  EXPECT_FALSE(o.has_summary);
+  EXPECT_EQ(o.frames_written, 2u);
+}
+
+TEST(ResultsFile, ErrorsNameTheFile) {
+  TempDir dir;
+  const fs::path blocker = dir / "not-a-dir";
+  { std::FILE* f = std::fopen(blocker.c_str(), "w"); std::fclose(f); }
+  try {
+    ResultsFile out(blocker / "run.h5", info_for("bvh", 1));
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("not-a-dir"), std::string::npos) << e.what();
+  }
+  try {
+    read_results_overview(blocker);
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("not-a-dir"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ResultsFile, OverlongTextIsAnErrorNamingColumnAndFrame) {
+  TempDir dir;
+  ResultsFile out(dir / "long.h5", info_for("bvh", 1));
+  FrameStats s;
+  s.op = std::string(kTextColumnBytes + 1, 'x');
+  try {
+    out.append_frame(7, s, MemoryStats{});
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("/frames/op frame 7"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace cdb::test
