@@ -137,7 +137,7 @@ bool resolve(const RevolvedCollider& s, double thickness, dvec3& p, int8_t& side
       target = {k.point.x + side * thickness * k.normal.x, k.point.y + side * thickness * k.normal.y};
     }
   }
-  // A target with negative radius lies across the axis: mirror it through the axis.
+  // A target radius below zero (pushed across the axis) lands on the far side by its sign.
   p = to_world(s, m, target);
   const dvec3 surface = to_world(s, m, k.point);
   c.normal = normalized(p - surface);

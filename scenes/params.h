@@ -17,7 +17,6 @@ class Params {
   Params(std::string generator, const nlohmann::json& j) : generator_(std::move(generator)), j_(j) {
     if (!j_.is_null() && !j_.is_object()) fail(where("") + "parameters must be a JSON object");
   }
-  const std::string& generator() const { return generator_; }
   double number(const char* key, double fallback) {
     used_.insert(key);
     if (j_.is_null() || !j_.contains(key)) return fallback;
@@ -47,7 +46,6 @@ class Params {
     for (auto it = j_.begin(); it != j_.end(); ++it)
       if (!used_.count(it.key())) fail(where(it.key()) + "unknown parameter");
   }
-  [[noreturn]] void reject(const char* key, const std::string& why) const { fail(where(key) + why); }
 
  private:
   std::string where(const std::string& key) const {
