@@ -1,67 +1,18 @@
 #include "generators.h"
 
 #include <cmath>
-#include <set>
 
+#include "cloth_scenes.h"
 #include "core/error.h"
+#include "n_body.h"
+#include "params.h"
+#include "rng.h"
 
 namespace cdb {
 namespace {
 
-// splitmix64: a fixed, portable generator, so scenes are identical on every platform.
-struct Rng {
-  uint64_t s;
-  uint64_t next() {
-    uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
-  double symmetric() { return 2.0 * uniform() - 1.0; }
-  double normal() {
-    const double u = std::max(uniform(), 1e-300), v = uniform();
-    return std::sqrt(-2.0 * std::log(u)) * std::cos(6.283185307179586 * v);
-  }
-};
-
-// Reads generator parameters, remembering which were used so leftovers can be rejected.
-class Params {
- public:
-  Params(std::string generator, const nlohmann::json& j) : generator_(std::move(generator)), j_(j) {
-    if (!j_.is_null() && !j_.is_object()) fail(where("") + "parameters must be a JSON object");
-  }
-  double number(const char* key, double fallback) {
-    used_.insert(key);
-    if (j_.is_null() || !j_.contains(key)) return fallback;
-    if (!j_[key].is_number()) fail(where(key) + "must be a number");
-    return j_[key].get<double>();
-  }
-  uint64_t count(const char* key, uint64_t fallback) {
-    const double v = number(key, double(fallback));
-    if (v < 0 || v != std::floor(v)) fail(where(key) + "must be a non-negative integer");
-    return uint64_t(v);
-  }
-  std::string text(const char* key, const std::string& fallback) {
-    used_.insert(key);
-    if (j_.is_null() || !j_.contains(key)) return fallback;
-    if (!j_[key].is_string()) fail(where(key) + "must be a string");
-    return j_[key].get<std::string>();
-  }
-  void finish() const {
-    if (j_.is_null()) return;
-    for (auto it = j_.begin(); it != j_.end(); ++it)
-      if (!used_.count(it.key())) fail(where(it.key()) + "unknown parameter");
-  }
-
- private:
-  std::string where(const std::string& key) const {
-    return "generator '" + generator_ + "'" + (key.empty() ? "" : ", parameter '" + key + "'") + ": ";
-  }
-  std::string generator_;
-  const nlohmann::json& j_;
-  std::set<std::string> used_;
-};
+using scene::Params;
+using scene::Rng;
 
 class GeneratedSource : public FrameSource {
  public:
@@ -189,71 +140,10 @@ class ClothWaveSource final : public GeneratedSource {
   uint32_t res_ = 64;
 };
 
-// A cloth pushed down through a funnel: the cloth descends and is squeezed radially to the
-// funnel's inner radius at its height; the squeezed cloth ruffles up the funnel wall in
-// folds that touch each other. The funnel is a static cone mesh. Kinematic, not simulated.
-class FunnelSource final : public GeneratedSource {
- public:
-  explicit FunnelSource(Params& p) {
-    res_ = uint32_t(p.count("res", 48));
-    segments_ = uint32_t(p.count("funnel_segments", 48));
-    frames_ = uint32_t(p.count("frames", 20));
-    p.finish();
-    if (res_ < 2) fail("generator 'funnel', parameter 'res': must be at least 2");
-    if (segments_ < 3) fail("generator 'funnel', parameter 'funnel_segments': must be at least 3");
-    if (frames_ == 0) fail("generator 'funnel', parameter 'frames': must be at least 1");
-    add_grid_faces(topology_, 0, res_, res_);
-    const uint32_t rings = 8;
-    funnel_base_ = res_ * res_;
-    // Cone wall: segments+1 columns (seam duplicated) by rings rows.
-    add_grid_faces(topology_, funnel_base_, segments_ + 1, rings);
-    topology_.num_vertices = funnel_base_ + (segments_ + 1) * rings;
-    rings_ = rings;
-    description_ = "funnel: " + std::to_string(res_) + "x" + std::to_string(res_) +
-                   " cloth through a " + std::to_string(segments_) + "-segment funnel";
-  }
-
-  static double funnel_radius(double y) {  // cone from r=1.1 at y=0 to r=0.25 at y=-1.2
-    const double u = std::min(1.0, std::max(0.0, -y / 1.2));
-    return 1.1 + (0.25 - 1.1) * u;
-  }
-
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
-    out.resize(topology_.num_vertices);
-    const double t = frames_ > 1 ? double(k) / (frames_ - 1) : 0.0;
-    const double drop = 0.3 - 1.2 * t;  // cloth centre height
-    for (uint32_t j = 0; j < res_; ++j)
-      for (uint32_t i = 0; i < res_; ++i) {
-        const double u = 2.0 * i / (res_ - 1) - 1.0, v = 2.0 * j / (res_ - 1) - 1.0;
-        const double rho = std::sqrt(u * u + v * v), phi = std::atan2(v, u);
-        double y = drop - 0.15 * (1.0 - rho * rho / 2.0);
-        const double limit = 0.97 * funnel_radius(y) * (1.0 + 0.06 * std::sin(8.0 * phi));
-        double r = rho;
-        if (rho > limit) {
-          // Excess cloth goes up the wall; its fold height grows with the excess.
-          r = limit;
-          y += 0.9 * (rho - limit);
-        }
-        out[size_t(j) * res_ + i] = {float(r * std::cos(phi)), float(y), float(r * std::sin(phi))};
-      }
-    for (uint32_t ring = 0; ring < rings_; ++ring)
-      for (uint32_t s = 0; s <= segments_; ++s) {
-        const double y = -1.2 * ring / (rings_ - 1);
-        const double a = 6.283185307179586 * s / segments_;
-        const double r = funnel_radius(y);
-        out[funnel_base_ + size_t(ring) * (segments_ + 1) + s] = {float(r * std::cos(a)), float(y),
-                                                                  float(r * std::sin(a))};
-      }
-  }
-
- private:
-  uint32_t res_ = 48, segments_ = 48, rings_ = 8, funnel_base_ = 0;
-};
-
 }  // namespace
 
 const std::vector<std::string>& generator_names() {
-  static const std::vector<std::string> names = {"soup", "cloth-wave", "funnel"};
+  static const std::vector<std::string> names = {"soup", "cloth-wave", "funnel", "cloth-ball", "flag", "sphere", "n-body"};
   return names;
 }
 
@@ -261,7 +151,11 @@ std::unique_ptr<FrameSource> make_generator(const std::string& name, const nlohm
   Params p(name, params);
   if (name == "soup") return std::make_unique<SoupSource>(p);
   if (name == "cloth-wave") return std::make_unique<ClothWaveSource>(p);
-  if (name == "funnel") return std::make_unique<FunnelSource>(p);
+  if (name == "funnel") return scene::make_funnel(p);
+  if (name == "cloth-ball") return scene::make_cloth_ball(p);
+  if (name == "flag") return scene::make_flag(p);
+  if (name == "sphere") return scene::make_sphere_hit(p);
+  if (name == "n-body") return scene::make_n_body(p);
   std::string list;
   for (const auto& n : generator_names()) list += (list.empty() ? "" : ", ") + n;
   fail("unknown generator '" + name + "' (known: " + list + ")");

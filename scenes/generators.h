@@ -10,7 +10,8 @@
 
 namespace cdb {
 
-// Known generators: soup, cloth-wave, funnel. Unknown parameters are an error.
+// Known generators: soup, cloth-wave (kinematic); funnel, cloth-ball, flag, sphere (simulated
+// cloth, see cloth_scenes.h); n-body (rigid bodies). Unknown parameters are an error.
 std::unique_ptr<FrameSource> make_generator(const std::string& name, const nlohmann::json& params);
 const std::vector<std::string>& generator_names();
 

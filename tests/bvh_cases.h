@@ -157,7 +157,8 @@ inline PipelineConfig config_for(const std::string& device, double pairs_per_tri
 inline std::vector<std::unique_ptr<FrameSource>> front_scenes(uint32_t cloth_res, uint32_t frames) {
   std::vector<std::unique_ptr<FrameSource>> s;
   s.push_back(make_generator("cloth-wave", {{"res", cloth_res}, {"frames", frames}}));
-  s.push_back(make_generator("funnel", {{"res", cloth_res}, {"frames", frames}}));
+  s.push_back(make_generator(
+      "funnel", {{"res", cloth_res}, {"frames", frames}, {"segments", 16}, {"ball_level", 1}}));
   s.push_back(make_generator("soup", {{"triangles", 3000}, {"distribution", "clustered"},
                                       {"jitter", 3.0}, {"frames", frames}, {"seed", 5}}));
   return s;

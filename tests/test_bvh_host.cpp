@@ -59,7 +59,7 @@ TEST(HostGridBaseline, PipelineReRunsAFrameThatOutgrowsItsPlan) {
 TEST(HostPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 6}});
   check_pipelines_on(config_for("cpu", 0.01), *wave);
-  auto funnel = make_generator("funnel", {{"res", 20}, {"frames", 6}});
+  auto funnel = make_generator("funnel", {{"res", 20}, {"frames", 6}, {"segments", 16}, {"ball_level", 1}});
   check_pipelines_on(config_for("cpu", 8.0), *funnel);
 }
 

@@ -1,0 +1,81 @@
+#include "cloth_scene.h"
+
+#include "rng.h"
+
+namespace cdb::scene {
+
+ClothSceneSource::ClothSceneSource(ClothSceneSpec spec) : spec_(std::move(spec)) {
+  topology_.faces = spec_.cloth_faces;
+  uint32_t base = uint32_t(spec_.cloth.size());
+  for (const auto& b : spec_.bodies) {
+    append_faces(b.mesh, base, topology_.faces);
+    base += uint32_t(b.mesh.vertices.size());
+  }
+  topology_.num_vertices = base;
+}
+
+void ClothSceneSource::frame(uint32_t k, std::vector<vec3f>& out) const {
+  if (k >= spec_.frames) fail("frame " + std::to_string(k) + " out of range (" + std::to_string(spec_.frames) + " frames)");
+  std::lock_guard<std::mutex> lock(mutex_);
+  const double dt = spec_.frame_time;
+  if (!start_) {
+    PbdCloth cloth(spec_.cloth, spec_.cloth_faces, spec_.settings);
+    for (uint32_t v : spec_.pins) cloth.pin(v);
+    for (const auto& [v, at] : spec_.moved_pins) cloth.pin(v, at);
+    for (uint32_t f = 0; f < spec_.warmup; ++f) cloth.step(f * dt, dt, spec_.colliders, spec_.wind);
+    start_.emplace(std::move(cloth));
+  }
+  if (!current_ || current_frame_ > k) {
+    current_ = *start_;
+    current_frame_ = 0;
+  }
+  for (; current_frame_ < k; ++current_frame_)
+    current_->step((spec_.warmup + current_frame_) * dt, dt, spec_.colliders, spec_.wind);
+
+  out.clear();
+  out.reserve(topology_.num_vertices);
+  for (const dvec3& p : current_->positions()) out.push_back({float(p.x), float(p.y), float(p.z)});
+  const double t = (spec_.warmup + k) * dt;
+  for (const auto& b : spec_.bodies) {
+    const Pose pose = b.pose(t);
+    for (const dvec3& v : b.mesh.vertices) {
+      const dvec3 p = pose.apply(v);
+      out.push_back({float(p.x), float(p.y), float(p.z)});
+    }
+  }
+}
+
+void cloth_grid(uint32_t nu, uint32_t nv, dvec3 origin, dvec3 du, dvec3 dv, std::vector<dvec3>& vertices,
+                std::vector<Tri>& faces) {
+  const uint32_t base = uint32_t(vertices.size());
+  for (uint32_t j = 0; j < nv; ++j)
+    for (uint32_t i = 0; i < nu; ++i) vertices.push_back(origin + double(i) * du + double(j) * dv);
+  for (uint32_t j = 0; j + 1 < nv; ++j)
+    for (uint32_t i = 0; i + 1 < nu; ++i) {
+      const uint32_t a = base + j * nu + i, b = a + 1, c = a + nu, d = c + 1;
+      if ((i + j) % 2 == 0) {
+        faces.push_back({a, b, d});
+        faces.push_back({a, d, c});
+      } else {
+        faces.push_back({a, b, c});
+        faces.push_back({b, d, c});
+      }
+    }
+}
+
+ClothCommon read_cloth_common(Params& p, uint32_t res, uint32_t frames, uint32_t warmup, uint32_t substeps) {
+  ClothCommon c;
+  c.res = p.count_in("res", res, 2, 20000);
+  c.frames = p.count_in("frames", frames, 1, 100000);
+  c.warmup = p.count_in("warmup", warmup, 0, 100000);
+  c.substeps = p.count_in("substeps", substeps, 1, 1000);
+  c.seed = p.count("seed", 1);
+  return c;
+}
+
+void perturb(std::vector<dvec3>& vertices, dvec3 normal, double amount, uint64_t seed) {
+  Rng rng{seed};
+  for (dvec3& v : vertices) v += (amount * rng.symmetric()) * normal;
+}
+
+}  // namespace cdb::scene
