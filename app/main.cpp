@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -14,6 +16,8 @@
 #include "core/error.h"
 #include "cli_params.h"
 #include "frame_range.h"
+#include "geometry/cached_frames.h"
+#include "io/obj_writer.h"
 #include "io/results_file.h"
 #include "io/scene.h"
 #include "pipeline/config_json.h"
@@ -173,8 +177,25 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   return run;
 }
 
+// Pipelines named by --pipeline: one, or several separated by commas, run one after the
+// other on the same frames (kept in memory) so they can be compared within one run.
+std::vector<std::string> split_pipelines(const std::string& list) {
+  std::vector<std::string> names;
+  size_t start = 0;
+  for (;;) {
+    const size_t comma = list.find(',', start);
+    names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (names.back().empty()) fail("--pipeline " + list + ": empty pipeline name");
+    if (comma == std::string::npos) return names;
+    start = comma + 1;
+  }
+}
+
 int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options) {
   const std::string device = resolve_device(o.device);
+  const std::vector<std::string> names = split_pipelines(r.pipeline);
+  if (names.size() > 1 && !r.out.empty() && r.out.find("{pipeline}") == std::string::npos)
+    fail("--out " + r.out + ": several pipelines need {pipeline} in the file name");
   print_environment(device);
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
@@ -182,19 +203,28 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
               scene.name.c_str(), scene.description.c_str(), topo.faces.size(),
               topo.num_vertices, range.first, range.last);
-  const PipelineConfig config = make_config(o, r.pipeline, device);
-  auto pipeline = make_pipeline(config);
-  pipeline->set_topology(topo);
-  std::printf("pipeline: %s on %s\n", r.pipeline.c_str(), device.c_str());
-
-  std::optional<ResultsFile> out;
-  if (!r.out.empty()) out.emplace(r.out, run_info(o, r, scene, config, range, cli_options));
-  RunLoopOptions loop;
-  loop.warmup = r.warmup;
-  loop.frame_lines = !r.quiet;
-  loop.progress = Progress::mode_for(r.quiet);
-  loop.save_pairs = r.save_pairs;
-  return run_frames(*pipeline, *scene.source, range, out ? &*out : nullptr, loop);
+  std::unique_ptr<FrameSource> cached;
+  if (names.size() > 1) cached = std::make_unique<CachedFrames>(*scene.source);
+  const FrameSource& frames = cached ? *cached : *scene.source;
+  for (const auto& name : names) {
+    const PipelineConfig config = make_config(o, name, device);
+    auto pipeline = make_pipeline(config);
+    pipeline->set_topology(topo);
+    std::printf("pipeline: %s on %s\n", name.c_str(), device.c_str());
+    RunOptions one = r;
+    one.pipeline = name;
+    const size_t at = one.out.find("{pipeline}");
+    if (at != std::string::npos) one.out.replace(at, 10, name);
+    std::optional<ResultsFile> out;
+    if (!one.out.empty()) out.emplace(one.out, run_info(o, one, scene, config, range, cli_options));
+    RunLoopOptions loop;
+    loop.warmup = r.warmup;
+    loop.frame_lines = !r.quiet;
+    loop.progress = Progress::mode_for(r.quiet);
+    loop.save_pairs = r.save_pairs;
+    if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, loop)) return rc;
+  }
+  return 0;
 }
 
 int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
@@ -261,6 +291,61 @@ int scenes_list(const CommonOptions& o) {
   return 0;
 }
 
+// key=value pairs from --set: values parsed as JSON where they are (numbers, true, ...),
+// else taken as strings.
+nlohmann::json parse_overrides(const std::vector<std::string>& sets) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& kv : sets) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) fail("--set " + kv + ": expected key=value");
+    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+    j[key] = nlohmann::json::accept(value) ? nlohmann::json::parse(value) : nlohmann::json(value);
+  }
+  return j;
+}
+
+int scenes_generate(const CommonOptions& o, const std::string& scene,
+                    const std::vector<std::string>& sets, const std::string& out_dir) {
+  const auto dir = o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir);
+  const Scene s = open_scene(scene, dir, parse_overrides(sets));
+  write_obj_sequence(*s.source, out_dir);
+  std::printf("wrote %u frames of %s (%zu triangles) to %s\n", s.source->num_frames(), s.name.c_str(),
+              s.source->topology().faces.size(), out_dir.c_str());
+  return 0;
+}
+
+int scenes_info(const CommonOptions& o, const std::string& scene, const std::vector<std::string>& sets) {
+  const auto dir = o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir);
+  const Scene s = open_scene(scene, dir, parse_overrides(sets));
+  const Topology& topo = s.source->topology();
+  std::printf("scene       %s\n", s.name.c_str());
+  std::printf("            %s\n", s.description.c_str());
+  std::printf("triangles   %zu\nvertices    %u\nframes      %u\n", topo.faces.size(), topo.num_vertices,
+              s.source->num_frames());
+  std::vector<vec3f> v, prev;
+  for (uint32_t f = 0; f < s.source->num_frames(); ++f) {
+    s.source->frame(f, v);
+    vec3f lo = v.empty() ? vec3f{} : v[0], hi = lo;
+    double max_move = 0, sum_move = 0;
+    for (size_t k = 0; k < v.size(); ++k) {
+      lo = {std::min(lo.x, v[k].x), std::min(lo.y, v[k].y), std::min(lo.z, v[k].z)};
+      hi = {std::max(hi.x, v[k].x), std::max(hi.y, v[k].y), std::max(hi.z, v[k].z)};
+      if (!prev.empty()) {
+        const double dx = v[k].x - prev[k].x, dy = v[k].y - prev[k].y, dz = v[k].z - prev[k].z;
+        const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+        max_move = std::max(max_move, d);
+        sum_move += d;
+      }
+    }
+    std::printf("frame %4u  box [%.4g %.4g %.4g]..[%.4g %.4g %.4g]", f, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    if (!prev.empty() && !v.empty())
+      std::printf("  vertex motion mean %.4g max %.4g", sum_move / double(v.size()), max_move);
+    std::printf("\n");
+    prev = v;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -272,11 +357,13 @@ int main(int argc, char** argv) {
   add_common(run, o);
   RunOptions r;
   run->add_option("--pipeline", r.pipeline,
-                  pipeline_list())->capture_default_str();
+                  "one of " + pipeline_list() + "; or several, comma-separated, run one after the other on the same frames")
+      ->capture_default_str();
   run->add_option("--warmup", r.warmup, "frames left out of the summary statistics")
       ->capture_default_str();
   run->add_flag("--quiet", r.quiet, "no per-frame lines; no progress lines when stderr is not a terminal");
-  auto* out_option = run->add_option("--out", r.out, "write the results to this HDF5 file (docs/results-format.md)");
+  auto* out_option = run->add_option(
+      "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced");
   run->add_flag("--save-pairs", r.save_pairs, "also store each frame's sorted pairs in the results file")
       ->needs(out_option);
 
@@ -289,9 +376,18 @@ int main(int argc, char** argv) {
                      "largest triangle count for the O(N^2) oracle; above it, CPU sort-and-sweep")
       ->capture_default_str();
 
-  auto* scenes = app.add_subcommand("scenes", "list the named scenes");
+  auto* scenes = app.add_subcommand("scenes", "list, describe and generate scenes");
   scenes->add_option("--scenes-dir", o.scenes_dir, "where named scenes live");
   auto* list = scenes->add_subcommand("list", "list scenes with sizes");
+  std::string scene_name, generate_out;
+  std::vector<std::string> scene_sets;
+  auto* info = scenes->add_subcommand("info", "a scene's size, bounding box and motion per frame");
+  info->add_option("scene", scene_name, "scene name, .json descriptor or mesh directory")->required();
+  info->add_option("--set", scene_sets, "override a generator parameter: key=value (repeatable)");
+  auto* generate = scenes->add_subcommand("generate", "write a scene's frames as OBJ files");
+  generate->add_option("scene", scene_name, "scene name or .json descriptor")->required();
+  generate->add_option("--set", scene_sets, "override a generator parameter: key=value, e.g. res=128 frames=10");
+  generate->add_option("--out", generate_out, "output directory (frame_0000.obj, ...)")->required();
   scenes->require_subcommand(1);
 
   auto* report = app.add_subcommand("report", "summarize results files as a Markdown (or CSV) table");
@@ -305,6 +401,8 @@ int main(int argc, char** argv) {
     if (*run) return run_command(o, r, options_json(*run));
     if (*verify) return verify_command(o, pipelines, brute_limit);
     if (*list) return scenes_list(o);
+    if (*info) return scenes_info(o, scene_name, scene_sets);
+    if (*generate) return scenes_generate(o, scene_name, scene_sets, generate_out);
     if (*report) return print_results_table(report_files, csv);
   } catch (const Error& e) {
     std::fflush(stdout);

@@ -16,9 +16,10 @@ fi
 echo "=== verify"
 for s in ${VERIFY_SCENES:-funnel cloth-wave random-100k}; do "$bin/cdbench" verify --device cuda --scene $s --brute-limit 200000 2>/dev/null | tail -10; done | tee "$out/verify.log"
 echo "=== bench"
+# All pipelines of a scene in one process, on the same frames (run --pipeline a,b,...).
+pipelines=${BENCH_PIPELINES:-bvh,unordered,static,periodic,restructure,reference,a,b,c,radix-order,sweep,hash,grid}
 for s in ${BENCH_SCENES:-cloth-100k}; do
-  for p in ${BENCH_PIPELINES:-bvh unordered static periodic restructure reference a b c radix-order}; do
-    echo "--- $s $p"
-    "$bin/cdbench" run --device cuda --scene $s --pipeline $p --quiet 2>/dev/null | grep -E "commit|first frame|per frame|  [a-z_]+ +mean|pairs |front |formula|memory"
-  done
+  echo "--- $s"
+  "$bin/cdbench" run --device cuda --scene $s --pipeline $pipelines --quiet 2>/dev/null |
+    grep -E "commit|^scene|triangles|^pipeline:|first frame|per frame|  [a-z_0-9]+ +mean|pairs |front |formula|memory"
 done 2>&1 | tee "$out/bench.log"

@@ -12,7 +12,7 @@
 namespace cdb {
 namespace {
 
-Scene open_descriptor(const std::filesystem::path& file) {
+Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& overrides) {
   std::ifstream in(file);
   if (!in) fail(file.string() + ": cannot open scene descriptor");
   nlohmann::json j;
@@ -36,14 +36,17 @@ Scene open_descriptor(const std::filesystem::path& file) {
     fail(file.string() + ": needs exactly one of /generator (procedural) or /frames (mesh directory)");
   if (j.contains("generator")) {
     if (!j["generator"].is_string()) fail(file.string() + ": /generator: must be a string");
+    nlohmann::json params = j.contains("params") ? j["params"] : nlohmann::json::object();
+    if (!params.is_object()) fail(file.string() + ": /params: must be an object");
+    for (auto it = overrides.begin(); it != overrides.end(); ++it) params[it.key()] = it.value();
     try {
-      s.source = make_generator(j["generator"].get<std::string>(),
-                                j.contains("params") ? j["params"] : nlohmann::json());
+      s.source = make_generator(j["generator"].get<std::string>(), params);
     } catch (const Error& e) {
       fail(file.string() + ": " + e.what());
     }
   } else {
     if (j.contains("params")) fail(file.string() + ": /params: only valid with /generator");
+    if (!overrides.empty()) fail(file.string() + ": parameters can only be set on a procedural scene");
     if (!j["frames"].is_string()) fail(file.string() + ": /frames: must be a string (a directory)");
     std::filesystem::path dir = j["frames"].get<std::string>();
     if (dir.is_relative()) dir = file.parent_path() / dir;
@@ -69,18 +72,20 @@ std::vector<std::string> list_scenes(const std::filesystem::path& scenes_dir) {
   return names;
 }
 
-Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_dir) {
+Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_dir,
+                 const nlohmann::json& overrides) {
   const std::filesystem::path p(spec);
   if (std::filesystem::is_directory(p)) {
+    if (!overrides.empty()) fail(spec + ": parameters can only be set on a procedural scene");
     Scene s;
     s.name = p.filename().string();
     s.source = open_mesh_sequence(p);
     s.description = s.source->describe();
     return s;
   }
-  if (p.extension() == ".json") return open_descriptor(p);
+  if (p.extension() == ".json") return open_descriptor(p, overrides);
   const auto named = scenes_dir / (spec + ".json");
-  if (std::filesystem::is_regular_file(named)) return open_descriptor(named);
+  if (std::filesystem::is_regular_file(named)) return open_descriptor(named, overrides);
   std::string known;
   for (const auto& n : list_scenes(scenes_dir)) known += (known.empty() ? "" : ", ") + n;
   fail("unknown scene '" + spec + "': not a directory of mesh frames, not a .json descriptor, and not in " +

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "geometry/frame_source.h"
 
 namespace cdb {
@@ -16,7 +18,10 @@ struct Scene {
   std::unique_ptr<FrameSource> source;
 };
 
-Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_dir);
+// `overrides` (a JSON object) replaces or adds generator parameters of a procedural scene;
+// it is an error for a mesh sequence.
+Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_dir,
+                 const nlohmann::json& overrides = nlohmann::json::object());
 
 // Default scenes directory: $CDBENCH_SCENES, else the source tree's scenes/.
 std::filesystem::path default_scenes_dir();

@@ -29,6 +29,16 @@ check "unknown scene" 2 "unknown scene 'nowhere'" -- "$cdbench" run --device cpu
 check "frame range past the end" 2 "only 20 frames" -- "$cdbench" run --device cpu --frames 0:99
 check "bad frame range" 2 "expected A:B" -- "$cdbench" run --device cpu --frames x:y
 
+check "pipeline c runs and decides" 0 "formula 2 +[0-9]+ refit, [0-9]+ restructure" -- "$cdbench" run --device cpu --quiet --pipeline c --front-cycle 1 --restructure-quality 0 --restructure-min-leaves 8 --threshold-refit 0 --threshold-build 1
+check "several pipelines in one run" 0 "pipeline: c on cpu" -- "$cdbench" run --device cpu --quiet --frames 0:3 --pipeline bvh,static,c
+check "several pipelines need a pattern" 2 "\\{pipeline\\}" -- "$cdbench" run --device cpu --quiet --pipeline bvh,c --out "$tmp/x.h5"
+check "bad threshold order" 2 "threshold" -- "$cdbench" run --device cpu --quiet --pipeline c --threshold-refit 0.5 --threshold-build 0.1
+check "scenes info" 0 "vertex motion mean" -- "$cdbench" scenes info funnel --set frames=3
+check "scenes generate" 0 "wrote 2 frames" -- "$cdbench" scenes generate funnel --set frames=2 --out "$tmp/gen"
+check "generated scene runs" 0 "frames 0:2" -- "$cdbench" run --device cpu --scene "$tmp/gen"
+check "unknown generator parameter" 2 "nope" -- "$cdbench" scenes info funnel --set nope=1
+check "set on a mesh sequence" 2 "procedural" -- "$cdbench" scenes info "$tmp/gen" --set res=4
+
 mkdir -p "$tmp/seq"
 for f in 0 1; do
   printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 %d\nf 1 2 3\nf 1 2 4\n' "$f" >"$tmp/seq/frame_000$f.obj"
