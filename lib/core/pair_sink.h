@@ -14,7 +14,7 @@ struct PairSink {
   unsigned long long capacity;
 
   CDB_HD_INLINE void emit(uint32_t i, uint32_t j) const {
-    const unsigned long long slot = atomic_add_relaxed(count, 1ull);
+    const unsigned long long slot = claim_one(count);
     if (slot < capacity) out[slot] = make_pair_ordered(i, j);
   }
 };

@@ -18,19 +18,6 @@ enum FrontKind : int { kInternalFront = 0, kExternalFront = 1 };
 
 CDB_HD_INLINE int front_kind(uint32_t ref) { return is_leaf(ref) ? kExternalFront : kInternalFront; }
 
-// Adds one to *p. Count logs of ordered fronts get one increment per front node; a sorted
-// front keeps the nodes of one BVH node together, so lanes of a warp often add to the same
-// entry: on the GPU they add once per distinct address.
-CDB_HD_INLINE void add_one(uint32_t* p) {
-#if defined(__CUDA_ARCH__)
-  const unsigned active = __activemask();
-  const unsigned same = __match_any_sync(active, reinterpret_cast<unsigned long long>(p));
-  if ((threadIdx.x & 31u) == unsigned(__ffs(same) - 1)) atomicAdd(p, unsigned(__popc(same)));
-#else
-  atomic_add_relaxed(p, 1u);
-#endif
-}
-
 // Where an operation appends the fronts it produces: per kind a counter (every push
 // counted, pushes past capacity not stored: the caller grows and re-runs), and, for ordered
 // pipelines, the count log of the histogram sort (front nodes per BVH node j).
@@ -45,34 +32,15 @@ struct FrontSink {
   // mark: 1 = produced by sprouting, 0 = kept by pruning (the paper's opt mark).
   CDB_HD_INLINE void push(uint32_t i, uint32_t ref, uint8_t m) const {
     const int k = front_kind(ref);
-    const unsigned long long slot = claim_slot(k);
+    const unsigned long long slot = claim_one(&count[k]);
     if (slot < capacity[k]) {
       prim[k][slot] = i;
       node[k][slot] = ref;
       mark[k][slot] = m;
     }
-    if (count_log[k]) count_node(k, ref_index(ref));
+    if (count_log[k]) claim_one(&count_log[k][ref_index(ref)]);
   }
 
- private:
-  // Every front node pushed is one increment of the kind's counter: millions a frame on one
-  // address. On the GPU the lanes of a warp that push together (the coalesced group, the
-  // same-kind subset) take their slots with one atomic; on the host each push takes one.
-  CDB_HD_INLINE unsigned long long claim_slot(int k) const {
-#if defined(__CUDA_ARCH__)
-    const unsigned active = __activemask();
-    const unsigned same = __match_any_sync(active, k);
-    const int leader = __ffs(same) - 1;
-    const unsigned lane = threadIdx.x & 31u;
-    unsigned long long base = 0;
-    if (lane == unsigned(leader)) base = atomicAdd(&count[k], static_cast<unsigned long long>(__popc(same)));
-    base = __shfl_sync(same, base, leader);
-    return base + __popc(same & ((1u << lane) - 1u));
-#else
-    return atomic_add_relaxed(&count[k], 1ull);
-#endif
-  }
-  CDB_HD_INLINE void count_node(int k, uint32_t key) const { add_one(&count_log[k][key]); }
 };
 
 // One kind of front: current (ordered or not), the append target of the last operation,

@@ -131,7 +131,7 @@ struct MarkFrontFn {
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t i = prim[e], j = node[e];
     mark[e] = tree.overlaps_node(tree.bvh.leaf_lo[i], tree.bvh.leaf_hi[i], j) ? 1 : 0;
-    if (count_log) add_one(&count_log[ref_index(j)]);
+    if (count_log) claim_one(&count_log[ref_index(j)]);
   }
 };
 

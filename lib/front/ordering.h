@@ -25,8 +25,8 @@ struct ScatterFrontFn {
     const unsigned long long n = *count;
     if (n > capacity || e >= n) return;
     const uint32_t j = node[e], key = ref_index(j);
-    const uint32_t pos = mark[e] ? offset_log[key + 1] - 1 - atomic_add_relaxed(&cursor_back[key], 1u)
-                                 : offset_log[key] + atomic_add_relaxed(&cursor_front[key], 1u);
+    const uint32_t pos = mark[e] ? offset_log[key + 1] - 1 - claim_one(&cursor_back[key])
+                                 : offset_log[key] + claim_one(&cursor_front[key]);
     out_prim[pos] = prim[e];
     out_node[pos] = j;
   }
