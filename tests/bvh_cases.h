@@ -296,4 +296,38 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
   }
 }
 
+// The radix-sort ordering of the BVH gives the histogram ordering's tree, node for node.
+template <class Exec>
+void check_radix_order_matches(const SoupCase& c) {
+  auto source = soup_source(c);
+  const Topology& topo = source->topology();
+  Exec exec;
+  Lbvh<Exec> bvh(exec);
+  Array<vec3f> vertices(exec.memory(), "test.vertices");
+  Array<Tri> faces(exec.memory(), "test.faces");
+  vertices.reserve(topo.num_vertices);
+  faces.reserve(topo.faces.size());
+  exec.copy_from_host(faces.data(), topo.faces.data(), topo.faces.size());
+  std::vector<vec3f> v;
+  source->frame(0, v);
+  exec.copy_from_host(vertices.data(), v.data(), v.size());
+  const MeshView mesh{vertices.data(), faces.data(), uint32_t(topo.faces.size())};
+  build_hierarchy(exec, bvh, mesh, c.bits);
+  order_depth_first(exec, bvh);
+  HostBvh histogram = download(exec, bvh);
+  build_hierarchy(exec, bvh, mesh, c.bits);
+  order_depth_first_radix(exec, bvh);
+  HostBvh radix = download(exec, bvh);
+  radix.count_log = histogram.count_log = {};
+  radix.offset_log = histogram.offset_log = {};
+  ASSERT_EQ(check_bvh(radix, topo, v), "");
+  EXPECT_EQ(radix.node_left, histogram.node_left);
+  EXPECT_EQ(radix.node_right, histogram.node_right);
+  EXPECT_EQ(radix.node_parent, histogram.node_parent);
+  EXPECT_EQ(radix.node_escape, histogram.node_escape);
+  EXPECT_EQ(radix.node_first, histogram.node_first);
+  EXPECT_EQ(radix.leaf_parent, histogram.leaf_parent);
+  EXPECT_EQ(radix.leaf_escape, histogram.leaf_escape);
+}
+
 }  // namespace cdb::test

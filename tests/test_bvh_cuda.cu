@@ -23,6 +23,8 @@ class CudaSoup : public testing::TestWithParam<SoupCase> {
 
 TEST_P(CudaSoup, TreeValidAndPairsExact) { check_soup_case<CudaExec>(GetParam()); }
 
+TEST_P(CudaSoup, RadixOrderGivesTheHistogramOrder) { check_radix_order_matches<CudaExec>(GetParam()); }
+
 INSTANTIATE_TEST_SUITE_P(Soups, CudaSoup, testing::ValuesIn(soup_cases()), case_name);
 
 class CudaBaselines : public testing::TestWithParam<BaselineCase> {

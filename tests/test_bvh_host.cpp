@@ -9,6 +9,8 @@ class HostSoup : public testing::TestWithParam<SoupCase> {};
 
 TEST_P(HostSoup, TreeValidAndPairsExact) { check_soup_case<HostExec>(GetParam()); }
 
+TEST_P(HostSoup, RadixOrderGivesTheHistogramOrder) { check_radix_order_matches<HostExec>(GetParam()); }
+
 INSTANTIATE_TEST_SUITE_P(Soups, HostSoup, testing::ValuesIn(soup_cases()), case_name);
 
 class HostBaselines : public testing::TestWithParam<BaselineCase> {};

@@ -129,4 +129,47 @@ void order_depth_first(Exec& exec, Lbvh<Exec>& bvh) {
   exec.for_each_n(n, LinkLeavesFn{layout, n});
 }
 
+// The radix-sort baseline of the same layout (for the paper's Fig. 6 comparison, issue
+// "radix-order"): depth-first preorder is the order of (leftmost leaf, then larger subtree
+// first), so one key sort of the internal nodes gives every new index without the count
+// log. Same result as order_depth_first, node for node (tested).
+struct DepthFirstKeyFn {
+  const uint32_t* build_first;
+  const uint32_t* build_last;
+  uint64_t* keys;
+  uint32_t* iota;
+  CDB_HD void operator()(uint32_t k) const {
+    keys[k] = (uint64_t(build_first[k]) << 32) | (0xFFFFFFFFu - (build_last[k] - build_first[k]));
+    iota[k] = k;
+  }
+};
+
+struct IndexFromSortedFn {
+  const uint32_t* sorted_node;
+  uint32_t* new_index;
+  CDB_HD void operator()(uint32_t p) const { new_index[sorted_node[p]] = p; }
+};
+
+template <class Exec>
+void order_depth_first_radix(Exec& exec, Lbvh<Exec>& bvh) {
+  const uint32_t n = bvh.num_leaves;
+  if (n == 0) return;
+  if (n == 1) {
+    exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data()});
+    return;
+  }
+  // Build scratch that is free once the climb is done: keys in morton/morton_sorted, node
+  // numbers in prim_iota and other_bound.
+  exec.for_each_n(n - 1, DepthFirstKeyFn{bvh.build_first.data(), bvh.build_last.data(),
+                                         bvh.morton.data(), bvh.prim_iota.data()});
+  int leaf_bits = 1;
+  while ((uint64_t(1) << leaf_bits) < n) ++leaf_bits;
+  exec.sort_pairs(bvh.morton.data(), bvh.morton_sorted.data(), bvh.prim_iota.data(),
+                  bvh.other_bound.data(), n - 1, 32 + leaf_bits, bvh.temp.data(), bvh.temp.size());
+  exec.for_each_n(n - 1, IndexFromSortedFn{bvh.other_bound.data(), bvh.new_index.data()});
+  const DepthFirstLayout layout = depth_first_layout(bvh);
+  exec.for_each_n(n - 1, ScatterNodesFn{layout, n});
+  exec.for_each_n(n, LinkLeavesFn{layout, n});
+}
+
 }  // namespace cdb

@@ -64,10 +64,11 @@ void record_timings(const Timer& timer, FrameStats& stats) {
   stats.total_ms = timer.frame_ms() - stats.phase_ms[size_t(Phase::upload)];
 }
 
-// Rebuild (build + depth-first order) or refit the hierarchy; returns which ran.
+// Rebuild (build + depth-first order, by histogram or, for the radix baseline, by a key
+// sort) or refit the hierarchy; returns which ran.
 template <class Exec, class Timer>
 std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const MeshView& mesh,
-                             bool rebuild, MortonBits bits) {
+                             bool rebuild, MortonBits bits, bool radix_order = false) {
   if (!rebuild) {
     timer.start(Phase::refit);
     refit(exec, bvh, mesh);
@@ -78,7 +79,10 @@ std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const Me
   build_hierarchy(exec, bvh, mesh, bits);
   timer.stop(Phase::build);
   timer.start(Phase::order);
-  order_depth_first(exec, bvh);
+  if (radix_order)
+    order_depth_first_radix(exec, bvh);
+  else
+    order_depth_first(exec, bvh);
   timer.stop(Phase::order);
   return "build";
 }

@@ -28,7 +28,7 @@ struct FrontPlan {
   bool balance = false;            // (4) before every (3)
   bool periodic = false;           // (1) instead of (3) every second cycle
   bool rebuild_every_frame = false;  // the reference strategy
-  bool radix_sort = false;  // order with a radix sort instead of the histogram (Fig. 6 baseline)
+  bool radix_sort = false;  // order fronts and BVH with a radix sort instead of the histogram (Fig. 6 baseline)
   bool restructure = false;  // pipeline c: inspect quality, Formula 2, (5) restructure
 };
 
@@ -67,7 +67,7 @@ class FrontPipeline final : public Pipeline {
     const Decision decision = decide(stats);
     const bool rebuild = frame_ == 0 || plan_.rebuild_every_frame || decision == Decision::rebuild ||
                          (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
-    stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, rebuild, config_.morton_bits);
+    stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, rebuild, config_.morton_bits, plan_.radix_sort);
     if (rebuild) generated_at_ = frame_;
     const Op op = !rebuild && decision == Decision::restructure ? Op::restructure : choose_op(rebuild);
     if (op == Op::update && plan_.balance) balance();
