@@ -16,10 +16,13 @@ fi
 echo "=== verify"
 for s in ${VERIFY_SCENES:-funnel cloth-wave random-100k}; do "$bin/cdbench" verify --device cuda --scene $s --brute-limit 200000 2>/dev/null | tail -10; done | tee "$out/verify.log"
 echo "=== bench"
-# All pipelines of a scene in one process, on the same frames (run --pipeline a,b,...).
+# All pipelines of a scene in one process, on the same frames (run --pipeline a,b,...); one
+# HDF5 file per scene and pipeline, and the Markdown report generated from them.
 pipelines=${BENCH_PIPELINES:-bvh,unordered,static,periodic,restructure,reference,a,b,c,radix-order,sweep,hash,grid}
+mkdir -p "$out/h5"
 for s in ${BENCH_SCENES:-cloth-100k}; do
   echo "--- $s"
-  "$bin/cdbench" run --device cuda --scene $s --pipeline $pipelines --quiet 2>/dev/null |
+  "$bin/cdbench" run --device cuda --scene $s --pipeline $pipelines --quiet --out "$out/h5/$s-{pipeline}.h5" 2>/dev/null |
     grep -E "commit|^scene|triangles|^pipeline:|first frame|per frame|  [a-z_0-9]+ +mean|pairs |front |formula|memory"
 done 2>&1 | tee "$out/bench.log"
+"$bin/cdbench" report "$out"/h5/*.h5 > "$out/report.md"

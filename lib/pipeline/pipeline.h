@@ -34,10 +34,10 @@ struct PipelineConfig {
   // restructure_min_leaves to restructure_max_fraction * N leaves. Formula 2 on the share
   // of leaves inside candidates: below threshold_refit only refit, below threshold_build
   // restructure the candidates, otherwise rebuild.
-  double restructure_quality = 1.5;
+  double restructure_quality = 3.0;
   uint32_t restructure_min_leaves = 32;
   double restructure_max_fraction = 0.25;
-  double threshold_refit = 0.01;
+  double threshold_refit = 0.05;
   double threshold_build = 0.5;
 };
 
