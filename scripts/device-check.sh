@@ -26,3 +26,5 @@ for s in ${BENCH_SCENES:-cloth-100k}; do
     grep -E "commit|^scene|triangles|^pipeline:|first frame|per frame|  [a-z_0-9]+ +mean|pairs |front |formula|memory"
 done 2>&1 | tee "$out/bench.log"
 "$bin/cdbench" report "$out"/h5/*.h5 > "$out/report.md"
+# One archive: the device tool brings back a limited number of files.
+tar -C "$out" -cf "$out/h5.tar" h5 && rm -rf "$out/h5"
