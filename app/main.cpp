@@ -40,6 +40,7 @@ struct CommonOptions {
   uint32_t rebuild_every = 0;
   uint32_t front_cycle = 4;
   PipelineConfig restructure;  // the restructure_* and threshold_* fields
+  bool skip_adjacent = false;
 };
 
 void add_common(CLI::App* cmd, CommonOptions& o) {
@@ -60,6 +61,8 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "front pipelines: frames per maintenance cycle (update on the last, preserve on the others)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_flag("--skip-adjacent", o.skip_adjacent,
+                "co-vertex filtering: do not report pairs of triangles that share a vertex (oracle too)");
   PipelineConfig& r = o.restructure;
   cmd->add_option("--restructure-quality", r.restructure_quality,
                   "pipeline c: a subtree is degraded when its Q exceeds this times Q(root) after the last rebuild")
@@ -102,6 +105,7 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.morton_bits = o.morton_bits == 30 ? MortonBits::b30 : MortonBits::b63;
   c.rebuild_every = o.rebuild_every;
   c.front_cycle = o.front_cycle;
+  c.skip_adjacent = o.skip_adjacent;
   c.restructure_quality = o.restructure.restructure_quality;
   c.restructure_min_leaves = o.restructure.restructure_min_leaves;
   c.restructure_max_fraction = o.restructure.restructure_max_fraction;
@@ -260,7 +264,7 @@ int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
       oracle->run_frame(vertices);
       expected = oracle->sorted_pairs();
     } else {
-      expected = sweep_oracle_pairs(topo, vertices);
+      expected = sweep_oracle_pairs(topo, vertices, o.skip_adjacent);
     }
     for (size_t p = 0; p < runs.size(); ++p) {
       runs[p]->run_frame(vertices);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 #include <string>
 
 #include "bruteforce/sweep_oracle.h"
@@ -131,7 +132,7 @@ inline void check_pipelines_on(const PipelineConfig& base, FrameSource& source,
   std::vector<vec3f> v;
   for (uint32_t f = 0; f < source.num_frames(); ++f) {
     source.frame(f, v);
-    const auto expected = sweep_oracle_pairs(topo, v);
+    const auto expected = sweep_oracle_pairs(topo, v, base.skip_adjacent);
     for (size_t p = 0; p < pipelines.size(); ++p) {
       const FrameStats s = pipelines[p]->run_frame(v);
       ASSERT_EQ(s.pairs, expected.size()) << names[p] << " frame " << f << " (" << s.op << ")";
@@ -174,7 +175,7 @@ inline std::vector<FrameStats> run_exact(const PipelineConfig& cfg, FrameSource&
   std::vector<vec3f> v;
   for (uint32_t f = 0; f < source.num_frames(); ++f) {
     source.frame(f, v);
-    const auto expected = sweep_oracle_pairs(topo, v);
+    const auto expected = sweep_oracle_pairs(topo, v, cfg.skip_adjacent);
     out.push_back(p->run_frame(v));
     const FrameStats& s = out.back();
     EXPECT_EQ(s.pairs, expected.size()) << cfg.name << " frame " << f << " (" << s.op << ")";
@@ -328,6 +329,29 @@ void check_radix_order_matches(const SoupCase& c) {
   EXPECT_EQ(radix.node_first, histogram.node_first);
   EXPECT_EQ(radix.leaf_parent, histogram.leaf_parent);
   EXPECT_EQ(radix.leaf_escape, histogram.leaf_escape);
+}
+
+// Co-vertex filtering: every pipeline drops exactly the overlapping pairs that share a
+// vertex. The filtered oracle is checked against the unfiltered one first, so the test
+// cannot pass with a filter that does nothing or drops too much.
+inline void check_skip_adjacent(const std::string& device, FrameSource& source) {
+  const Topology& topo = source.topology();
+  std::vector<vec3f> v;
+  source.frame(source.num_frames() - 1, v);
+  const auto all = sweep_oracle_pairs(topo, v);
+  const auto kept = sweep_oracle_pairs(topo, v, true);
+  ASSERT_LT(kept.size(), all.size());
+  ASSERT_GT(kept.size(), 0u);
+  const PairSetDiff d = diff_pair_sets(all, kept);
+  ASSERT_EQ(d.unexpected_count, 0u);
+  for (const PrimPair& p : d.missing) {
+    const Tri a = topo.faces[p.a], b = topo.faces[p.b];
+    const std::set<uint32_t> va = {a.v0, a.v1, a.v2};
+    EXPECT_TRUE(va.count(b.v0) || va.count(b.v1) || va.count(b.v2)) << p.a << " " << p.b;
+  }
+  PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
+  cfg.skip_adjacent = true;
+  check_pipelines_on(cfg, source);
 }
 
 }  // namespace cdb::test

@@ -89,6 +89,14 @@ TEST(CudaPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   check_pipelines_on(config_for("cuda", 8.0), *funnel);
 }
 
+TEST(CudaPipelines, SkipAdjacentMatchesTheFilteredOracle) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  auto wave = make_generator("cloth-wave", {{"res", 96}, {"frames", 8}});
+  check_skip_adjacent("cuda", *wave);
+  auto funnel = make_generator("funnel", {{"res", 48}, {"frames", 8}});
+  check_skip_adjacent("cuda", *funnel);
+}
+
 TEST(CudaPipelines, LargeUniformSoupRepeatedBuildsAreExact) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   // Many rebuilds of a 1M-triangle scene: a missing fence in the bottom-up build shows up

@@ -121,6 +121,13 @@ TEST_P(HostForcedDecisions, EveryBranchOfFormula2IsExact) {
 
 INSTANTIATE_TEST_SUITE_P(Cycles, HostForcedDecisions, testing::Values(1u, 2u));
 
+TEST(HostPipelines, SkipAdjacentMatchesTheFilteredOracle) {
+  auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 6}});
+  check_skip_adjacent("cpu", *wave);
+  auto funnel = make_generator("funnel", {{"res", 16}, {"frames", 4}, {"segments", 16}, {"ball_level", 1}});
+  check_skip_adjacent("cpu", *funnel);
+}
+
 TEST(HostPipelines, PairBufferGrowthIsCountedNotTruncated) {
   auto soup = make_generator("soup", {{"triangles", 500}, {"distribution", "identical"}});
   PipelineConfig cfg;

@@ -8,7 +8,7 @@
 namespace cdb {
 
 std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
-                                         const std::vector<vec3f>& vertices) {
+                                         const std::vector<vec3f>& vertices, bool skip_adjacent) {
   const size_t n = topology.faces.size();
   std::vector<vec4f> lo(n), hi(n);
   for (size_t f = 0; f < n; ++f) {
@@ -25,7 +25,13 @@ std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
     for (size_t u = s + 1; u < n; ++u) {
       const uint32_t j = order[u];
       if (lo[j].x > hi[i].x) break;
-      if (overlaps(lo[i], hi[i], lo[j], hi[j])) pairs.push_back(make_pair_ordered(i, j));
+      if (!overlaps(lo[i], hi[i], lo[j], hi[j])) continue;
+      const Tri a = topology.faces[i], b = topology.faces[j];
+      const bool adjacent = a.v0 == b.v0 || a.v0 == b.v1 || a.v0 == b.v2 || a.v1 == b.v0 ||
+                            a.v1 == b.v1 || a.v1 == b.v2 || a.v2 == b.v0 || a.v2 == b.v1 ||
+                            a.v2 == b.v2;
+      if (skip_adjacent && adjacent) continue;
+      pairs.push_back(make_pair_ordered(i, j));
     }
   }
   std::sort(pairs.begin(), pairs.end(),

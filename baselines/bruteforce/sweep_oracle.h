@@ -10,7 +10,9 @@
 
 namespace cdb {
 
+// skip_adjacent: leave out pairs of triangles that share a vertex (co-vertex filtering).
 std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
-                                         const std::vector<vec3f>& vertices);
+                                         const std::vector<vec3f>& vertices,
+                                         bool skip_adjacent = false);
 
 }  // namespace cdb

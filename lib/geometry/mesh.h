@@ -12,6 +12,7 @@ namespace cdb {
 struct Tri {
   uint32_t v0, v1, v2;
 };
+static_assert(sizeof(Tri) == 3 * sizeof(uint32_t), "faces are read as 3 vertex indices each");
 
 // Fixed topology of a scene's triangles; per-frame positions come separately.
 struct Topology {

@@ -46,6 +46,7 @@ class BroadPhase final : public Pipeline {
   void set_topology(const Topology& topology) override {
     mesh_.set_topology(exec_, topology);
     const uint32_t n = mesh_.num_faces();
+    pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);
     pairs_.reserve(size_t(config_.pairs_per_triangle * n));
     switch (method_) {
       case BroadPhaseMethod::brute:

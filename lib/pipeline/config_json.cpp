@@ -11,6 +11,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"pairs_per_triangle", c.pairs_per_triangle},
       {"front_per_triangle", c.front_per_triangle},
       {"front_cycle", c.front_cycle},
+      {"skip_adjacent", c.skip_adjacent},
       {"restructure_quality", c.restructure_quality},
       {"restructure_min_leaves", c.restructure_min_leaves},
       {"restructure_max_fraction", c.restructure_max_fraction},

@@ -37,6 +37,8 @@ class DeviceMesh {
     exec.copy_from_host(vertices_.data(), vertices.data(), num_vertices_);
   }
   MeshView view() const { return {vertices_.data(), faces_.data(), num_faces_}; }
+  // The faces' vertex indices, 3 per face, for co-vertex filtering.
+  const uint32_t* face_vertices() const { return reinterpret_cast<const uint32_t*>(faces_.data()); }
   uint32_t num_faces() const { return num_faces_; }
 
  private:
@@ -102,7 +104,9 @@ class PairBuffer {
     counters_.reserve(kCounters);
   }
   void reset_counters(Exec& exec) { exec.fill(counters_.data(), kCounters, 0ull); }
-  PairSink sink() { return {pairs_.data(), counters_.data(), pairs_.capacity()}; }
+  PairSink sink() { return {pairs_.data(), counters_.data(), pairs_.capacity(), skip_adjacent_faces_}; }
+  // Drop pairs of triangles sharing a vertex (faces: 3 vertex indices each), or keep all.
+  void skip_adjacent(const uint32_t* faces) { skip_adjacent_faces_ = faces; }
   unsigned long long* counter(size_t k) { return counters_.data() + k; }
   // The frame's one synchronization: all counters at once.
   std::array<unsigned long long, kCounters> read_counters(Exec& exec) {
@@ -132,6 +136,7 @@ class PairBuffer {
   Array<PrimPair> pairs_;
   Array<unsigned long long> counters_;
   uint64_t last_count_ = 0;
+  const uint32_t* skip_adjacent_faces_ = nullptr;
   std::array<unsigned long long, kCounters> last_{};
 };
 

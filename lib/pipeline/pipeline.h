@@ -28,6 +28,8 @@ struct PipelineConfig {
   // Front pipelines: frames per maintenance cycle; the last frame of a cycle updates the
   // fronts (pipeline b also balances first), the others preserve them.
   uint32_t front_cycle = 4;
+  // Co-vertex filtering: pairs of triangles sharing a vertex are not reported.
+  bool skip_adjacent = false;
   // Pipeline c / restructure (paper §4.1-4.2, docs/design.md "Quality and restructuring").
   // A node is degraded when its Q (Formula 1) exceeds restructure_quality times Q of the
   // root right after the last rebuild; candidates are the topmost degraded subtrees of
