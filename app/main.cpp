@@ -326,6 +326,16 @@ int scenes_info(const CommonOptions& o, const std::string& scene, const std::vec
   std::printf("            %s\n", s.description.c_str());
   std::printf("triangles   %zu\nvertices    %u\nframes      %u\n", topo.faces.size(), topo.num_vertices,
               s.source->num_frames());
+  for (const auto& ob : topo.objects)
+    std::printf("object      %-10s faces %u..%u  %s\n", ob.name.c_str(), ob.first_face,
+                ob.first_face + ob.num_faces, ob.rigid ? "rigid" : "deformable");
+  if (!topo.queries.declared) {
+    std::printf("queries     every overlapping pair\n");
+  } else {
+    for (uint32_t o : topo.queries.self) std::printf("query       self %s\n", topo.objects[o].name.c_str());
+    for (const auto& [a, b] : topo.queries.inter)
+      std::printf("query       inter %s - %s\n", topo.objects[a].name.c_str(), topo.objects[b].name.c_str());
+  }
   std::vector<vec3f> v, prev;
   for (uint32_t f = 0; f < s.source->num_frames(); ++f) {
     s.source->frame(f, v);

@@ -6,9 +6,12 @@ namespace cdb::scene {
 
 ClothSceneSource::ClothSceneSource(ClothSceneSpec spec) : spec_(std::move(spec)) {
   topology_.faces = spec_.cloth_faces;
+  topology_.objects.push_back({"cloth", 0, uint32_t(spec_.cloth_faces.size()), false});
   uint32_t base = uint32_t(spec_.cloth.size());
   for (const auto& b : spec_.bodies) {
+    const uint32_t first = uint32_t(topology_.faces.size());
     append_faces(b.mesh, base, topology_.faces);
+    topology_.objects.push_back({b.name, first, uint32_t(topology_.faces.size()) - first, true});
     base += uint32_t(b.mesh.vertices.size());
   }
   topology_.num_vertices = base;

@@ -28,6 +28,7 @@ struct ClothSceneSpec {
   std::vector<std::pair<uint32_t, dvec3>> moved_pins;  // held elsewhere (rest shape unchanged)
   ClothSettings settings;
   struct Body {
+    std::string name;  // the scene object's name, for declared queries
     RigidMesh mesh;
     std::function<Pose(double t)> pose;
   };

@@ -65,8 +65,8 @@ std::unique_ptr<FrameSource> make_funnel(Params& p) {
   // below the spout.
   auto centre = [speed](double t) { return dvec3{0, std::max(0.6 - speed * t, -2.2), 0}; };
   auto velocity = [speed](double t) { return dvec3{0, 0.6 - speed * t > -2.2 ? -speed : 0.0, 0}; };
-  s.bodies.push_back({revolve(refine(kFunnel, kFunnelPieces), segments), [](double) { return Pose{}; }});
-  s.bodies.push_back({icosphere(level, radius), [centre](double t) { return translation(centre(t)); }});
+  s.bodies.push_back({"funnel", revolve(refine(kFunnel, kFunnelPieces), segments), [](double) { return Pose{}; }});
+  s.bodies.push_back({"ball", icosphere(level, radius), [centre](double t) { return translation(centre(t)); }});
   s.colliders = [centre, velocity, radius](double t, Colliders& col) {
     col.revolved.push_back({{0, 0, 0}, kFunnel, false, {}});
     col.spheres.push_back({centre(t), radius, velocity(t), {}});
@@ -104,7 +104,7 @@ std::unique_ptr<FrameSource> make_cloth_ball(Params& p) {
     const double u = std::clamp((t - ramp_start) / ramp, 0.0, 1.0);
     return spin * t + (twist - spin) * 0.5 * u * u * ramp;
   };
-  s.bodies.push_back({icosphere(level, radius), [angle](double t) { return rotation({0, 1, 0}, angle(t)); }});
+  s.bodies.push_back({"ball", icosphere(level, radius), [angle](double t) { return rotation({0, 1, 0}, angle(t)); }});
   s.colliders = [omega, radius](double t, Colliders& col) {
     col.spheres.push_back({{0, 0, 0}, radius, {}, {0, omega(t), 0}});
   };
@@ -135,7 +135,7 @@ std::unique_ptr<FrameSource> make_flag(Params& p) {
   s.settings.drag = 1.0;
   s.frames = c.frames;
   s.warmup = c.warmup;
-  s.bodies.push_back({revolve(capsule_profile(pole, 2.4, 4), segments), [](double) { return Pose{}; }});
+  s.bodies.push_back({"pole", revolve(capsule_profile(pole, 2.4, 4), segments), [](double) { return Pose{}; }});
   s.colliders = [pole](double, Colliders& col) { col.capsules.push_back({{0, 0, 0}, {0, 2.4, 0}, pole}); };
   s.wind = [wind](double t, dvec3 x) {
     const double gust = 1.0 + 0.6 * std::sin(1.3 * t) + 0.2 * std::sin(4.1 * t + 2.0 * x.x);
@@ -172,7 +172,7 @@ std::unique_ptr<FrameSource> make_sphere_hit(Params& p) {
   // The ball swings on an arc: forward through the curtain's plane and back, sideways a little.
   auto centre = [w](double t) { return dvec3{0.3 * std::sin(w * t), 0.9, -0.9 * std::cos(w * t)}; };
   auto velocity = [w](double t) { return dvec3{0.3 * w * std::cos(w * t), 0, 0.9 * w * std::sin(w * t)}; };
-  s.bodies.push_back({icosphere(level, radius), [centre](double t) { return translation(centre(t)); }});
+  s.bodies.push_back({"ball", icosphere(level, radius), [centre](double t) { return translation(centre(t)); }});
   s.colliders = [centre, velocity, radius](double t, Colliders& col) {
     col.spheres.push_back({centre(t), radius, velocity(t), {}});
   };

@@ -354,4 +354,25 @@ inline void check_skip_adjacent(const std::string& device, FrameSource& source) 
   check_pipelines_on(cfg, source);
 }
 
+// Declared queries (self of the cloth, inter of the cloth with the rigid bodies): the
+// filtered oracle keeps exactly the pairs with a cloth face, and every pipeline matches it.
+inline void check_declared_queries(const std::string& device, FrameSource& source) {
+  const Topology& topo = source.topology();
+  ASSERT_TRUE(topo.queries.declared);
+  std::vector<vec3f> v;
+  source.frame(source.num_frames() - 1, v);
+  Topology everything = topo;
+  everything.queries = {};
+  const auto all = sweep_oracle_pairs(everything, v);
+  const auto asked = sweep_oracle_pairs(topo, v);
+  ASSERT_GT(asked.size(), 0u);
+  ASSERT_LT(asked.size(), all.size());
+  const uint32_t cloth_faces = topo.objects.at(0).num_faces;
+  const PairSetDiff d = diff_pair_sets(all, asked);
+  ASSERT_EQ(d.unexpected_count, 0u);
+  for (const PrimPair& p : d.missing) EXPECT_TRUE(p.a >= cloth_faces && p.b >= cloth_faces) << p.a << " " << p.b;
+  for (const PrimPair& p : asked) EXPECT_TRUE(p.a < cloth_faces || p.b < cloth_faces) << p.a << " " << p.b;
+  check_pipelines_on(config_for(device, 0.5, 0.05, 2), source);
+}
+
 }  // namespace cdb::test

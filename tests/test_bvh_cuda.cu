@@ -2,6 +2,7 @@
 // test is reported as skipped, with the reason, never as passed.
 #include "baseline_cases.h"
 #include "bvh_cases.h"
+#include "io/scene.h"
 #include "exec/cuda_exec.cuh"
 
 namespace cdb::test {
@@ -87,6 +88,12 @@ TEST(CudaPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   check_pipelines_on(config_for("cuda", 0.01), *wave);
   auto funnel = make_generator("funnel", {{"res", 48}, {"frames", 20}});
   check_pipelines_on(config_for("cuda", 8.0), *funnel);
+}
+
+TEST(CudaPipelines, DeclaredQueriesReportOnlyWhatTheSceneAsks) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  Scene s = open_scene("funnel-inter", default_scenes_dir(), {{"res", 48}, {"frames", 8}});
+  check_declared_queries("cuda", *s.source);
 }
 
 TEST(CudaPipelines, SkipAdjacentMatchesTheFilteredOracle) {

@@ -1,5 +1,6 @@
 #include "baseline_cases.h"
 #include "bvh_cases.h"
+#include "io/scene.h"
 #include "core/error.h"
 #include "exec/host_exec.h"
 
@@ -120,6 +121,11 @@ TEST_P(HostForcedDecisions, EveryBranchOfFormula2IsExact) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cycles, HostForcedDecisions, testing::Values(1u, 2u));
+
+TEST(HostPipelines, DeclaredQueriesReportOnlyWhatTheSceneAsks) {
+  Scene s = open_scene("funnel-inter", default_scenes_dir(), {{"res", 16}, {"frames", 4}, {"segments", 16}, {"ball_level", 1}});
+  check_declared_queries("cpu", *s.source);
+}
 
 TEST(HostPipelines, SkipAdjacentMatchesTheFilteredOracle) {
   auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 6}});

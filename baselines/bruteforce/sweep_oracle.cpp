@@ -10,6 +10,8 @@ namespace cdb {
 std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
                                          const std::vector<vec3f>& vertices, bool skip_adjacent) {
   const size_t n = topology.faces.size();
+  PairFilterTables filter;
+  if (topology.queries.declared) filter = pair_filter_tables(topology.objects, topology.queries, n);
   std::vector<vec4f> lo(n), hi(n);
   for (size_t f = 0; f < n; ++f) {
     const Tri t = topology.faces[f];
@@ -31,6 +33,9 @@ std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
                             a.v1 == b.v1 || a.v1 == b.v2 || a.v2 == b.v0 || a.v2 == b.v1 ||
                             a.v2 == b.v2;
       if (skip_adjacent && adjacent) continue;
+      if (topology.queries.declared &&
+          !((filter.partners[filter.face_object[i]] >> filter.face_object[j]) & 1u))
+        continue;
       pairs.push_back(make_pair_ordered(i, j));
     }
   }

@@ -11,6 +11,7 @@
 namespace cdb {
 
 // skip_adjacent: leave out pairs of triangles that share a vertex (co-vertex filtering).
+// A topology with declared queries keeps only the pairs they ask for.
 std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
                                          const std::vector<vec3f>& vertices,
                                          bool skip_adjacent = false);

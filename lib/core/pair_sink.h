@@ -22,8 +22,12 @@ struct PairSink {
   unsigned long long* count;
   unsigned long long capacity;
   const uint32_t* skip_adjacent_faces = nullptr;
+  // Declared queries (geometry/objects.h): per face its object, per object its partners.
+  const uint32_t* face_object = nullptr;
+  const uint64_t* partners = nullptr;
 
   CDB_HD_INLINE void emit(uint32_t i, uint32_t j) const {
+    if (face_object && !((partners[face_object[i]] >> face_object[j]) & 1u)) return;
     if (skip_adjacent_faces && share_vertex(skip_adjacent_faces + 3 * size_t(i),
                                             skip_adjacent_faces + 3 * size_t(j)))
       return;

@@ -2,6 +2,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/objects.h"
+
 #include "core/aabb.h"
 #include "core/hd.h"
 #include "core/vec.h"
@@ -18,6 +20,8 @@ static_assert(sizeof(Tri) == 3 * sizeof(uint32_t), "faces are read as 3 vertex i
 struct Topology {
   std::vector<Tri> faces;
   uint32_t num_vertices = 0;
+  std::vector<SceneObject> objects;  // empty: one unnamed object
+  ObjectQueries queries;             // not declared: every pair
 };
 
 // What kernels see of a mesh frame: plain pointers, passed by value.

@@ -12,6 +12,89 @@
 namespace cdb {
 namespace {
 
+// A scene's frames with the objects and queries its descriptor declares.
+class DeclaredQueries final : public FrameSource {
+ public:
+  DeclaredQueries(std::unique_ptr<FrameSource> inner, Topology topology)
+      : inner_(std::move(inner)), topology_(std::move(topology)) {}
+  const Topology& topology() const override { return topology_; }
+  uint32_t num_frames() const override { return inner_->num_frames(); }
+  void frame(uint32_t k, std::vector<vec3f>& out) const override { inner_->frame(k, out); }
+  std::string describe() const override { return inner_->describe(); }
+
+ private:
+  std::unique_ptr<FrameSource> inner_;
+  Topology topology_;
+};
+
+uint32_t object_index(const std::vector<SceneObject>& objects, const nlohmann::json& name,
+                      const std::string& where) {
+  if (!name.is_string()) fail(where + ": must be an object name (a string)");
+  for (uint32_t o = 0; o < objects.size(); ++o)
+    if (objects[o].name == name.get<std::string>()) return o;
+  std::string known;
+  for (const auto& ob : objects) known += (known.empty() ? "" : ", ") + ob.name;
+  fail(where + ": unknown object '" + name.get<std::string>() + "' (objects: " +
+       (known.empty() ? "none" : known) + ")");
+}
+
+// "objects": [{"name", "faces": [first, count], "rigid"}] replaces the generator's objects;
+// "queries": {"self": [names], "inter": [[a, b], ...]} declares what to report.
+std::unique_ptr<FrameSource> declare_queries(std::unique_ptr<FrameSource> source, const nlohmann::json& j,
+                                             const std::string& file) {
+  Topology topo = source->topology();
+  if (j.contains("objects")) {
+    const auto& objs = j["objects"];
+    if (!objs.is_array()) fail(file + ": /objects: must be an array");
+    topo.objects.clear();
+    for (size_t k = 0; k < objs.size(); ++k) {
+      const std::string at = file + ": /objects/" + std::to_string(k);
+      const auto& o = objs[k];
+      if (!o.is_object()) fail(at + ": must be an object");
+      for (auto it = o.begin(); it != o.end(); ++it)
+        if (it.key() != "name" && it.key() != "faces" && it.key() != "rigid")
+          fail(at + "/" + it.key() + ": unknown key (name, faces, rigid)");
+      if (!o.contains("name") || !o["name"].is_string()) fail(at + "/name: must be a string");
+      if (!o.contains("faces") || !o["faces"].is_array() || o["faces"].size() != 2 ||
+          !o["faces"][0].is_number_unsigned() || !o["faces"][1].is_number_unsigned())
+        fail(at + "/faces: must be [first, count]");
+      if (o.contains("rigid") && !o["rigid"].is_boolean()) fail(at + "/rigid: must be true or false");
+      topo.objects.push_back({o["name"].get<std::string>(), o["faces"][0].get<uint32_t>(),
+                              o["faces"][1].get<uint32_t>(), o.value("rigid", false)});
+    }
+  }
+  if (j.contains("queries")) {
+    const auto& q = j["queries"];
+    const std::string at = file + ": /queries";
+    if (!q.is_object()) fail(at + ": must be an object with self and/or inter");
+    for (auto it = q.begin(); it != q.end(); ++it)
+      if (it.key() != "self" && it.key() != "inter") fail(at + "/" + it.key() + ": unknown key (self, inter)");
+    if (topo.objects.empty()) fail(at + ": the scene has no objects to query");
+    topo.queries.declared = true;
+    if (q.contains("self")) {
+      if (!q["self"].is_array()) fail(at + "/self: must be an array of object names");
+      for (size_t k = 0; k < q["self"].size(); ++k)
+        topo.queries.self.push_back(object_index(topo.objects, q["self"][k], at + "/self/" + std::to_string(k)));
+    }
+    if (q.contains("inter")) {
+      if (!q["inter"].is_array()) fail(at + "/inter: must be an array of [a, b] object-name pairs");
+      for (size_t k = 0; k < q["inter"].size(); ++k) {
+        const auto& p = q["inter"][k];
+        const std::string pat = at + "/inter/" + std::to_string(k);
+        if (!p.is_array() || p.size() != 2) fail(pat + ": must be [a, b]");
+        topo.queries.inter.emplace_back(object_index(topo.objects, p[0], pat + "/0"),
+                                        object_index(topo.objects, p[1], pat + "/1"));
+      }
+    }
+  }
+  try {
+    if (topo.queries.declared) pair_filter_tables(topo.objects, topo.queries, topo.faces.size());
+  } catch (const Error& e) {
+    fail(file + ": " + e.what());
+  }
+  return std::make_unique<DeclaredQueries>(std::move(source), std::move(topo));
+}
+
 Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& overrides) {
   std::ifstream in(file);
   if (!in) fail(file.string() + ": cannot open scene descriptor");
@@ -24,8 +107,9 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   if (!j.is_object()) fail(file.string() + ": a scene descriptor must be a JSON object");
   for (auto it = j.begin(); it != j.end(); ++it)
     if (it.key() != "description" && it.key() != "generator" && it.key() != "params" &&
-        it.key() != "frames")
-      fail(file.string() + ": /" + it.key() + ": unknown key (description, generator, params, frames)");
+        it.key() != "frames" && it.key() != "objects" && it.key() != "queries")
+      fail(file.string() + ": /" + it.key() +
+           ": unknown key (description, generator, params, frames, objects, queries)");
   Scene s;
   s.name = file.stem().string();
   if (j.contains("description")) {
@@ -52,6 +136,8 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
     if (dir.is_relative()) dir = file.parent_path() / dir;
     s.source = open_mesh_sequence(dir);
   }
+  if (j.contains("objects") || j.contains("queries"))
+    s.source = declare_queries(std::move(s.source), j, file.string());
   if (s.description.empty()) s.description = s.source->describe();
   return s;
 }

@@ -47,6 +47,7 @@ class BroadPhase final : public Pipeline {
     mesh_.set_topology(exec_, topology);
     const uint32_t n = mesh_.num_faces();
     pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);
+    pairs_.filter_queries(mesh_.face_object(), mesh_.partners());
     pairs_.reserve(size_t(config_.pairs_per_triangle * n));
     switch (method_) {
       case BroadPhaseMethod::brute:

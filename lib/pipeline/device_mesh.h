@@ -21,6 +21,8 @@ class DeviceMesh {
   explicit DeviceMesh(Exec& exec) {
     vertices_.bind(exec.memory(), "mesh.vertices");
     faces_.bind(exec.memory(), "mesh.faces");
+    face_object_.bind(exec.memory(), "mesh.face_object");
+    partners_.bind(exec.memory(), "mesh.partners");
   }
   void set_topology(Exec& exec, const Topology& topology) {
     if (topology.faces.size() > kMaxLeaves) fail("scene has more triangles than 2^31-1");
@@ -29,7 +31,18 @@ class DeviceMesh {
     vertices_.reserve(num_vertices_);
     faces_.reserve(num_faces_);
     exec.copy_from_host(faces_.data(), topology.faces.data(), num_faces_);
+    queries_declared_ = topology.queries.declared;
+    if (queries_declared_) {
+      const PairFilterTables t = pair_filter_tables(topology.objects, topology.queries, num_faces_);
+      face_object_.reserve(t.face_object.size());
+      partners_.reserve(t.partners.size());
+      exec.copy_from_host(face_object_.data(), t.face_object.data(), t.face_object.size());
+      exec.copy_from_host(partners_.data(), t.partners.data(), t.partners.size());
+    }
   }
+  // The scene's declared queries as the pair sink reads them, or nulls: every pair.
+  const uint32_t* face_object() const { return queries_declared_ ? face_object_.data() : nullptr; }
+  const uint64_t* partners() const { return queries_declared_ ? partners_.data() : nullptr; }
   void upload(Exec& exec, const std::vector<vec3f>& vertices) {
     if (vertices.size() != num_vertices_)
       fail("frame has " + std::to_string(vertices.size()) + " vertices, topology has " +
@@ -44,6 +57,9 @@ class DeviceMesh {
  private:
   Array<vec3f> vertices_;
   Array<Tri> faces_;
+  Array<uint32_t> face_object_;
+  Array<uint64_t> partners_;
+  bool queries_declared_ = false;
   uint32_t num_vertices_ = 0, num_faces_ = 0;
 };
 
@@ -104,7 +120,14 @@ class PairBuffer {
     counters_.reserve(kCounters);
   }
   void reset_counters(Exec& exec) { exec.fill(counters_.data(), kCounters, 0ull); }
-  PairSink sink() { return {pairs_.data(), counters_.data(), pairs_.capacity(), skip_adjacent_faces_}; }
+  PairSink sink() {
+    return {pairs_.data(), counters_.data(), pairs_.capacity(), skip_adjacent_faces_, face_object_, partners_};
+  }
+  // Keep only the pairs the scene's declared queries ask for (nulls: every pair).
+  void filter_queries(const uint32_t* face_object, const uint64_t* partners) {
+    face_object_ = face_object;
+    partners_ = partners;
+  }
   // Drop pairs of triangles sharing a vertex (faces: 3 vertex indices each), or keep all.
   void skip_adjacent(const uint32_t* faces) { skip_adjacent_faces_ = faces; }
   unsigned long long* counter(size_t k) { return counters_.data() + k; }
@@ -137,6 +160,8 @@ class PairBuffer {
   Array<unsigned long long> counters_;
   uint64_t last_count_ = 0;
   const uint32_t* skip_adjacent_faces_ = nullptr;
+  const uint32_t* face_object_ = nullptr;
+  const uint64_t* partners_ = nullptr;
   std::array<unsigned long long, kCounters> last_{};
 };
 

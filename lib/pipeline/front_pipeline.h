@@ -49,6 +49,7 @@ class FrontPipeline final : public Pipeline {
     mesh_.set_topology(exec_, topology);
     const uint32_t n = mesh_.num_faces();
     pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);
+    pairs_.filter_queries(mesh_.face_object(), mesh_.partners());
     bvh_.reserve(exec_, n);
     pairs_.reserve(size_t(config_.pairs_per_triangle * n));
     const size_t cap = std::max<size_t>(1024, size_t(config_.front_per_triangle * n));

@@ -32,6 +32,12 @@ check "bad frame range" 2 "expected A:B" -- "$cdbench" run --device cpu --frames
 check "pipeline c runs and decides" 0 "formula 2 +[0-9]+ refit, [0-9]+ restructure" -- "$cdbench" run --device cpu --quiet --pipeline c --front-cycle 1 --restructure-quality 0 --restructure-min-leaves 8 --threshold-refit 0 --threshold-build 1
 check "verify with co-vertex filtering" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:3 --skip-adjacent
 check "verify with co-vertex filtering, sweep oracle" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:2 --skip-adjacent --brute-limit 10
+check "scene objects and queries" 0 "query       inter cloth - ball" -- "$cdbench" scenes info funnel-inter --set frames=1
+check "declared queries verify" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --scene funnel-inter --frames 0:3
+printf '{"generator": "funnel", "params": {"frames": 2}, "queries": {"self": ["cloth"], "inter": [["cloth", "rocket"]]}}' >"$tmp/badq.json"
+check "query names an unknown object" 2 "/queries/inter/0/1: unknown object 'rocket'" -- "$cdbench" run --device cpu --scene "$tmp/badq.json"
+printf '{"generator": "soup", "params": {"triangles": 10}, "queries": {"self": ["x"]}}' >"$tmp/noobj.json"
+check "queries need objects" 2 "no objects to query" -- "$cdbench" run --device cpu --scene "$tmp/noobj.json"
 check "several pipelines in one run" 0 "pipeline: c on cpu" -- "$cdbench" run --device cpu --quiet --frames 0:3 --pipeline bvh,static,c
 check "several pipelines need a pattern" 2 "\\{pipeline\\}" -- "$cdbench" run --device cpu --quiet --pipeline bvh,c --out "$tmp/x.h5"
 check "bad threshold order" 2 "threshold" -- "$cdbench" run --device cpu --quiet --pipeline c --threshold-refit 0.5 --threshold-build 0.1
