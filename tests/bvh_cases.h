@@ -67,6 +67,26 @@ inline std::unique_ptr<FrameSource> soup_source(const SoupCase& c) {
                                  {"seed", 11 + c.triangles}});
 }
 
+// The stackless self query on `bvh` against the sweep oracle for these positions.
+template <class Exec>
+void expect_self_query_exact(Exec& exec, const Lbvh<Exec>& bvh, const Topology& topo,
+                             const std::vector<vec3f>& v, Array<PrimPair>& pairs,
+                             Array<unsigned long long>& count, uint32_t frame) {
+  const std::vector<PrimPair> expected = sweep_oracle_pairs(topo, v);
+  pairs.reserve(expected.size() + 1);
+  exec.fill(count.data(), 1, 0ull);
+  self_query(exec, bvh.view(), PairSink{pairs.data(), count.data(), pairs.capacity()});
+  unsigned long long found = 0;
+  exec.copy_to_host(&found, count.data(), 1);
+  ASSERT_EQ(found, expected.size()) << "frame " << frame;
+  std::vector<PrimPair> got(found);
+  exec.copy_to_host(got.data(), pairs.data(), found);
+  std::sort(got.begin(), got.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+  const PairSetDiff d = diff_pair_sets(expected, got);
+  ASSERT_TRUE(d.equal()) << "frame " << frame << ": " << d.missing_count << " missing, "
+                         << d.unexpected_count << " unexpected";
+}
+
 // Build + order on frame 0, refit on frames 1 and 2: after each, the tree must pass every
 // reference check and the self query must report exactly the oracle's pairs.
 template <class Exec>
@@ -97,19 +117,8 @@ void check_soup_case(const SoupCase& c) {
     const HostBvh h = download(exec, bvh);
     ASSERT_EQ(check_bvh(h, topo, v), "") << "frame " << f;
 
-    const std::vector<PrimPair> expected = sweep_oracle_pairs(topo, v);
-    pairs.reserve(expected.size() + 1);
-    exec.fill(count.data(), 1, 0ull);
-    self_query(exec, bvh.view(), PairSink{pairs.data(), count.data(), pairs.capacity()});
-    unsigned long long found = 0;
-    exec.copy_to_host(&found, count.data(), 1);
-    ASSERT_EQ(found, expected.size()) << "frame " << f;
-    std::vector<PrimPair> got(found);
-    exec.copy_to_host(got.data(), pairs.data(), found);
-    std::sort(got.begin(), got.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
-    const PairSetDiff d = diff_pair_sets(expected, got);
-    ASSERT_TRUE(d.equal()) << "frame " << f << ": " << d.missing_count << " missing, "
-                           << d.unexpected_count << " unexpected";
+    expect_self_query_exact(exec, bvh, topo, v, pairs, count, f);
+    if (testing::Test::HasFatalFailure()) return;
   }
 }
 
@@ -283,17 +292,8 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
       EXPECT_EQ(after.node_escape[k], before.node_escape[k]);
       EXPECT_EQ(after.node_parent[k], before.node_parent[k]);
     }
-    const std::vector<PrimPair> expected = sweep_oracle_pairs(topo, v);
-    pairs.reserve(expected.size() + 1);
-    exec.fill(count.data(), 1, 0ull);
-    self_query(exec, bvh.view(), PairSink{pairs.data(), count.data(), pairs.capacity()});
-    unsigned long long found = 0;
-    exec.copy_to_host(&found, count.data(), 1);
-    ASSERT_EQ(found, expected.size()) << "frame " << f;
-    std::vector<PrimPair> got(found);
-    exec.copy_to_host(got.data(), pairs.data(), found);
-    std::sort(got.begin(), got.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
-    ASSERT_TRUE(diff_pair_sets(expected, got).equal()) << "frame " << f;
+    expect_self_query_exact(exec, bvh, topo, v, pairs, count, f);
+    if (testing::Test::HasFatalFailure()) return;
   }
 }
 
