@@ -132,8 +132,9 @@ def expand(paths):
 def load(paths):
     """(complete runs, incomplete runs), each sorted by scene, pipeline, path.
 
-    Runs of one scene and pipeline that occur more than once (e.g. other options) get the
-    file's stem added to their label so that rows stay apart and the order stays fixed.
+    Runs of one scene, device and pipeline that occur more than once (e.g. other options)
+    get the file's stem (or path, when stems repeat) added to their label so that rows
+    stay apart.
     """
     runs = [Run(p) for p in expand(paths)]
     runs.sort(key=lambda r: (r.scene, r.pipeline, r.path))
@@ -143,8 +144,10 @@ def load(paths):
         seen.setdefault((r.scene, r.device, r.pipeline), []).append(r)
     for same in seen.values():
         if len(same) > 1:
-            for r in same:
-                r.label = f"{r.pipeline} ({os.path.splitext(os.path.basename(r.path))[0]})"
+            stems = [os.path.splitext(os.path.basename(r.path))[0] for r in same]
+            unique = len(set(stems)) == len(stems)
+            for r, stem in zip(same, stems):
+                r.label = f"{r.pipeline} ({stem if unique else r.path})"
     return complete, [r for r in runs if not r.complete]
 
 

@@ -46,8 +46,8 @@ strategies=unordered,static,b,periodic,restructure,c,reference
   while IFS= read -r scene; do
     [[ -n $scene ]] || continue
     png="curves-$(printf '%s' "$scene" | tr -c 'A-Za-z0-9._-' '_').png"
-    py plot_curves.py "$dir" --scene "$scene" --pipelines "$strategies" --out "$outdir/$png" >/dev/null
-    echo "- $scene: [$png]($png)"
+    drawn=$(py plot_curves.py "$dir" --scene "$scene" --pipelines "$strategies" --out "$outdir/$png")
+    echo "- $scene: [$png]($png): ${drawn#*: $scene, }"
     echo
     echo "  ![$scene curves]($png)"
   done <<<"$scenes"

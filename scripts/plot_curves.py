@@ -14,6 +14,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 import numpy as np  # noqa: E402
 
@@ -50,7 +51,7 @@ def main():
                                            f"'{args.scene}' with pipelines {args.pipelines}")
 
         fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(9, 6.5))
-        marked_any = False
+        marked = 0
         for r in runs:
             frames = r.column("frame")
             total = r.column("t_total_ms")
@@ -61,20 +62,21 @@ def main():
                 bottom.plot(frames, q, label=r.label, linewidth=1.2, color=line.get_color())
             if "decision" in r.frames:
                 decided = np.array([d in MARKED for d in r.column("decision")], dtype=bool)
-                if any(decided):
-                    marked_any = True
+                if decided.any():
+                    marked += int(decided.sum())
                     for ax, ys in ((top, total), (bottom, q if has_q else None)):
                         if ys is None:
                             continue
                         ax.scatter(frames[decided], ys[decided], s=70, facecolors="none",
                                    edgecolors="red", linewidths=1.5, zorder=3)
-        if marked_any:
+        if marked:
             top.scatter([], [], s=70, facecolors="none", edgecolors="red", label="restructure/rebuild")
         device = runs[0].device
         top.set_title(f"{args.scene}: per-frame time and Q(root) ({device})", fontsize=10)
         top.set_ylabel("total ms / frame")
         bottom.set_ylabel("Q(root), Formula 1")
         bottom.set_xlabel("frame")
+        bottom.xaxis.set_major_locator(MaxNLocator(integer=True))
         top.legend(fontsize=8)
         if bottom.lines:
             bottom.legend(fontsize=8)
@@ -89,7 +91,8 @@ def main():
         fig.tight_layout()
         # No Software entry: the PNG stays byte-identical across matplotlib versions.
         fig.savefig(args.out, dpi=110, metadata={"Software": None})
-        print(f"wrote {args.out}: {args.scene}, " + ", ".join(r.label for r in runs))
+        print(f"wrote {args.out}: {args.scene}, " + ", ".join(r.label for r in runs)
+              + f"; {marked} restructure/rebuild decisions marked")
         return 0
 
     return cdb_results.run_main(body)
