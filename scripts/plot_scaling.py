@@ -8,6 +8,7 @@ two sizes at least. Writes the PNG and prints the exponents as a Markdown table.
   scripts/plot_scaling.py results/scaling/ --out scaling.png [--scene 'soup.*']
 """
 import argparse
+import math
 import re
 import sys
 
@@ -40,6 +41,8 @@ def main():
         runs = [r for r in complete if pattern.fullmatch(r.scene)]
         series = {}
         for r in runs:
+            if not math.isfinite(r.stat("t_total_ms_mean")):
+                continue  # no measured frame: nothing to place on the plot
             series.setdefault(r.pipeline, []).append((r.triangles, r.stat("t_total_ms_mean"), r.scene))
         fig, ax = plt.subplots(figsize=(7, 5))
         rows = []

@@ -9,6 +9,7 @@ baseline). The fastest mean of each scene is in bold. Markdown, or LaTeX with --
   scripts/table_pipelines.py results/ [--baseline bvh] [--latex]
 """
 import argparse
+import math
 import sys
 
 import numpy as np
@@ -23,7 +24,8 @@ def rows_of(runs, baseline):
     base = next((r for r in runs if r.pipeline == baseline), None)
     base_mean = base.stat("t_total_ms_mean") if base else None
     means = [r.stat("t_total_ms_mean") for r in runs]
-    fastest = min(means)
+    # A run with no measured frame has a NaN mean; it is never the fastest.
+    fastest = min((m for m in means if math.isfinite(m)), default=None)
     rows = []
     for r, mean in zip(runs, means):
         median, p95 = r.stat("t_total_ms_median"), r.stat("t_total_ms_p95")

@@ -26,6 +26,8 @@ def front_range(run):
     inner = run.column("front_int").astype(np.int64)
     outer = run.column("front_ext").astype(np.int64)
     total = inner + outer
+    if not len(total):
+        return "—"
     lo, hi = int(np.argmin(total)), int(np.argmax(total))
     return f"({inner[lo]:,} + {outer[lo]:,}) ~ ({inner[hi]:,} + {outer[hi]:,})"
 
