@@ -1,0 +1,243 @@
+#!/usr/bin/python3
+"""Shared reading for the table and plot scripts: cdbench results files through the schema only.
+
+docs/results-format.md is the contract: root attributes, the /frames columns (looked up by
+name, new ones tolerated) and the /summary attributes. Nothing here knows how a file was
+written. Run directly, it prints the inventory of a set of files (one Markdown row each),
+or with --provenance / --scenes-with what scripts/make_report.sh needs.
+
+  scripts/cdb_results.py results/ [more.h5 ...]
+"""
+import argparse
+import glob
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+SUPPORTED_SCHEMA = 1
+# Root attributes every schema-1 file has from its creation; a file without them is not ours.
+REQUIRED_ATTRS = ["status", "schema_version", "scene", "pipeline", "device_name", "git_sha",
+                  "triangles", "frame_first", "frame_last", "warmup"]
+
+
+class ResultsError(Exception):
+    """A file that is not a readable cdbench results file; the message names the file."""
+
+
+def text(value):
+    if isinstance(value, bytes):
+        return value.split(b"\0", 1)[0].decode("utf-8", "replace")
+    if isinstance(value, np.generic):
+        return text(value.item())
+    return str(value)
+
+
+def plain(value):
+    """An attribute as a Python str/int/float."""
+    if isinstance(value, (bytes, str)):
+        return text(value)
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+class Run:
+    """One results file: root attributes, every /frames column, /summary (or None)."""
+
+    def __init__(self, path):
+        self.path = path
+        try:
+            f = h5py.File(path, "r")
+        except OSError as e:
+            raise ResultsError(f"{path}: not a cdbench results file (not HDF5: {e})") from None
+        with f:
+            attrs = {k: plain(v) for k, v in f.attrs.items()}
+            missing = [a for a in REQUIRED_ATTRS if a not in attrs]
+            if missing:
+                raise ResultsError(f"{path}: not a cdbench results file (no root attribute "
+                                   f"{', '.join(missing)})")
+            if int(attrs["schema_version"]) > SUPPORTED_SCHEMA:
+                print(f"{path}: schema_version {attrs['schema_version']} is newer than "
+                      f"{SUPPORTED_SCHEMA}; reading the fields this script knows", file=sys.stderr)
+            if "frames" not in f or "frame" not in f["frames"]:
+                raise ResultsError(f"{path}: not a cdbench results file (no /frames/frame)")
+            self.frames = {}
+            for name, ds in f["frames"].items():
+                data = ds[()]
+                if data.dtype.kind == "S":
+                    data = np.array([text(v) for v in data], dtype=object)
+                self.frames[name] = data
+            self.summary = ({k: plain(v) for k, v in f["summary"].attrs.items()}
+                            if "summary" in f else None)
+        self.attrs = attrs
+        self.scene = attrs["scene"]
+        self.pipeline = attrs["pipeline"]
+        self.device = attrs["device_name"]
+        self.git_sha = attrs["git_sha"]
+        self.triangles = int(attrs["triangles"])
+        self.rows = len(self.frames["frame"])
+        self.asked = int(attrs["frame_last"]) - int(attrs["frame_first"])
+        self.complete = attrs["status"] == "complete" and self.summary is not None
+        self.label = self.pipeline
+
+    def incomplete_reason(self):
+        """How report shows it: 'incomplete (K/N frames): error'."""
+        why = self.attrs.get("error", "no error recorded (the process died?)")
+        if self.attrs["status"] == "complete" and self.summary is None:
+            why = "status complete but no /summary"
+        return f"incomplete ({self.rows}/{self.asked} frames): {why}"
+
+    def column(self, name):
+        """A /frames column over the measured frames (the first `warmup` rows left out)."""
+        if name not in self.frames:
+            raise ResultsError(f"{self.path}: no /frames/{name} column")
+        return self.frames[name][self.warmup():]
+
+    def warmup(self):
+        if self.summary is not None and "warmup" in self.summary:
+            return int(self.summary["warmup"])
+        return int(self.attrs["warmup"])
+
+    def stat(self, key):
+        """A /summary statistic, e.g. stat('t_total_ms_mean')."""
+        if self.summary is None or key not in self.summary:
+            raise ResultsError(f"{self.path}: no /summary attribute {key}")
+        return float(self.summary[key])
+
+    def peak_bytes(self):
+        if self.summary is not None and "peak_bytes" in self.summary:
+            return int(self.summary["peak_bytes"])
+        return int(self.frames["device_peak_bytes"].max()) if self.rows else 0
+
+
+def expand(paths):
+    """Files as given, directories as their *.h5 files (not recursive), sorted."""
+    files = []
+    for p in paths:
+        if os.path.isdir(p):
+            found = sorted(glob.glob(os.path.join(p, "*.h5")))
+            if not found:
+                raise ResultsError(f"{p}: no *.h5 files in this directory")
+            files.extend(found)
+        elif os.path.exists(p):
+            files.append(p)
+        else:
+            raise ResultsError(f"{p}: no such file or directory")
+    return files
+
+
+def load(paths):
+    """(complete runs, incomplete runs), each sorted by scene, pipeline, path.
+
+    Runs of one scene, device and pipeline that occur more than once (e.g. other options)
+    get the file's stem (or path, when stems repeat) added to their label so that rows
+    stay apart.
+    """
+    runs = [Run(p) for p in expand(paths)]
+    runs.sort(key=lambda r: (r.scene, r.pipeline, r.path))
+    complete = [r for r in runs if r.complete]
+    seen = {}
+    for r in complete:
+        seen.setdefault((r.scene, r.device, r.pipeline), []).append(r)
+    for same in seen.values():
+        if len(same) > 1:
+            stems = [os.path.splitext(os.path.basename(r.path))[0] for r in same]
+            unique = len(set(stems)) == len(stems)
+            for r, stem in zip(same, stems):
+                r.label = f"{r.pipeline} ({stem if unique else r.path})"
+    return complete, [r for r in runs if not r.complete]
+
+
+def by_scene(runs):
+    """{(scene, device): [runs]} in sorted order; the device only matters when files mix them."""
+    groups = {}
+    for r in runs:
+        groups.setdefault((r.scene, r.device), []).append(r)
+    return dict(sorted(groups.items()))
+
+
+def scene_heading(scene, device, runs_all):
+    devices = {r.device for r in runs_all}
+    return f"{scene} ({device})" if len(devices) > 1 else scene
+
+
+def incomplete_lines(incomplete):
+    """Markdown list of the files left out because they are not complete."""
+    if not incomplete:
+        return []
+    lines = ["", "Incomplete files (not used):", ""]
+    for r in incomplete:
+        lines.append(f"- `{r.path}`: {r.scene} / {r.pipeline}: {r.incomplete_reason()}")
+    return lines
+
+
+def report_incomplete(incomplete, tool):
+    for r in incomplete:
+        print(f"{tool}: {r.path}: {r.incomplete_reason()}; left out", file=sys.stderr)
+
+
+def fmt(x):
+    """Milliseconds and ratios: four significant digits, no exponent; '—' when missing."""
+    if x is None or math.isnan(x):
+        return "—"
+    return f"{x:.0f}" if abs(x) >= 1e4 else f"{x:.4g}"
+
+
+def markdown_table(header, rows):
+    out = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
+    out += ["| " + " | ".join(row) + " |" for row in rows]
+    return out
+
+
+def run_main(body):
+    """Common entry: a ResultsError prints its message (naming the file) and exits 1."""
+    tool = os.path.basename(sys.argv[0])
+    try:
+        return body()
+    except ResultsError as e:
+        print(f"{tool}: {e}", file=sys.stderr)
+        return 1
+
+
+def provenance(runs):
+    """The distinct git shas and devices of a set of runs, as one line."""
+    shas = sorted({r.git_sha for r in runs})
+    devices = sorted({r.device for r in runs})
+    return f"git sha {', '.join(shas) or '—'}; device {'; '.join(devices) or '—'}"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("paths", nargs="+", help="results files or directories of *.h5")
+    parser.add_argument("--provenance", action="store_true",
+                        help="print only the git shas and devices of the files, on one line")
+    parser.add_argument("--scenes-with", metavar="PIPELINES",
+                        help="print only the scenes with a complete run of one of these pipelines (comma-separated)")
+    args = parser.parse_args()
+
+    def body():
+        complete, incomplete = load(args.paths)
+        if args.provenance:
+            print(provenance(complete + incomplete))
+            return 0
+        if args.scenes_with is not None:
+            wanted = set(args.scenes_with.split(","))
+            for scene in sorted({r.scene for r in complete if r.pipeline in wanted}):
+                print(scene)
+            return 0
+        rows = []
+        for r in sorted(complete + incomplete, key=lambda r: r.path):
+            status = "complete" if r.complete else r.incomplete_reason()
+            rows.append([f"`{r.path}`", r.scene, r.pipeline, f"{r.triangles:,}", r.device,
+                         r.git_sha, f"{r.rows}", status])
+        print("\n".join(markdown_table(["file", "scene", "pipeline", "triangles", "device",
+                                        "git sha", "frames", "status"], rows)))
+        return 0
+    return run_main(body)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+"""Every pipeline and baseline per scene: ms/frame and speed-up (the paper's Figure 9).
+
+Mean, median and p95 come from /summary (measured frames: all but the first `warmup`);
+the noise columns are the standard deviation of /frames/t_total_ms over the same frames and
+p95 - median. Speed-up is the baseline's mean over the row's mean (> 1: faster than the
+baseline). The fastest mean of each scene is in bold. Markdown, or LaTeX with --latex.
+
+  scripts/table_pipelines.py results/ [--baseline bvh] [--latex]
+"""
+import argparse
+import math
+import sys
+
+import numpy as np
+
+import cdb_results
+
+HEADER = ["pipeline", "frames", "mean ms", "median ms", "p95 ms", "std ms", "p95 - median",
+          "speed-up vs {baseline}"]
+
+
+def rows_of(runs, baseline):
+    base = next((r for r in runs if r.pipeline == baseline), None)
+    base_mean = base.stat("t_total_ms_mean") if base else None
+    means = [r.stat("t_total_ms_mean") for r in runs]
+    # A run with no measured frame has a NaN mean; it is never the fastest.
+    fastest = min((m for m in means if math.isfinite(m)), default=None)
+    rows = []
+    for r, mean in zip(runs, means):
+        median, p95 = r.stat("t_total_ms_median"), r.stat("t_total_ms_p95")
+        t = r.column("t_total_ms")
+        std = float(np.std(t, ddof=1)) if len(t) > 1 else float("nan")
+        speedup = base_mean / mean if base_mean is not None and mean > 0 else None
+        rows.append({"label": r.label, "frames": str(len(t)), "mean": mean, "median": median,
+                     "p95": p95, "std": std, "spread": p95 - median, "speedup": speedup,
+                     "bold": mean == fastest})
+    return rows, base is not None
+
+
+def cells(row):
+    f = cdb_results.fmt
+    return [row["label"], row["frames"], f(row["mean"]), f(row["median"]), f(row["p95"]), f(row["std"]),
+            f(row["spread"]), "—" if row["speedup"] is None else f"{f(row['speedup'])}x"]
+
+
+def markdown(groups, baseline, complete, incomplete):
+    lines = []
+    for (scene, device), runs in groups.items():
+        rows, has_base = rows_of(runs, baseline)
+        triangles = runs[0].triangles
+        lines += [f"### {cdb_results.scene_heading(scene, device, complete)} ({triangles:,} triangles)", ""]
+        body = []
+        for row in rows:
+            c = cells(row)
+            if row["bold"]:
+                c[0], c[2] = f"**{c[0]}**", f"**{c[2]}**"
+            body.append(c)
+        lines += cdb_results.markdown_table([h.format(baseline=baseline) for h in HEADER], body)
+        if not has_base:
+            lines += ["", f"No `{baseline}` run of this scene: no speed-up."]
+        lines.append("")
+    lines += cdb_results.incomplete_lines(incomplete)
+    return lines
+
+
+def latex_escape(s):
+    for a, b in (("\\", "\\textbackslash{}"), ("_", "\\_"), ("%", "\\%"), ("&", "\\&"), ("#", "\\#")):
+        s = s.replace(a, b)
+    return s
+
+
+def latex(groups, baseline, complete, incomplete):
+    header = [latex_escape(h.format(baseline=baseline)) for h in HEADER]
+    lines = ["\\begin{tabular}{l" + "r" * (len(HEADER) - 1) + "}",
+             "\\toprule", " & ".join(header) + " \\\\"]
+    for (scene, device), runs in groups.items():
+        rows, _ = rows_of(runs, baseline)
+        lines += ["\\midrule",
+                  f"\\multicolumn{{{len(HEADER)}}}{{l}}{{\\emph{{"
+                  f"{latex_escape(cdb_results.scene_heading(scene, device, complete))}}}}} \\\\"]
+        for row in rows:
+            c = [latex_escape(x).replace("—", "--") for x in cells(row)]
+            if row["bold"]:
+                c[0], c[2] = f"\\textbf{{{c[0]}}}", f"\\textbf{{{c[2]}}}"
+            lines.append(" & ".join(c) + " \\\\")
+    lines += ["\\bottomrule", "\\end{tabular}"]
+    for r in incomplete:
+        lines.append(f"% incomplete, not used: {r.path}: {r.incomplete_reason()}")
+    return lines
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("paths", nargs="+", help="results files or directories of *.h5")
+    parser.add_argument("--baseline", default="bvh", help="pipeline the speed-up is relative to (default: %(default)s)")
+    parser.add_argument("--latex", action="store_true", help="a LaTeX tabular (booktabs) instead of Markdown")
+    args = parser.parse_args()
+
+    def body():
+        complete, incomplete = cdb_results.load(args.paths)
+        groups = cdb_results.by_scene(complete)
+        if not groups and not args.latex:
+            print("No complete run.")
+        make = latex if args.latex else markdown
+        print("\n".join(make(groups, args.baseline, complete, incomplete)))
+        return 0
+
+    return cdb_results.run_main(body)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
