@@ -96,7 +96,12 @@ SceneEntry scene_entry(const json& j, const std::string& at, const std::filesyst
     for (const auto& [key, value] : e.set) e.label += "." + key + "=" + value;
     e.label = safe_name(e.label);
   }
-  if (path) e.spec = std::filesystem::absolute(base / e.spec).lexically_normal().string();
+  if (path) {
+    // Without a trailing '/', so a directory of frames is named after the directory.
+    std::filesystem::path p = std::filesystem::absolute(base / e.spec).lexically_normal();
+    if (p.filename().empty()) p = p.parent_path();
+    e.spec = p.string();
+  }
   return e;
 }
 

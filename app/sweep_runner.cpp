@@ -220,8 +220,8 @@ int run_sweep(const SweepPlan& plan, const SweepRunOptions& options) {
                     s.log.c_str());
       }
       std::fflush(stdout);
-      sweep_log << utc_now() << " " << s.state << " " << c.name << " " << describe_exit(s) << " " << s.seconds << " s"
-                << std::endl;
+      sweep_log << utc_now() << " " << s.state << " " << c.name << " "
+                << (s.state == "complete" ? "exit 0" : describe_exit(s)) << " " << s.seconds << " s" << std::endl;
       r.reset();
     }
   }
