@@ -84,16 +84,18 @@ std::vector<std::string> phases_that_ran(const std::vector<Row>& rows) {
 }
 
 std::string status_text(const Row& row, bool csv) {
-  if (row.process && row.r.status.empty()) return "failed, no results file: " + describe_exit(*row.process);
-  if (!row.unreadable.empty()) return "unreadable: " + row.unreadable;
+  if (row.process && row.unreadable.empty() && row.r.status.empty())
+    return "failed, no results file: " + describe_exit(*row.process);
+  // A process killed outright (out of memory, SIGKILL) leaves no error in its file, or a
+  // file cut off before it could be read.
+  const std::string killed = row.process && row.process->signal ? " (" + describe_exit(*row.process) + ")" : "";
+  if (!row.unreadable.empty()) return "unreadable: " + row.unreadable + killed;
   if (row.r.status == "complete") return "complete";
   std::string s = row.r.status;
   if (!csv)
     s += " (" + std::to_string(row.r.frames_written) + "/" + std::to_string(row.r.frames_planned) + " frames)";
   if (!row.r.error.empty()) s += ": " + row.r.error;
-  // A process killed outright (out of memory, SIGKILL) leaves no error in its file.
-  if (row.process && row.process->signal) s += " (" + describe_exit(*row.process) + ")";
-  return s;
+  return s + killed;
 }
 
 std::string markdown_cell(std::string s) {
