@@ -87,5 +87,8 @@ check "duplicate cell names refused" 2 "bad4.json: cells 0 and 1 are both named 
 printf '{"scenes": ["funnel"], "pipeline": ["bvh"]}' >"$tmp/bad5.json"
 check "unknown key" 2 "bad5.json: /pipeline: unknown key" -- "$cdbench" sweep "$tmp/bad5.json" --out "$tmp/x"
 
+check "committed paper sweep expands" 0 "paper-fig9.json: 55 cells" -- "$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" --dry-run
+check "run takes --set" 0 "frames 0:2" -- "$cdbench" run --device cpu --quiet --scene funnel --set res=12 --set frames=2
+
 if [[ $failures -ne 0 ]]; then echo "$failures sweep test(s) failed"; exit 1; fi
 echo "all sweep tests passed"
