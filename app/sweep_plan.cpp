@@ -1,8 +1,10 @@
 #include "sweep_plan.h"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <map>
+#include <string_view>
 
 #include "core/error.h"
 

@@ -93,7 +93,7 @@ pid_t spawn_cell(const std::vector<std::string>& args, const fs::path& log, cons
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  posix_spawn_file_actions_addclose(&actions, 0);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   pid_t pid = 0;
   // This very binary, so a cell runs the same build as the sweep that started it.
   const int err = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), envp.data());
@@ -122,7 +122,7 @@ void list_cells(const SweepPlan& plan, const SweepRunOptions& options) {
     if (cell_complete(options.out_dir, c)) {
       state = "complete (skipped)";
       ++complete;
-    } else if (const auto s = read_cell_status(cell_status_file(options.out_dir, c.name)); s && s.value().state != "complete") {
+    } else if (const auto s = read_cell_status(cell_status_file(options.out_dir, c.name)); s && s->state != "complete") {
       state = "to run again (failed: " + describe_exit(*s) + ")";
     }
     std::printf("%3zu  %s  %s\n     cdbench %s\n", i, c.name.c_str(), state.c_str(),
