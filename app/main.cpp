@@ -26,6 +26,8 @@
 #include "report.h"
 #include "results_table.h"
 #include "run_loop.h"
+#include "sweep_plan.h"
+#include "sweep_runner.h"
 
 using namespace cdb;
 
@@ -41,6 +43,7 @@ struct CommonOptions {
   uint32_t front_cycle = 4;
   PipelineConfig restructure;  // the restructure_* and threshold_* fields
   bool skip_adjacent = false;
+  std::vector<std::string> sets;  // generator overrides, key=value
 };
 
 void add_common(CLI::App* cmd, CommonOptions& o) {
@@ -49,6 +52,7 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--device", o.device, "cuda, cpu, or auto (cuda when a GPU is present)")
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
+  cmd->add_option("--set", o.sets, "override a generator parameter of a procedural scene: key=value (repeatable)");
   cmd->add_option("--frames", o.frames, "frame range A:B (half-open), A: or A; default all");
   cmd->add_option("--scenes-dir", o.scenes_dir, "where named scenes live");
   cmd->add_option("--morton-bits", o.morton_bits, "Morton code width")
@@ -114,9 +118,22 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   return c;
 }
 
+// key=value pairs from --set: values parsed as JSON where they are (numbers, true, ...),
+// else taken as strings.
+nlohmann::json parse_overrides(const std::vector<std::string>& sets) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& kv : sets) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) fail("--set " + kv + ": expected key=value");
+    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+    j[key] = nlohmann::json::accept(value) ? nlohmann::json::parse(value) : nlohmann::json(value);
+  }
+  return j;
+}
+
 Scene load_scene(const CommonOptions& o) {
-  return open_scene(o.scene, o.scenes_dir.empty() ? default_scenes_dir()
-                                                  : std::filesystem::path(o.scenes_dir));
+  return open_scene(o.scene, o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir),
+                    parse_overrides(o.sets));
 }
 
 void print_environment(const std::string& device) {
@@ -295,19 +312,6 @@ int scenes_list(const CommonOptions& o) {
   return 0;
 }
 
-// key=value pairs from --set: values parsed as JSON where they are (numbers, true, ...),
-// else taken as strings.
-nlohmann::json parse_overrides(const std::vector<std::string>& sets) {
-  nlohmann::json j = nlohmann::json::object();
-  for (const auto& kv : sets) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) fail("--set " + kv + ": expected key=value");
-    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
-    j[key] = nlohmann::json::accept(value) ? nlohmann::json::parse(value) : nlohmann::json(value);
-  }
-  return j;
-}
-
 int scenes_generate(const CommonOptions& o, const std::string& scene,
                     const std::vector<std::string>& sets, const std::string& out_dir) {
   const auto dir = o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir);
@@ -360,6 +364,36 @@ int scenes_info(const CommonOptions& o, const std::string& scene, const std::vec
   return 0;
 }
 
+struct SweepOptions {
+  std::string file, out_dir, slurm, scenes_dir;
+  int gpus = 0;  // 0: one per visible GPU, at least one cell at a time
+  bool dry_run = false;
+};
+
+int sweep_command(const SweepOptions& w, const CLI::App& run) {
+  std::vector<RunOptionInfo> run_options;
+  for (const CLI::Option* opt : run.get_options())
+    if (!opt->get_lnames().empty()) run_options.push_back({opt->get_lnames()[0], opt->get_expected_max() == 0});
+  const SweepPlan plan = load_sweep(w.file, run_options, pipeline_names());
+  SweepRunOptions options;
+  options.out_dir = w.out_dir;
+  options.scenes_dir = w.scenes_dir.empty() ? "" : std::filesystem::absolute(w.scenes_dir).string();
+  if (w.dry_run) {
+    list_cells(plan, options);
+    return 0;
+  }
+  if (!w.slurm.empty()) {
+    const size_t n = write_slurm_script(plan, options, w.slurm);
+    std::printf("wrote %s: %zu array tasks (%zu cells already complete); submit with sbatch %s\n", w.slurm.c_str(), n,
+                plan.cells.size() - n, w.slurm.c_str());
+    return 0;
+  }
+  const int gpus = w.gpus > 0 ? w.gpus : cuda_device_info().device_count;
+  options.slots = unsigned(std::max(gpus, 1));
+  options.one_gpu_each = gpus > 0;
+  return run_sweep(plan, options);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -407,8 +441,21 @@ int main(int argc, char** argv) {
   auto* report = app.add_subcommand("report", "summarize results files as a Markdown (or CSV) table");
   std::vector<std::string> report_files;
   bool csv = false;
-  report->add_option("files", report_files, "results files written by run --out")->required();
+  report->add_option("files", report_files,
+                     "results files written by run --out, or directories: every .h5 under them, and the sweep cells that left none")
+      ->required();
   report->add_flag("--csv", csv, "CSV instead of Markdown");
+
+  auto* sweep = app.add_subcommand("sweep", "run the cells of a sweep file, one process each (docs/sweeps.md)");
+  SweepOptions w;
+  sweep->add_option("file", w.file, "sweep file (.json)")->required();
+  sweep->add_option("--out", w.out_dir, "directory for the cells' results files, logs and status")->required();
+  sweep->add_option("--gpus", w.gpus,
+                    "cells at a time, one GPU each (CUDA_VISIBLE_DEVICES); default: the GPUs visible, 1 without")
+      ->check(CLI::PositiveNumber);
+  sweep->add_option("--slurm", w.slurm, "write a Slurm job-array script (one task per cell not complete) instead of running");
+  sweep->add_flag("--dry-run", w.dry_run, "list the cells, their state and command lines; run nothing");
+  sweep->add_option("--scenes-dir", w.scenes_dir, "where named scenes live, passed on to every cell");
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -418,6 +465,7 @@ int main(int argc, char** argv) {
     if (*info) return scenes_info(o, scene_name, scene_sets);
     if (*generate) return scenes_generate(o, scene_name, scene_sets, generate_out);
     if (*report) return print_results_table(report_files, csv);
+    if (*sweep) return sweep_command(w, *run);
   } catch (const Error& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "cdbench: error: %s\n", e.what());

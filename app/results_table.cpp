@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <string>
+
+#include "cell_status.h"
 
 #include "core/phase.h"
 #include "io/results_reader.h"
@@ -14,7 +18,44 @@ namespace {
 struct Row {
   ResultsOverview r;
   std::string unreadable;  // why, when the file could not be read
+  std::optional<CellStatus> process;  // how a sweep cell's process ended, when recorded
 };
+
+struct Inputs {
+  std::vector<std::string> files;
+  // Sweep cells that ended without a results file: the file they were to write, and how.
+  std::vector<std::pair<std::string, CellStatus>> missing;
+};
+
+// A directory stands for every .h5 under it, and for every sweep cell recorded there
+// (<cell>.status.json) whose process left no results file, so results copied together
+// from many machines report as one table.
+Inputs expand_inputs(const std::vector<std::string>& args) {
+  namespace fs = std::filesystem;
+  Inputs in;
+  for (const auto& a : args) {
+    if (!fs::is_directory(a)) {
+      in.files.push_back(a);
+      continue;
+    }
+    std::vector<fs::path> found, statuses;
+    for (const auto& e : fs::recursive_directory_iterator(a)) {
+      if (!e.is_regular_file()) continue;
+      const std::string name = e.path().filename().string();
+      if (e.path().extension() == ".h5") found.push_back(e.path());
+      if (name.ends_with(".status.json")) statuses.push_back(e.path());
+    }
+    std::sort(found.begin(), found.end());
+    std::sort(statuses.begin(), statuses.end());
+    for (const auto& f : found) in.files.push_back(f.string());
+    for (const auto& st : statuses) {
+      const std::optional<CellStatus> s = read_cell_status(st);
+      const fs::path file = st.parent_path() / (s ? s->cell + ".h5" : "");
+      if (s && !fs::exists(file)) in.missing.emplace_back(file.string(), *s);
+    }
+  }
+  return in;
+}
 
 std::string number(double x, const char* format = "%.3f") {
   if (std::isnan(x)) return "";
@@ -43,13 +84,18 @@ std::vector<std::string> phases_that_ran(const std::vector<Row>& rows) {
 }
 
 std::string status_text(const Row& row, bool csv) {
-  if (!row.unreadable.empty()) return "unreadable: " + row.unreadable;
+  if (row.process && row.unreadable.empty() && row.r.status.empty())
+    return "failed, no results file: " + describe_exit(*row.process);
+  // A process killed outright (out of memory, SIGKILL) leaves no error in its file, or a
+  // file cut off before it could be read.
+  const std::string killed = row.process && row.process->signal ? " (" + describe_exit(*row.process) + ")" : "";
+  if (!row.unreadable.empty()) return "unreadable: " + row.unreadable + killed;
   if (row.r.status == "complete") return "complete";
   std::string s = row.r.status;
   if (!csv)
     s += " (" + std::to_string(row.r.frames_written) + "/" + std::to_string(row.r.frames_planned) + " frames)";
   if (!row.r.error.empty()) s += ": " + row.r.error;
-  return s;
+  return s + killed;
 }
 
 std::string markdown_cell(std::string s) {
@@ -71,11 +117,15 @@ std::string csv_cell(const std::string& s) {
 
 }  // namespace
 
-int print_results_table(const std::vector<std::string>& files, bool csv) {
+int print_results_table(const std::vector<std::string>& args, bool csv) {
+  const Inputs inputs = expand_inputs(args);
   std::vector<Row> rows;
   int rc = 0;
-  for (const auto& f : files) {
+  for (const auto& f : inputs.files) {
     Row row;
+    const std::filesystem::path path(f);
+    if (path.extension() == ".h5")
+      row.process = read_cell_status(path.parent_path() / (path.stem().string() + ".status.json"));
     try {
       row.r = read_results_overview(f);
     } catch (const std::exception& e) {
@@ -84,6 +134,15 @@ int print_results_table(const std::vector<std::string>& files, bool csv) {
       std::fprintf(stderr, "cdbench: report: %s\n", e.what());
       rc = 1;
     }
+    rows.push_back(std::move(row));
+  }
+  for (const auto& [file, s] : inputs.missing) {
+    Row row;
+    row.r.path = file;
+    row.r.scene = s.scene;
+    row.r.pipeline = s.pipeline;
+    row.r.backend = s.device;
+    row.process = s;
     rows.push_back(std::move(row));
   }
   const std::vector<std::string> phases = phases_that_ran(rows);
@@ -96,8 +155,8 @@ int print_results_table(const std::vector<std::string>& files, bool csv) {
   for (const Row& row : rows) {
     const ResultsOverview& r = row.r;
     std::vector<std::string> cells = {r.path, r.scene, r.pipeline,
-                                      r.backend.empty() ? "" : r.backend + ": " + r.device_name,
-                                      row.unreadable.empty() ? std::to_string(r.frames_written) : ""};
+                                      r.device_name.empty() ? r.backend : r.backend + ": " + r.device_name,
+                                      row.unreadable.empty() && !r.status.empty() ? std::to_string(r.frames_written) : ""};
     const bool stats = row.unreadable.empty() && r.has_summary && r.measured_frames > 0;
     const double none = std::nan("");
     cells.push_back(number(stats ? r.mean_ms : none));

@@ -23,6 +23,7 @@ CudaDeviceInfo cuda_device_info() {
   cudaDeviceProp prop{};
   cuda_check(cudaGetDeviceProperties(&prop, 0), "device query");
   info.available = true;
+  info.device_count = count;
   info.name = prop.name;
   info.total_bytes = prop.totalGlobalMem;
   cudaDriverGetVersion(&info.driver_version);

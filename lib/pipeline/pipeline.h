@@ -86,6 +86,7 @@ struct CudaDeviceInfo {
   std::string name, reason;
   int driver_version = 0, runtime_version = 0;
   size_t total_bytes = 0;
+  int device_count = 0;  // GPUs visible to this process
 };
 CudaDeviceInfo cuda_device_info();
 

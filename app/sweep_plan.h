@@ -1,0 +1,53 @@
+#pragma once
+// `cdbench sweep`: a sweep file (docs/sweeps.md) expanded into cells, one `cdbench run`
+// each. Pure: reads the sweep file, touches nothing else, so --dry-run, --slurm and the
+// runner all see the same cells with the same names and command lines.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace cdb {
+
+// A `run` option the sweep may set on an axis (from the CLI definition, so a new run
+// option is sweepable without code here).
+struct RunOptionInfo {
+  std::string name;  // without the leading --
+  bool flag = false;
+};
+
+struct SweepCell {
+  std::string name;        // file-name safe, stable: scene, pipeline, device, axes, repeat
+  std::string scene;       // a scene name, or an absolute path
+  std::string scene_label;
+  std::vector<std::pair<std::string, std::string>> set;  // generator overrides, key order
+  std::string frames;      // --frames, empty for all
+  std::string pipeline, device;
+  std::vector<std::pair<std::string, nlohmann::json>> options;  // axis values, key order
+  unsigned repeat = 0;     // 1-based when the sweep repeats cells, else 0
+};
+
+struct SweepPlan {
+  std::string file;  // as given, for messages
+  unsigned warmup = 1;
+  std::vector<SweepCell> cells;
+};
+
+// Throws cdb::Error naming the file and the JSON path of what is wrong, e.g.
+// "s.json: /pipelines/2: unknown pipeline 'x'".
+SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOptionInfo>& run_options,
+                     const std::vector<std::string>& pipelines);
+
+// The arguments after the executable: run ... --out DIR/<cell>.h5 --quiet.
+std::vector<std::string> cell_run_args(const SweepPlan& plan, const SweepCell& cell,
+                                       const std::filesystem::path& out_dir,
+                                       const std::string& scenes_dir);
+
+std::filesystem::path cell_results_file(const std::filesystem::path& out_dir, const SweepCell& cell);
+
+std::string shell_quote(const std::string& word);
+std::string shell_line(const std::vector<std::string>& words);
+
+}  // namespace cdb

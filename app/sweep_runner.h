@@ -1,0 +1,34 @@
+#pragma once
+// Runs a sweep's cells, each as its own `cdbench run` process, so a crash, an out-of-memory
+// kill or an error in one cell is recorded and the others go on; or lists them, or writes
+// them as a Slurm job array.
+#include <filesystem>
+#include <string>
+
+#include "sweep_plan.h"
+
+namespace cdb {
+
+struct SweepRunOptions {
+  std::filesystem::path out_dir;
+  std::string scenes_dir;      // passed on to every cell when not empty
+  unsigned slots = 1;          // cells run at a time
+  bool one_gpu_each = false;   // give the cell in slot k only GPU k (CUDA_VISIBLE_DEVICES)
+};
+
+// True when the cell's results file exists and says `complete`.
+bool cell_complete(const std::filesystem::path& out_dir, const SweepCell& cell);
+
+// --dry-run: every cell with its state and command line.
+void list_cells(const SweepPlan& plan, const SweepRunOptions& options);
+
+// Runs the cells not yet complete. Returns 0 when every cell is complete, 1 when some
+// failed, 128 + signal when SIGINT/SIGTERM stopped the sweep (running cells are passed the
+// signal and end as incomplete files).
+int run_sweep(const SweepPlan& plan, const SweepRunOptions& options);
+
+// --slurm: a job-array script, one task per cell not yet complete; returns how many.
+size_t write_slurm_script(const SweepPlan& plan, const SweepRunOptions& options,
+                          const std::filesystem::path& script);
+
+}  // namespace cdb

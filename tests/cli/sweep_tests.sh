@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# cdbench sweep: expansion, one process per cell, resuming, failed cells, Slurm script, and
+# report over a directory. Runs sweeps/ci-small.json (2 tiny scenes x 3 pipelines on the CPU).
+set -u
+cdbench=$1
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+check() {  # check NAME EXPECTED_RC PATTERN -- CMD...
+  local name=$1 want_rc=$2 pattern=$3; shift 4
+  "$@" >"$tmp/out" 2>&1; local rc=$?
+  if [[ $rc -ne $want_rc ]] || ! grep -qE -- "$pattern" "$tmp/out"; then
+    echo "FAIL $name: rc=$rc (want $want_rc), pattern '$pattern'"; sed 's/^/    /' "$tmp/out" | tail -20
+    failures=$((failures + 1))
+  else
+    echo "ok   $name"
+  fi
+}
+count() {  # count NAME WANT PATTERN: lines of the last output matching PATTERN
+  local n; n=$(grep -cE -- "$3" "$tmp/out")
+  if [[ $n -ne $2 ]]; then
+    echo "FAIL $1: $n lines match '$3' (want $2)"; sed 's/^/    /' "$tmp/out" | tail -20
+    failures=$((failures + 1))
+  else
+    echo "ok   $1"
+  fi
+}
+
+sweep=$root/sweeps/ci-small.json
+out=$tmp/results
+check "dry run lists the cells" 0 "6 cells, 0 complete, 6 to run" -- "$cdbench" sweep "$sweep" --out "$out" --dry-run
+count "dry run names every cell" 6 "^ +[0-9]+  (funnel|cloth-wave)\.frames=3\.res=[0-9]+_(bvh|b|sweep)_cpu  to run"
+count "dry run shows the run lines" 6 "^ +cdbench run --scene .* --out $out/.*\.h5 --quiet"
+[[ -e $out ]] && { echo "FAIL dry run wrote $out"; failures=$((failures + 1)); }
+
+check "sweep runs every cell" 0 "6 run, 6 complete, 0 failed" -- "$cdbench" sweep "$sweep" --out "$out"
+n=$(ls "$out"/*.h5 | wc -l)
+[[ $n -eq 6 ]] && echo "ok   six results files" || { echo "FAIL $n results files (want 6)"; failures=$((failures + 1)); }
+check "report over the directory" 0 "funnel \| sweep \| cpu" -- "$cdbench" report "$out"
+count "report has six complete rows" 6 "\.h5 \| .* \| complete \|$"
+check "second sweep skips complete cells" 0 "6 already complete, 0 to run" -- "$cdbench" sweep "$sweep" --out "$out"
+count "each skip is said" 6 "^skip .*: results complete"
+
+# Failing cells next to the complete ones: a scene whose frame 2 has a NaN (an incomplete
+# file) and a scene that does not exist (no file at all).
+mkdir -p "$tmp/midway"
+for f in 0 1 2 3; do
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 %d\nf 1 2 3\nf 1 2 4\n' "$f" >"$tmp/midway/frame_000$f.obj"
+done
+printf 'v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n' >"$tmp/midway/frame_0002.obj"
+cat >"$tmp/failing.json" <<'JSON'
+{"scenes": [{"scene": "funnel", "set": {"res": 24, "frames": 3}}, "midway/", "nowhere/"],
+ "pipelines": ["bvh"], "devices": ["cpu"]}
+JSON
+check "failed cells make the sweep exit 1" 1 "3 cells, 1 already complete, 2 to run" -- "$cdbench" sweep "$tmp/failing.json" --out "$out"
+count "the others are reported failed" 2 "^\[[12]/2\] (midway|nowhere)_bvh_cpu: FAILED, exit 2: cdbench: error: "
+check "failure recorded with its exit code" 0 '"exit_code": 2' -- cat "$out/nowhere_bvh_cpu.status.json"
+check "sweep.log has the failure" 0 "failed midway_bvh_cpu exit 2: .*non-finite" -- cat "$out/sweep.log"
+check "report shows the incomplete cell" 0 "midway_bvh_cpu\.h5 \| midway \| bvh \|.*\| incomplete \(2/4 frames\): frame 2: " -- "$cdbench" report "$out"
+check "report shows the cell without a file" 0 "nowhere_bvh_cpu\.h5 \| nowhere \| bvh \| cpu \|.*\| failed, no results file: exit 2: .*nowhere" -- "$cdbench" report "$out"
+count "report still has the six complete rows" 6 "\| complete \|$"
+check "dry run says which cells failed" 0 "nowhere_bvh_cpu  to run again \(failed: exit 2" -- "$cdbench" sweep "$tmp/failing.json" --out "$out" --dry-run
+
+# Slurm: one array task per cell; the script itself runs a cell when given a task id.
+check "slurm script written" 0 "6 array tasks" -- "$cdbench" sweep "$sweep" --out "$tmp/slurm" --slurm "$tmp/job.sh"
+check "slurm script has the array" 0 "^#SBATCH --array=0-5$" -- cat "$tmp/job.sh"
+count "slurm script has the run lines" 6 "cmd=\(.*cdbench run --scene .* --out $tmp/slurm/.*\.h5 --quiet\)"
+check "slurm script is valid bash" 0 "^ran$" -- bash -c 'bash -n "$1" && echo ran' _ "$tmp/job.sh"
+check "slurm task runs its cell" 0 "^ran$" -- bash -c 'SLURM_ARRAY_TASK_ID=4 bash "$1" && echo ran' _ "$tmp/job.sh"
+check "slurm task leaves its status" 0 '"state": "complete", "exit_code": 0' -- cat "$tmp/slurm/cloth-wave.frames=3.res=12_b_cpu.status.json"
+check "slurm script leaves out complete cells" 0 "5 array tasks \(1 cells already complete\)" -- "$cdbench" sweep "$sweep" --out "$tmp/slurm" --slurm "$tmp/job2.sh"
+
+# Option axes and the errors of a sweep file.
+printf '{"scenes": ["funnel"], "pipelines": ["a"], "devices": ["cpu"], "options": {"front-cycle": [1, 8], "skip-adjacent": [false, true]}, "repeat": 2}' >"$tmp/axes.json"
+check "option axes multiply" 0 "8 cells" -- "$cdbench" sweep "$tmp/axes.json" --out "$tmp/axes" --dry-run
+check "axis values name the cell" 0 "funnel_a_cpu_front-cycle=8_skip-adjacent=true_r2  to run" -- "$cdbench" sweep "$tmp/axes.json" --out "$tmp/axes" --dry-run
+check "axis values reach the run line" 0 "--front-cycle 8 --skip-adjacent --out" -- "$cdbench" sweep "$tmp/axes.json" --out "$tmp/axes" --dry-run
+printf '{"scenes": ["funnel"], "pipelines": ["bvh", "nope"]}' >"$tmp/bad1.json"
+check "unknown pipeline names file and field" 2 "bad1.json: /pipelines/1: unknown pipeline 'nope'" -- "$cdbench" sweep "$tmp/bad1.json" --out "$tmp/x"
+printf '{"scenes": ["funnel"], "pipelines": ["bvh"], "options": {"colour": 1}}' >"$tmp/bad2.json"
+check "unknown option names file and field" 2 "bad2.json: /options/colour: not an option of cdbench run" -- "$cdbench" sweep "$tmp/bad2.json" --out "$tmp/x"
+printf '{"scenes": ["funnel"], "pipelines": ["bvh"], "options": {"pipeline": "b"}}' >"$tmp/bad3.json"
+check "sweep-owned option refused" 2 "bad3.json: /options/pipeline: set by the sweep itself" -- "$cdbench" sweep "$tmp/bad3.json" --out "$tmp/x"
+printf '{"scenes": ["funnel", {"scene": "funnel"}], "pipelines": ["bvh"]}' >"$tmp/bad4.json"
+check "duplicate cell names refused" 2 "bad4.json: cells 0 and 1 are both named 'funnel_bvh_cuda'" -- "$cdbench" sweep "$tmp/bad4.json" --out "$tmp/x"
+printf '{"scenes": ["funnel"], "pipeline": ["bvh"]}' >"$tmp/bad5.json"
+check "unknown key" 2 "bad5.json: /pipeline: unknown key" -- "$cdbench" sweep "$tmp/bad5.json" --out "$tmp/x"
+
+check "committed paper sweep expands" 0 "paper-fig9.json: 55 cells" -- "$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" --dry-run
+check "run takes --set" 0 "frames 0:2" -- "$cdbench" run --device cpu --quiet --scene funnel --set res=12 --set frames=2
+
+if [[ $failures -ne 0 ]]; then echo "$failures sweep test(s) failed"; exit 1; fi
+echo "all sweep tests passed"
