@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <map>
 #include <set>
 #include <unordered_map>
 
@@ -58,11 +60,12 @@ aiQuaternion slerp_key(const aiQuatKey* keys, unsigned n, double t) {
   return slerp(keys[i].mValue, keys[f == 0.0 ? i : i + 1].mValue, f);
 }
 
-// A mesh placed in the scene by a node: its vertices are frame vertices [first_vertex, ...).
+// A mesh placed in the scene by a node: its vertex v is frame vertex first_vertex + weld[v].
 struct Instance {
   const aiMesh* mesh;
   uint32_t node;                      // index into AnimatedMesh::nodes_
   uint32_t first_vertex;
+  std::vector<uint32_t> weld;
   std::vector<uint32_t> bone_nodes;   // per mesh bone, the node that drives it
   const aiMeshMorphAnim* morph = nullptr;
 };
@@ -107,7 +110,7 @@ class AnimatedMesh final : public FrameSource {
       morphed_bind_pose(in, ticks, bind);
       const aiMesh* m = in.mesh;
       if (m->mNumBones == 0) {
-        for (unsigned v = 0; v < m->mNumVertices; ++v) store(out, in.first_vertex + v, global[in.node] * bind[v]);
+        for (unsigned v = 0; v < m->mNumVertices; ++v) store(out, in.first_vertex + in.weld[v], global[in.node] * bind[v]);
         continue;
       }
       // Linear blend skinning: v = sum_b w_b (Global(bone node) * offset_b) v_bind.
@@ -124,7 +127,7 @@ class AnimatedMesh final : public FrameSource {
       }
       // A vertex no bone holds would collapse to the origin; it follows its mesh's node.
       for (unsigned v = 0; v < m->mNumVertices; ++v)
-        store(out, in.first_vertex + v, weight[v] > 0 ? skinned[v] : global[in.node] * bind[v]);
+        store(out, in.first_vertex + in.weld[v], weight[v] > 0 ? skinned[v] : global[in.node] * bind[v]);
     }
     check_frame(out, topology_, file_, k);
   }
@@ -185,7 +188,12 @@ class AnimatedMesh final : public FrameSource {
         }
         const uint32_t num_faces = uint32_t(topology_.faces.size()) - first_face;
         if (num_faces == 0) continue;
-        Instance in{mesh, n, base, {}, find_morph(mesh, node)};
+        Instance in{mesh, n, base, weld_map(mesh), {}, find_morph(mesh, node)};
+        const uint32_t welded = in.weld.empty() ? 0 : *std::max_element(in.weld.begin(), in.weld.end()) + 1;
+        for (uint32_t f = first_face; f < topology_.faces.size(); ++f) {
+          Tri& t = topology_.faces[f];
+          t = {base + in.weld[t.v0 - base], base + in.weld[t.v1 - base], base + in.weld[t.v2 - base]};
+        }
         for (unsigned b = 0; b < mesh->mNumBones; ++b) {
           const std::string bone = mesh->mBones[b]->mName.C_Str();
           const auto it = node_index_.find(bone);
@@ -193,7 +201,7 @@ class AnimatedMesh final : public FrameSource {
             fail(file_ + ": mesh '" + mesh->mName.C_Str() + "' bone '" + bone + "': no node of that name");
           in.bone_nodes.push_back(it->second);
         }
-        topology_.num_vertices += mesh->mNumVertices;
+        topology_.num_vertices += welded;
         instances_.push_back(std::move(in));
         // Names must be unique for the descriptor's queries to name them.
         std::string name = mesh->mName.length ? mesh->mName.C_Str() : node->mName.C_Str();
@@ -205,6 +213,41 @@ class AnimatedMesh final : public FrameSource {
       }
     }
     if (topology_.faces.empty()) fail(file_ + ": no triangles in this file");
+  }
+
+  // Files that split vertices per face (X, FBX) would hide which triangles share a corner
+  // from co-vertex filtering. Vertices of one mesh with the same bind position, morph
+  // target positions and bone weights take the same index: they are computed by the same
+  // operations in every frame, so the merge is exact and no face changes.
+  std::vector<uint32_t> weld_map(const aiMesh* mesh) const {
+    auto bits = [](float x) {
+      uint32_t u;
+      std::memcpy(&u, &x, sizeof u);
+      return u;
+    };
+    std::vector<std::vector<uint32_t>> key(mesh->mNumVertices);
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const aiVector3D& p = mesh->mVertices[v];
+      key[v] = {bits(p.x), bits(p.y), bits(p.z)};
+      for (unsigned t = 0; t < mesh->mNumAnimMeshes; ++t)
+        if (const aiAnimMesh* target = mesh->mAnimMeshes[t]; target->mVertices && v < target->mNumVertices)
+          key[v].insert(key[v].end(), {bits(target->mVertices[v].x), bits(target->mVertices[v].y),
+                                       bits(target->mVertices[v].z)});
+    }
+    // Bones in mesh order, the order skinning sums them in.
+    for (unsigned b = 0; b < mesh->mNumBones; ++b)
+      for (unsigned w = 0; w < mesh->mBones[b]->mNumWeights; ++w) {
+        const aiVertexWeight& vw = mesh->mBones[b]->mWeights[w];
+        if (vw.mVertexId >= mesh->mNumVertices)
+          fail(file_ + ": mesh '" + mesh->mName.C_Str() + "' bone '" + mesh->mBones[b]->mName.C_Str() +
+               "': weight for vertex " + std::to_string(vw.mVertexId) + " of " + std::to_string(mesh->mNumVertices));
+        key[vw.mVertexId].insert(key[vw.mVertexId].end(), {~0u, b, bits(vw.mWeight)});
+      }
+    std::map<std::vector<uint32_t>, uint32_t> first;
+    std::vector<uint32_t> weld(mesh->mNumVertices);
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v)
+      weld[v] = first.emplace(std::move(key[v]), uint32_t(first.size())).first->second;
+    return weld;
   }
 
   // Morph channels name the mesh or its node; glTF files from assimp add "*<target>".
