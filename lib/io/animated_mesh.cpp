@@ -84,9 +84,8 @@ class AnimatedMesh final : public FrameSource {
     pick_clip();
     collect_nodes(scene_->mRootNode, UINT32_MAX);
     collect_instances();
-    const double ticks_per_second = anim_->mTicksPerSecond > 0 ? anim_->mTicksPerSecond : kDefaultTicksPerSecond;
-    ticks_per_second_ = ticks_per_second;
-    const double clip_seconds = anim_->mDuration / ticks_per_second;
+    if (anim_->mTicksPerSecond > 0) ticks_per_second_ = anim_->mTicksPerSecond;
+    const double clip_seconds = anim_->mDuration / ticks_per_second_;
     num_frames_ = o.frames;
     if (num_frames_ == 0) {
       if (o.start > clip_seconds)
