@@ -304,10 +304,16 @@ int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
 
 int scenes_list(const CommonOptions& o) {
   const auto dir = o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir);
+  // A scene whose data is not installed (e.g. assimp-testmodels) is listed with the reason,
+  // and the others still are.
   for (const auto& name : list_scenes(dir)) {
-    const Scene s = open_scene(name, dir);
-    std::printf("%-14s %9zu triangles %5u frames  %s\n", name.c_str(),
-                s.source->topology().faces.size(), s.source->num_frames(), s.description.c_str());
+    try {
+      const Scene s = open_scene(name, dir);
+      std::printf("%-14s %9zu triangles %5u frames  %s\n", name.c_str(),
+                  s.source->topology().faces.size(), s.source->num_frames(), s.description.c_str());
+    } catch (const Error& e) {
+      std::printf("%-14s unavailable: %s\n", name.c_str(), e.what());
+    }
   }
   return 0;
 }

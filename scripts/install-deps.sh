@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages cdbench needs, only those missing; no prompts; safe to re-run.
+# --scenes also installs assimp-testmodels (BSD-3; 21 MB download, 74 MB installed), whose
+# animated models the scenes bcn-jump, wuson-walk and skeleton-fbx read.
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
@@ -7,6 +9,12 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-h5py python3-numpy python3-matplotlib
 )
+for arg in "$@"; do
+  case $arg in
+    --scenes) packages+=(assimp-testmodels) ;;
+    *) echo "install-deps: unknown option $arg (known: --scenes)" >&2; exit 2 ;;
+  esac
+done
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "generators.h"
+#include "io/animated_mesh.h"
 #include "io/obj_sequence.h"
 
 namespace cdb {
@@ -95,6 +96,53 @@ std::unique_ptr<FrameSource> declare_queries(std::unique_ptr<FrameSource> source
   return std::make_unique<DeclaredQueries>(std::move(source), std::move(topo));
 }
 
+// Where the model files under /usr/share/assimp come from, for the error a user meets
+// before installing them.
+constexpr const char* kTestModelsDir = "/usr/share/assimp/models";
+
+// "animation": {"file", "fps", "frames", "start", "clip"}: one animated file sampled at fps.
+std::unique_ptr<FrameSource> open_animation(const nlohmann::json& a, const std::filesystem::path& descriptor) {
+  const std::string at = descriptor.string() + ": /animation";
+  if (!a.is_object()) fail(at + ": must be an object with file, fps, frames, start, clip");
+  for (auto it = a.begin(); it != a.end(); ++it)
+    if (it.key() != "file" && it.key() != "fps" && it.key() != "frames" && it.key() != "start" && it.key() != "clip")
+      fail(at + "/" + it.key() + ": unknown key (file, fps, frames, start, clip)");
+  AnimationOptions o;
+  if (!a.contains("file") || !a["file"].is_string()) fail(at + "/file: must be a string (a model file)");
+  o.file = a["file"].get<std::string>();
+  if (o.file.is_relative()) o.file = descriptor.parent_path() / o.file;
+  if (a.contains("fps")) {
+    if (!a["fps"].is_number() || !(a["fps"].get<double>() > 0)) fail(at + "/fps: must be a positive number");
+    o.fps = a["fps"].get<double>();
+  }
+  if (a.contains("frames")) {
+    if (!a["frames"].is_number_unsigned() || a["frames"].get<uint64_t>() == 0 ||
+        a["frames"].get<uint64_t>() > UINT32_MAX)
+      fail(at + "/frames: must be a positive integer");
+    o.frames = a["frames"].get<uint32_t>();
+  }
+  if (a.contains("start")) {
+    if (!a["start"].is_number() || !(a["start"].get<double>() >= 0)) fail(at + "/start: must be a number >= 0 (seconds)");
+    o.start = a["start"].get<double>();
+  }
+  if (a.contains("clip")) {
+    if (a["clip"].is_string()) o.clip_name = a["clip"].get<std::string>();
+    else if (a["clip"].is_number_unsigned()) o.clip = a["clip"].get<uint32_t>();
+    else fail(at + "/clip: must be a clip index or name");
+  }
+  if (!std::filesystem::exists(o.file)) {
+    std::string hint;
+    if (o.file.string().rfind(kTestModelsDir, 0) == 0)
+      hint = " (it ships with the Debian package assimp-testmodels: run scripts/install-deps.sh --scenes)";
+    fail(at + "/file: " + o.file.string() + ": no such file" + hint);
+  }
+  try {
+    return open_animated_mesh(o);
+  } catch (const Error& e) {
+    fail(at + ": " + e.what());
+  }
+}
+
 Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& overrides) {
   std::ifstream in(file);
   if (!in) fail(file.string() + ": cannot open scene descriptor");
@@ -107,17 +155,18 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   if (!j.is_object()) fail(file.string() + ": a scene descriptor must be a JSON object");
   for (auto it = j.begin(); it != j.end(); ++it)
     if (it.key() != "description" && it.key() != "generator" && it.key() != "params" &&
-        it.key() != "frames" && it.key() != "objects" && it.key() != "queries")
+        it.key() != "frames" && it.key() != "animation" && it.key() != "objects" && it.key() != "queries")
       fail(file.string() + ": /" + it.key() +
-           ": unknown key (description, generator, params, frames, objects, queries)");
+           ": unknown key (description, generator, params, frames, animation, objects, queries)");
   Scene s;
   s.name = file.stem().string();
   if (j.contains("description")) {
     if (!j["description"].is_string()) fail(file.string() + ": /description: must be a string");
     s.description = j["description"].get<std::string>();
   }
-  if (j.contains("generator") == j.contains("frames"))
-    fail(file.string() + ": needs exactly one of /generator (procedural) or /frames (mesh directory)");
+  if (int(j.contains("generator")) + int(j.contains("frames")) + int(j.contains("animation")) != 1)
+    fail(file.string() +
+         ": needs exactly one of /generator (procedural), /frames (mesh directory) or /animation (animated file)");
   if (j.contains("generator")) {
     if (!j["generator"].is_string()) fail(file.string() + ": /generator: must be a string");
     nlohmann::json params = j.contains("params") ? j["params"] : nlohmann::json::object();
@@ -131,6 +180,10 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   } else {
     if (j.contains("params")) fail(file.string() + ": /params: only valid with /generator");
     if (!overrides.empty()) fail(file.string() + ": parameters can only be set on a procedural scene");
+  }
+  if (j.contains("animation")) {
+    s.source = open_animation(j["animation"], file);
+  } else if (j.contains("frames")) {
     if (!j["frames"].is_string()) fail(file.string() + ": /frames: must be a string (a directory)");
     std::filesystem::path dir = j["frames"].get<std::string>();
     if (dir.is_relative()) dir = file.parent_path() / dir;
