@@ -217,7 +217,12 @@ TEST(ObjWriter, SequenceReadsBackIdentically) {
       std::filesystem::temp_directory_path() / ("cdb_obj_writer_" + std::to_string(::getpid()));
   for (const auto& [name, params] : std::vector<std::pair<std::string, json>>{
            {"funnel", {{"res", 7}, {"frames", 3}, {"warmup", 3}, {"segments", 5}, {"ball_level", 0}}},
-           {"n-body", {{"spheres", 4}, {"cones", 1}, {"sphere_level", 0}, {"cone_segments", 5}, {"frames", 2}}}}) {
+           {"n-body", {{"spheres", 4}, {"cones", 1}, {"sphere_level", 0}, {"cone_segments", 5}, {"frames", 2}}},
+           {"cloth-ball", {{"res", 7}, {"frames", 2}, {"warmup", 2}, {"ball_level", 0}}},
+           {"flag", {{"res", 7}, {"frames", 2}, {"warmup", 2}, {"segments", 5}}},
+           {"sphere", {{"res", 7}, {"frames", 2}, {"warmup", 2}, {"ball_level", 0}}},
+           {"cloth-wave", {{"res", 8}, {"frames", 2}}},
+           {"soup", {{"triangles", 50}, {"frames", 2}}}}) {
     std::filesystem::remove_all(dir);
     auto source = make_generator(name, params);
     write_obj_sequence(*source, dir);

@@ -5,19 +5,29 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "core/error.h"
+#include "io/obj_reader.h"
 
 namespace cdb {
 
-void read_mesh_file(const std::filesystem::path& file, Topology& topology,
-                    std::vector<vec3f>& positions) {
+size_t read_mesh_file(const std::filesystem::path& file, Topology& topology,
+                      std::vector<vec3f>& positions) {
   if (!std::filesystem::is_regular_file(file)) fail(file.string() + ": no such file");
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  if (ext == ".obj") return read_obj_file(file, topology, positions);
   Assimp::Importer importer;
-  // Triangulate polygons only: no vertex joining, no degenerate removal, no reordering,
-  // so face i of the file is triangle i of the scene.
-  const aiScene* scene = importer.ReadFile(file.string(), aiProcess_Triangulate);
-  if (!scene) fail(file.string() + ": cannot read mesh: " + importer.GetErrorString());
+  // Read as is, count the polygons, then triangulate them only: no vertex joining, no
+  // degenerate removal, no reordering, so the file's faces keep their order.
+  const aiScene* raw = importer.ReadFile(file.string(), 0);
+  if (!raw) fail(file.string() + ": cannot read mesh: " + importer.GetErrorString());
+  size_t polygons = 0;
+  for (unsigned m = 0; m < raw->mNumMeshes; ++m)
+    for (unsigned f = 0; f < raw->mMeshes[m]->mNumFaces; ++f) polygons += raw->mMeshes[m]->mFaces[f].mNumIndices > 3;
+  const aiScene* scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
+  if (!scene) fail(file.string() + ": cannot triangulate mesh: " + importer.GetErrorString());
   if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) fail(file.string() + ": incomplete mesh file");
   topology.faces.clear();
   positions.clear();
@@ -36,6 +46,7 @@ void read_mesh_file(const std::filesystem::path& file, Topology& topology,
   topology.num_vertices = uint32_t(positions.size());
   // assimp reads some garbage as an empty mesh; a mesh file without triangles is an error.
   if (topology.faces.empty()) fail(file.string() + ": no triangles in this file (malformed or empty mesh)");
+  return polygons;
 }
 
 namespace {
@@ -52,7 +63,10 @@ class MeshSequence final : public FrameSource {
     std::sort(files_.begin(), files_.end());
     if (files_.empty()) fail(dir.string() + ": no .obj frames in this directory");
     std::vector<vec3f> positions;
-    read_mesh_file(files_[0], topology_, positions);
+    const size_t polygons = read_mesh_file(files_[0], topology_, positions);
+    if (polygons)
+      std::fprintf(stderr, "cdbench: %s: %zu polygon faces triangulated (%zu triangles in all)\n",
+                   files_[0].string().c_str(), polygons, topology_.faces.size());
     check_frame(positions, topology_, files_[0].string(), 0);
   }
   const Topology& topology() const override { return topology_; }

@@ -13,8 +13,9 @@ namespace cdb {
 std::unique_ptr<FrameSource> open_mesh_sequence(const std::filesystem::path& dir);
 
 // Reads one mesh file: all its meshes' triangles in file order, no vertex merging, no
-// dropping of degenerate faces. Throws naming the file on any failure.
-void read_mesh_file(const std::filesystem::path& file, Topology& topology,
-                    std::vector<vec3f>& positions);
+// dropping of degenerate faces; polygons are triangulated (their count is returned, so the
+// caller can say so). Throws naming the file on any failure.
+size_t read_mesh_file(const std::filesystem::path& file, Topology& topology,
+                      std::vector<vec3f>& positions);
 
 }  // namespace cdb

@@ -217,7 +217,9 @@ Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_di
   if (std::filesystem::is_directory(p)) {
     if (!overrides.empty()) fail(spec + ": parameters can only be set on a procedural scene");
     Scene s;
-    s.name = p.filename().string();
+    // "frames/" names the directory "frames", not "".
+    const std::filesystem::path named = p.has_filename() ? p : p.parent_path();
+    s.name = named.filename().string();
     s.source = open_mesh_sequence(p);
     s.description = s.source->describe();
     return s;

@@ -38,6 +38,18 @@ printf '{"generator": "funnel", "params": {"frames": 2}, "queries": {"self": ["c
 check "query names an unknown object" 2 "/queries/inter/0/1: unknown object 'rocket'" -- "$cdbench" run --device cpu --scene "$tmp/badq.json"
 printf '{"generator": "soup", "params": {"triangles": 10}, "queries": {"self": ["x"]}}' >"$tmp/noobj.json"
 check "queries need objects" 2 "no objects to query" -- "$cdbench" run --device cpu --scene "$tmp/noobj.json"
+mkdir -p "$tmp/oor" "$tmp/negidx" "$tmp/quad" "$tmp/garbage" "$tmp/trunc"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n' >"$tmp/oor/frame_0000.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -9\n' >"$tmp/negidx/frame_0000.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n' >"$tmp/quad/frame_0000.obj"
+head -c 3000 /dev/urandom >"$tmp/garbage/frame_0000.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2' >"$tmp/trunc/frame_0000.obj"
+check "face index out of range names file" 2 "oor/frame_0000.obj: line 4: vertex index 7 out of range" -- "$cdbench" run --device cpu --scene "$tmp/oor"
+check "negative face index out of range names file" 2 "negidx/frame_0000.obj: line 4: vertex index -9 out of range" -- "$cdbench" run --device cpu --scene "$tmp/negidx"
+check "polygons are triangulated and said so" 0 "1 polygon faces triangulated \\(2 triangles" -- "$cdbench" run --device cpu --scene "$tmp/quad"
+check "binary garbage names file" 2 "garbage/frame_0000.obj: " -- "$cdbench" run --device cpu --scene "$tmp/garbage"
+check "truncated OBJ names file" 2 "trunc/frame_0000.obj: " -- "$cdbench" run --device cpu --scene "$tmp/trunc"
+check "scene directory with a trailing slash keeps its name" 0 "scene: quad " -- "$cdbench" run --device cpu --scene "$tmp/quad/"
 check "several pipelines in one run" 0 "pipeline: c on cpu" -- "$cdbench" run --device cpu --quiet --frames 0:3 --pipeline bvh,static,c
 check "several pipelines need a pattern" 2 "\\{pipeline\\}" -- "$cdbench" run --device cpu --quiet --pipeline bvh,c --out "$tmp/x.h5"
 check "bad threshold order" 2 "threshold" -- "$cdbench" run --device cpu --quiet --pipeline c --threshold-refit 0.5 --threshold-build 0.1
