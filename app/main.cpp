@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <cstdio>
@@ -163,7 +164,19 @@ struct RunOptions {
   bool quiet = false;
   std::string out;
   bool save_pairs = false;
+  std::string check = "off";
 };
+
+// --check every | N | off: frames between checks against the oracle (0: none).
+uint32_t check_interval(const std::string& check) {
+  if (check == "off") return 0;
+  if (check == "every") return 1;
+  uint32_t n = 0;
+  const auto [end, ec] = std::from_chars(check.data(), check.data() + check.size(), n);
+  if (ec != std::errc() || end != check.data() + check.size() || n == 0)
+    fail("--check " + check + ": expected every, off or a positive frame interval");
+  return n;
+}
 
 // What the results file records about the run besides its frames.
 RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene, const PipelineConfig& config,
@@ -243,6 +256,8 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     loop.frame_lines = !r.quiet;
     loop.progress = Progress::mode_for(r.quiet);
     loop.save_pairs = r.save_pairs;
+    loop.check_every = check_interval(r.check);
+    loop.oracle = [&topo, &o](const std::vector<vec3f>& v) { return sweep_oracle_pairs(topo, v, o.skip_adjacent); };
     if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, loop)) return rc;
   }
   return 0;
@@ -420,6 +435,10 @@ int main(int argc, char** argv) {
       "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced");
   run->add_flag("--save-pairs", r.save_pairs, "also store each frame's sorted pairs in the results file")
       ->needs(out_option);
+  run->add_option("--check", r.check,
+                  "compare frames with the exact CPU oracle: every, N (every N-th frame) or off; "
+                  "recall, precision, missed and false positives per checked frame, outside the timing")
+      ->capture_default_str();
 
   auto* verify = app.add_subcommand("verify", "compare pipelines with the exact oracle, frame by frame");
   add_common(verify, o);

@@ -22,6 +22,8 @@ void print_frame_line(uint32_t frame, const FrameStats& s) {
   if (s.candidates)
     std::printf("  candidates %llu (%llu leaves, mean Q %.3f)", static_cast<unsigned long long>(s.candidates),
                 static_cast<unsigned long long>(s.candidate_leaves), s.q_candidates);
+  if (s.checked)
+    std::printf("  check recall %.6f precision %.6f", s.recall, s.precision);
   if (s.query_reruns) std::printf("  (a buffer grew, re-ran %u)", s.query_reruns);
   std::printf("\n");
 }
@@ -45,6 +47,11 @@ void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const
     std::printf("  front       %llu internal + %llu external nodes at the end, Q(root) %.3f\n",
                 static_cast<unsigned long long>(last.front_internal),
                 static_cast<unsigned long long>(last.front_external), last.q_root);
+  if (r.checked_frames)
+    std::printf("  check       %zu frames against the oracle: recall min %.6f, precision min %.6f, "
+                "%llu missed, %llu false positives\n",
+                r.checked_frames, r.recall_min, r.precision_min,
+                static_cast<unsigned long long>(r.missed), static_cast<unsigned long long>(r.false_positives));
   if (r.decided_refit + r.decided_restructure + r.decided_rebuild)
     std::printf("  formula 2   %zu refit, %zu restructure, %zu rebuild decisions\n", r.decided_refit,
                 r.decided_restructure, r.decided_rebuild);

@@ -5,11 +5,24 @@
 #include <string>
 #include <vector>
 
+#include "core/pair_set.h"
 #include "interrupt.h"
 #include "pipeline/run_summary.h"
 #include "report.h"
 
 namespace cdb {
+namespace {
+
+void check_frame_pairs(Pipeline& pipeline, const std::vector<PrimPair>& expected, FrameStats& s) {
+  const PairAccuracy a = pair_accuracy(expected, pipeline.sorted_pairs());
+  s.checked = true;
+  s.recall = a.recall;
+  s.precision = a.precision;
+  s.missed = a.missed;
+  s.false_positives = a.false_positives;
+}
+
+}  // namespace
 
 int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
                const RunLoopOptions& options) {
@@ -22,6 +35,8 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     for (; f < range.last && !interrupts.signal(); ++f) {
       source.frame(f, vertices);
       frames.push_back(pipeline.run_frame(vertices));
+      if (options.check_every && (f - range.first) % options.check_every == 0)
+        check_frame_pairs(pipeline, options.oracle(vertices), frames.back());
       if (out) {
         out->append_frame(f, frames.back(), pipeline.memory());
         if (options.save_pairs) out->write_pairs(f, pipeline.sorted_pairs());

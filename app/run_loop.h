@@ -2,6 +2,8 @@
 // The frame loop of `cdbench run`: frames through the pipeline, per-frame lines, progress,
 // the results file, and a clean stop on an error or SIGINT/SIGTERM.
 #include <cstdint>
+#include <functional>
+#include <vector>
 
 #include "frame_range.h"
 #include "geometry/frame_source.h"
@@ -16,6 +18,10 @@ struct RunLoopOptions {
   bool frame_lines = true;  // one line per frame on stdout
   Progress::Mode progress = Progress::Mode::off;
   bool save_pairs = false;  // each frame's sorted pairs into the results file
+  // --check: compare every check_every-th frame (0: none) with `oracle`'s pairs for the
+  // same positions, outside the timed frame.
+  uint32_t check_every = 0;
+  std::function<std::vector<PrimPair>(const std::vector<vec3f>&)> oracle;
 };
 
 // Runs the frames of `range`, prints the summary and, given a results file, records every

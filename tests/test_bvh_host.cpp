@@ -150,6 +150,20 @@ TEST(HostPipelines, PairBufferGrowthIsCountedNotTruncated) {
   EXPECT_EQ(p->sorted_pairs().size(), 500ull * 499 / 2);
 }
 
+TEST(PairAccuracy, CountsMissesFalsePositivesAndDuplicates) {
+  const std::vector<PrimPair> oracle = {{0, 1}, {0, 2}, {1, 2}, {2, 3}};
+  const PairAccuracy same = pair_accuracy(oracle, oracle);
+  EXPECT_EQ(same.recall, 1.0);
+  EXPECT_EQ(same.precision, 1.0);
+  const PairAccuracy a = pair_accuracy(oracle, {{0, 1}, {0, 2}, {0, 2}, {1, 3}, {2, 3}});
+  EXPECT_EQ(a.missed, 1u);           // (1, 2)
+  EXPECT_EQ(a.false_positives, 2u);  // the second (0, 2) and (1, 3)
+  EXPECT_DOUBLE_EQ(a.recall, 3.0 / 4.0);
+  EXPECT_DOUBLE_EQ(a.precision, 3.0 / 5.0);
+  EXPECT_EQ(pair_accuracy({}, {}).recall, 1.0);
+  EXPECT_EQ(pair_accuracy(oracle, {}).recall, 0.0);
+}
+
 TEST(HostPipelines, UnknownPipelineAndDeviceAreErrors) {
   PipelineConfig cfg;
   cfg.device = "cpu";

@@ -29,4 +29,14 @@ PairSetDiff diff_pair_sets(const std::vector<PrimPair>& expected,
   return d;
 }
 
+PairAccuracy pair_accuracy(const std::vector<PrimPair>& expected, const std::vector<PrimPair>& actual) {
+  const PairSetDiff d = diff_pair_sets(expected, actual, 0);
+  PairAccuracy a;
+  a.missed = d.missing_count;
+  a.false_positives = d.unexpected_count;
+  if (!expected.empty()) a.recall = double(expected.size() - d.missing_count) / double(expected.size());
+  if (!actual.empty()) a.precision = double(actual.size() - d.unexpected_count) / double(actual.size());
+  return a;
+}
+
 }  // namespace cdb

@@ -16,6 +16,15 @@ struct PairSetDiff {
   bool equal() const { return missing_count == 0 && unexpected_count == 0; }
 };
 
+// Recall (oracle pairs found / oracle pairs) and precision (reported pairs the oracle has /
+// reported pairs; a duplicate counts as a false positive) of `actual` against `expected`,
+// both sorted by pair_key. Empty sets count as 1.
+struct PairAccuracy {
+  double recall = 1.0, precision = 1.0;
+  uint64_t missed = 0, false_positives = 0;
+};
+PairAccuracy pair_accuracy(const std::vector<PrimPair>& expected, const std::vector<PrimPair>& actual);
+
 // Both inputs sorted by pair_key. Duplicates in `actual` count as unexpected.
 PairSetDiff diff_pair_sets(const std::vector<PrimPair>& expected,
                            const std::vector<PrimPair>& actual, size_t keep = 8);

@@ -252,6 +252,11 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
   write_attr(loc, "decisions_refit", uint64_t(s.decided_refit), at);
   write_attr(loc, "decisions_restructure", uint64_t(s.decided_restructure), at);
   write_attr(loc, "decisions_rebuild", uint64_t(s.decided_rebuild), at);
+  write_attr(loc, "checked_frames", uint64_t(s.checked_frames), at);
+  write_attr(loc, "recall_min", s.checked_frames ? s.recall_min : none, at);
+  write_attr(loc, "precision_min", s.checked_frames ? s.precision_min : none, at);
+  write_attr(loc, "missed", uint64_t(s.missed), at);
+  write_attr(loc, "false_positives", uint64_t(s.false_positives), at);
   write_attr(loc, "peak_bytes", uint64_t(memory.peak_bytes), at);
   write_attr(loc, "allocations", uint64_t(memory.allocations), at);
   write_attr(loc, "growths", uint64_t(memory.growths), at);

@@ -56,6 +56,11 @@ struct FrameStats {
   uint64_t candidates = 0, candidate_leaves = 0;
   double q_candidates = 0.0;
   std::string decision;
+  // --check: this frame's pairs against the exact oracle (recall must be 1 for every
+  // conservative pipeline; precision < 1 means pairs the oracle does not have).
+  bool checked = false;
+  double recall = 0.0, precision = 0.0;
+  uint64_t missed = 0, false_positives = 0;
 };
 
 class Pipeline {

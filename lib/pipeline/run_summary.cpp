@@ -40,6 +40,13 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
     r.decided_refit += f.decision == "refit";
     r.decided_restructure += f.decision == "restructure";
     r.decided_rebuild += f.decision == "rebuild";
+    if (f.checked) {
+      ++r.checked_frames;
+      r.recall_min = std::min(r.recall_min, f.recall);
+      r.precision_min = std::min(r.precision_min, f.precision);
+      r.missed += f.missed;
+      r.false_positives += f.false_positives;
+    }
   }
   r.total = stat_of(std::move(total));
   for (size_t p = 0; p < kPhaseCount; ++p) r.phase[p] = stat_of(std::move(ran[p]));

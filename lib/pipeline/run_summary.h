@@ -32,6 +32,10 @@ struct RunSummary {
   uint32_t query_reruns = 0;  // over all frames, warm-up included
   // Formula 2 decisions of pipeline c over all frames.
   size_t decided_refit = 0, decided_restructure = 0, decided_rebuild = 0;
+  // --check over all checked frames, warm-up included.
+  size_t checked_frames = 0;
+  double recall_min = 1.0, precision_min = 1.0;
+  uint64_t missed = 0, false_positives = 0;
 };
 
 RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup);

@@ -50,6 +50,10 @@ check "polygons are triangulated and said so" 0 "1 polygon faces triangulated \\
 check "binary garbage names file" 2 "garbage/frame_0000.obj: " -- "$cdbench" run --device cpu --scene "$tmp/garbage"
 check "truncated OBJ names file" 2 "trunc/frame_0000.obj: " -- "$cdbench" run --device cpu --scene "$tmp/trunc"
 check "scene directory with a trailing slash keeps its name" 0 "scene: quad " -- "$cdbench" run --device cpu --scene "$tmp/quad/"
+check "check every frame: recall and precision 1" 0 "check +20 frames against the oracle: recall min 1.000000, precision min 1.000000, 0 missed, 0 false positives" -- "$cdbench" run --device cpu --quiet --pipeline c --check every
+check "check every 5th frame, co-vertex filtered" 0 "check +4 frames against the oracle: recall min 1.000000" -- "$cdbench" run --device cpu --quiet --pipeline grid --check 5 --skip-adjacent
+check "check with declared queries" 0 "check +3 frames against the oracle: recall min 1.000000, precision min 1.000000" -- "$cdbench" run --device cpu --quiet --scene funnel-inter --frames 0:3 --pipeline static --check every
+check "bad check interval" 2 "expected every, off or a positive" -- "$cdbench" run --device cpu --quiet --check sometimes
 check "several pipelines in one run" 0 "pipeline: c on cpu" -- "$cdbench" run --device cpu --quiet --frames 0:3 --pipeline bvh,static,c
 check "several pipelines need a pattern" 2 "\\{pipeline\\}" -- "$cdbench" run --device cpu --quiet --pipeline bvh,c --out "$tmp/x.h5"
 check "bad threshold order" 2 "threshold" -- "$cdbench" run --device cpu --quiet --pipeline c --threshold-refit 0.5 --threshold-build 0.1
