@@ -194,6 +194,44 @@ inline std::vector<std::string> grid_pipeline_ops(const std::string& device,
   return ops;
 }
 
+// A SceneFrames as a frame source, for the pipeline factory.
+class StoredFrames final : public FrameSource {
+ public:
+  explicit StoredFrames(SceneFrames s) : s_(std::move(s)) {}
+  const Topology& topology() const override { return s_.topology; }
+  uint32_t num_frames() const override { return uint32_t(s_.frames.size()); }
+  void frame(uint32_t k, std::vector<vec3f>& out) const override { out = s_.frames.at(k); }
+  std::string describe() const override { return "stored test frames"; }
+
+ private:
+  SceneFrames s_;
+};
+
+// Degenerate triangles: zero-area (a repeated corner), collinear corners, and exact
+// duplicates of both, scattered over a small lattice so they overlap each other and
+// regular triangles; frame 1 moves every other one.
+inline SceneFrames degenerate_triangles(uint32_t n) {
+  SceneFrames s;
+  s.frames.resize(2);
+  for (uint32_t t = 0; t < n; ++t) {
+    const float x = float(t % 10) * 0.3f, y = float((t / 10) % 10) * 0.3f, z = float(t / 100) * 0.3f;
+    std::vector<vec3f> corners;
+    switch (t % 4) {
+      case 0: corners = {{x, y, z}, {x, y, z}, {x + 0.5f, y, z}}; break;          // repeated corner
+      case 1: corners = {{x, y, z}, {x + 0.25f, y, z}, {x + 0.5f, y, z}}; break;  // collinear
+      case 2: corners = {{x, y, z}, {x, y, z}, {x, y, z}}; break;                 // a point
+      default: corners = {{x, y, z}, {x + 0.5f, y, z}, {x, y + 0.5f, z}}; break;  // regular
+    }
+    for (uint32_t f = 0; f < 2; ++f)
+      for (const vec3f& c : corners)
+        s.frames[f].push_back(f == 1 && t % 2 ? vec3f{c.x + 0.1f, c.y, c.z} : c);
+    s.topology.faces.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+    if (t % 5 == 0) s.topology.faces.push_back({3 * t, 3 * t + 1, 3 * t + 2});  // duplicate face
+  }
+  s.topology.num_vertices = 3 * n;
+  return s;
+}
+
 struct BaselineCase {
   std::string name;
   std::function<SceneFrames()> make;
@@ -203,6 +241,26 @@ inline void PrintTo(const BaselineCase& c, std::ostream* os) { *os << c.name; }
 
 inline std::string baseline_case_name(const testing::TestParamInfo<BaselineCase>& info) {
   return info.param.name;
+}
+
+// The numerical extremes of the accuracy issue, for every pipeline: touching boxes at unit,
+// subnormal (2^-140) and huge scales, a 1e6-wide scene with 1e-3 features, all triangles at
+// one point, giant and multiscale boxes, coordinates near 1e38, degenerate triangles.
+inline std::vector<BaselineCase> extreme_cases() {
+  return {
+      {"cubes_unit_4", [] { return cube_lattice(4, 1.0f); }},
+      {"cubes_subnormal_3", [] { return cube_lattice(3, 0x1p-140f); }},
+      {"cubes_huge_3", [] { return cube_lattice(3, 0x1p60f); }},
+      {"wide_1e6_features_1em3", [] { return offset_cube_lattice(4, 1e-3f, 1e6f); }},
+      {"one_point_200", [] { return all_at_one_point(200, 0.25f); }},
+      {"one_point_1e30_100", [] { return all_at_one_point(100, 1e30f); }},
+      {"giants_10", [] { return soup_with_giants(1000, 10, false); }},
+      {"multiscale_2000", [] { return multiscale_soup(2000, 5); }},
+      {"soup_1e38", [] {
+         return frames_of(*make_generator("soup", {{"triangles", 500}, {"scale", 1e38}, {"frames", 2}}));
+       }},
+      {"degenerate_400", [] { return degenerate_triangles(400); }},
+  };
 }
 
 inline std::vector<BaselineCase> baseline_cases() {

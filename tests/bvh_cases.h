@@ -220,7 +220,9 @@ inline void check_forced_decisions(const std::string& device, FrameSource& sourc
       EXPECT_TRUE(s.decision.empty() || s.decision == f.decision) << s.decision;
       if (s.decision != f.decision) continue;
       ++taken;
-      if (f.op) EXPECT_EQ(s.op, f.op);
+      if (f.op) {
+        EXPECT_EQ(s.op, f.op);
+      }
     }
     EXPECT_GT(taken, 0u) << "forced decision " << f.decision << " never taken (cycle " << cycle << ")";
   }

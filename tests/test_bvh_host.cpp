@@ -150,6 +150,15 @@ TEST(HostPipelines, PairBufferGrowthIsCountedNotTruncated) {
   EXPECT_EQ(p->sorted_pairs().size(), 500ull * 499 / 2);
 }
 
+class HostExtremes : public testing::TestWithParam<BaselineCase> {};
+
+TEST_P(HostExtremes, EveryPipelineExactEveryFrame) {
+  StoredFrames scene(GetParam().make());
+  check_pipelines_on(config_for("cpu", 0.5, 0.05, 1), scene);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, HostExtremes, testing::ValuesIn(extreme_cases()), baseline_case_name);
+
 TEST(PairAccuracy, CountsMissesFalsePositivesAndDuplicates) {
   const std::vector<PrimPair> oracle = {{0, 1}, {0, 2}, {1, 2}, {2, 3}};
   const PairAccuracy same = pair_accuracy(oracle, oracle);
