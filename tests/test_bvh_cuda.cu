@@ -125,6 +125,20 @@ TEST_P(CudaFrontCycles, AllPipelinesExactEveryFrame) {
 
 INSTANTIATE_TEST_SUITE_P(Cycles, CudaFrontCycles, testing::Values(1u, 2u, 3u, 5u));
 
+class CudaExtremes : public testing::TestWithParam<BaselineCase> {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_P(CudaExtremes, EveryPipelineExactEveryFrame) {
+  StoredFrames scene(GetParam().make());
+  check_pipelines_on(config_for("cuda", 0.5, 0.05, 1), scene);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaExtremes, testing::ValuesIn(extreme_cases()), baseline_case_name);
+
 TEST(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   for (uint32_t depth : {0u, 1u, 4u, 9u}) {
