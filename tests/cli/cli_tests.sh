@@ -6,19 +6,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 python=/usr/bin/python3
 [[ -x $python ]] || python=python3
 read_results=("$python" "$root/scripts/read_results.py")
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-check() {  # check NAME EXPECTED_RC PATTERN -- CMD...
-  local name=$1 want_rc=$2 pattern=$3; shift 4
-  "$@" >"$tmp/out" 2>&1; local rc=$?
-  if [[ $rc -ne $want_rc ]] || ! grep -qE -- "$pattern" "$tmp/out"; then
-    echo "FAIL $name: rc=$rc (want $want_rc), pattern '$pattern'"; sed 's/^/    /' "$tmp/out" | tail -20
-    failures=$((failures + 1))
-  else
-    echo "ok   $name"
-  fi
-}
+source "$root/tests/cli/harness.sh"
 
 check "run default scene on cpu" 0 "summary: 19 frames measured" -- "$cdbench" run --device cpu --quiet
 check "run prints environment" 0 "commit [0-9a-f]+" -- "$cdbench" run --device cpu --quiet --frames 0:2
@@ -124,8 +112,7 @@ wait "$pid"; rc=$?
 if [[ $rc -eq 143 ]] && grep -q "interrupted by SIGTERM" "$tmp/endless.out"; then
   echo "ok   SIGTERM stops the run with 128+15"
 else
-  echo "FAIL SIGTERM stops the run: rc=$rc (want 143)"; tail -5 "$tmp/endless.out" | sed 's/^/    /'
-  failures=$((failures + 1))
+  fail "SIGTERM stops the run: rc=$rc (want 143)"; tail -5 "$tmp/endless.out" | sed 's/^/    /'
 fi
 check "interrupted run leaves an incomplete file" 0 "error: interrupted by SIGTERM after [0-9]+ of 1000000 frames" -- \
   "${read_results[@]}" --summary "$out/endless.h5"
@@ -141,5 +128,4 @@ check "report as CSV" 0 "midway\.h5,midway,bvh,.*,\"incomplete: frame 2: " -- \
 check "report names an unreadable file" 1 "unreadable: .*seq/frame_0000.obj" -- \
   "$cdbench" report "$out/funnel.h5" "$tmp/seq/frame_0000.obj"
 
-if [[ $failures -ne 0 ]]; then echo "$failures CLI test(s) failed"; exit 1; fi
-echo "all CLI tests passed"
+finish CLI

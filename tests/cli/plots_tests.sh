@@ -6,19 +6,7 @@ cdbench=$1
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 python=/usr/bin/python3
 [[ -x $python ]] || python=python3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-fail() { echo "FAIL $1"; failures=$((failures + 1)); }
-check() {  # check NAME EXPECTED_RC PATTERN -- CMD...
-  local name=$1 want_rc=$2 pattern=$3; shift 4
-  "$@" >"$tmp/out" 2>&1; local rc=$?
-  if [[ $rc -ne $want_rc ]] || ! grep -qE -- "$pattern" "$tmp/out"; then
-    fail "$name: rc=$rc (want $want_rc), pattern '$pattern'"; sed 's/^/    /' "$tmp/out" | tail -20
-  else
-    echo "ok   $name"
-  fi
-}
+source "$root/tests/cli/harness.sh"
 has() {  # has NAME FILE PATTERN: FILE has a line matching PATTERN
   if grep -qE -- "$3" "$2"; then echo "ok   $1"; else fail "$1: no '$3' in $2"; fi
 }
@@ -112,5 +100,4 @@ check "make_report stops on a non-results file" 1 "notes.h5: not a cdbench resul
   bash "$root/scripts/make_report.sh" "$tmp/bad" "$tmp/out3"
 check "missing file" 1 "nowhere.h5: no such file" -- "$python" "$root/scripts/table_memory.py" "$tmp/nowhere.h5"
 
-if [[ $failures -ne 0 ]]; then echo "$failures plots test(s) failed"; exit 1; fi
-echo "all plots tests passed"
+finish plots

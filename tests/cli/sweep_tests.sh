@@ -4,24 +4,11 @@
 set -u
 cdbench=$1
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-check() {  # check NAME EXPECTED_RC PATTERN -- CMD...
-  local name=$1 want_rc=$2 pattern=$3; shift 4
-  "$@" >"$tmp/out" 2>&1; local rc=$?
-  if [[ $rc -ne $want_rc ]] || ! grep -qE -- "$pattern" "$tmp/out"; then
-    echo "FAIL $name: rc=$rc (want $want_rc), pattern '$pattern'"; sed 's/^/    /' "$tmp/out" | tail -20
-    failures=$((failures + 1))
-  else
-    echo "ok   $name"
-  fi
-}
+source "$root/tests/cli/harness.sh"
 count() {  # count NAME WANT PATTERN: lines of the last output matching PATTERN
   local n; n=$(grep -cE -- "$3" "$tmp/out")
   if [[ $n -ne $2 ]]; then
-    echo "FAIL $1: $n lines match '$3' (want $2)"; sed 's/^/    /' "$tmp/out" | tail -20
-    failures=$((failures + 1))
+    fail "$1: $n lines match '$3' (want $2)"; sed 's/^/    /' "$tmp/out" | tail -20
   else
     echo "ok   $1"
   fi
@@ -32,11 +19,11 @@ out=$tmp/results
 check "dry run lists the cells" 0 "6 cells, 0 complete, 6 to run" -- "$cdbench" sweep "$sweep" --out "$out" --dry-run
 count "dry run names every cell" 6 "^ +[0-9]+  (funnel|cloth-wave)\.frames=3\.res=[0-9]+_(bvh|b|sweep)_cpu  to run"
 count "dry run shows the run lines" 6 "^ +cdbench run --scene .* --out $out/.*\.h5 --quiet"
-[[ -e $out ]] && { echo "FAIL dry run wrote $out"; failures=$((failures + 1)); }
+[[ -e $out ]] && fail "dry run wrote $out"
 
 check "sweep runs every cell" 0 "6 run, 6 complete, 0 failed" -- "$cdbench" sweep "$sweep" --out "$out"
 n=$(ls "$out"/*.h5 | wc -l)
-[[ $n -eq 6 ]] && echo "ok   six results files" || { echo "FAIL $n results files (want 6)"; failures=$((failures + 1)); }
+[[ $n -eq 6 ]] && echo "ok   six results files" || fail "$n results files (want 6)"
 check "report over the directory" 0 "funnel \| sweep \| cpu" -- "$cdbench" report "$out"
 count "report has six complete rows" 6 "\.h5 \| .* \| complete \|$"
 check "second sweep skips complete cells" 0 "6 already complete, 0 to run" -- "$cdbench" sweep "$sweep" --out "$out"
@@ -90,5 +77,4 @@ check "unknown key" 2 "bad5.json: /pipeline: unknown key" -- "$cdbench" sweep "$
 check "committed paper sweep expands" 0 "paper-fig9.json: 55 cells" -- "$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" --dry-run
 check "run takes --set" 0 "frames 0:2" -- "$cdbench" run --device cpu --quiet --scene funnel --set res=12 --set frames=2
 
-if [[ $failures -ne 0 ]]; then echo "$failures sweep test(s) failed"; exit 1; fi
-echo "all sweep tests passed"
+finish sweep
