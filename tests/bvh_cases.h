@@ -67,6 +67,31 @@ inline std::unique_ptr<FrameSource> soup_source(const SoupCase& c) {
                                  {"seed", 11 + c.triangles}});
 }
 
+// A scene's faces on the executor, one frame's vertices at a time, and a pair buffer with
+// its counter for direct queries: what the tree-level tests set up.
+template <class Exec>
+struct TestMesh {
+  TestMesh(Exec& exec, const Topology& topo)
+      : vertices(exec.memory(), "test.vertices"),
+        faces(exec.memory(), "test.faces"),
+        pairs(exec.memory(), "test.pairs"),
+        count(exec.memory(), "test.count"),
+        num_faces(uint32_t(topo.faces.size())) {
+    vertices.reserve(topo.num_vertices);
+    faces.reserve(topo.faces.size());
+    count.reserve(1);
+    exec.copy_from_host(faces.data(), topo.faces.data(), topo.faces.size());
+  }
+  void upload(Exec& exec, const std::vector<vec3f>& v) { exec.copy_from_host(vertices.data(), v.data(), v.size()); }
+  MeshView view() const { return {vertices.data(), faces.data(), num_faces}; }
+
+  Array<vec3f> vertices;
+  Array<Tri> faces;
+  Array<PrimPair> pairs;
+  Array<unsigned long long> count;
+  uint32_t num_faces;
+};
+
 // The stackless self query on `bvh` against the sweep oracle for these positions.
 template <class Exec>
 void expect_self_query_exact(Exec& exec, const Lbvh<Exec>& bvh, const Topology& topo,
@@ -95,19 +120,12 @@ void check_soup_case(const SoupCase& c) {
   const Topology& topo = source->topology();
   Exec exec;
   Lbvh<Exec> bvh(exec);
-  Array<vec3f> vertices(exec.memory(), "test.vertices");
-  Array<Tri> faces(exec.memory(), "test.faces");
-  Array<PrimPair> pairs(exec.memory(), "test.pairs");
-  Array<unsigned long long> count(exec.memory(), "test.count");
-  vertices.reserve(topo.num_vertices);
-  faces.reserve(topo.faces.size());
-  count.reserve(1);
-  exec.copy_from_host(faces.data(), topo.faces.data(), topo.faces.size());
+  TestMesh<Exec> m(exec, topo);
+  const MeshView mesh = m.view();
   std::vector<vec3f> v;
   for (uint32_t f = 0; f < source->num_frames(); ++f) {
     source->frame(f, v);
-    exec.copy_from_host(vertices.data(), v.data(), v.size());
-    const MeshView mesh{vertices.data(), faces.data(), uint32_t(topo.faces.size())};
+    m.upload(exec, v);
     if (f == 0) {
       build_hierarchy(exec, bvh, mesh, c.bits);
       order_depth_first(exec, bvh);
@@ -117,7 +135,7 @@ void check_soup_case(const SoupCase& c) {
     const HostBvh h = download(exec, bvh);
     ASSERT_EQ(check_bvh(h, topo, v), "") << "frame " << f;
 
-    expect_self_query_exact(exec, bvh, topo, v, pairs, count, f);
+    expect_self_query_exact(exec, bvh, topo, v, m.pairs, m.count, f);
     if (testing::Test::HasFatalFailure()) return;
   }
 }
@@ -245,21 +263,14 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
   Exec exec;
   Lbvh<Exec> bvh(exec);
   RestructureScratch<Exec> rs(exec);
-  Array<vec3f> vertices(exec.memory(), "test.vertices");
-  Array<Tri> faces(exec.memory(), "test.faces");
-  Array<PrimPair> pairs(exec.memory(), "test.pairs");
-  Array<unsigned long long> count(exec.memory(), "test.count");
-  vertices.reserve(topo.num_vertices);
-  faces.reserve(topo.faces.size());
-  count.reserve(1);
-  exec.copy_from_host(faces.data(), topo.faces.data(), topo.faces.size());
-  const MeshView mesh{vertices.data(), faces.data(), uint32_t(topo.faces.size())};
+  TestMesh<Exec> m(exec, topo);
+  const MeshView mesh = m.view();
   std::vector<vec3f> v;
   const uint32_t n = uint32_t(topo.faces.size());
   rs.reserve(exec, n, 2);
   for (uint32_t f = 0; f < source.num_frames(); ++f) {
     source.frame(f, v);
-    exec.copy_from_host(vertices.data(), v.data(), v.size());
+    m.upload(exec, v);
     if (f == 0) {
       build_hierarchy(exec, bvh, mesh, MortonBits::b63);
       order_depth_first(exec, bvh);
@@ -294,7 +305,7 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
       EXPECT_EQ(after.node_escape[k], before.node_escape[k]);
       EXPECT_EQ(after.node_parent[k], before.node_parent[k]);
     }
-    expect_self_query_exact(exec, bvh, topo, v, pairs, count, f);
+    expect_self_query_exact(exec, bvh, topo, v, m.pairs, m.count, f);
     if (testing::Test::HasFatalFailure()) return;
   }
 }
@@ -306,15 +317,11 @@ void check_radix_order_matches(const SoupCase& c) {
   const Topology& topo = source->topology();
   Exec exec;
   Lbvh<Exec> bvh(exec);
-  Array<vec3f> vertices(exec.memory(), "test.vertices");
-  Array<Tri> faces(exec.memory(), "test.faces");
-  vertices.reserve(topo.num_vertices);
-  faces.reserve(topo.faces.size());
-  exec.copy_from_host(faces.data(), topo.faces.data(), topo.faces.size());
+  TestMesh<Exec> m(exec, topo);
   std::vector<vec3f> v;
   source->frame(0, v);
-  exec.copy_from_host(vertices.data(), v.data(), v.size());
-  const MeshView mesh{vertices.data(), faces.data(), uint32_t(topo.faces.size())};
+  m.upload(exec, v);
+  const MeshView mesh = m.view();
   build_hierarchy(exec, bvh, mesh, c.bits);
   order_depth_first(exec, bvh);
   HostBvh histogram = download(exec, bvh);
