@@ -135,7 +135,6 @@ class PairBuffer {
   std::array<unsigned long long, kCounters> read_counters(Exec& exec) {
     std::array<unsigned long long, kCounters> c{};
     exec.copy_to_host(c.data(), counters_.data(), kCounters);
-    last_count_ = c[0];
     last_ = c;
     return c;
   }
@@ -143,14 +142,15 @@ class PairBuffer {
   // After a read-back: if the pairs did not fit, grow to the measured need (logged,
   // counted) and say so; the caller re-runs the query.
   bool grow_if_needed() {
-    if (last_count_ <= pairs_.capacity()) return false;
-    pairs_.reserve(size_t(last_count_ + last_count_ / 4));
+    const uint64_t need = count();
+    if (need <= pairs_.capacity()) return false;
+    pairs_.reserve(size_t(need + need / 4));
     return true;
   }
-  uint64_t count() const { return last_count_; }
+  uint64_t count() const { return last_[0]; }
   std::vector<PrimPair> sorted_pairs(Exec& exec) const {
-    std::vector<PrimPair> out(last_count_);
-    exec.copy_to_host(out.data(), pairs_.data(), last_count_);
+    std::vector<PrimPair> out(count());
+    exec.copy_to_host(out.data(), pairs_.data(), out.size());
     std::sort(out.begin(), out.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
     return out;
   }
@@ -158,7 +158,6 @@ class PairBuffer {
  private:
   Array<PrimPair> pairs_;
   Array<unsigned long long> counters_;
-  uint64_t last_count_ = 0;
   const uint32_t* skip_adjacent_faces_ = nullptr;
   const uint32_t* face_object_ = nullptr;
   const uint64_t* partners_ = nullptr;
