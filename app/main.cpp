@@ -22,6 +22,7 @@
 #include "io/results_file.h"
 #include "io/scene.h"
 #include "pipeline/config_json.h"
+#include "pipeline/device_probe.h"
 #include "pipeline/pipeline.h"
 #include "progress.h"
 #include "report.h"
@@ -165,6 +166,9 @@ struct RunOptions {
   std::string out;
   bool save_pairs = false;
   std::string check = "off";
+  uint32_t repeat = 1;
+  double max_noise = 0.0;  // percent on the command line, a fraction here
+  bool cold = false;
 };
 
 // --check every | N | off: frames between checks against the oracle (0: none).
@@ -196,6 +200,7 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.frame_last = range.last;
   run.triangles = scene.source->topology().faces.size();
   run.vertices = scene.source->topology().num_vertices;
+  run.cold = r.cold;
   const auto scenes_dir = o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir);
   run.params_json = nlohmann::json{{"command", "run"},
                                    {"options", cli_options},
@@ -206,7 +211,10 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
                                      {"scenes_dir", scenes_dir.string()},
                                      {"frame_first", range.first},
                                      {"frame_last", range.last},
-                                     {"warmup", r.warmup}}}}
+                                     {"warmup", r.warmup},
+                                     {"repeat", r.repeat},
+                                     {"max_noise", r.max_noise},
+                                     {"cold", r.cold}}}}
                         .dump();
   return run;
 }
@@ -237,8 +245,13 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
               scene.name.c_str(), scene.description.c_str(), topo.faces.size(),
               topo.num_vertices, range.first, range.last);
+  // Measured once, before any frame: the yardstick of the bandwidth floor; and the cache
+  // flush of --cold, allocated here rather than in the frame loop.
+  const std::unique_ptr<DeviceProbe> probe = make_device_probe(device);
+  const double copy_gbps = probe->copy_bandwidth_gbps();
+  std::printf("copy bandwidth: %.0f GB/s (%s, measured; read + written)\n", copy_gbps, device.c_str());
   std::unique_ptr<FrameSource> cached;
-  if (names.size() > 1) cached = std::make_unique<CachedFrames>(*scene.source);
+  if (names.size() > 1 || r.repeat > 1) cached = std::make_unique<CachedFrames>(*scene.source);
   const FrameSource& frames = cached ? *cached : *scene.source;
   for (const auto& name : names) {
     const PipelineConfig config = make_config(o, name, device);
@@ -250,13 +263,22 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     const size_t at = one.out.find("{pipeline}");
     if (at != std::string::npos) one.out.replace(at, 10, name);
     std::optional<ResultsFile> out;
-    if (!one.out.empty()) out.emplace(one.out, run_info(o, one, scene, config, range, cli_options));
+    if (!one.out.empty()) {
+      RunInfo info = run_info(o, one, scene, config, range, cli_options);
+      info.copy_gbps = copy_gbps;
+      out.emplace(one.out, info);
+    }
     RunLoopOptions loop;
     loop.warmup = r.warmup;
     loop.frame_lines = !r.quiet;
     loop.progress = Progress::mode_for(r.quiet);
     loop.save_pairs = r.save_pairs;
     loop.check_every = check_interval(r.check);
+    loop.repeat = r.repeat;
+    loop.max_noise = r.max_noise / 100.0;
+    loop.cold = r.cold;
+    loop.probe = probe.get();
+    loop.copy_gbps = copy_gbps;
     loop.oracle = [&topo, &o](const std::vector<vec3f>& v) { return sweep_oracle_pairs(topo, v, o.skip_adjacent); };
     if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, loop)) return rc;
   }
@@ -439,6 +461,16 @@ int main(int argc, char** argv) {
                   "compare frames with the exact CPU oracle: every, N (every N-th frame) or off; "
                   "recall, precision, missed and false positives per checked frame, outside the timing")
       ->capture_default_str();
+  run->add_option("--repeat", r.repeat,
+                  "passes over the frames, each from a fresh state; times are the per-frame mean, "
+                  "with the relative standard deviation reported as noise")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  run->add_option("--max-noise", r.max_noise,
+                  "stop repeating once the passes' mean frame times agree within this many percent (0: all passes)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  run->add_flag("--cold", r.cold, "flush the device's last-level cache before every frame (outside its timing)");
 
   auto* verify = app.add_subcommand("verify", "compare pipelines with the exact oracle, frame by frame");
   add_common(verify, o);

@@ -11,8 +11,9 @@ namespace cdb {
 int omp_threads() { return omp_get_max_threads(); }
 
 void print_frame_line(uint32_t frame, const FrameStats& s) {
-  std::printf("frame %4u  %-15s %9.3f ms  pairs %10llu", frame, s.op.c_str(), s.total_ms,
-              static_cast<unsigned long long>(s.pairs));
+  std::printf("frame %4u  %-15s %9.3f ms", frame, s.op.c_str(), s.total_ms);
+  if (s.repeats > 1) std::printf(" ±%.1f%%", 100.0 * s.total_noise);
+  std::printf("  pairs %10llu", static_cast<unsigned long long>(s.pairs));
   if (s.front_internal + s.front_external)
     std::printf("  front %llu+%llu  Q %.3f", static_cast<unsigned long long>(s.front_internal),
                 static_cast<unsigned long long>(s.front_external), s.q_root);
@@ -28,13 +29,24 @@ void print_frame_line(uint32_t frame, const FrameStats& s) {
   std::printf("\n");
 }
 
-void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const MemoryStats& mem) {
+void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const MemoryStats& mem,
+                   double copy_gbps) {
   if (frames.empty()) return;
   const RunSummary r = summarize_run(frames, warmup);
   std::printf("summary: %zu frames measured (first %zu left out as warm-up)\n", r.total.count, r.warmup);
   std::printf("  first frame %.3f ms (%s)\n", r.first_ms, r.first_op.c_str());
   std::printf("  per frame   mean %.3f  median %.3f  p95 %.3f  min %.3f ms (upload excluded)\n",
               r.total.mean, r.total.median, r.total.p95, r.total.min);
+  if (r.repeats > 1)
+    std::printf("  noise       %.2f%% (median over frames of the relative std. dev. over %u passes)\n",
+                100.0 * r.noise_median, r.repeats);
+  std::printf("  syncs       %.2f per frame, at most %u (host-device synchronizations)\n",
+              r.host_syncs_mean, r.host_syncs_max);
+  if (copy_gbps > 0 && r.total.mean > 0) {
+    const double floor_ms = r.bytes_floor_mean / (copy_gbps * 1e9) * 1e3;
+    std::printf("  floor       %.4f ms per frame (%.1f MB at %.0f GB/s copy bandwidth): %.1fx above\n",
+                floor_ms, r.bytes_floor_mean / 1e6, copy_gbps, r.total.mean / floor_ms);
+  }
   for (size_t p = 0; p < kPhaseCount; ++p) {
     const Stat& s = r.phase[p];
     if (s.count == 0) continue;

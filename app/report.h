@@ -11,7 +11,9 @@ namespace cdb {
 
 int omp_threads();
 void print_frame_line(uint32_t frame, const FrameStats& s);
-void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const MemoryStats& mem);
+// copy_gbps: the device's measured copy bandwidth, for the bandwidth floor (0: not shown).
+void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const MemoryStats& mem,
+                   double copy_gbps = 0.0);
 void print_mismatch(const std::string& pipeline, uint32_t frame, const PairSetDiff& d);
 
 }  // namespace cdb

@@ -1,10 +1,12 @@
 #include "run_loop.h"
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "core/pair_set.h"
 #include "interrupt.h"
 #include "pipeline/run_summary.h"
@@ -22,19 +24,100 @@ void check_frame_pairs(Pipeline& pipeline, const std::vector<PrimPair>& expected
   s.false_positives = a.false_positives;
 }
 
+// Sample mean and relative standard deviation (0 for fewer than two samples).
+std::pair<double, double> mean_and_noise(const std::vector<double>& v) {
+  double mean = 0;
+  for (double x : v) mean += x;
+  mean /= double(v.size());
+  if (v.size() < 2 || mean <= 0) return {mean, 0.0};
+  double ss = 0;
+  for (double x : v) ss += (x - mean) * (x - mean);
+  return {mean, std::sqrt(ss / double(v.size() - 1)) / mean};
+}
+
+// The times of the passes run before the recording one (--repeat), per frame.
+struct EarlierPasses {
+  std::vector<std::vector<FrameStats>> passes;
+
+  size_t count() const { return passes.size(); }
+  // Relative standard deviation of the passes' mean frame time over the measured frames.
+  double noise_of_means(uint32_t warmup) const {
+    std::vector<double> means;
+    for (const auto& p : passes) {
+      double sum = 0;
+      size_t k = 0;
+      for (size_t f = std::min<size_t>(warmup, p.size() - 1); f < p.size(); ++f, ++k) sum += p[f].total_ms;
+      means.push_back(sum / double(k));
+    }
+    return mean_and_noise(means).second;
+  }
+  // Frame k of the recording pass becomes the mean over all passes; pair counts must agree.
+  void merge_into(size_t k, uint32_t frame, FrameStats& s) const {
+    if (passes.empty()) return;
+    std::vector<double> totals{s.total_ms};
+    std::array<double, kPhaseCount> phase = s.phase_ms;
+    for (size_t p = 0; p < passes.size(); ++p) {
+      const FrameStats& e = passes[p][k];
+      if (e.pairs != s.pairs)
+        fail("frame " + std::to_string(frame) + ": pass " + std::to_string(p + 1) + " reported " +
+             std::to_string(e.pairs) + " pairs, the last pass " + std::to_string(s.pairs) +
+             " (--repeat needs a deterministic pipeline)");
+      totals.push_back(e.total_ms);
+      for (size_t q = 0; q < kPhaseCount; ++q) phase[q] += e.phase_ms[q];
+    }
+    const auto [mean, noise] = mean_and_noise(totals);
+    s.total_ms = mean;
+    s.total_noise = noise;
+    s.repeats = uint32_t(totals.size());
+    for (size_t q = 0; q < kPhaseCount; ++q) s.phase_ms[q] = phase[q] / double(totals.size());
+  }
+};
+
+// The least a frame must move through memory: every vertex position and face index read
+// once to bound the triangles, every pair written once.
+uint64_t frame_bytes_floor(const Topology& t, uint64_t pairs) {
+  return 12ull * t.num_vertices + 12ull * t.faces.size() + 8ull * pairs;
+}
+
 }  // namespace
 
 int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
                const RunLoopOptions& options) {
+  if (options.repeat == 0) fail("--repeat must be at least 1");
+  if (options.cold && !options.probe) fail("--cold needs the device's cache flush");
   const InterruptScope interrupts;
-  Progress progress(range.last - range.first, options.progress);
+  const uint32_t frames_per_pass = range.last - range.first;
+  Progress progress(frames_per_pass * options.repeat, options.progress);
+  uint32_t done = 0;
   std::vector<FrameStats> frames;
   std::vector<vec3f> vertices;
+  EarlierPasses earlier;
   uint32_t f = range.first;
+  const auto run_one = [&](uint32_t frame) {
+    source.frame(frame, vertices);
+    if (options.cold) options.probe->flush_caches();
+    FrameStats s = pipeline.run_frame(vertices);
+    s.bytes_floor = frame_bytes_floor(source.topology(), s.pairs);
+    progress.update(++done);
+    return s;
+  };
   try {
-    for (; f < range.last && !interrupts.signal(); ++f) {
-      source.frame(f, vertices);
-      frames.push_back(pipeline.run_frame(vertices));
+    // --repeat: passes before the recording one, timed only; each starts from a fresh
+    // state, so every pass takes the same decisions on the same frames.
+    while (earlier.count() + 1 < options.repeat && !interrupts.signal()) {
+      if (earlier.count() > 0) pipeline.set_topology(source.topology());
+      earlier.passes.emplace_back();
+      for (f = range.first; f < range.last && !interrupts.signal(); ++f)
+        earlier.passes.back().push_back(run_one(f));
+      if (earlier.passes.back().size() < frames_per_pass) break;
+      if (options.max_noise > 0 && earlier.count() >= 2 &&
+          earlier.noise_of_means(options.warmup) < options.max_noise)
+        break;
+    }
+    if (earlier.count() > 0) pipeline.set_topology(source.topology());
+    for (f = range.first; f < range.last && !interrupts.signal(); ++f) {
+      frames.push_back(run_one(f));
+      earlier.merge_into(frames.size() - 1, f, frames.back());
       if (options.check_every && (f - range.first) % options.check_every == 0)
         check_frame_pairs(pipeline, options.oracle(vertices), frames.back());
       if (out) {
@@ -45,7 +128,6 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
         progress.clear();
         print_frame_line(f, frames.back());
       }
-      progress.update(uint32_t(frames.size()));
     }
   } catch (const std::exception& e) {
     progress.finish();
@@ -56,10 +138,10 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     throw;
   }
   progress.finish();
-  print_summary(frames, options.warmup, pipeline.memory());
+  print_summary(frames, options.warmup, pipeline.memory(), options.copy_gbps);
   if (const int signal = interrupts.signal()) {
     const std::string why = std::string("interrupted by ") + signal_name(signal) + " after " +
-                            std::to_string(frames.size()) + " of " + std::to_string(range.last - range.first) +
+                            std::to_string(frames.size()) + " of " + std::to_string(frames_per_pass) +
                             " frames";
     std::fflush(stdout);
     std::fprintf(stderr, "cdbench: %s\n", why.c_str());

@@ -8,6 +8,7 @@
 #include "frame_range.h"
 #include "geometry/frame_source.h"
 #include "io/results_file.h"
+#include "pipeline/device_probe.h"
 #include "pipeline/pipeline.h"
 #include "progress.h"
 
@@ -22,9 +23,20 @@ struct RunLoopOptions {
   // same positions, outside the timed frame.
   uint32_t check_every = 0;
   std::function<std::vector<PrimPair>(const std::vector<vec3f>&)> oracle;
+  // --repeat: at most this many passes over the frames, each from a fresh pipeline state;
+  // the last records, its times the mean over all passes with their noise beside them.
+  uint32_t repeat = 1;
+  // --max-noise: fewer passes once the passes' mean frame times agree within this relative
+  // standard deviation (0: always `repeat` passes).
+  double max_noise = 0.0;
+  // --cold: caches flushed through `probe` before every frame (outside its timing).
+  bool cold = false;
+  DeviceProbe* probe = nullptr;
+  // The device's measured copy bandwidth, for the bandwidth floor in the summary (0: none).
+  double copy_gbps = 0.0;
 };
 
-// Runs the frames of `range`, prints the summary and, given a results file, records every
+// Runs the frames of `range` (repeat passes of them), prints the summary and, given a results file, records every
 // frame and marks it complete. On an error the file is closed as incomplete with the
 // message and the error is rethrown; on SIGINT/SIGTERM (checked between frames) the same,
 // and the return value is 128 + the signal. Returns 0 otherwise.

@@ -86,7 +86,10 @@ void CudaExec::sort_pairs(const uint64_t* keys_in, uint64_t* keys_out, const uin
              "radix sort");
 }
 
-void CudaExec::sync() const { cuda_check(cudaStreamSynchronize(stream_), "stream sync"); }
+void CudaExec::sync() const {
+  ++host_syncs_;
+  cuda_check(cudaStreamSynchronize(stream_), "stream sync");
+}
 
 void CudaExec::copy_to_host_bytes(void* dst, const void* src, size_t bytes) const {
   if (!bytes) return;
@@ -104,7 +107,7 @@ void CudaExec::copy_bytes(void* dst, const void* src, size_t bytes) const {
   cuda_check(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToDevice, stream_), "device copy");
 }
 
-CudaPhaseTimer::CudaPhaseTimer(CudaExec& exec) : stream_(exec.stream()) {
+CudaPhaseTimer::CudaPhaseTimer(CudaExec& exec) : exec_(&exec), stream_(exec.stream()) {
   cuda_check(cudaEventCreate(&frame_begin_), "event creation");
   cuda_check(cudaEventCreate(&frame_end_), "event creation");
 }
@@ -139,6 +142,7 @@ void CudaPhaseTimer::stop(Phase p) {
 void CudaPhaseTimer::start_frame() {
   used_ = 0;
   spans_.clear();
+  syncs_at_start_ = exec_->host_syncs();
   cuda_check(cudaEventRecord(frame_begin_, stream_), "event record");
 }
 

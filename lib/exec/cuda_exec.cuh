@@ -170,7 +170,10 @@ class CudaExec {
   void copy(T* dst, const T* src, size_t n) const {
     copy_bytes(dst, src, n * sizeof(T));
   }
+  // Waits for the stream; every read-back ends in one. Counted: the frame loop reports the
+  // synchronizations each frame made (target: one, the counters' read-back).
   void sync() const;
+  uint64_t host_syncs() const { return host_syncs_; }
 
  private:
   void copy_to_host_bytes(void* dst, const void* src, size_t bytes) const;
@@ -178,6 +181,7 @@ class CudaExec {
   void copy_bytes(void* dst, const void* src, size_t bytes) const;
   cudaStream_t stream_ = nullptr;
   CudaMemory memory_;
+  mutable uint64_t host_syncs_ = 0;
 };
 
 // Phase timer from CUDA events on the executor's stream; a phase that runs several times
@@ -194,6 +198,8 @@ class CudaPhaseTimer {
   void stop_frame();
   double phase_ms(Phase p) const;
   double frame_ms() const;
+  // Synchronizations of the executor since start_frame(), the frame's read-back included.
+  uint64_t frame_syncs() const { return exec_->host_syncs() - syncs_at_start_; }
 
  private:
   struct Span {
@@ -201,6 +207,8 @@ class CudaPhaseTimer {
     cudaEvent_t begin, end;
   };
   cudaEvent_t next_event();
+  const CudaExec* exec_;
+  uint64_t syncs_at_start_ = 0;
   cudaStream_t stream_;
   std::vector<cudaEvent_t> pool_;
   size_t used_ = 0;

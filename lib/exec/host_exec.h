@@ -100,6 +100,7 @@ class HostExec {
   }
   template <class T>
   void copy_to_host(T* dst, const T* src, size_t n) const {
+    ++host_syncs_;
     if (n) std::memcpy(dst, src, n * sizeof(T));
   }
   template <class T>
@@ -110,16 +111,20 @@ class HostExec {
   void copy(T* dst, const T* src, size_t n) const {
     if (n) std::memcpy(dst, src, n * sizeof(T));
   }
-  void sync() const {}
+  void sync() const { ++host_syncs_; }
+  // Read-backs and waits so far: where the CUDA executor would stop the host until the
+  // device caught up, counted the same way so CPU tests can check the per-frame count.
+  uint64_t host_syncs() const { return host_syncs_; }
 
  private:
   HostMemory memory_;
+  mutable uint64_t host_syncs_ = 0;
 };
 
 // Wall-clock phase timer for the host executor.
 class HostPhaseTimer {
  public:
-  explicit HostPhaseTimer(HostExec&) {}
+  explicit HostPhaseTimer(HostExec& exec) : exec_(&exec) {}
   void start(Phase p) { begin_[size_t(p)] = clock::now(); }
   void stop(Phase p) {
     ms_[size_t(p)] +=
@@ -127,6 +132,7 @@ class HostPhaseTimer {
   }
   void start_frame() {
     ms_.fill(0.0);
+    syncs_at_start_ = exec_->host_syncs();
     frame_begin_ = clock::now();
   }
   void stop_frame() {
@@ -135,8 +141,12 @@ class HostPhaseTimer {
   // Valid once the executor has synchronized after stop_frame().
   double phase_ms(Phase p) const { return ms_[size_t(p)]; }
   double frame_ms() const { return frame_ms_; }
+  // Synchronization points since start_frame(), the frame's read-back included.
+  uint64_t frame_syncs() const { return exec_->host_syncs() - syncs_at_start_; }
 
  private:
+  const HostExec* exec_;
+  uint64_t syncs_at_start_ = 0;
   using clock = std::chrono::steady_clock;
   std::array<clock::time_point, kPhaseCount> begin_{};
   std::array<double, kPhaseCount> ms_{};

@@ -18,6 +18,10 @@ const std::vector<FrameColumn>& frame_columns() {
                    [p](R r) -> ColumnValue { return r.stats.phase_ms[p]; }});
     const std::vector<FrameColumn> rest = {
         {"pairs", T::u64, "pairs reported", [](R r) -> ColumnValue { return r.stats.pairs; }},
+        {"repeats", T::u32, "--repeat: passes the frame's times are the mean of", [](R r) -> ColumnValue { return uint64_t(r.stats.repeats); }},
+        {"t_total_noise", T::f64, "--repeat: relative standard deviation of t_total_ms over the passes (0: one pass)", [](R r) -> ColumnValue { return r.stats.total_noise; }},
+        {"host_syncs", T::u32, "host-device synchronizations in the frame (target: 1, the counters' read-back)", [](R r) -> ColumnValue { return uint64_t(r.stats.host_syncs); }},
+        {"bytes_floor", T::u64, "bytes the frame must move at least: 12 per vertex and per face read, 8 per pair written", [](R r) -> ColumnValue { return r.stats.bytes_floor; }},
         {"query_reruns", T::u32, "queries re-run because a buffer grew", [](R r) -> ColumnValue { return uint64_t(r.stats.query_reruns); }},
         {"front_int", T::u64, "internal front nodes after the frame", [](R r) -> ColumnValue { return r.stats.front_internal; }},
         {"front_ext", T::u64, "external front nodes after the frame", [](R r) -> ColumnValue { return r.stats.front_external; }},

@@ -121,6 +121,8 @@ ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
   write_attr(root, "frame_last", uint64_t(info.frame_last), at);
   write_attr(root, "triangles", info.triangles, at);
   write_attr(root, "vertices", info.vertices, at);
+  write_attr(root, "copy_bandwidth_gbps", info.copy_gbps, at);
+  write_attr(root, "cold", uint64_t(info.cold), at);
   write_attr(root, "host", host_name(), at);
   write_attr(root, "created_utc", utc_now(), at);
 
@@ -249,6 +251,11 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
   for (size_t p = 0; p < kPhaseCount; ++p) put_stat(std::string("t_") + kPhaseNames[p] + "_ms", s.phase[p]);
   write_attr(loc, "pairs_mean", s.total.count ? s.pairs_mean : none, at);
   write_attr(loc, "query_reruns", uint64_t(s.query_reruns), at);
+  write_attr(loc, "repeats", uint64_t(s.repeats), at);
+  write_attr(loc, "noise_median", s.noise_median, at);
+  write_attr(loc, "host_syncs_mean", s.host_syncs_mean, at);
+  write_attr(loc, "host_syncs_max", uint64_t(s.host_syncs_max), at);
+  write_attr(loc, "bytes_floor_mean", s.bytes_floor_mean, at);
   write_attr(loc, "decisions_refit", uint64_t(s.decided_refit), at);
   write_attr(loc, "decisions_restructure", uint64_t(s.decided_restructure), at);
   write_attr(loc, "decisions_rebuild", uint64_t(s.decided_rebuild), at);

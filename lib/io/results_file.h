@@ -32,6 +32,8 @@ struct RunInfo {
   uint32_t warmup = 0;
   uint32_t frame_first = 0, frame_last = 0;  // the range asked for, half-open
   uint64_t triangles = 0, vertices = 0;
+  double copy_gbps = 0.0;  // the device's copy bandwidth, measured at the run's start
+  bool cold = false;       // --cold: caches flushed before every frame
 };
 
 class ResultsFile {

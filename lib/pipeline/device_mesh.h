@@ -80,6 +80,7 @@ template <class Timer>
 void record_timings(const Timer& timer, FrameStats& stats) {
   for (size_t p = 0; p < kPhaseCount; ++p) stats.phase_ms[p] = timer.phase_ms(Phase(p));
   stats.total_ms = timer.frame_ms() - stats.phase_ms[size_t(Phase::upload)];
+  stats.host_syncs = uint32_t(timer.frame_syncs());
 }
 
 // Rebuild (build + depth-first order, by histogram or, for the radix baseline, by a key

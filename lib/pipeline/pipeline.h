@@ -48,6 +48,14 @@ struct FrameStats {
   std::array<double, kPhaseCount> phase_ms{};
   double total_ms = 0.0;  // the frame without its upload
   uint32_t query_reruns = 0;  // queries re-run because the pair buffer had to grow
+  uint32_t host_syncs = 0;    // host-device synchronizations in the frame (target: 1)
+  // --repeat: passes over the frame sequence this frame's times are the mean of, and the
+  // relative standard deviation of its total over those passes (0 with one pass).
+  uint32_t repeats = 1;
+  double total_noise = 0.0;
+  // Bytes the frame must move at least (positions and faces read, pairs written): the
+  // bandwidth floor's numerator, filled by the frame loop.
+  uint64_t bytes_floor = 0;
   std::string op;             // what the frame did: hierarchy (build/refit) + front operation
   uint64_t front_internal = 0, front_external = 0;  // front sizes after the frame
   double q_root = 0.0;  // Formula 1 at the root (internal / external front nodes), when ordered

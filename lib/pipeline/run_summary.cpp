@@ -28,9 +28,14 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
   r.first_op = frames[0].op;
   std::vector<double> total;
   std::array<std::vector<double>, kPhaseCount> ran;
-  double pairs = 0;
+  double pairs = 0, syncs = 0, floor = 0;
+  std::vector<double> noise;
   for (size_t f = r.warmup; f < frames.size(); ++f) {
     total.push_back(frames[f].total_ms);
+    noise.push_back(frames[f].total_noise);
+    syncs += frames[f].host_syncs;
+    floor += double(frames[f].bytes_floor);
+    r.host_syncs_max = std::max(r.host_syncs_max, frames[f].host_syncs);
     for (size_t p = 0; p < kPhaseCount; ++p)
       if (frames[f].phase_ms[p] > 0) ran[p].push_back(frames[f].phase_ms[p]);
     pairs += double(frames[f].pairs);
@@ -51,6 +56,10 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
   r.total = stat_of(std::move(total));
   for (size_t p = 0; p < kPhaseCount; ++p) r.phase[p] = stat_of(std::move(ran[p]));
   r.pairs_mean = pairs / double(r.total.count);
+  r.host_syncs_mean = syncs / double(r.total.count);
+  r.bytes_floor_mean = floor / double(r.total.count);
+  r.repeats = frames.back().repeats;
+  r.noise_median = stat_of(std::move(noise)).median;
   return r;
 }
 

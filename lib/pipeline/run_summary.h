@@ -29,6 +29,14 @@ struct RunSummary {
   // cycle, so zeros would drag its mean down).
   std::array<Stat, kPhaseCount> phase{};
   double pairs_mean = 0;
+  // --repeat: passes each frame's times are the mean of, and the median over the measured
+  // frames of their relative standard deviation (the noise reported beside every time).
+  uint32_t repeats = 1;
+  double noise_median = 0;
+  // Host-device synchronizations per measured frame (target: 1).
+  double host_syncs_mean = 0;
+  uint32_t host_syncs_max = 0;
+  double bytes_floor_mean = 0;  // per measured frame; see FrameStats::bytes_floor
   uint32_t query_reruns = 0;  // over all frames, warm-up included
   // Formula 2 decisions of pipeline c over all frames.
   size_t decided_refit = 0, decided_restructure = 0, decided_rebuild = 0;

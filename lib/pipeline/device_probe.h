@@ -1,0 +1,29 @@
+#pragma once
+// Measurement aids of a backend, for the frame loop to use between frames, never inside a
+// timed one: evicting the caches before a frame (--cold, nvbench's cold measurement) and
+// the device's copy bandwidth, the yardstick that achieved traffic is reported against.
+#include <memory>
+#include <string>
+
+namespace cdb {
+
+class DeviceProbe {
+ public:
+  virtual ~DeviceProbe() = default;
+  // Overwrites a buffer twice the size of the last-level cache (the GPU's L2, the CPU's L3)
+  // and waits for it, so the next frame starts with none of its data cached.
+  virtual void flush_caches() = 0;
+  // Copy bandwidth in GB/s, counting bytes read plus bytes written: the best of several
+  // large device-to-device copies (host: memcpy on one thread). Allocates and frees its
+  // buffers; call it once per run, before the frames.
+  virtual double copy_bandwidth_gbps() = 0;
+};
+
+// For --device cuda or cpu (fails like make_pipeline on an unknown or absent device).
+std::unique_ptr<DeviceProbe> make_device_probe(const std::string& device);
+
+// Per-backend factories (host_backend.cpp, cuda_backend.cu or cuda_backend_absent.cpp).
+std::unique_ptr<DeviceProbe> make_host_probe();
+std::unique_ptr<DeviceProbe> make_cuda_probe();
+
+}  // namespace cdb

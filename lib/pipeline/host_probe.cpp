@@ -1,0 +1,62 @@
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <vector>
+
+#include "core/error.h"
+#include "pipeline/device_probe.h"
+
+namespace cdb {
+namespace {
+
+size_t last_level_cache_bytes() {
+  const long l3 = sysconf(_SC_LEVEL3_CACHE_SIZE);
+  const long l2 = sysconf(_SC_LEVEL2_CACHE_SIZE);
+  const long best = std::max(l3, l2);
+  return best > 0 ? size_t(best) : size_t(32) << 20;
+}
+
+class HostProbe final : public DeviceProbe {
+ public:
+  HostProbe() : flush_(2 * last_level_cache_bytes()) {}
+
+  void flush_caches() override {
+    ++fill_;
+    std::memset(flush_.data(), fill_, flush_.size());
+    // Read one byte per line back through a volatile so the stores cannot be dropped.
+    volatile unsigned char sink = 0;
+    for (size_t i = 0; i < flush_.size(); i += 64) sink = sink + flush_[i];
+  }
+
+  double copy_bandwidth_gbps() override {
+    const size_t bytes = size_t(64) << 20;  // twice that in all: past any last-level cache
+    std::vector<unsigned char> src(bytes, 1), dst(bytes, 0);
+    double best = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      std::memcpy(dst.data(), src.data(), bytes);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (dst[bytes / 2] != 1) fail("copy bandwidth: memcpy produced wrong data");
+      best = std::max(best, 2.0 * double(bytes) / s / 1e9);
+    }
+    return best;
+  }
+
+ private:
+  std::vector<unsigned char> flush_;
+  unsigned char fill_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<DeviceProbe> make_host_probe() { return std::make_unique<HostProbe>(); }
+
+std::unique_ptr<DeviceProbe> make_device_probe(const std::string& device) {
+  if (device == "cpu") return make_host_probe();
+  if (device == "cuda") return make_cuda_probe();
+  fail("unknown device '" + device + "' (known: cuda, cpu)");
+}
+
+}  // namespace cdb
