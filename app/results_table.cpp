@@ -147,9 +147,9 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   }
   const std::vector<std::string> phases = phases_that_ran(rows);
 
-  std::vector<std::string> header = {"file", "scene", "pipeline", "device", "frames", "mean_ms", "median_ms", "p95_ms"};
+  std::vector<std::string> header = {"file", "scene", "pipeline", "device", "frames", "mean_ms", "noise_%", "median_ms", "p95_ms"};
   for (const auto& p : phases) header.push_back(p + "_ms");
-  header.insert(header.end(), {"pairs", csv ? "peak_bytes" : "peak_MiB", "status"});
+  header.insert(header.end(), {"pairs", "syncs", csv ? "peak_bytes" : "peak_MiB", "status"});
 
   std::vector<std::vector<std::string>> table;
   for (const Row& row : rows) {
@@ -160,6 +160,8 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     const bool stats = row.unreadable.empty() && r.has_summary && r.measured_frames > 0;
     const double none = std::nan("");
     cells.push_back(number(stats ? r.mean_ms : none));
+    // The noise beside the time it qualifies: with one pass there is none to report.
+    cells.push_back(number(stats && r.repeats > 1 ? 100.0 * r.noise_median : none, "%.1f"));
     cells.push_back(number(stats ? r.median_ms : none));
     cells.push_back(number(stats ? r.p95_ms : none));
     for (const auto& p : phases) {
@@ -169,6 +171,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
       cells.push_back(number(mean));
     }
     cells.push_back(number(stats ? r.pairs_mean : none, "%.0f"));
+    cells.push_back(number(stats ? r.host_syncs_mean : none, "%.2f"));
     cells.push_back(!r.has_summary ? "" : csv ? std::to_string(r.peak_bytes) : number(double(r.peak_bytes) / (1 << 20), "%.2f"));
     cells.push_back(status_text(row, csv));
     table.push_back(std::move(cells));

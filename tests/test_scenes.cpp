@@ -12,6 +12,7 @@
 #include "bruteforce/sweep_oracle.h"
 #include "core/error.h"
 #include "generators.h"
+#include "io/frame_cache.h"
 #include "io/obj_sequence.h"
 #include "io/obj_writer.h"
 
@@ -210,6 +211,79 @@ TEST(Scenes, UnknownAndOutOfRangeParametersAreRejected) {
   EXPECT_THROW(make_generator("funnel", {{"res", 1}}), Error);
   EXPECT_THROW(make_generator("n-body", {{"sphere_level", 9}}), Error);
   EXPECT_THROW(make_generator("sphere", {{"frames", 0}}), Error);
+}
+
+// A generator that counts the frames it had to simulate.
+class CountingSource final : public FrameSource {
+ public:
+  explicit CountingSource(std::unique_ptr<FrameSource> inner, int* made) : inner_(std::move(inner)), made_(made) {}
+  const Topology& topology() const override { return inner_->topology(); }
+  uint32_t num_frames() const override { return inner_->num_frames(); }
+  std::string describe() const override { return inner_->describe(); }
+  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+    ++*made_;
+    inner_->frame(k, out);
+  }
+
+ private:
+  std::unique_ptr<FrameSource> inner_;
+  int* made_;
+};
+
+TEST(FrameCache, SimulatesOnceThenReadsTheSameBitsAndRedoesABrokenFile) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cdb-cache-" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  const json params = {{"res", 16}, {"frames", 4}};
+  const auto make = [&](int* made) {
+    return cache_frames(std::make_unique<CountingSource>(make_generator("funnel", params), made),
+                        "funnel " + params.dump(), dir);
+  };
+  int first = 0, second = 0, third = 0;
+  std::vector<std::vector<vec3f>> expected(4);
+  {
+    auto a = make(&first);
+    for (uint32_t k = 0; k < 4; ++k) a->frame(k, expected[k]);
+  }
+  EXPECT_EQ(first, 4);
+  std::vector<vec3f> v;
+  {
+    auto b = make(&second);
+    for (uint32_t k = 0; k < 4; ++k) {
+      b->frame(k, v);
+      ASSERT_EQ(v.size(), expected[k].size());
+      EXPECT_EQ(std::memcmp(v.data(), expected[k].data(), v.size() * sizeof(vec3f)), 0) << "frame " << k;
+    }
+  }
+  EXPECT_EQ(second, 0) << "cached frames were simulated again";
+  // A truncated frame file is not trusted: that frame is simulated again, the rest read.
+  std::filesystem::path file;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.path().filename() == "frame_2.f32") file = e.path();
+  ASSERT_FALSE(file.empty());
+  std::filesystem::resize_file(file, std::filesystem::file_size(file) - 4);
+  {
+    auto c = make(&third);
+    for (uint32_t k = 0; k < 4; ++k) {
+      c->frame(k, v);
+      EXPECT_EQ(std::memcmp(v.data(), expected[k].data(), v.size() * sizeof(vec3f)), 0) << "frame " << k;
+    }
+  }
+  EXPECT_EQ(third, 1);
+  // Other parameters are another scene: nothing is shared.
+  int other = 0;
+  const json params2 = {{"res", 17}, {"frames", 4}};
+  auto d = cache_frames(std::make_unique<CountingSource>(make_generator("funnel", params2), &other),
+                        "funnel " + params2.dump(), dir);
+  d->frame(0, v);
+  EXPECT_EQ(other, 1);
+  // Too large for the cache: passed through, nothing stored.
+  int big = 0;
+  auto e = cache_frames(std::make_unique<CountingSource>(make_generator("funnel", params), &big),
+                        "funnel big " + params.dump(), dir, 16);
+  e->frame(0, v);
+  e->frame(0, v);
+  EXPECT_EQ(big, 2);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(ObjWriter, SequenceReadsBackIdentically) {

@@ -1,5 +1,7 @@
 #include "io/results_reader.h"
 
+#include <cmath>
+
 #include "core/error.h"
 #include "io/hdf5_handle.h"
 
@@ -47,6 +49,12 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   r.first_ms = h5::read_double_attr(s, "first_frame_ms", st);
   r.pairs_mean = h5::read_double_attr(s, "pairs_mean", st);
   r.peak_bytes = uint64_t(h5::read_int_attr(s, "peak_bytes", st));
+  const auto optional_double = [&](const char* name) {
+    return h5::has_attr(s, name) ? h5::read_double_attr(s, name, st) : std::nan("");
+  };
+  r.repeats = h5::has_attr(s, "repeats") ? double(h5::read_int_attr(s, "repeats", st)) : std::nan("");
+  r.noise_median = optional_double("noise_median");
+  r.host_syncs_mean = optional_double("host_syncs_mean");
   // Phases are whatever t_<phase>_ms_mean attributes the file has, so files written before
   // or after a phase was added read the same way.
   const std::string prefix = "t_", suffix = "_ms_mean";

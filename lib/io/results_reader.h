@@ -22,6 +22,9 @@ struct ResultsOverview {
   uint64_t measured_frames = 0;
   double mean_ms = 0, median_ms = 0, p95_ms = 0, first_ms = 0, pairs_mean = 0;
   uint64_t peak_bytes = 0;
+  // Written by newer files only (NaN when absent): --repeat passes and the median noise
+  // (relative std. dev.), host-device synchronizations per frame.
+  double repeats = 0, noise_median = 0, host_syncs_mean = 0;
   // Mean time of each phase that ran, by phase name, without "total".
   std::vector<std::pair<std::string, double>> phase_means;
 };

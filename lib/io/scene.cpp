@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "generators.h"
 #include "io/animated_mesh.h"
+#include "io/frame_cache.h"
 #include "io/obj_sequence.h"
 
 namespace cdb {
@@ -173,7 +174,9 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
     if (!params.is_object()) fail(file.string() + ": /params: must be an object");
     for (auto it = overrides.begin(); it != overrides.end(); ++it) params[it.key()] = it.value();
     try {
-      s.source = make_generator(j["generator"].get<std::string>(), params);
+      const std::string generator = j["generator"].get<std::string>();
+      s.source = cache_frames(make_generator(generator, params), generator + " " + params.dump(),
+                              frame_cache_dir());
     } catch (const Error& e) {
       fail(file.string() + ": " + e.what());
     }

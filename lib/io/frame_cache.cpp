@@ -1,0 +1,137 @@
+#include "io/frame_cache.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <mutex>
+#include <system_error>
+
+#include "core/build_info.h"
+
+namespace cdb {
+namespace {
+
+uint64_t fnv1a(const std::string& s) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+// This binary's identity: a rebuilt cdbench may simulate differently, even at one sha.
+std::string binary_identity() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  std::string id = build_info().git_sha;
+  if (!ec) {
+    const auto size = std::filesystem::file_size(exe, ec);
+    const auto time = std::filesystem::last_write_time(exe, ec);
+    if (!ec) {
+      id.append("/").append(std::to_string(size));
+      id.append("/").append(std::to_string(time.time_since_epoch().count()));
+    }
+  }
+  return id;
+}
+
+constexpr char kMagic[8] = {'c', 'd', 'b', 'f', 'r', 'm', '0', '1'};
+
+struct FrameHeader {
+  char magic[8];
+  uint32_t frame, num_vertices;
+};
+
+class DiskCachedFrames final : public FrameSource {
+ public:
+  DiskCachedFrames(std::unique_ptr<FrameSource> source, std::filesystem::path dir)
+      : source_(std::move(source)), dir_(std::move(dir)) {}
+  const Topology& topology() const override { return source_->topology(); }
+  uint32_t num_frames() const override { return source_->num_frames(); }
+  std::string describe() const override { return source_->describe(); }
+
+  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+    const std::filesystem::path file = dir_ / ("frame_" + std::to_string(k) + ".f32");
+    if (read(file, k, out)) return;
+    source_->frame(k, out);
+    write(file, k, out);
+  }
+
+ private:
+  bool read(const std::filesystem::path& file, uint32_t k, std::vector<vec3f>& out) const {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return false;
+    FrameHeader h{};
+    const uint32_t n = topology().num_vertices;
+    if (!in.read(reinterpret_cast<char*>(&h), sizeof h) || std::string(h.magic, 8) != std::string(kMagic, 8) ||
+        h.frame != k || h.num_vertices != n)
+      return false;
+    out.resize(n);
+    if (!in.read(reinterpret_cast<char*>(out.data()), std::streamsize(n * sizeof(vec3f))) || in.peek() != EOF)
+      return false;
+    for (const vec3f& p : out)
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+    return true;
+  }
+
+  // Best effort: a cache that cannot be written costs time, never a result.
+  void write(const std::filesystem::path& file, uint32_t k, const std::vector<vec3f>& v) const {
+    std::error_code ec;
+    std::filesystem::create_directories(dir_, ec);
+    const std::filesystem::path part = file.string() + ".part" + std::to_string(getpid());
+    {
+      std::ofstream os(part, std::ios::binary | std::ios::trunc);
+      FrameHeader h{};
+      std::copy(kMagic, kMagic + 8, h.magic);
+      h.frame = k;
+      h.num_vertices = uint32_t(v.size());
+      os.write(reinterpret_cast<const char*>(&h), sizeof h);
+      os.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(vec3f)));
+      if (!os) {
+        std::filesystem::remove(part, ec);
+        warn_once();
+        return;
+      }
+    }
+    std::filesystem::rename(part, file, ec);
+    if (ec) {
+      std::filesystem::remove(part, ec);
+      warn_once();
+    }
+  }
+
+  void warn_once() const {
+    std::call_once(warned_, [&] {
+      std::fprintf(stderr, "cdbench: cannot write the frame cache %s; frames are simulated each run\n",
+                   dir_.c_str());
+    });
+  }
+
+  std::unique_ptr<FrameSource> source_;
+  std::filesystem::path dir_;
+  mutable std::once_flag warned_;
+};
+
+}  // namespace
+
+std::filesystem::path frame_cache_dir() {
+  if (const char* d = std::getenv("CDBENCH_CACHE"); d && *d)
+    return std::string(d) == "off" ? std::filesystem::path() : std::filesystem::path(d);
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::filesystem::path(x) / "cdbench";
+  if (const char* h = std::getenv("HOME"); h && *h) return std::filesystem::path(h) / ".cache" / "cdbench";
+  return {};
+}
+
+std::unique_ptr<FrameSource> cache_frames(std::unique_ptr<FrameSource> source, const std::string& identity,
+                                          const std::filesystem::path& dir, uint64_t max_bytes) {
+  const uint64_t bytes = uint64_t(source->topology().num_vertices) * sizeof(vec3f) * source->num_frames();
+  if (dir.empty() || bytes > max_bytes) return source;
+  char key[17];
+  std::snprintf(key, sizeof key, "%016llx",
+                static_cast<unsigned long long>(fnv1a(identity + "\n" + binary_identity())));
+  return std::make_unique<DiskCachedFrames>(std::move(source), dir / "frames" / key);
+}
+
+}  // namespace cdb
