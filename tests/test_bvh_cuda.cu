@@ -104,6 +104,14 @@ TEST(CudaPipelines, SkipAdjacentMatchesTheFilteredOracle) {
   check_skip_adjacent("cuda", *funnel);
 }
 
+// The radix baseline once failed here: its sort storage was re-sized for the initial
+// capacity while its keys kept the grown one.
+TEST(CudaPipelines, SecondPassAfterGrowthMatchesTheFirst) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  auto funnel = make_generator("funnel", {{"res", 40}, {"frames", 6}, {"segments", 16}, {"ball_level", 1}});
+  check_second_pass_matches_first(config_for("cuda", 0.01, 0.05, 2), *funnel);
+}
+
 TEST(CudaPipelines, LargeUniformSoupRepeatedBuildsAreExact) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   // Many rebuilds of a 1M-triangle scene: a missing fence in the bottom-up build shows up

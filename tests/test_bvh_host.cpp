@@ -126,6 +126,11 @@ TEST(HostPipelines, OneSynchronizationPerFrame) {
   }
 }
 
+TEST(HostPipelines, SecondPassAfterGrowthMatchesTheFirst) {
+  auto funnel = make_generator("funnel", {{"res", 20}, {"frames", 6}, {"segments", 16}, {"ball_level", 1}});
+  check_second_pass_matches_first(config_for("cpu", 0.01, 0.05, 2), *funnel);
+}
+
 TEST(HostRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   for (uint32_t depth : {0u, 1u, 3u, 6u}) {
     auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 4}});

@@ -2,6 +2,7 @@
 // The radix-sort baseline of the paper's Fig. 6: the same front order as the histogram sort
 // (by BVH node key, prune-marked before sprout-marked within a node), obtained by a CUB /
 // host radix sort of (2 j + mark) keys and a gather. It needs the front's size on the host.
+#include <algorithm>
 #include <cstdint>
 
 #include "exec/balance.h"
@@ -60,7 +61,11 @@ template <class Exec>
 void radix_order_front(Exec& exec, FrontArrays<Exec>& f, RadixScratch<Exec>& r, size_t n, int key_bits,
                        const uint32_t* prim, const uint32_t* node, const uint8_t* mark) {
   if (n == 0) return;
-  if (n > r.keys.capacity()) r.reserve(exec, n + n / 4);  // counted growth, with headroom
+  // Counted growth, with headroom. The sort's temporary storage is checked apart: a second
+  // set_topology re-reserves the arrays for the initial capacity, which leaves the keys
+  // large but sizes the temporary storage for fewer keys.
+  if (n > r.keys.capacity() || exec.sort_temp_bytes(n) > r.temp.size())
+    r.reserve(exec, std::max(n + n / 4, r.keys.capacity()));
   exec.for_each_n(n, RadixKeyFn{node, mark, r.keys.data(), r.iota.data()});
   exec.sort_pairs(r.keys.data(), r.keys_sorted.data(), r.iota.data(), r.perm.data(), n, key_bits,
                   r.temp.data(), r.temp.size());
