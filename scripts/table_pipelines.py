@@ -2,8 +2,10 @@
 """Every pipeline and baseline per scene: ms/frame and speed-up (the paper's Figure 9).
 
 Mean, median and p95 come from /summary (measured frames: all but the first `warmup`);
-the noise columns are the standard deviation of /frames/t_total_ms over the same frames and
-p95 - median. Speed-up is the baseline's mean over the row's mean (> 1: faster than the
+"noise %" is the run's measurement noise: with `run --repeat K`, the median over the frames of
+the relative standard deviation of a frame's time over the K passes ("—" for one pass). The
+spread columns, the standard deviation of /frames/t_total_ms over the measured frames and
+p95 - median, show how much frames differ from each other (the scene's work, not noise). Speed-up is the baseline's mean over the row's mean (> 1: faster than the
 baseline). The fastest mean of each scene is in bold. Markdown, or LaTeX with --latex.
 
   scripts/table_pipelines.py results/ [--baseline bvh] [--latex]
@@ -16,7 +18,7 @@ import numpy as np
 
 import cdb_results
 
-HEADER = ["pipeline", "frames", "mean ms", "median ms", "p95 ms", "std ms", "p95 - median",
+HEADER = ["pipeline", "frames", "mean ms", "noise %", "median ms", "p95 ms", "std ms", "p95 - median",
           "speed-up vs {baseline}"]
 
 
@@ -32,7 +34,9 @@ def rows_of(runs, baseline):
         t = r.column("t_total_ms")
         std = float(np.std(t, ddof=1)) if len(t) > 1 else float("nan")
         speedup = base_mean / mean if base_mean is not None and mean > 0 else None
-        rows.append({"label": r.label, "frames": str(len(t)), "mean": mean, "median": median,
+        repeats = int(r.summary.get("repeats", 1)) if r.summary else 1
+        noise = 100.0 * float(r.summary["noise_median"]) if repeats > 1 else None
+        rows.append({"label": r.label, "frames": str(len(t)), "mean": mean, "noise": noise, "median": median,
                      "p95": p95, "std": std, "spread": p95 - median, "speedup": speedup,
                      "bold": mean == fastest})
     return rows, base is not None
@@ -40,7 +44,8 @@ def rows_of(runs, baseline):
 
 def cells(row):
     f = cdb_results.fmt
-    return [row["label"], row["frames"], f(row["mean"]), f(row["median"]), f(row["p95"]), f(row["std"]),
+    noise = "—" if row["noise"] is None else f"{row['noise']:.1f}"
+    return [row["label"], row["frames"], f(row["mean"]), noise, f(row["median"]), f(row["p95"]), f(row["std"]),
             f(row["spread"]), "—" if row["speedup"] is None else f"{f(row['speedup'])}x"]
 
 
