@@ -214,6 +214,15 @@ TEST(RigidMesh, ParametricMotionIsTheTransformOfTheMesh) {
   }
 }
 
+// Four cubes that only the file's node transforms keep apart.
+TEST(RigidMesh, BlendFileMeshesArePlacedByTheirNodes) {
+  const fs::path file = "/usr/share/assimp/models/BLEND/4Cubes4Mats_248.blend";
+  ASSERT_TRUE(installed(file, "assimp-testmodels", "--scenes"));
+  const StaticMesh m = load_static_mesh(file, 1.0, false);
+  EXPECT_EQ(m.faces.size(), 4u * 12u);
+  EXPECT_EQ(m.positions.size(), 4u * 8u) << "cubes at one place would weld to 8 vertices";
+}
+
 TEST(RigidMesh, KeyedMotionInterpolatesBetweenKeysAndHoldsAtTheEnds) {
   RigidMotion m;
   m.keys = {{2, {0, 0, 0}, {0, 0, 1}, 0.0}, {6, {4, 0, 0}, {0, 0, 1}, 1.0}, {10, {4, 8, 0}, {1, 0, 0}, 0.5}};

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "io/keyframe_mesh.h"
 #include "io/obj_sequence.h"
 
 namespace cdb {
@@ -92,7 +93,18 @@ class RigidMeshSource final : public FrameSource {
 StaticMesh load_static_mesh(const std::filesystem::path& file, double scale, bool center) {
   Topology topology;
   std::vector<vec3f> positions;
-  read_mesh_file(file, topology, positions);
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  if (ext == ".obj") {
+    // The plain reader: assimp's OBJ numbers can be ulps off.
+    read_mesh_file(file, topology, positions);
+  } else {
+    // A file of several objects (BLEND, 3DS, glTF) places its meshes by node transforms; the
+    // keyframe loader applies them (one keyframe: the file as it is).
+    const auto still = open_keyframe_mesh({file, 0, 1});
+    topology = still->topology();
+    still->frame(0, positions);
+  }
   check_frame(positions, topology, file.string(), 0);
   auto bits = [](float x) {
     uint32_t u;

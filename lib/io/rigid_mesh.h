@@ -1,6 +1,7 @@
 #pragma once
-// A rigid object: one static mesh file (any format assimp reads; OBJ through the plain
-// reader) placed once, then moved by a rigid transform per frame, evaluated in double:
+// A rigid object: one static mesh file (any format assimp reads, node transforms applied;
+// OBJ through the plain reader) placed once, then moved by a rigid transform per frame,
+// evaluated in double:
 //   x_k = R_k (p - pivot) + pivot + t_k,   p = scale * (file position - centre)
 // with either a parametric motion (t_k = position + velocity * s, R_k = rotation about
 // `axis` by angle + angular_velocity * s, s = k / fps seconds) or keyframes (position and
