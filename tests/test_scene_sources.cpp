@@ -151,12 +151,39 @@ TEST(KeyframeMesh, RangeAndFrameErrorsNameTheFileAndKeyframe) {
   EXPECT_NE(with({{"first", 190}, {"frames", 10}}).find("keyframes 190..199 asked for, the file has 198"),
             std::string::npos);
   EXPECT_NE(with({{"frames", "all"}}).find("/keyframes/frames: must be an integer"), std::string::npos);
-  EXPECT_NE(with({{"speed", 2}}).find("/keyframes/speed: unknown key (file, first, frames)"), std::string::npos);
+  EXPECT_NE(with({{"speed", 2}}).find("/keyframes/speed: unknown key (file, first, frames, subframes)"), std::string::npos);
   const Scene ten = open_scene(s.descriptor({{"keyframes", {{"file", kSydney.string()}, {"first", 40}, {"frames", 10}}}}).string(),
                                s.dir);
   EXPECT_EQ(ten.source->num_frames(), 10u);
   std::vector<vec3f> v;
   EXPECT_NE(error_of([&] { ten.source->frame(10, v); }).find("frame 10 out of range (10 frames)"), std::string::npos);
+}
+
+TEST(KeyframeMesh, SubframesBlendNeighbouringKeyframes) {
+  ASSERT_TRUE(installed(kSydney, "assimp-testmodels", "--scenes"));
+  auto s = open_keyframe_mesh({kSydney, 10, 9, 4});  // keyframes 10, 11, 12 and 3 blends between each
+  ASSERT_EQ(s->num_frames(), 9u);
+  auto whole = open_keyframe_mesh({kSydney, 10, 3, 1});
+  std::vector<vec3f> k10, k11, k12, v;
+  whole->frame(0, k10);
+  whole->frame(1, k11);
+  whole->frame(2, k12);
+  s->frame(4, v);
+  EXPECT_EQ(std::memcmp(v.data(), k11.data(), v.size() * sizeof(vec3f)), 0) << "frame 4 is keyframe 11";
+  s->frame(8, v);
+  EXPECT_EQ(std::memcmp(v.data(), k12.data(), v.size() * sizeof(vec3f)), 0) << "frame 8 is keyframe 12";
+  s->frame(2, v);
+  double moved = 0;
+  for (size_t i = 0; i < v.size(); ++i) {
+    EXPECT_NEAR(v[i].x, 0.5 * (k10[i].x + k11[i].x), 1e-5) << "vertex " << i;
+    EXPECT_NEAR(v[i].y, 0.5 * (k10[i].y + k11[i].y), 1e-5) << "vertex " << i;
+    EXPECT_NEAR(v[i].z, 0.5 * (k10[i].z + k11[i].z), 1e-5) << "vertex " << i;
+    moved = std::max(moved, double(std::abs(k11[i].x - k10[i].x)));
+  }
+  EXPECT_GT(moved, 0.1) << "keyframes 10 and 11 should differ";
+  EXPECT_NE(error_of([&] { open_keyframe_mesh({kSydney, 190, 30, 4}); }).find("keyframes 190..198 asked for"),
+            std::string::npos);
+  EXPECT_EQ(open_keyframe_mesh({kSydney, 0, 0, 3})->num_frames(), 197u * 3 + 1);
 }
 
 // ---- rigid meshes ----

@@ -76,19 +76,23 @@ class KeyframeMesh final : public FrameSource {
  public:
   explicit KeyframeMesh(const KeyframeOptions& o) : options_(o), file_(o.file.string()) {
     if (!std::filesystem::is_regular_file(o.file)) fail(file_ + ": no such file");
+    if (o.subframes == 0) fail(file_ + ": subframes must be at least 1");
     const uint32_t in_header = keyframes_in_header(o.file);
     num_frames_ = o.frames;
     if (in_header) {
       if (o.first >= in_header)
         fail(file_ + ": first keyframe " + std::to_string(o.first) + " out of range (the file has " +
              std::to_string(in_header) + " keyframes)");
-      if (num_frames_ == 0) num_frames_ = in_header - o.first;
-      if (uint64_t(o.first) + num_frames_ > in_header)
-        fail(file_ + ": keyframes " + std::to_string(o.first) + ".." + std::to_string(o.first + num_frames_ - 1) +
-             " asked for, the file has " + std::to_string(in_header) + " (0.." + std::to_string(in_header - 1) + ")");
+      if (num_frames_ == 0) num_frames_ = (in_header - 1 - o.first) * o.subframes + 1;
     } else if (num_frames_ == 0) {
       fail(file_ + ": the number of frames must be given: the keyframe count of this format is not known");
     }
+    // The last frame's keyframe, and the next one when the last frame blends towards it.
+    const uint64_t last = o.first + uint64_t(num_frames_ - 1) / o.subframes + ((num_frames_ - 1) % o.subframes != 0);
+    num_keyframes_ = uint32_t(last - o.first + 1);
+    if (in_header && last >= in_header)
+      fail(file_ + ": keyframes " + std::to_string(o.first) + ".." + std::to_string(last) + " asked for, the file has " +
+           std::to_string(in_header) + " (0.." + std::to_string(in_header - 1) + ")");
     const FlatKeyframe first = import_keyframe(file_, o.first);
     raw_faces_ = first.faces;
     num_raw_vertices_ = first.positions.size();
@@ -97,7 +101,7 @@ class KeyframeMesh final : public FrameSource {
     // splits classes by position bits. What is left together is the same in every keyframe,
     // so merging it is exact.
     std::vector<uint32_t> cls = first.vertex_object;
-    for (uint32_t k = 0; k < num_frames_; ++k) {
+    for (uint32_t k = 0; k < num_keyframes_; ++k) {
       const FlatKeyframe f = k == 0 ? first : import_keyframe(file_, o.first + k);
       check_topology(f, o.first + k);
       std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>, uint32_t> refined;
@@ -118,18 +122,28 @@ class KeyframeMesh final : public FrameSource {
   void frame(uint32_t k, std::vector<vec3f>& out) const override {
     if (k >= num_frames_)
       fail(file_ + ": frame " + std::to_string(k) + " out of range (" + std::to_string(num_frames_) + " frames)");
-    const FlatKeyframe f = import_keyframe(file_, options_.first + k);
-    check_topology(f, options_.first + k);
+    const uint32_t key = options_.first + k / options_.subframes, step = k % options_.subframes;
+    const FlatKeyframe a = import_keyframe(file_, key);
+    check_topology(a, key);
     out.assign(topology_.num_vertices, vec3f{0, 0, 0});
-    for (size_t v = 0; v < f.positions.size(); ++v)
-      out[weld_[v]] = {f.positions[v].x, f.positions[v].y, f.positions[v].z};
-    check_frame(out, topology_, file_ + " (keyframe " + std::to_string(options_.first + k) + ")", k);
+    if (step == 0) {
+      for (size_t v = 0; v < a.positions.size(); ++v) out[weld_[v]] = {a.positions[v].x, a.positions[v].y, a.positions[v].z};
+    } else {
+      const FlatKeyframe b = import_keyframe(file_, key + 1);
+      check_topology(b, key + 1);
+      const double w = double(step) / options_.subframes;
+      auto blend = [w](float p, float q) { return float(p + w * (double(q) - p)); };
+      for (size_t v = 0; v < a.positions.size(); ++v)
+        out[weld_[v]] = {blend(a.positions[v].x, b.positions[v].x), blend(a.positions[v].y, b.positions[v].y),
+                         blend(a.positions[v].z, b.positions[v].z)};
+    }
+    check_frame(out, topology_, file_ + " (keyframe " + std::to_string(key) + ")", k);
   }
 
   std::string describe() const override {
     return "keyframe mesh " + file_ + ": " + std::to_string(topology_.faces.size()) + " triangles, keyframes " +
-           std::to_string(options_.first) + ".." + std::to_string(options_.first + num_frames_ - 1) + " (" +
-           std::to_string(num_frames_) + " frames)";
+           std::to_string(options_.first) + ".." + std::to_string(options_.first + num_keyframes_ - 1) + ", " +
+           std::to_string(options_.subframes) + " frames per keyframe (" + std::to_string(num_frames_) + " frames)";
   }
 
  private:
@@ -156,7 +170,7 @@ class KeyframeMesh final : public FrameSource {
 
   KeyframeOptions options_;
   std::string file_;
-  uint32_t num_frames_ = 0;
+  uint32_t num_frames_ = 0, num_keyframes_ = 0;
   std::vector<Tri> raw_faces_;
   size_t num_raw_vertices_ = 0;
   std::vector<uint32_t> weld_;  // per imported vertex, its scene vertex

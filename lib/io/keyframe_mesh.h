@@ -1,8 +1,10 @@
 #pragma once
 // Per-vertex keyframe files (Quake II MD2, also MD3 and other formats assimp reads one
 // keyframe at a time): assimp imports a single keyframe per import, chosen by
-// AI_CONFIG_IMPORT_GLOBAL_KEYFRAME, so frame k is a fresh import of keyframe first + k. The
-// topology is taken once; every keyframe must have the same meshes, faces and vertices.
+// AI_CONFIG_IMPORT_GLOBAL_KEYFRAME, so frame k is a fresh import of keyframe first + k (with
+// subframes s: keyframe first + k / s, blended linearly towards the next one by (k mod s) / s,
+// as Quake II plays them). The topology is taken once; every keyframe must have the same
+// meshes, faces and vertices.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -13,8 +15,9 @@ namespace cdb {
 
 struct KeyframeOptions {
   std::filesystem::path file;
-  uint32_t first = 0;   // keyframe of frame 0
-  uint32_t frames = 0;  // 0: every keyframe from `first` on (the count read from the file's header)
+  uint32_t first = 0;      // keyframe of frame 0
+  uint32_t frames = 0;     // 0: up to the file's last keyframe (the count read from its header)
+  uint32_t subframes = 1;  // frames per keyframe interval: between keyframes, linear blends
 };
 
 // The number of keyframes an MD2 or MD3 file's header declares; 0 for other formats, whose

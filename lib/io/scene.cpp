@@ -142,12 +142,13 @@ std::unique_ptr<FrameSource> open_animation(const DescriptorObject& a, const std
   return opened_at(a.where(), [&] { return open_animated_mesh(o); });
 }
 
-// "keyframes": {"file", "first", "frames"}: a per-vertex keyframe file (MD2, MD3, ...).
+// "keyframes": {"file", "first", "frames", "subframes"}: a per-vertex keyframe file (MD2, MD3, ...).
 std::unique_ptr<FrameSource> open_keyframes(const DescriptorObject& k, const std::filesystem::path& descriptor) {
   KeyframeOptions o;
   o.file = k.existing_file("file", descriptor.parent_path());
   o.first = k.count("first", 0, 0, UINT32_MAX);
   o.frames = k.count("frames", 0, 1, UINT32_MAX);
+  o.subframes = k.count("subframes", 1, 1, 1000);
   return opened_at(k.where(), [&] { return open_keyframe_mesh(o); });
 }
 
@@ -268,7 +269,7 @@ std::unique_ptr<FrameSource> open_parts(const DescriptorObject& root, const std:
     } else if (p.has("animation")) {
       part.source = open_animation(p.object("animation", animation_keys()), descriptor);
     } else if (p.has("keyframes")) {
-      part.source = open_keyframes(p.object("keyframes", {"file", "first", "frames"}), descriptor);
+      part.source = open_keyframes(p.object("keyframes", {"file", "first", "frames", "subframes"}), descriptor);
     } else if (p.has("crowd")) {
       part.source = open_crowd(p.object("crowd", {"animation", "count", "columns", "spacing", "phase_step", "up",
                                                   "frames", "objects"}),
@@ -344,7 +345,7 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   } else if (root.has("animation")) {
     s.source = open_animation(root.object("animation", animation_keys()), file);
   } else if (root.has("keyframes")) {
-    s.source = open_keyframes(root.object("keyframes", {"file", "first", "frames"}), file);
+    s.source = open_keyframes(root.object("keyframes", {"file", "first", "frames", "subframes"}), file);
   } else if (root.has("crowd")) {
     // Overrides (--set count=200) replace the crowd's own keys.
     nlohmann::json crowd = j["crowd"];
