@@ -445,6 +445,14 @@ TEST(SceneDescriptors, ErrorsNameTheFileAndJsonPath) {
       file + ": /parts/1/name: 'a' names an earlier part too");
   has(part({{"mesh", cube}, {"generator", "flag"}}), file + ": /parts/0: needs exactly one of");
   has(part({{"mesh", {{"file", "cube.off"}, {"archive", "x.tar.gz"}}}}), file + ": /parts/0/mesh: needs exactly one of file or archive");
+  // Frame counts of parts.
+  const json wave3 = {{"name", "a"}, {"generator", "cloth-wave"}, {"params", {{"res", 3}, {"frames", 3}}}};
+  json wave5 = {{"name", "b"}, {"generator", "cloth-wave"}, {"params", {{"res", 3}, {"frames", 5}}}};
+  has(s.error({{"parts", {wave3, wave5}}}), file + ": /frame_count: required when the parts' frame counts differ (a 3, b 5)");
+  has(s.error({{"frame_count", 4}, {"parts", {wave3, wave5}}}), file + ": /parts/0: has 3 frames, /frame_count asks for 4");
+  EXPECT_EQ(open_scene(s.descriptor({{"frame_count", 3}, {"parts", {wave3, wave5}}}).string(), s.dir).source->num_frames(), 3u);
+  wave5["params"]["colour"] = 1;
+  has(s.error({{"parts", {wave3, wave5}}}), file + ": /parts/1: generator 'cloth-wave', parameter 'colour': unknown parameter");
   // Missing files, with the package that provides them where there is one.
   has(part({{"mesh", {{"file", "nothing.off"}}}}), file + ": /parts/0/mesh/file: " + (s.dir / "nothing.off").string() + ": no such file");
   has(part({{"mesh", {{"file", "/usr/share/glmark2/models/dragon.obj"}}}}),

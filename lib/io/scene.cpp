@@ -2,8 +2,8 @@
 
 #include <array>
 #include <cstdlib>
-#include <set>
 #include <fstream>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -14,8 +14,8 @@
 #include "io/composed_scene.h"
 #include "io/descriptor_object.h"
 #include "io/keyframe_mesh.h"
-#include "io/rigid_mesh.h"
 #include "io/obj_sequence.h"
+#include "io/rigid_mesh.h"
 
 namespace cdb {
 namespace {
@@ -103,8 +103,18 @@ std::unique_ptr<FrameSource> declare_queries(std::unique_ptr<FrameSource> source
   return std::make_unique<DeclaredQueries>(std::move(source), std::move(topo));
 }
 
+// The keys of the sources that appear both at the top level and as parts.
 const std::vector<std::string>& animation_keys() {
   static const std::vector<std::string> keys = {"file", "fps", "frames", "start", "clip"};
+  return keys;
+}
+const std::vector<std::string>& keyframe_keys() {
+  static const std::vector<std::string> keys = {"file", "first", "frames", "subframes"};
+  return keys;
+}
+const std::vector<std::string>& crowd_keys() {
+  static const std::vector<std::string> keys = {"animation", "count", "columns", "spacing",
+                                                "phase_step", "up", "frames", "objects"};
   return keys;
 }
 
@@ -269,11 +279,9 @@ std::unique_ptr<FrameSource> open_parts(const DescriptorObject& root, const std:
     } else if (p.has("animation")) {
       part.source = open_animation(p.object("animation", animation_keys()), descriptor);
     } else if (p.has("keyframes")) {
-      part.source = open_keyframes(p.object("keyframes", {"file", "first", "frames", "subframes"}), descriptor);
+      part.source = open_keyframes(p.object("keyframes", keyframe_keys()), descriptor);
     } else if (p.has("crowd")) {
-      part.source = open_crowd(p.object("crowd", {"animation", "count", "columns", "spacing", "phase_step", "up",
-                                                  "frames", "objects"}),
-                               descriptor, part.name);
+      part.source = open_crowd(p.object("crowd", crowd_keys()), descriptor, part.name);
     } else {
       part.mesh = static_mesh(p.object("mesh", {"file", "archive", "member", "scale", "center"}), descriptor,
                               part.origin);
@@ -286,13 +294,14 @@ std::unique_ptr<FrameSource> open_parts(const DescriptorObject& root, const std:
   uint32_t frames = root.count("frame_count", 0, 1, UINT32_MAX);
   if (!frames) {
     std::string counts;
+    bool differ = false;
     for (const Pending& p : pending)
       if (p.source) {
         counts += (counts.empty() ? "" : ", ") + p.name + " " + std::to_string(p.source->num_frames());
-        if (frames && p.source->num_frames() != frames)
-          fail(root.at("frame_count") + ": required when the parts' frame counts differ (" + counts + "...)");
+        differ = differ || (frames && p.source->num_frames() != frames);
         frames = p.source->num_frames();
       }
+    if (differ) fail(root.at("frame_count") + ": required when the parts' frame counts differ (" + counts + ")");
     if (!frames) fail(root.at("frame_count") + ": required when every part is a rigid mesh");
   }
   std::vector<ScenePart> scene_parts;
@@ -345,14 +354,13 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   } else if (root.has("animation")) {
     s.source = open_animation(root.object("animation", animation_keys()), file);
   } else if (root.has("keyframes")) {
-    s.source = open_keyframes(root.object("keyframes", {"file", "first", "frames", "subframes"}), file);
+    s.source = open_keyframes(root.object("keyframes", keyframe_keys()), file);
   } else if (root.has("crowd")) {
     // Overrides (--set count=200) replace the crowd's own keys.
     nlohmann::json crowd = j["crowd"];
     if (crowd.is_object())
       for (auto it = overrides.begin(); it != overrides.end(); ++it) crowd[it.key()] = it.value();
-    const DescriptorObject c(crowd, root.at("crowd"),
-                             {"animation", "count", "columns", "spacing", "phase_step", "up", "frames", "objects"});
+    const DescriptorObject c(crowd, root.at("crowd"), crowd_keys());
     s.source = open_crowd(c, file, s.name);
   } else if (root.has("parts")) {
     s.source = open_parts(root, file);
