@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Installs the Debian packages cdbench needs, only those missing; no prompts; safe to re-run.
 # --scenes also installs assimp-testmodels (BSD-3; 21 MB download, 74 MB installed), whose
-# animated models the scenes bcn-jump, wuson-walk and skeleton-fbx read.
+# models the scenes bcn-jump, wuson-walk, skeleton-fbx, sydney-md2, crowd and crowd-large read.
+# --scenes-extra installs the static scans: glmark2-data (bunny.obj, GPL-3+; 7 MB download)
+# for bunny-drop, and libcgal-demo (CGAL's data.tar.gz with refined_elephant.off and
+# armadillo.off, CC0; 24 MB download, pulls in libcgal-dev and a few Boost libraries: about
+# 100 MB installed in all) for elephant-armadillo.
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
@@ -12,7 +16,8 @@ packages=(
 for arg in "$@"; do
   case $arg in
     --scenes) packages+=(assimp-testmodels) ;;
-    *) echo "install-deps: unknown option $arg (known: --scenes)" >&2; exit 2 ;;
+    --scenes-extra) packages+=(glmark2-data libcgal-demo) ;;
+    *) echo "install-deps: unknown option $arg (known: --scenes, --scenes-extra)" >&2; exit 2 ;;
   esac
 done
 missing=()

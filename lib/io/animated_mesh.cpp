@@ -70,7 +70,7 @@ struct Instance {
   const aiMeshMorphAnim* morph = nullptr;
 };
 
-class AnimatedMesh final : public FrameSource {
+class AnimatedMesh final : public AnimatedClip {
  public:
   explicit AnimatedMesh(const AnimationOptions& o) : options_(o), file_(o.file.string()) {
     if (!std::filesystem::is_regular_file(o.file)) fail(file_ + ": no such file");
@@ -101,7 +101,26 @@ class AnimatedMesh final : public FrameSource {
   void frame(uint32_t k, std::vector<vec3f>& out) const override {
     if (k >= num_frames_)
       fail(file_ + ": frame " + std::to_string(k) + " out of range (" + std::to_string(num_frames_) + " frames)");
-    const double ticks = (options_.start + k / options_.fps) * ticks_per_second_;
+    evaluate(options_.start + k / options_.fps, out);
+    check_frame(out, topology_, file_, k);
+  }
+
+  void positions_at(double seconds, std::vector<vec3f>& out) const override {
+    evaluate(seconds, out);
+    check_frame(out, topology_, file_ + " at " + std::to_string(seconds) + " s", 0);
+  }
+
+  double clip_seconds() const override { return anim_->mDuration / ticks_per_second_; }
+
+  std::string describe() const override {
+    return "animated mesh " + file_ + ", clip '" + clip_name_ + "': " + std::to_string(topology_.faces.size()) +
+           " triangles, " + std::to_string(instances_.size()) + " meshes, " + std::to_string(num_frames_) +
+           " frames at " + std::to_string(options_.fps) + " fps from " + std::to_string(options_.start) + " s";
+  }
+
+ private:
+  void evaluate(double seconds, std::vector<vec3f>& out) const {
+    const double ticks = seconds * ticks_per_second_;
     const std::vector<aiMatrix4x4> global = global_transforms(ticks);
     out.assign(topology_.num_vertices, vec3f{0, 0, 0});
     std::vector<aiVector3D> bind;
@@ -128,16 +147,8 @@ class AnimatedMesh final : public FrameSource {
       for (unsigned v = 0; v < m->mNumVertices; ++v)
         store(out, in.first_vertex + in.weld[v], weight[v] > 0 ? skinned[v] : global[in.node] * bind[v]);
     }
-    check_frame(out, topology_, file_, k);
   }
 
-  std::string describe() const override {
-    return "animated mesh " + file_ + ", clip '" + clip_name_ + "': " + std::to_string(topology_.faces.size()) +
-           " triangles, " + std::to_string(instances_.size()) + " meshes, " + std::to_string(num_frames_) +
-           " frames at " + std::to_string(options_.fps) + " fps from " + std::to_string(options_.start) + " s";
-  }
-
- private:
   void pick_clip() {
     std::string names;
     for (unsigned a = 0; a < scene_->mNumAnimations; ++a)
@@ -335,8 +346,12 @@ class AnimatedMesh final : public FrameSource {
 
 }  // namespace
 
-std::unique_ptr<FrameSource> open_animated_mesh(const AnimationOptions& options) {
+std::unique_ptr<AnimatedClip> open_animated_clip(const AnimationOptions& options) {
   return std::make_unique<AnimatedMesh>(options);
+}
+
+std::unique_ptr<FrameSource> open_animated_mesh(const AnimationOptions& options) {
+  return open_animated_clip(options);
 }
 
 }  // namespace cdb

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geometry/frame_source.h"
 
@@ -20,9 +21,19 @@ struct AnimationOptions {
   std::string clip_name;  // when set, the clip of this name instead of `clip`
 };
 
+// An animated file's frames, which can also be sampled at any time of its clip (crowds
+// place instances at different phases of one clip).
+class AnimatedClip : public FrameSource {
+ public:
+  // Positions at `seconds` into the clip; `fps` and `start` play no part.
+  virtual void positions_at(double seconds, std::vector<vec3f>& out) const = 0;
+  virtual double clip_seconds() const = 0;
+};
+
 // One object per mesh instance (a node referencing a mesh), in node depth-first order,
 // named after the mesh, else its node. Throws cdb::Error naming the file (and the clip,
 // mesh, bone or frame) on any failure.
+std::unique_ptr<AnimatedClip> open_animated_clip(const AnimationOptions& options);
 std::unique_ptr<FrameSource> open_animated_mesh(const AnimationOptions& options);
 
 }  // namespace cdb

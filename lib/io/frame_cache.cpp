@@ -11,6 +11,8 @@
 #include <system_error>
 
 #include "core/build_info.h"
+#include "core/error.h"
+#include "io/archive_cache.h"
 
 namespace cdb {
 namespace {
@@ -117,11 +119,12 @@ class DiskCachedFrames final : public FrameSource {
 }  // namespace
 
 std::filesystem::path frame_cache_dir() {
-  if (const char* d = std::getenv("CDBENCH_CACHE"); d && *d)
-    return std::string(d) == "off" ? std::filesystem::path() : std::filesystem::path(d);
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::filesystem::path(x) / "cdbench";
-  if (const char* h = std::getenv("HOME"); h && *h) return std::filesystem::path(h) / ".cache" / "cdbench";
-  return {};
+  if (const char* off = std::getenv("CDBENCH_FRAME_CACHE"); off && std::string(off) == "off") return {};
+  try {
+    return scene_cache_dir();
+  } catch (const Error&) {
+    return {};  // nowhere to keep frames: simulate every run
+  }
 }
 
 std::unique_ptr<FrameSource> cache_frames(std::unique_ptr<FrameSource> source, const std::string& identity,

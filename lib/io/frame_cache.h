@@ -12,8 +12,9 @@
 
 namespace cdb {
 
-// Where frames are cached: $CDBENCH_CACHE, else $XDG_CACHE_HOME/cdbench, else
-// $HOME/.cache/cdbench; empty when caching is off ($CDBENCH_CACHE=off) or there is no home.
+// Where frames are cached: the scene cache (scene_cache_dir(): $CDBENCH_CACHE, else
+// $XDG_CACHE_HOME/cdbench, else $HOME/.cache/cdbench); empty when frame caching is off
+// ($CDBENCH_FRAME_CACHE=off) or there is no such directory.
 std::filesystem::path frame_cache_dir();
 
 // Wraps a generator's source: frame k comes from DIR/<key>/frame_<k>.f32 when present,

@@ -1,15 +1,22 @@
 #include "io/scene.h"
 
+#include <array>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "generators.h"
 #include "io/animated_mesh.h"
+#include "io/archive_cache.h"
+#include "io/composed_scene.h"
+#include "io/descriptor_object.h"
 #include "io/frame_cache.h"
+#include "io/keyframe_mesh.h"
 #include "io/obj_sequence.h"
+#include "io/rigid_mesh.h"
 
 namespace cdb {
 namespace {
@@ -97,51 +104,220 @@ std::unique_ptr<FrameSource> declare_queries(std::unique_ptr<FrameSource> source
   return std::make_unique<DeclaredQueries>(std::move(source), std::move(topo));
 }
 
-// Where the model files under /usr/share/assimp come from, for the error a user meets
-// before installing them.
-constexpr const char* kTestModelsDir = "/usr/share/assimp/models";
+// The keys of the sources that appear both at the top level and as parts.
+const std::vector<std::string>& animation_keys() {
+  static const std::vector<std::string> keys = {"file", "fps", "frames", "start", "clip"};
+  return keys;
+}
+const std::vector<std::string>& keyframe_keys() {
+  static const std::vector<std::string> keys = {"file", "first", "frames", "subframes"};
+  return keys;
+}
+const std::vector<std::string>& crowd_keys() {
+  static const std::vector<std::string> keys = {"animation", "count", "columns", "spacing",
+                                                "phase_step", "up", "frames", "objects"};
+  return keys;
+}
 
 // "animation": {"file", "fps", "frames", "start", "clip"}: one animated file sampled at fps.
-std::unique_ptr<FrameSource> open_animation(const nlohmann::json& a, const std::filesystem::path& descriptor) {
-  const std::string at = descriptor.string() + ": /animation";
-  if (!a.is_object()) fail(at + ": must be an object with file, fps, frames, start, clip");
-  for (auto it = a.begin(); it != a.end(); ++it)
-    if (it.key() != "file" && it.key() != "fps" && it.key() != "frames" && it.key() != "start" && it.key() != "clip")
-      fail(at + "/" + it.key() + ": unknown key (file, fps, frames, start, clip)");
+AnimationOptions animation_options(const DescriptorObject& a, const std::filesystem::path& descriptor) {
   AnimationOptions o;
-  if (!a.contains("file") || !a["file"].is_string()) fail(at + "/file: must be a string (a model file)");
-  o.file = a["file"].get<std::string>();
-  if (o.file.is_relative()) o.file = descriptor.parent_path() / o.file;
-  if (a.contains("fps")) {
-    if (!a["fps"].is_number() || !(a["fps"].get<double>() > 0)) fail(at + "/fps: must be a positive number");
-    o.fps = a["fps"].get<double>();
+  o.file = a.existing_file("file", descriptor.parent_path());
+  o.fps = a.positive("fps", o.fps);
+  o.frames = a.count("frames", 0, 1, UINT32_MAX);
+  if (a.has("start")) {
+    if (!a.raw("start").is_number() || !(a.raw("start").get<double>() >= 0))
+      fail(a.at("start") + ": must be a number >= 0 (seconds)");
+    o.start = a.raw("start").get<double>();
   }
-  if (a.contains("frames")) {
-    if (!a["frames"].is_number_unsigned() || a["frames"].get<uint64_t>() == 0 ||
-        a["frames"].get<uint64_t>() > UINT32_MAX)
-      fail(at + "/frames: must be a positive integer");
-    o.frames = a["frames"].get<uint32_t>();
+  if (a.has("clip")) {
+    if (a.raw("clip").is_string()) o.clip_name = a.raw("clip").get<std::string>();
+    else if (a.raw("clip").is_number_unsigned()) o.clip = a.raw("clip").get<uint32_t>();
+    else fail(a.at("clip") + ": must be a clip index or name");
   }
-  if (a.contains("start")) {
-    if (!a["start"].is_number() || !(a["start"].get<double>() >= 0)) fail(at + "/start: must be a number >= 0 (seconds)");
-    o.start = a["start"].get<double>();
-  }
-  if (a.contains("clip")) {
-    if (a["clip"].is_string()) o.clip_name = a["clip"].get<std::string>();
-    else if (a["clip"].is_number_unsigned()) o.clip = a["clip"].get<uint32_t>();
-    else fail(at + "/clip: must be a clip index or name");
-  }
-  if (!std::filesystem::exists(o.file)) {
-    std::string hint;
-    if (o.file.string().rfind(kTestModelsDir, 0) == 0)
-      hint = " (it ships with the Debian package assimp-testmodels: run scripts/install-deps.sh --scenes)";
-    fail(at + "/file: " + o.file.string() + ": no such file" + hint);
-  }
+  return o;
+}
+
+// Runs `open`, prefixing its error with the descriptor path of what it opens.
+template <class Open>
+auto opened_at(const std::string& where, Open open) {
   try {
-    return open_animated_mesh(o);
+    return open();
   } catch (const Error& e) {
-    fail(at + ": " + e.what());
+    fail(where + ": " + e.what());
   }
+}
+
+std::unique_ptr<FrameSource> open_animation(const DescriptorObject& a, const std::filesystem::path& descriptor) {
+  const AnimationOptions o = animation_options(a, descriptor);
+  return opened_at(a.where(), [&] { return open_animated_mesh(o); });
+}
+
+// "keyframes": {"file", "first", "frames", "subframes"}: a per-vertex keyframe file (MD2, MD3, ...).
+std::unique_ptr<FrameSource> open_keyframes(const DescriptorObject& k, const std::filesystem::path& descriptor) {
+  KeyframeOptions o;
+  o.file = k.existing_file("file", descriptor.parent_path());
+  o.first = k.count("first", 0, 0, UINT32_MAX);
+  o.frames = k.count("frames", 0, 1, UINT32_MAX);
+  o.subframes = k.count("subframes", 1, 1, 1000);
+  return opened_at(k.where(), [&] { return open_keyframe_mesh(o); });
+}
+
+// "crowd": {"animation", "count", "columns", "spacing", "phase_step", "up", "frames", "objects"}.
+std::unique_ptr<FrameSource> open_crowd(const DescriptorObject& c, const std::filesystem::path& descriptor,
+                                        const std::string& name) {
+  CrowdOptions o;
+  if (!c.has("animation")) fail(c.at("animation") + ": required (the character's animated file)");
+  // Each instance loops the clip, so the crowd's own "frames" counts the frames.
+  o.animation = animation_options(c.object("animation", {"file", "fps", "start", "clip"}), descriptor);
+  o.count = c.count("count", o.count, 1, 1u << 20);
+  o.columns = c.count("columns", 0, 1, 1u << 20);
+  o.spacing = c.positive("spacing", o.spacing);
+  o.phase_step = c.number("phase_step", o.phase_step);
+  if (c.has("phase_step") && o.phase_step < 0) fail(c.at("phase_step") + ": must be a number >= 0 (seconds)");
+  o.frames = c.count("frames", 0, 1, UINT32_MAX);
+  if (c.has("up")) {
+    const std::string up = c.text("up");
+    if (up != "x" && up != "y" && up != "z") fail(c.at("up") + ": must be \"x\", \"y\" or \"z\"");
+    o.up_axis = up[0] - 'x';
+  }
+  if (c.has("objects")) {
+    const std::string objects = c.text("objects");
+    if (objects != "instances" && objects != "crowd") fail(c.at("objects") + ": must be \"instances\" or \"crowd\"");
+    o.instance_objects = objects == "instances";
+  }
+  o.name = name;
+  return opened_at(c.where(), [&] { return cdb::open_crowd(o); });
+}
+
+scene::dvec3 dvec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+// "motion": parametric {"fps", "position", "velocity", "axis", "angle", "angular_velocity",
+// "pivot"} or keyed {"pivot", "keys": [{"frame", "position", "axis", "angle"}, ...]}.
+RigidMotion rigid_motion(const DescriptorObject& m) {
+  RigidMotion r;
+  r.pivot = dvec(m.vec3("pivot", {0, 0, 0}));
+  if (m.has("keys")) {
+    for (const char* parametric : {"fps", "position", "velocity", "axis", "angle", "angular_velocity"})
+      if (m.has(parametric)) fail(m.at(parametric) + ": not with keys (each key gives position, axis and angle)");
+    const auto& keys = m.raw("keys");
+    if (!keys.is_array() || keys.empty()) fail(m.at("keys") + ": must be a non-empty array of keys");
+    for (size_t i = 0; i < keys.size(); ++i) {
+      const DescriptorObject k(keys[i], m.at("keys") + "/" + std::to_string(i), {"frame", "position", "axis", "angle"});
+      if (!k.has("frame")) fail(k.at("frame") + ": required");
+      RigidKey key;
+      key.frame = k.number("frame", 0);
+      if (key.frame < 0 || (!r.keys.empty() && key.frame <= r.keys.back().frame))
+        fail(k.at("frame") + ": must be >= 0 and after the previous key's");
+      key.position = dvec(k.vec3("position", {0, 0, 0}));
+      key.axis = dvec(k.vec3("axis", {0, 1, 0}));
+      if (!(scene::length(key.axis) > 0)) fail(k.at("axis") + ": must not be zero");
+      key.angle = k.number("angle", 0);
+      r.keys.push_back(key);
+    }
+    return r;
+  }
+  r.fps = m.positive("fps", r.fps);
+  r.position = dvec(m.vec3("position", {0, 0, 0}));
+  r.velocity = dvec(m.vec3("velocity", {0, 0, 0}));
+  r.axis = dvec(m.vec3("axis", {0, 1, 0}));
+  if (!(scene::length(r.axis) > 0)) fail(m.at("axis") + ": must not be zero");
+  r.angle = m.number("angle", 0);
+  r.angular_velocity = m.number("angular_velocity", 0);
+  return r;
+}
+
+// "mesh": {"file"} or {"archive", "member"}, with "scale" and "center".
+StaticMesh static_mesh(const DescriptorObject& m, const std::filesystem::path& descriptor, std::string& origin) {
+  std::filesystem::path file;
+  if (m.has("file") == m.has("archive")) fail(m.where() + ": needs exactly one of file or archive (with member)");
+  if (m.has("file")) {
+    if (m.has("member")) fail(m.at("member") + ": only with archive");
+    file = m.existing_file("file", descriptor.parent_path());
+    origin = file.string();
+  } else {
+    const std::filesystem::path archive = m.existing_file("archive", descriptor.parent_path());
+    const std::string member = m.text("member");
+    file = opened_at(m.where(), [&] { return extract_from_archive(archive, member); });
+    origin = archive.string() + ":" + member;
+  }
+  const double scale = m.positive("scale", 1.0);
+  const bool center = m.flag("center", false);
+  return opened_at(m.where(), [&] { return load_static_mesh(file, scale, center); });
+}
+
+// "parts": [{"name", one of generator (+ params), animation, keyframes, crowd, mesh (+ motion)}]
+// with "frame_count".
+std::unique_ptr<FrameSource> open_parts(const DescriptorObject& root, const std::filesystem::path& descriptor) {
+  const auto& parts = root.raw("parts");
+  if (!parts.is_array() || parts.empty()) fail(root.at("parts") + ": must be a non-empty array of parts");
+  struct Pending {
+    std::string name, where;
+    std::unique_ptr<FrameSource> source;  // null for a rigid mesh until the frame count is known
+    StaticMesh mesh;
+    RigidMotion motion;
+    std::string origin;
+  };
+  std::vector<Pending> pending;
+  std::set<std::string> names;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const DescriptorObject p(parts[i], root.at("parts") + "/" + std::to_string(i),
+                             {"name", "generator", "params", "animation", "keyframes", "crowd", "mesh", "motion"});
+    Pending part;
+    part.where = p.where();
+    part.name = p.text("name");
+    if (!names.insert(part.name).second) fail(p.at("name") + ": '" + part.name + "' names an earlier part too");
+    int kinds = 0;
+    for (const char* kind : {"generator", "animation", "keyframes", "crowd", "mesh"}) kinds += p.has(kind);
+    if (kinds != 1) fail(p.where() + ": needs exactly one of generator, animation, keyframes, crowd, mesh");
+    if (p.has("params") && !p.has("generator")) fail(p.at("params") + ": only with generator");
+    if (p.has("motion") && !p.has("mesh")) fail(p.at("motion") + ": only with mesh");
+    if (p.has("generator")) {
+      const std::string generator = p.text("generator");
+      const nlohmann::json params = p.has("params") ? p.raw("params") : nlohmann::json::object();
+      if (!params.is_object()) fail(p.at("params") + ": must be an object");
+      part.source = opened_at(p.where(), [&] { return make_generator(generator, params); });
+    } else if (p.has("animation")) {
+      part.source = open_animation(p.object("animation", animation_keys()), descriptor);
+    } else if (p.has("keyframes")) {
+      part.source = open_keyframes(p.object("keyframes", keyframe_keys()), descriptor);
+    } else if (p.has("crowd")) {
+      part.source = open_crowd(p.object("crowd", crowd_keys()), descriptor, part.name);
+    } else {
+      part.mesh = static_mesh(p.object("mesh", {"file", "archive", "member", "scale", "center"}), descriptor,
+                              part.origin);
+      if (p.has("motion"))
+        part.motion = rigid_motion(p.object("motion", {"fps", "position", "velocity", "axis", "angle",
+                                                       "angular_velocity", "pivot", "keys"}));
+    }
+    pending.push_back(std::move(part));
+  }
+  uint32_t frames = root.count("frame_count", 0, 1, UINT32_MAX);
+  if (!frames) {
+    std::string counts;
+    bool differ = false;
+    for (const Pending& p : pending)
+      if (p.source) {
+        counts += (counts.empty() ? "" : ", ") + p.name + " " + std::to_string(p.source->num_frames());
+        differ = differ || (frames && p.source->num_frames() != frames);
+        frames = p.source->num_frames();
+      }
+    if (differ) fail(root.at("frame_count") + ": required when the parts' frame counts differ (" + counts + ")");
+    if (!frames) fail(root.at("frame_count") + ": required when every part is a rigid mesh");
+  }
+  std::vector<ScenePart> scene_parts;
+  for (Pending& p : pending) {
+    if (p.source && p.source->num_frames() < frames)
+      fail(p.where + ": has " + std::to_string(p.source->num_frames()) + " frames, /frame_count asks for " +
+           std::to_string(frames));
+    const bool rigid = !p.source;
+    if (rigid)
+      p.source = opened_at(p.where, [&] {
+        return make_rigid_mesh(p.name, p.origin, std::move(p.mesh), std::move(p.motion), frames);
+      });
+    scene_parts.push_back({p.name, std::move(p.source), rigid});
+  }
+  return compose_parts(std::move(scene_parts), frames);
 }
 
 Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& overrides) {
@@ -154,39 +330,44 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
     fail(file.string() + ": malformed JSON: " + e.what());
   }
   if (!j.is_object()) fail(file.string() + ": a scene descriptor must be a JSON object");
-  for (auto it = j.begin(); it != j.end(); ++it)
-    if (it.key() != "description" && it.key() != "generator" && it.key() != "params" &&
-        it.key() != "frames" && it.key() != "animation" && it.key() != "objects" && it.key() != "queries")
-      fail(file.string() + ": /" + it.key() +
-           ": unknown key (description, generator, params, frames, animation, objects, queries)");
+  const DescriptorObject root(j, file.string() + ": ",
+                              {"description", "generator", "params", "frames", "animation", "keyframes", "crowd",
+                               "parts", "frame_count", "objects", "queries"});
   Scene s;
   s.name = file.stem().string();
-  if (j.contains("description")) {
-    if (!j["description"].is_string()) fail(file.string() + ": /description: must be a string");
-    s.description = j["description"].get<std::string>();
-  }
-  if (int(j.contains("generator")) + int(j.contains("frames")) + int(j.contains("animation")) != 1)
+  if (j.contains("description")) s.description = root.text("description");
+  int kinds = 0;
+  for (const char* kind : {"generator", "frames", "animation", "keyframes", "crowd", "parts"}) kinds += root.has(kind);
+  if (kinds != 1)
     fail(file.string() +
-         ": needs exactly one of /generator (procedural), /frames (mesh directory) or /animation (animated file)");
-  if (j.contains("generator")) {
-    if (!j["generator"].is_string()) fail(file.string() + ": /generator: must be a string");
+         ": needs exactly one of /generator (procedural), /frames (mesh directory), /animation (animated file), "
+         "/keyframes (per-vertex keyframe file), /crowd (instances of an animated file) or /parts (a scene of parts)");
+  if (root.has("params") && !root.has("generator")) fail(file.string() + ": /params: only valid with /generator");
+  if (root.has("frame_count") && !root.has("parts")) fail(file.string() + ": /frame_count: only valid with /parts");
+  if (!overrides.empty() && !root.has("generator") && !root.has("crowd"))
+    fail(file.string() + ": parameters can only be set on a procedural scene or a crowd");
+  if (root.has("generator")) {
+    const std::string generator = root.text("generator");
     nlohmann::json params = j.contains("params") ? j["params"] : nlohmann::json::object();
     if (!params.is_object()) fail(file.string() + ": /params: must be an object");
     for (auto it = overrides.begin(); it != overrides.end(); ++it) params[it.key()] = it.value();
-    try {
-      const std::string generator = j["generator"].get<std::string>();
-      s.source = cache_frames(make_generator(generator, params), generator + " " + params.dump(),
-                              frame_cache_dir());
-    } catch (const Error& e) {
-      fail(file.string() + ": " + e.what());
-    }
+    s.source = opened_at(file.string(), [&] {
+      return cache_frames(make_generator(generator, params), generator + " " + params.dump(), frame_cache_dir());
+    });
+  } else if (root.has("animation")) {
+    s.source = open_animation(root.object("animation", animation_keys()), file);
+  } else if (root.has("keyframes")) {
+    s.source = open_keyframes(root.object("keyframes", keyframe_keys()), file);
+  } else if (root.has("crowd")) {
+    // Overrides (--set count=200) replace the crowd's own keys.
+    nlohmann::json crowd = j["crowd"];
+    if (crowd.is_object())
+      for (auto it = overrides.begin(); it != overrides.end(); ++it) crowd[it.key()] = it.value();
+    const DescriptorObject c(crowd, root.at("crowd"), crowd_keys());
+    s.source = open_crowd(c, file, s.name);
+  } else if (root.has("parts")) {
+    s.source = open_parts(root, file);
   } else {
-    if (j.contains("params")) fail(file.string() + ": /params: only valid with /generator");
-    if (!overrides.empty()) fail(file.string() + ": parameters can only be set on a procedural scene");
-  }
-  if (j.contains("animation")) {
-    s.source = open_animation(j["animation"], file);
-  } else if (j.contains("frames")) {
     if (!j["frames"].is_string()) fail(file.string() + ": /frames: must be a string (a directory)");
     std::filesystem::path dir = j["frames"].get<std::string>();
     if (dir.is_relative()) dir = file.parent_path() / dir;

@@ -22,6 +22,15 @@ check "verify with co-vertex filtering" 0 "all pipelines match the oracle" -- "$
 check "verify with co-vertex filtering, sweep oracle" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:2 --skip-adjacent --brute-limit 10
 check "scene objects and queries" 0 "query       inter cloth - ball" -- "$cdbench" scenes info funnel-inter --set frames=1
 check "declared queries verify" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --scene funnel-inter --frames 0:3
+# Scenes from packaged models (scripts/install-deps.sh --scenes --scenes-extra; CI installs them).
+check "MD2 keyframes scene" 0 "^frames +198" -- "$cdbench" scenes info sydney-md2
+check "MD2 keyframes verify" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --scene sydney-md2 --frames 0:3
+check "crowd scales with --set count" 0 "^triangles +10252" -- "$cdbench" scenes info crowd --set count=2 --set frames=2
+check "crowd verify" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --scene crowd --set count=4 --set frames=3
+check "rigid part of a scene" 0 "object +bunny +faces 7938..77604 +rigid" -- "$cdbench" scenes info bunny-drop
+check "scans extracted into the cache" 0 "object +armadillo +faces 88928..140928 +rigid" -- env CDBENCH_CACHE="$tmp/cache" "$cdbench" scenes info elephant-armadillo
+printf '{"frame_count": 2, "parts": [{"name": "b", "mesh": {"file": "/usr/share/glmark2/models/bunny.obj"}, "motion": {"velocity": [0, "up", 0]}}]}' >"$tmp/badmotion.json"
+check "bad rigid motion names the JSON path" 2 "badmotion.json: /parts/0/motion/velocity/1: must be a number" -- "$cdbench" run --device cpu --scene "$tmp/badmotion.json"
 printf '{"generator": "funnel", "params": {"frames": 2}, "queries": {"self": ["cloth"], "inter": [["cloth", "rocket"]]}}' >"$tmp/badq.json"
 check "query names an unknown object" 2 "/queries/inter/0/1: unknown object 'rocket'" -- "$cdbench" run --device cpu --scene "$tmp/badq.json"
 printf '{"generator": "soup", "params": {"triangles": 10}, "queries": {"self": ["x"]}}' >"$tmp/noobj.json"
