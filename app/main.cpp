@@ -258,6 +258,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     loop.save_pairs = r.save_pairs;
     loop.check_every = check_interval(r.check);
     loop.oracle = [&topo, &o](const std::vector<vec3f>& v) { return sweep_oracle_pairs(topo, v, o.skip_adjacent); };
+    loop.faces = &topo.faces;
     if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, loop)) return rc;
   }
   return 0;
@@ -437,7 +438,8 @@ int main(int argc, char** argv) {
       ->needs(out_option);
   run->add_option("--check", r.check,
                   "compare frames with the exact CPU oracle: every, N (every N-th frame) or off; "
-                  "recall, precision, missed and false positives per checked frame, outside the timing")
+                  "recall, precision, missed and false positives per checked frame, and true contacts among the reported "
+                  "pairs (exact triangle test), outside the timing")
       ->capture_default_str();
 
   auto* verify = app.add_subcommand("verify", "compare pipelines with the exact oracle, frame by frame");

@@ -22,6 +22,8 @@ struct RunLoopOptions {
   // same positions, outside the timed frame.
   uint32_t check_every = 0;
   std::function<std::vector<PrimPair>(const std::vector<vec3f>&)> oracle;
+  // The scene's faces, to count which checked pairs are true contacts (narrow/contacts.h).
+  const std::vector<Tri>* faces = nullptr;
 };
 
 // Runs the frames of `range`, prints the summary and, given a results file, records every
