@@ -280,6 +280,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     loop.probe = probe.get();
     loop.copy_gbps = copy_gbps;
     loop.oracle = [&topo, &o](const std::vector<vec3f>& v) { return sweep_oracle_pairs(topo, v, o.skip_adjacent); };
+    loop.faces = &topo.faces;
     if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, loop)) return rc;
   }
   return 0;
@@ -459,7 +460,8 @@ int main(int argc, char** argv) {
       ->needs(out_option);
   run->add_option("--check", r.check,
                   "compare frames with the exact CPU oracle: every, N (every N-th frame) or off; "
-                  "recall, precision, missed and false positives per checked frame, outside the timing")
+                  "recall, precision, missed and false positives per checked frame, and true contacts among the reported "
+                  "pairs (exact triangle test), outside the timing")
       ->capture_default_str();
   run->add_option("--repeat", r.repeat,
                   "passes over the frames, each from a fresh state; times are the per-frame mean, "

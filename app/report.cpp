@@ -24,7 +24,8 @@ void print_frame_line(uint32_t frame, const FrameStats& s) {
     std::printf("  candidates %llu (%llu leaves, mean Q %.3f)", static_cast<unsigned long long>(s.candidates),
                 static_cast<unsigned long long>(s.candidate_leaves), s.q_candidates);
   if (s.checked)
-    std::printf("  check recall %.6f precision %.6f", s.recall, s.precision);
+    std::printf("  check recall %.6f precision %.6f contacts %llu (%.6f)", s.recall, s.precision,
+                static_cast<unsigned long long>(s.contacts), s.contact_precision);
   if (s.query_reruns) std::printf("  (a buffer grew, re-ran %u)", s.query_reruns);
   std::printf("\n");
 }
@@ -64,6 +65,10 @@ void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const
                 "%llu missed, %llu false positives\n",
                 r.checked_frames, r.recall_min, r.precision_min,
                 static_cast<unsigned long long>(r.missed), static_cast<unsigned long long>(r.false_positives));
+  if (r.checked_frames)
+    std::printf("  contacts    %llu of %llu checked pairs truly intersect: contact precision %.6f, min %.6f\n",
+                static_cast<unsigned long long>(r.contacts), static_cast<unsigned long long>(r.checked_pairs),
+                r.contact_precision, r.contact_precision_min);
   if (r.decided_refit + r.decided_restructure + r.decided_rebuild)
     std::printf("  formula 2   %zu refit, %zu restructure, %zu rebuild decisions\n", r.decided_refit,
                 r.decided_restructure, r.decided_rebuild);

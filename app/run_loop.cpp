@@ -9,19 +9,24 @@
 #include "core/error.h"
 #include "core/pair_set.h"
 #include "interrupt.h"
+#include "narrow/contacts.h"
 #include "pipeline/run_summary.h"
 #include "report.h"
 
 namespace cdb {
 namespace {
 
-void check_frame_pairs(Pipeline& pipeline, const std::vector<PrimPair>& expected, FrameStats& s) {
-  const PairAccuracy a = pair_accuracy(expected, pipeline.sorted_pairs());
+void check_frame_pairs(Pipeline& pipeline, const std::vector<PrimPair>& expected, const std::vector<Tri>& faces,
+                       const std::vector<vec3f>& vertices, FrameStats& s) {
+  const std::vector<PrimPair> reported = pipeline.sorted_pairs();
+  const PairAccuracy a = pair_accuracy(expected, reported);
   s.checked = true;
   s.recall = a.recall;
   s.precision = a.precision;
   s.missed = a.missed;
   s.false_positives = a.false_positives;
+  s.contacts = count_true_contacts(faces, vertices, reported);
+  s.contact_precision = contact_precision(s.contacts, reported.size());
 }
 
 // Sample mean and relative standard deviation (0 for fewer than two samples).
@@ -119,7 +124,7 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
       frames.push_back(run_one(f));
       earlier.merge_into(frames.size() - 1, f, frames.back());
       if (options.check_every && (f - range.first) % options.check_every == 0)
-        check_frame_pairs(pipeline, options.oracle(vertices), frames.back());
+        check_frame_pairs(pipeline, options.oracle(vertices), *options.faces, vertices, frames.back());
       if (out) {
         out->append_frame(f, frames.back(), pipeline.memory());
         if (options.save_pairs) out->write_pairs(f, pipeline.sorted_pairs());

@@ -9,7 +9,7 @@
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
-  libcli11-dev nlohmann-json3-dev libhdf5-dev libassimp-dev libomp-dev
+  libcli11-dev nlohmann-json3-dev libhdf5-dev libassimp-dev libomp-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-h5py python3-numpy python3-matplotlib
 )

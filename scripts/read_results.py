@@ -65,6 +65,12 @@ def print_summary(f):
         stats = "  ".join(f"{s} {text(attrs[key + '_' + s])}" for s in ("mean", "median", "p95", "min"))
         print(f"  {p:<12} {stats} ms  ({text(attrs.get(key + '_frames', '?'))} frames)")
     print(f"  pairs        mean {text(attrs['pairs_mean'])} per frame")
+    if int(attrs.get("checked_frames", 0)):
+        print(f"  check        {text(attrs['checked_frames'])} frames: recall min {text(attrs['recall_min'])}, "
+              f"precision min {text(attrs['precision_min'])}")
+        if "contact_precision" in attrs:  # files written before the narrow phase lack it
+            print(f"  contacts     {text(attrs['contacts'])} of {text(attrs['checked_pairs'])} checked pairs: "
+                  f"contact precision {text(attrs['contact_precision'])}, min {text(attrs['contact_precision_min'])}")
     print(f"  memory       peak {text(attrs['peak_bytes'])} bytes, {text(attrs['growths'])} growths, "
           f"{text(attrs['query_reruns'])} query re-runs")
 

@@ -163,6 +163,36 @@ RecordedRun run_into(ResultsFile& out, const std::string& pipeline, uint32_t fra
   return run;
 }
 
+// --check's narrow-phase fields: per-frame columns as given, and the summary pooling the
+// checked frames' contacts over their pairs (an unchecked frame's pairs do not count).
+TEST(ResultsFile, CheckedFramesRecordContacts) {
+  TempDir dir;
+  const fs::path path = dir / "checked.h5";
+  std::vector<FrameStats> frames(3);
+  frames[0].pairs = 10, frames[0].checked = true, frames[0].contacts = 4, frames[0].contact_precision = 0.4;
+  frames[1].pairs = 0, frames[1].checked = true, frames[1].contacts = 0, frames[1].contact_precision = 1.0;
+  frames[2].pairs = 100;
+  const MemoryStats memory;
+  const RunSummary summary = summarize_run(frames, 0);
+  EXPECT_EQ(summary.contacts, 4u);
+  EXPECT_EQ(summary.checked_pairs, 10u);
+  EXPECT_DOUBLE_EQ(summary.contact_precision, 0.4);
+  EXPECT_DOUBLE_EQ(summary.contact_precision_min, 0.4);
+  {
+    ResultsFile out(path, info_for("static", 3));
+    for (uint32_t i = 0; i < 3; ++i) out.append_frame(i, frames[i], memory);
+    out.finish(summary, memory);
+  }
+  File f(path);
+  ASSERT_GE(f.id, 0) << path;
+  EXPECT_EQ(integers(f.id, "frames/contacts"), (std::vector<uint64_t>{4, 0, 0}));
+  EXPECT_EQ(numbers(f.id, "frames/contact_precision"), (std::vector<double>{0.4, 1.0, 0.0}));
+  EXPECT_EQ(number_attr(f.id, "summary", "contacts"), 4);
+  EXPECT_EQ(number_attr(f.id, "summary", "checked_pairs"), 10);
+  EXPECT_EQ(number_attr(f.id, "summary", "contact_precision"), 0.4);
+  EXPECT_EQ(number_attr(f.id, "summary", "contact_precision_min"), 0.4);
+}
+
 TEST(ResultsFile, CompleteRunMatchesFrameStats) {
   TempDir dir;
   const fs::path path = dir / "nested/run.h5";

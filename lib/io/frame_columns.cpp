@@ -35,6 +35,8 @@ const std::vector<FrameColumn>& frame_columns() {
         {"precision", T::f64, "--check: reported pairs the oracle has / reported pairs (0 when not checked)", [](R r) -> ColumnValue { return r.stats.precision; }},
         {"missed", T::u64, "--check: oracle pairs not reported", [](R r) -> ColumnValue { return r.stats.missed; }},
         {"false_positives", T::u64, "--check: reported pairs the oracle does not have", [](R r) -> ColumnValue { return r.stats.false_positives; }},
+        {"contacts", T::u64, "--check: reported pairs whose triangles intersect (exact test; co-vertex pairs count)", [](R r) -> ColumnValue { return r.stats.contacts; }},
+        {"contact_precision", T::f64, "--check: contacts / reported pairs (1 with no pairs; 0 when not checked)", [](R r) -> ColumnValue { return r.stats.contact_precision; }},
         {"op", T::text, "what the frame did: hierarchy + front operation", [](R r) -> ColumnValue { return r.stats.op; }},
         {"device_bytes", T::u64, "executor memory in use after the frame, bytes", [](R r) -> ColumnValue { return uint64_t(r.memory.current_bytes); }},
         {"device_peak_bytes", T::u64, "executor memory peak so far, bytes", [](R r) -> ColumnValue { return uint64_t(r.memory.peak_bytes); }},

@@ -264,6 +264,10 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
   write_attr(loc, "precision_min", s.checked_frames ? s.precision_min : none, at);
   write_attr(loc, "missed", uint64_t(s.missed), at);
   write_attr(loc, "false_positives", uint64_t(s.false_positives), at);
+  write_attr(loc, "contacts", uint64_t(s.contacts), at);
+  write_attr(loc, "checked_pairs", uint64_t(s.checked_pairs), at);
+  write_attr(loc, "contact_precision", s.checked_frames ? s.contact_precision : none, at);
+  write_attr(loc, "contact_precision_min", s.checked_frames ? s.contact_precision_min : none, at);
   write_attr(loc, "peak_bytes", uint64_t(memory.peak_bytes), at);
   write_attr(loc, "allocations", uint64_t(memory.allocations), at);
   write_attr(loc, "growths", uint64_t(memory.growths), at);

@@ -69,6 +69,10 @@ struct FrameStats {
   bool checked = false;
   double recall = 0.0, precision = 0.0;
   uint64_t missed = 0, false_positives = 0;
+  // --check, narrow phase: reported pairs whose triangles truly intersect (exact test,
+  // lib/narrow) and their share of the reported pairs (1 when there are none).
+  uint64_t contacts = 0;
+  double contact_precision = 0.0;
 };
 
 class Pipeline {

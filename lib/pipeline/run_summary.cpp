@@ -51,8 +51,12 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
       r.precision_min = std::min(r.precision_min, f.precision);
       r.missed += f.missed;
       r.false_positives += f.false_positives;
+      r.contacts += f.contacts;
+      r.checked_pairs += f.pairs;
+      r.contact_precision_min = std::min(r.contact_precision_min, f.contact_precision);
     }
   }
+  if (r.checked_pairs) r.contact_precision = double(r.contacts) / double(r.checked_pairs);
   r.total = stat_of(std::move(total));
   for (size_t p = 0; p < kPhaseCount; ++p) r.phase[p] = stat_of(std::move(ran[p]));
   r.pairs_mean = pairs / double(r.total.count);

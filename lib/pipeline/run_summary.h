@@ -44,6 +44,10 @@ struct RunSummary {
   size_t checked_frames = 0;
   double recall_min = 1.0, precision_min = 1.0;
   uint64_t missed = 0, false_positives = 0;
+  // True contacts among the checked frames' reported pairs: summed, their pooled share
+  // (contacts / pairs over all checked frames; 1 with no pairs) and the lowest frame's share.
+  uint64_t contacts = 0, checked_pairs = 0;
+  double contact_precision = 1.0, contact_precision_min = 1.0;
 };
 
 RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup);
