@@ -23,7 +23,6 @@ struct RunLoopOptions {
   // same positions, outside the timed frame.
   uint32_t check_every = 0;
   std::function<std::vector<PrimPair>(const std::vector<vec3f>&)> oracle;
-<<<<<<< HEAD
   // --repeat: at most this many passes over the frames, each from a fresh pipeline state;
   // the last records, its times the mean over all passes with their noise beside them.
   uint32_t repeat = 1;
@@ -35,10 +34,8 @@ struct RunLoopOptions {
   DeviceProbe* probe = nullptr;
   // The device's measured copy bandwidth, for the bandwidth floor in the summary (0: none).
   double copy_gbps = 0.0;
-=======
   // The scene's faces, to count which checked pairs are true contacts (narrow/contacts.h).
   const std::vector<Tri>* faces = nullptr;
->>>>>>> narrow
 };
 
 // Runs the frames of `range` (repeat passes of them), prints the summary and, given a results file, records every
