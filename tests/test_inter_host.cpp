@@ -2,6 +2,7 @@
 // T_D and T_R, every pipeline exact on every frame, the fronts each query keeps, and
 // pipeline c's decisions with cross fronts (tests/inter_cases.h).
 #include "inter_cases.h"
+#include "exec/host_exec.h"
 #include "io/scene.h"
 
 namespace cdb::test {
@@ -34,6 +35,14 @@ TEST(HostInter, UnsplitWithoutQueriesOrWithoutRigidObjects) {
   EXPECT_FALSE(s.split);
   EXPECT_TRUE(s.deformable_self);
   EXPECT_FALSE(s.cross || s.rigid_self);
+}
+
+TEST(HostInter, GroupedBuildGivesEachObjectItsOwnSubtree) {
+  for (const char* gen : {"funnel", "cloth-ball"}) {
+    SCOPED_TRACE(gen);
+    auto scene = make_generator(gen, {{"res", 16}, {"frames", 3}});
+    check_grouped_build<HostExec>(*scene);
+  }
 }
 
 // The shipped scenes with declared queries open, declare what they say, and split.

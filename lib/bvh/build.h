@@ -54,6 +54,11 @@ struct CentroidFn {
   }
 };
 
+// Bits a group index takes at the top of a grouped Morton key: up to 64 groups (objects,
+// kMaxQueryObjects).
+inline constexpr int kGroupBits = 6;
+static_assert((size_t(1) << kGroupBits) >= kMaxQueryObjects, "a group index per object");
+
 struct MortonFn {
   const vec4f* lo;
   const vec4f* hi;
@@ -61,6 +66,11 @@ struct MortonFn {
   MortonBits bits;
   uint64_t* keys;
   uint32_t* iota;
+  // Optional grouping: per mesh face its group (object); primitive i is face subset.face(i).
+  // A grouped key puts the group above the Morton code (which gives up its finest kGroupBits
+  // bits), so each group's leaves are contiguous and form their own subtrees.
+  const uint32_t* face_group;
+  FaceSubset subset;
   CDB_HD void operator()(uint32_t i) const {
     const Aabb<float> s = *centroid_box;
     const vec4f a = lo[i], b = hi[i];
@@ -73,7 +83,9 @@ struct MortonFn {
     const vec4f u{ex > 0 ? (cx * 0.5f - s.lo.x * 0.5f) / ex : 0.5f,
                   ey > 0 ? (cy * 0.5f - s.lo.y * 0.5f) / ey : 0.5f,
                   ez > 0 ? (cz * 0.5f - s.lo.z * 0.5f) / ez : 0.5f, 0};
-    keys[i] = morton_code(u, bits);
+    const uint64_t code = morton_code(u, bits);
+    keys[i] = face_group ? (uint64_t(face_group[subset.face(i)]) << (int(bits) - kGroupBits)) | (code >> kGroupBits)
+                         : code;
     iota[i] = i;
   }
 };
@@ -185,10 +197,12 @@ ApetreiTree apetrei_tree(Lbvh<Exec>& bvh, const uint64_t* keys) {
 
 // Rebuilds the hierarchy over a subset of the mesh's faces: boxes, Morton codes, radix
 // sort, Apetrei build. Leaves end up sorted, holding mesh face indices; internal nodes are
-// in build order until order_depth_first runs.
+// in build order until order_depth_first runs. With `face_group` (per mesh face, < 2^6)
+// each group's faces form their own subtrees (MortonFn): a tree that is only refitted
+// while its groups move apart (rigid objects) loosens only the few nodes above them.
 template <class Exec>
 void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBits bits,
-                     FaceSubset subset) {
+                     FaceSubset subset, const uint32_t* face_group = nullptr) {
   const uint32_t n = subset.count;
   bvh.reserve(exec, n);
   bvh.morton_bits = bits;
@@ -197,7 +211,7 @@ void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBi
   exec.reduce_box(n, CentroidFn{bvh.prim_lo.data(), bvh.prim_hi.data()}, bvh.centroid_box.data(),
                   bvh.temp.data(), bvh.temp.size());
   exec.for_each_n(n, MortonFn{bvh.prim_lo.data(), bvh.prim_hi.data(), bvh.centroid_box.data(), bits,
-                              bvh.morton.data(), bvh.prim_iota.data()});
+                              bvh.morton.data(), bvh.prim_iota.data(), face_group, subset});
   exec.sort_pairs(bvh.morton.data(), bvh.morton_sorted.data(), bvh.prim_iota.data(),
                   bvh.leaf_prim.data(), n, static_cast<int>(bits), bvh.temp.data(),
                   bvh.temp.size());

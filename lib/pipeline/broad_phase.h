@@ -167,7 +167,8 @@ class BroadPhase final : public Pipeline {
         break;
     }
     const bool rebuild = frame_ == 0 || (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
-    update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), frame_ == 0, config_.morton_bits);
+    update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), frame_ == 0, config_.morton_bits,
+                     false, mesh_.face_object());
     return update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild, config_.morton_bits);
   }
 

@@ -106,10 +106,12 @@ void record_timings(const Timer& timer, FrameStats& stats) {
 }
 
 // Rebuild (build + depth-first order, by histogram or, for the radix baseline, by a key
-// sort) or refit the hierarchy over `faces`; returns which ran.
+// sort) or refit the hierarchy over `faces` (grouped by `face_group` if given: build.h);
+// returns which ran.
 template <class Exec, class Timer>
 std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const MeshView& mesh,
-                             FaceSubset faces, bool rebuild, MortonBits bits, bool radix_order = false) {
+                             FaceSubset faces, bool rebuild, MortonBits bits, bool radix_order = false,
+                             const uint32_t* face_group = nullptr) {
   if (!rebuild) {
     timer.start(Phase::refit);
     refit(exec, bvh, mesh);
@@ -117,7 +119,7 @@ std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const Me
     return "refit";
   }
   timer.start(Phase::build);
-  build_hierarchy(exec, bvh, mesh, bits, faces);
+  build_hierarchy(exec, bvh, mesh, bits, faces, face_group);
   timer.stop(Phase::build);
   timer.start(Phase::order);
   if (radix_order)

@@ -15,6 +15,7 @@
 // fronts of T_D, the cross fronts of T_D's leaves against T_R, and the self fronts of T_R.
 // Unsplit, T_D holds every face and only its self fronts run.
 #include <algorithm>
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -77,7 +78,7 @@ class FrontPipeline final : public Pipeline {
     stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild,
                                 config_.morton_bits, plan_.radix_sort);
     update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), frame_ == 0, config_.morton_bits,
-                     plan_.radix_sort);
+                     plan_.radix_sort, mesh_.face_object());
     if (rebuild) generated_at_ = frame_;
     const Ops ops = choose_ops(rebuild, !rebuild && decision == Decision::restructure);
     if (plan_.balance) balance(ops);
@@ -143,7 +144,7 @@ class FrontPipeline final : public Pipeline {
   }
 
   enum class Query { self, inter, rigid_self };
-  static constexpr Query kQueries[] = {Query::self, Query::inter, Query::rigid_self};
+  static constexpr std::array<Query, 3> kQueries = {Query::self, Query::inter, Query::rigid_self};
   FrontQuery<Exec>& query(Query q) {
     return q == Query::self ? self_ : q == Query::inter ? inter_ : rigid_self_;
   }
