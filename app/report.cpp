@@ -17,6 +17,8 @@ void print_frame_line(uint32_t frame, const FrameStats& s) {
   if (s.front_internal + s.front_external)
     std::printf("  front %llu+%llu  Q %.3f", static_cast<unsigned long long>(s.front_internal),
                 static_cast<unsigned long long>(s.front_external), s.q_root);
+  if (s.front_inter) std::printf("  inter front %llu", static_cast<unsigned long long>(s.front_inter));
+  if (s.front_rigid) std::printf("  rigid front %llu", static_cast<unsigned long long>(s.front_rigid));
   for (size_t p = 1; p < kPhaseCount; ++p)
     if (s.phase_ms[p] > 0) std::printf("  %s %.3f", kPhaseNames[p], s.phase_ms[p]);
   if (!s.decision.empty()) std::printf("  decision %s", s.decision.c_str());
@@ -60,6 +62,9 @@ void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const
     std::printf("  front       %llu internal + %llu external nodes at the end, Q(root) %.3f\n",
                 static_cast<unsigned long long>(last.front_internal),
                 static_cast<unsigned long long>(last.front_external), last.q_root);
+  if (last.front_inter + last.front_rigid)
+    std::printf("  fronts      %llu inter (deformable vs rigid tree) + %llu rigid self nodes at the end\n",
+                static_cast<unsigned long long>(last.front_inter), static_cast<unsigned long long>(last.front_rigid));
   if (r.checked_frames)
     std::printf("  check       %zu frames against the oracle: recall min %.6f, precision min %.6f, "
                 "%llu missed, %llu false positives\n",

@@ -140,16 +140,17 @@ void check_soup_case(const SoupCase& c) {
   }
 }
 
-// Every pipeline, through the public factory, on every frame of a scene, against the
-// sweep oracle; with a pair buffer far too small at the start so it must grow. The O(N^2)
-// brute pipeline joins only up to brute_limit triangles.
+// Every pipeline (or those named in `only`), through the public factory, on every frame of
+// a scene, against the sweep oracle; with a pair buffer far too small at the start so it
+// must grow. The O(N^2) brute pipeline joins only up to brute_limit triangles.
 inline void check_pipelines_on(const PipelineConfig& base, FrameSource& source,
-                               size_t brute_limit = 100000) {
+                               size_t brute_limit = 100000, const std::vector<std::string>& only = {}) {
   const Topology& topo = source.topology();
   std::vector<std::string> names;
   std::vector<std::unique_ptr<Pipeline>> pipelines;
   for (const auto& name : pipeline_names()) {
     if (name == oracle_pipeline() && topo.faces.size() > brute_limit) continue;
+    if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
     PipelineConfig cfg = base;
     cfg.name = name;
     names.push_back(name);

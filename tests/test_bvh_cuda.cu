@@ -2,6 +2,7 @@
 // test is reported as skipped, with the reason, never as passed.
 #include "baseline_cases.h"
 #include "bvh_cases.h"
+#include "inter_cases.h"
 #include "io/scene.h"
 #include "exec/cuda_exec.cuh"
 
@@ -172,5 +173,42 @@ TEST_P(CudaForcedDecisions, EveryBranchOfFormula2IsExact) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cycles, CudaForcedDecisions, testing::Values(1u, 2u));
+
+// Deformable and rigid objects with declared queries (tests/inter_cases.h): every splitting
+// pipeline exact on every frame, the fronts each query keeps, T_R only refitted, and
+// pipeline c's forced decisions with cross fronts. Failures name scene, pipeline and frame.
+class CudaInter : public testing::TestWithParam<InterCase> {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_P(CudaInter, AllPipelinesExactEveryFrame) { check_inter_pipelines("cuda", GetParam()); }
+
+TEST_P(CudaInter, FrontsFollowTheQueriesAndTheRigidTreeOnlyRefits) { check_inter_fronts("cuda", GetParam()); }
+
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaInter, testing::ValuesIn(inter_cases(64, 16)), inter_case_name);
+
+class CudaInterDecisions : public testing::TestWithParam<InterCase> {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_P(CudaInterDecisions, EveryBranchOfFormula2IsExact) { check_inter_decisions("cuda", GetParam()); }
+
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaInterDecisions, testing::ValuesIn(inter_decision_cases(96, 16)),
+                         inter_case_name);
+
+TEST(CudaInter, ShippedInterScenesExact) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  for (const char* name : {"funnel-inter", "sphere-inter", "cloth-ball-inter"}) {
+    SCOPED_TRACE(std::string("scene ") + name);
+    Scene s = open_scene(name, default_scenes_dir(), {{"frames", 12}});
+    check_pipelines_on(config_for("cuda", 0.5, 0.05, 2), *s.source);
+  }
+}
 
 }  // namespace cdb::test

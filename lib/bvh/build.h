@@ -13,6 +13,7 @@
 #include "bvh/node_ref.h"
 #include "core/atomics.h"
 #include "core/morton.h"
+#include "geometry/face_subset.h"
 #include "geometry/gather_boxes.h"
 #include "geometry/mesh.h"
 
@@ -23,6 +24,22 @@ struct FaceBoxFn {
   vec4f* lo;
   vec4f* hi;
   CDB_HD void operator()(uint32_t f) const { face_box(mesh, f, lo[f], hi[f]); }
+};
+
+// Boxes of a subset's faces, in subset order.
+struct SubsetFaceBoxFn {
+  MeshView mesh;
+  FaceSubset subset;
+  vec4f* lo;
+  vec4f* hi;
+  CDB_HD void operator()(uint32_t k) const { face_box(mesh, subset.face(k), lo[k], hi[k]); }
+};
+
+// Sorted leaves name subset positions after the key sort; this makes them mesh faces.
+struct SubsetLeafPrimFn {
+  FaceSubset subset;
+  uint32_t* leaf_prim;
+  CDB_HD void operator()(uint32_t i) const { leaf_prim[i] = subset.face(leaf_prim[i]); }
 };
 
 // Box of a primitive's centroid, for the Morton normalization. Halving before adding keeps
@@ -37,6 +54,11 @@ struct CentroidFn {
   }
 };
 
+// Bits a group index takes at the top of a grouped Morton key: up to 64 groups (objects,
+// kMaxQueryObjects).
+inline constexpr int kGroupBits = 6;
+static_assert((size_t(1) << kGroupBits) >= kMaxQueryObjects, "a group index per object");
+
 struct MortonFn {
   const vec4f* lo;
   const vec4f* hi;
@@ -44,6 +66,11 @@ struct MortonFn {
   MortonBits bits;
   uint64_t* keys;
   uint32_t* iota;
+  // Optional grouping: per mesh face its group (object); primitive i is face subset.face(i).
+  // A grouped key puts the group above the Morton code (which gives up its finest kGroupBits
+  // bits), so each group's leaves are contiguous and form their own subtrees.
+  const uint32_t* face_group;
+  FaceSubset subset;
   CDB_HD void operator()(uint32_t i) const {
     const Aabb<float> s = *centroid_box;
     const vec4f a = lo[i], b = hi[i];
@@ -56,7 +83,9 @@ struct MortonFn {
     const vec4f u{ex > 0 ? (cx * 0.5f - s.lo.x * 0.5f) / ex : 0.5f,
                   ey > 0 ? (cy * 0.5f - s.lo.y * 0.5f) / ey : 0.5f,
                   ez > 0 ? (cz * 0.5f - s.lo.z * 0.5f) / ez : 0.5f, 0};
-    keys[i] = morton_code(u, bits);
+    const uint64_t code = morton_code(u, bits);
+    keys[i] = face_group ? (uint64_t(face_group[subset.face(i)]) << (int(bits) - kGroupBits)) | (code >> kGroupBits)
+                         : code;
     iota[i] = i;
   }
 };
@@ -166,29 +195,40 @@ ApetreiTree apetrei_tree(Lbvh<Exec>& bvh, const uint64_t* keys) {
           bvh.count_log.data()};
 }
 
-// Rebuilds the hierarchy from the mesh: boxes, Morton codes, radix sort, Apetrei build.
-// Leaves end up sorted; internal nodes are in build order until order_depth_first runs.
+// Rebuilds the hierarchy over a subset of the mesh's faces: boxes, Morton codes, radix
+// sort, Apetrei build. Leaves end up sorted, holding mesh face indices; internal nodes are
+// in build order until order_depth_first runs. With `face_group` (per mesh face, < 2^6)
+// each group's faces form their own subtrees (MortonFn): a tree that is only refitted
+// while its groups move apart (rigid objects) loosens only the few nodes above them.
 template <class Exec>
-void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBits bits) {
-  const uint32_t n = mesh.num_faces;
+void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBits bits,
+                     FaceSubset subset, const uint32_t* face_group = nullptr) {
+  const uint32_t n = subset.count;
   bvh.reserve(exec, n);
   bvh.morton_bits = bits;
   if (n == 0) return;
-  exec.for_each_n(n, FaceBoxFn{mesh, bvh.prim_lo.data(), bvh.prim_hi.data()});
+  exec.for_each_n(n, SubsetFaceBoxFn{mesh, subset, bvh.prim_lo.data(), bvh.prim_hi.data()});
   exec.reduce_box(n, CentroidFn{bvh.prim_lo.data(), bvh.prim_hi.data()}, bvh.centroid_box.data(),
                   bvh.temp.data(), bvh.temp.size());
   exec.for_each_n(n, MortonFn{bvh.prim_lo.data(), bvh.prim_hi.data(), bvh.centroid_box.data(), bits,
-                              bvh.morton.data(), bvh.prim_iota.data()});
+                              bvh.morton.data(), bvh.prim_iota.data(), face_group, subset});
   exec.sort_pairs(bvh.morton.data(), bvh.morton_sorted.data(), bvh.prim_iota.data(),
                   bvh.leaf_prim.data(), n, static_cast<int>(bits), bvh.temp.data(),
                   bvh.temp.size());
   exec.for_each_n(n, GatherBoxesFn{bvh.leaf_prim.data(), bvh.prim_lo.data(), bvh.prim_hi.data(),
                                     bvh.leaf_lo.data(), bvh.leaf_hi.data()});
+  if (subset.faces) exec.for_each_n(n, SubsetLeafPrimFn{subset, bvh.leaf_prim.data()});
   if (n == 1) return;
   exec.fill(bvh.other_bound.data(), n - 1, kNoNode);
   exec.fill(bvh.count_log.data(), size_t(n) + 1, 0u);
   exec.for_each_n(n, ApetreiBuildFn{apetrei_tree(bvh, bvh.morton_sorted.data()), n},
                   Balance::uneven);
+}
+
+// The hierarchy over all of the mesh's faces.
+template <class Exec>
+void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBits bits) {
+  build_hierarchy(exec, bvh, mesh, bits, FaceSubset{nullptr, mesh.num_faces});
 }
 
 }  // namespace cdb

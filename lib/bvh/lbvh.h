@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include "bvh/bvh_view.h"
 #include "core/aabb.h"
@@ -14,40 +15,41 @@ namespace cdb {
 // growth.
 template <class Exec>
 struct Lbvh {
-  explicit Lbvh(Exec& exec) {
+  // `name` prefixes the buffers' names in the growth log (a scene may have two trees).
+  explicit Lbvh(Exec& exec, const std::string& name = "bvh") {
     MemoryResource& mr = exec.memory();
-    leaf_lo.bind(mr, "bvh.leaf_lo");
-    leaf_hi.bind(mr, "bvh.leaf_hi");
-    leaf_prim.bind(mr, "bvh.leaf_prim");
-    leaf_parent.bind(mr, "bvh.leaf_parent");
-    leaf_escape.bind(mr, "bvh.leaf_escape");
-    node_lo.bind(mr, "bvh.node_lo");
-    node_hi.bind(mr, "bvh.node_hi");
-    node_left.bind(mr, "bvh.node_left");
-    node_right.bind(mr, "bvh.node_right");
-    node_parent.bind(mr, "bvh.node_parent");
-    node_escape.bind(mr, "bvh.node_escape");
-    node_first.bind(mr, "bvh.node_first");
-    node_last.bind(mr, "bvh.node_last");
-    count_log.bind(mr, "bvh.count_log");
-    offset_log.bind(mr, "bvh.offset_log");
-    prim_lo.bind(mr, "bvh.prim_lo");
-    prim_hi.bind(mr, "bvh.prim_hi");
-    centroid_box.bind(mr, "bvh.centroid_box");
-    morton.bind(mr, "bvh.morton");
-    morton_sorted.bind(mr, "bvh.morton_sorted");
-    prim_iota.bind(mr, "bvh.prim_iota");
-    build_lo.bind(mr, "bvh.build_lo");
-    build_hi.bind(mr, "bvh.build_hi");
-    build_left.bind(mr, "bvh.build_left");
-    build_right.bind(mr, "bvh.build_right");
-    build_parent.bind(mr, "bvh.build_parent");
-    build_first.bind(mr, "bvh.build_first");
-    build_last.bind(mr, "bvh.build_last");
-    other_bound.bind(mr, "bvh.other_bound");
-    new_index.bind(mr, "bvh.new_index");
-    refit_flag.bind(mr, "bvh.refit_flag");
-    temp.bind(mr, "bvh.temp");
+    leaf_lo.bind(mr, name + ".leaf_lo");
+    leaf_hi.bind(mr, name + ".leaf_hi");
+    leaf_prim.bind(mr, name + ".leaf_prim");
+    leaf_parent.bind(mr, name + ".leaf_parent");
+    leaf_escape.bind(mr, name + ".leaf_escape");
+    node_lo.bind(mr, name + ".node_lo");
+    node_hi.bind(mr, name + ".node_hi");
+    node_left.bind(mr, name + ".node_left");
+    node_right.bind(mr, name + ".node_right");
+    node_parent.bind(mr, name + ".node_parent");
+    node_escape.bind(mr, name + ".node_escape");
+    node_first.bind(mr, name + ".node_first");
+    node_last.bind(mr, name + ".node_last");
+    count_log.bind(mr, name + ".count_log");
+    offset_log.bind(mr, name + ".offset_log");
+    prim_lo.bind(mr, name + ".prim_lo");
+    prim_hi.bind(mr, name + ".prim_hi");
+    centroid_box.bind(mr, name + ".centroid_box");
+    morton.bind(mr, name + ".morton");
+    morton_sorted.bind(mr, name + ".morton_sorted");
+    prim_iota.bind(mr, name + ".prim_iota");
+    build_lo.bind(mr, name + ".build_lo");
+    build_hi.bind(mr, name + ".build_hi");
+    build_left.bind(mr, name + ".build_left");
+    build_right.bind(mr, name + ".build_right");
+    build_parent.bind(mr, name + ".build_parent");
+    build_first.bind(mr, name + ".build_first");
+    build_last.bind(mr, name + ".build_last");
+    other_bound.bind(mr, name + ".other_bound");
+    new_index.bind(mr, name + ".new_index");
+    refit_flag.bind(mr, name + ".refit_flag");
+    temp.bind(mr, name + ".temp");
   }
 
   void reserve(Exec& exec, uint32_t n) {

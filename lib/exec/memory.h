@@ -53,7 +53,7 @@ template <class T>
 class Array {
  public:
   Array() = default;
-  explicit Array(MemoryResource& mr, const char* name = "buffer") : mr_(&mr), name_(name) {}
+  explicit Array(MemoryResource& mr, std::string name = "buffer") : mr_(&mr), name_(std::move(name)) {}
   Array(const Array&) = delete;
   Array& operator=(const Array&) = delete;
   Array(Array&& o) noexcept { swap(o); }
@@ -63,10 +63,10 @@ class Array {
   }
   ~Array() { release(); }
 
-  void bind(MemoryResource& mr, const char* name) {
+  void bind(MemoryResource& mr, std::string name) {
     release();
     mr_ = &mr;
-    name_ = name;
+    name_ = std::move(name);
   }
 
   // Makes room for n elements. A first reservation is the planned allocation; a later one
@@ -81,7 +81,7 @@ class Array {
     ptr_ = static_cast<T*>(mr_->allocate(n * sizeof(T)));
     capacity_ = n;
     size_ = n;
-    if (old > 0) mr_->note_growth(name_, old, n);
+    if (old > 0) mr_->note_growth(name_.c_str(), old, n);
   }
 
   T* data() { return ptr_; }
@@ -104,7 +104,7 @@ class Array {
     std::swap(capacity_, o.capacity_);
   }
   MemoryResource* mr_ = nullptr;
-  const char* name_ = "buffer";
+  std::string name_ = "buffer";  // for the growth log
   T* ptr_ = nullptr;
   size_t size_ = 0;
   size_t capacity_ = 0;

@@ -7,6 +7,7 @@
 // Fronts are stored apart by the kind of j: the internal front (j internal) and the
 // external front (j a leaf), SoA.
 #include <cstdint>
+#include <string>
 
 #include "bvh/node_ref.h"
 #include "core/atomics.h"
@@ -47,19 +48,20 @@ struct FrontSink {
 // and the ordered copy the histogram sort scatters into.
 template <class Exec>
 struct FrontArrays {
-  void bind(MemoryResource& mr, int kind) {
-    const bool in = kind == kInternalFront;
-    prim.bind(mr, in ? "front_internal.prim" : "front_external.prim");
-    node.bind(mr, in ? "front_internal.node" : "front_external.node");
-    raw_prim.bind(mr, in ? "front_internal.raw_prim" : "front_external.raw_prim");
-    raw_node.bind(mr, in ? "front_internal.raw_node" : "front_external.raw_node");
-    raw_mark.bind(mr, in ? "front_internal.raw_mark" : "front_external.raw_mark");
-    sorted_prim.bind(mr, in ? "front_internal.sorted_prim" : "front_external.sorted_prim");
-    sorted_node.bind(mr, in ? "front_internal.sorted_node" : "front_external.sorted_node");
-    count_log.bind(mr, in ? "front_internal.count_log" : "front_external.count_log");
-    offset_log.bind(mr, in ? "front_internal.offset_log" : "front_external.offset_log");
-    cursor_front.bind(mr, in ? "front_internal.cursor_front" : "front_external.cursor_front");
-    cursor_back.bind(mr, in ? "front_internal.cursor_back" : "front_external.cursor_back");
+  // `name` tells the fronts of one query apart in the growth log ("front", "inter_front").
+  void bind(MemoryResource& mr, int kind, const std::string& name = "front") {
+    const std::string k = name + (kind == kInternalFront ? "_internal." : "_external.");
+    prim.bind(mr, k + "prim");
+    node.bind(mr, k + "node");
+    raw_prim.bind(mr, k + "raw_prim");
+    raw_node.bind(mr, k + "raw_node");
+    raw_mark.bind(mr, k + "raw_mark");
+    sorted_prim.bind(mr, k + "sorted_prim");
+    sorted_node.bind(mr, k + "sorted_node");
+    count_log.bind(mr, k + "count_log");
+    offset_log.bind(mr, k + "offset_log");
+    cursor_front.bind(mr, k + "cursor_front");
+    cursor_back.bind(mr, k + "cursor_back");
   }
   // Capacity for front nodes (all buffers of the kind) and segment count (BVH nodes).
   void reserve(size_t capacity, size_t segments) {

@@ -1,7 +1,9 @@
 #pragma once
 // The front operations of Fig. 4 as functors: (1) generate, (2) preserve, (3) update
 // (sprout/prune, Alg. 1 lines 12-47) and the opt marks of (4) balance. Leaf i's box is
-// tested against node boxes; pairs go to a PairSink in input triangle indices.
+// tested against node boxes; pairs go to a PairSink in mesh face indices. The same functors
+// serve self fronts (leaf i of a tree against that tree) and cross fronts (leaf i of T_D
+// against T_R, docs/design.md "Deformable and rigid objects"); FrontView says which.
 #include <cstdint>
 
 #include "bvh/bvh_view.h"
@@ -30,14 +32,32 @@ struct FrontTree {
   }
 };
 
+// Both sides of a front (i, j): query leaf i (its box and face) and the tree j lies in.
+// A self front's query leaves are the tree's own: leaf i starts at its escape index and
+// its front partitions the leaves (i, N-1], so each pair is met once. A cross front's query
+// leaves are another tree's: leaf i starts at the root and its front partitions all N
+// leaves; the two trees hold disjoint faces, so each pair is met once too.
+struct FrontView {
+  FrontTree tree;
+  const vec4f* query_lo;
+  const vec4f* query_hi;
+  const uint32_t* query_prim;
+  bool cross;
+
+  CDB_HD_INLINE uint32_t start(uint32_t i) const {
+    return cross ? tree.bvh.root() : tree.bvh.leaf_escape[i];
+  }
+};
+
 // Stackless traversal of the nodes from `node` up to (not including) `end` in depth-first
 // order: overlapping internal nodes descend, everything else is a stop node. Leaves that
 // overlap are pairs. Stop nodes are pushed to the sink when one is given.
 template <bool kRecord>
-CDB_HD_INLINE void traverse_range(const FrontTree& t, uint32_t i, const vec4f& lo, const vec4f& hi,
+CDB_HD_INLINE void traverse_range(const FrontView& v, uint32_t i, const vec4f& lo, const vec4f& hi,
                                   uint32_t node, uint32_t end, const PairSink& pairs,
                                   const FrontSink& front) {
-  const uint32_t prim = t.bvh.leaf_prim[i];
+  const FrontTree& t = v.tree;
+  const uint32_t prim = v.query_prim[i];
   while (node != end) {
     const uint32_t k = ref_index(node);
     if (is_leaf(node)) {
@@ -53,30 +73,32 @@ CDB_HD_INLINE void traverse_range(const FrontTree& t, uint32_t i, const vec4f& l
   }
 }
 
-// (1) Generate: the leaf algorithm from leaf i's escape index, recording its stop nodes.
+// (1) Generate: the leaf algorithm from leaf i's start (escape index, or the root of a
+// cross front), recording its stop nodes.
 struct GenerateFrontFn {
-  FrontTree tree;
+  FrontView view;
   PairSink pairs;
   FrontSink front;
   CDB_HD void operator()(uint32_t i) const {
-    const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
-    traverse_range<true>(tree, i, lo, hi, tree.bvh.leaf_escape[i], kNoNode, pairs, front);
+    const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
+    traverse_range<true>(view, i, lo, hi, view.start(i), kNoNode, pairs, front);
   }
 };
 
 // (2) Preserve: traverse from every stored front node; the front is not rewritten.
 struct PreserveFrontFn {
-  FrontTree tree;
+  FrontView view;
   PairSink pairs;
   const uint32_t* prim;
   const uint32_t* node;
   CDB_HD void operator()(uint32_t e) const {
+    const FrontTree& tree = view.tree;
     const uint32_t i = prim[e], j = node[e];
-    const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
+    const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     if (is_leaf(j)) {
-      if (tree.overlaps_node(lo, hi, j)) pairs.emit(tree.bvh.leaf_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
+      if (tree.overlaps_node(lo, hi, j)) pairs.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
     } else if (tree.overlaps_node(lo, hi, j)) {
-      traverse_range<false>(tree, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
+      traverse_range<false>(view, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
                             FrontSink{});
     }
   }
@@ -86,17 +108,20 @@ struct PreserveFrontFn {
 // missing one prunes: it climbs while it is a left child whose parent also misses, and the
 // node it ends on is kept only if it is a left child or its parent overlaps. A right child
 // under a missing parent is dropped: the leftmost front node of that parent's subtree climbs
-// to it, so the front stays a partition of (i, N-1]. The climb never reaches a node holding
-// leaf i: such a node contains leaf i's box and so always overlaps.
-CDB_HD_INLINE void update_front_node(const FrontTree& tree, const PairSink& pairs,
+// to it, so the front stays a partition of (i, N-1]. In a self front the climb never reaches
+// a node holding leaf i: such a node contains leaf i's box and so always overlaps. A cross
+// front partitions all leaves: its climb may end at the root, which is then kept (father
+// kNoNode), and the leftmost-node argument is the same.
+CDB_HD_INLINE void update_front_node(const FrontView& view, const PairSink& pairs,
                                      const FrontSink& front, uint32_t i, uint32_t j) {
-  const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
+  const FrontTree& tree = view.tree;
+  const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
   if (tree.overlaps_node(lo, hi, j)) {
     if (is_leaf(j)) {
-      pairs.emit(tree.bvh.leaf_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
+      pairs.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
       front.push(i, j, 1);
     } else {
-      traverse_range<true>(tree, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
+      traverse_range<true>(view, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
                            front);
     }
     return;
@@ -112,25 +137,25 @@ CDB_HD_INLINE void update_front_node(const FrontTree& tree, const PairSink& pair
 }
 
 struct UpdateFrontFn {
-  FrontTree tree;
+  FrontView view;
   PairSink pairs;
   FrontSink front;
   const uint32_t* prim;
   const uint32_t* node;
-  CDB_HD void operator()(uint32_t e) const { update_front_node(tree, pairs, front, prim[e], node[e]); }
+  CDB_HD void operator()(uint32_t e) const { update_front_node(view, pairs, front, prim[e], node[e]); }
 };
 
 // (4) Balance: the opt mark each front node will take in the coming update (1 = sprout),
 // counted per BVH node for the histogram sort (count_log null when another sort orders).
 struct MarkFrontFn {
-  FrontTree tree;
+  FrontView view;
   const uint32_t* prim;
   const uint32_t* node;
   uint8_t* mark;
   uint32_t* count_log;
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t i = prim[e], j = node[e];
-    mark[e] = tree.overlaps_node(tree.bvh.leaf_lo[i], tree.bvh.leaf_hi[i], j) ? 1 : 0;
+    mark[e] = view.tree.overlaps_node(view.query_lo[i], view.query_hi[i], j) ? 1 : 0;
     if (count_log) claim_one(&count_log[ref_index(j)]);
   }
 };

@@ -58,7 +58,7 @@ struct ClassifyFrontFn {
 // kept nodes are left to the next update (Algorithm 1) to sprout or prune: this pass costs
 // about a preserve plus the front's write, not an update.
 struct RestructureFrontFn {
-  FrontTree tree;
+  FrontView view;  // a self front: restructuring renumbers the leaves cross fronts query from
   PairSink pairs;
   FrontSink front;
   CandidateView cand;
@@ -67,18 +67,19 @@ struct RestructureFrontFn {
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t i = prim[e], j = node[e];
     if (j == kFrontDropped) return;
-    const vec4f lo = tree.bvh.leaf_lo[i], hi = tree.bvh.leaf_hi[i];
+    const FrontTree& tree = view.tree;
+    const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     if (j == kFrontRegenerate) {
       const uint32_t c = cand.slot_of_leaf(i) - 1;
-      traverse_range<true>(tree, i, lo, hi, tree.bvh.leaf_escape[i], cand.escape[c], pairs, front);
+      traverse_range<true>(view, i, lo, hi, tree.bvh.leaf_escape[i], cand.escape[c], pairs, front);
       return;
     }
     front.push(i, j, 0);
     if (!tree.overlaps_node(lo, hi, j)) return;
     if (is_leaf(j))
-      pairs.emit(tree.bvh.leaf_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
+      pairs.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
     else
-      traverse_range<false>(tree, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
+      traverse_range<false>(view, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
                             FrontSink{});
   }
 };

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bruteforce/brute_force.h"
+#include "bvh/cross_query.h"
 #include "bvh/self_query.h"
 #include "grid/uniform_grid.h"
 #include "hash/spatial_hash.h"
@@ -19,7 +20,8 @@
 namespace cdb {
 
 enum class BroadPhaseMethod {
-  bvh,    // build once (and every rebuild_every frames), refit otherwise
+  bvh,    // build once (and every rebuild_every frames), refit otherwise; a split scene's
+          // rigid tree is only refitted after its build (docs/design.md)
   sweep,  // sort-and-sweep along the axis of largest centroid variance, every frame
   grid,   // uniform grid with size levels (OTG style), every frame
   hash,   // uniform-grid spatial hashing (kDet style), every frame
@@ -35,6 +37,7 @@ class BroadPhase final : public Pipeline {
         timer_(exec_),
         mesh_(exec_),
         bvh_(exec_),
+        rigid_bvh_(exec_, "rigid_bvh"),
         sweep_(exec_),
         grid_(exec_),
         hash_(exec_),
@@ -64,7 +67,8 @@ class BroadPhase final : public Pipeline {
         hash_.reserve(exec_, n);
         break;
       case BroadPhaseMethod::bvh:
-        bvh_.reserve(exec_, n);
+        bvh_.reserve(exec_, mesh_.deformable().count);
+        rigid_bvh_.reserve(exec_, mesh_.rigid().count);
         break;
     }
     frame_ = 0;
@@ -99,7 +103,7 @@ class BroadPhase final : public Pipeline {
           hash_pairs(exec_, hash_, mesh.num_faces, pairs_.sink());
           break;
         case BroadPhaseMethod::bvh:
-          self_query(exec_, bvh_.view(), pairs_.sink());
+          bvh_query();
           break;
       }
       timer_.stop(Phase::query);
@@ -163,7 +167,17 @@ class BroadPhase final : public Pipeline {
         break;
     }
     const bool rebuild = frame_ == 0 || (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
-    return update_hierarchy(exec_, timer_, bvh_, mesh, rebuild, config_.morton_bits);
+    update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), frame_ == 0, config_.morton_bits,
+                     false, mesh_.face_object());
+    return update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild, config_.morton_bits);
+  }
+
+  // The traversals the scene's queries need (all of the one tree's pairs when unsplit).
+  void bvh_query() {
+    const ObjectSplit& split = mesh_.split();
+    if (split.deformable_self) self_query(exec_, bvh_.view(), pairs_.sink());
+    if (split.cross) cross_query(exec_, bvh_.view(), rigid_bvh_.view(), pairs_.sink());
+    if (split.rigid_self) self_query(exec_, rigid_bvh_.view(), pairs_.sink());
   }
 
   PipelineConfig config_;
@@ -171,7 +185,8 @@ class BroadPhase final : public Pipeline {
   Exec exec_;
   Timer timer_;
   DeviceMesh<Exec> mesh_;
-  Lbvh<Exec> bvh_;
+  Lbvh<Exec> bvh_;        // T_D: the deformable faces, or every face of an unsplit scene
+  Lbvh<Exec> rigid_bvh_;  // T_R: the rigid faces (empty unless a query needs them)
   SweepAndPrune<Exec> sweep_;
   UniformGrid<Exec> grid_;
   SpatialHash<Exec> hash_;

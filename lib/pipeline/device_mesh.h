@@ -10,7 +10,9 @@
 #include "bvh/refit.h"
 #include "core/error.h"
 #include "core/pair_sink.h"
+#include "geometry/face_subset.h"
 #include "geometry/mesh.h"
+#include "geometry/object_split.h"
 #include "pipeline/pipeline.h"
 
 namespace cdb {
@@ -23,6 +25,8 @@ class DeviceMesh {
     faces_.bind(exec.memory(), "mesh.faces");
     face_object_.bind(exec.memory(), "mesh.face_object");
     partners_.bind(exec.memory(), "mesh.partners");
+    deformable_faces_.bind(exec.memory(), "mesh.deformable_faces");
+    rigid_faces_.bind(exec.memory(), "mesh.rigid_faces");
   }
   void set_topology(Exec& exec, const Topology& topology) {
     if (topology.faces.size() > kMaxLeaves) fail("scene has more triangles than 2^31-1");
@@ -39,6 +43,23 @@ class DeviceMesh {
       exec.copy_from_host(face_object_.data(), t.face_object.data(), t.face_object.size());
       exec.copy_from_host(partners_.data(), t.partners.data(), t.partners.size());
     }
+    split_ = split_objects(topology);
+    deformable_faces_.reserve(split_.deformable_faces.size());
+    rigid_faces_.reserve(split_.rigid_faces.size());
+    exec.copy_from_host(deformable_faces_.data(), split_.deformable_faces.data(),
+                        split_.deformable_faces.size());
+    exec.copy_from_host(rigid_faces_.data(), split_.rigid_faces.data(), split_.rigid_faces.size());
+  }
+  // Which trees and traversals the scene's queries need (geometry/object_split.h).
+  const ObjectSplit& split() const { return split_; }
+  // The faces of T_D (every face when the scene is not split) and of T_R; none when no
+  // declared query needs the tree.
+  FaceSubset deformable() const {
+    if (!split_.split) return {nullptr, num_faces_};
+    return {deformable_faces_.data(), split_.deformable_tree() ? uint32_t(split_.deformable_faces.size()) : 0u};
+  }
+  FaceSubset rigid() const {
+    return {rigid_faces_.data(), split_.rigid_tree() ? uint32_t(split_.rigid_faces.size()) : 0u};
   }
   // The scene's declared queries as the pair sink reads them, or nulls: every pair.
   const uint32_t* face_object() const { return queries_declared_ ? face_object_.data() : nullptr; }
@@ -59,6 +80,8 @@ class DeviceMesh {
   Array<Tri> faces_;
   Array<uint32_t> face_object_;
   Array<uint64_t> partners_;
+  Array<uint32_t> deformable_faces_, rigid_faces_;
+  ObjectSplit split_;
   bool queries_declared_ = false;
   uint32_t num_vertices_ = 0, num_faces_ = 0;
 };
@@ -84,10 +107,12 @@ void record_timings(const Timer& timer, FrameStats& stats) {
 }
 
 // Rebuild (build + depth-first order, by histogram or, for the radix baseline, by a key
-// sort) or refit the hierarchy; returns which ran.
+// sort) or refit the hierarchy over `faces` (grouped by `face_group` if given: build.h);
+// returns which ran.
 template <class Exec, class Timer>
 std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const MeshView& mesh,
-                             bool rebuild, MortonBits bits, bool radix_order = false) {
+                             FaceSubset faces, bool rebuild, MortonBits bits, bool radix_order = false,
+                             const uint32_t* face_group = nullptr) {
   if (!rebuild) {
     timer.start(Phase::refit);
     refit(exec, bvh, mesh);
@@ -95,7 +120,7 @@ std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const Me
     return "refit";
   }
   timer.start(Phase::build);
-  build_hierarchy(exec, bvh, mesh, bits);
+  build_hierarchy(exec, bvh, mesh, bits, faces, face_group);
   timer.stop(Phase::build);
   timer.start(Phase::order);
   if (radix_order)
@@ -107,11 +132,11 @@ std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const Me
 }
 
 // The pair buffer: pairs plus a small block of device counters read back once a frame
-// (counters[0] = pairs; pipelines may use the rest).
+// (counters[0] = pairs; pipelines may use the rest: pipeline/front_pipeline.h lays out its).
 template <class Exec>
 class PairBuffer {
  public:
-  static constexpr size_t kCounters = 8;
+  static constexpr size_t kCounters = 12;
   explicit PairBuffer(Exec& exec) {
     pairs_.bind(exec.memory(), "pairs");
     counters_.bind(exec.memory(), "counters");

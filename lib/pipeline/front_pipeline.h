@@ -7,18 +7,22 @@
 // histogram sort unless the strategy is `unordered`. One read-back a frame: pair, front and
 // inspection counters together; an overflow grows the buffer (logged, counted) and re-runs
 // the operation from the untouched current front.
+//
+// A scene with declared queries and rigid objects is split (geometry/object_split.h): T_D
+// over the deformable faces follows this state machine; T_R over the rigid faces is built
+// on the first frame and only refitted after (rigid motion keeps a tree's quality). Up to
+// three front queries run each frame, each only when a declared query needs it: the self
+// fronts of T_D, the cross fronts of T_D's leaves against T_R, and the self fronts of T_R.
+// Unsplit, T_D holds every face and only its self fronts run.
 #include <algorithm>
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "front/front.h"
-#include "front/operations.h"
-#include "front/ordering.h"
 #include "front/quality.h"
-#include "front/radix_ordering.h"
-#include "front/restructure_front.h"
 #include "pipeline/device_mesh.h"
+#include "pipeline/front_query.h"
 #include "pipeline/pipeline.h"
 
 namespace cdb {
@@ -36,10 +40,10 @@ template <class Exec, class Timer>
 class FrontPipeline final : public Pipeline {
  public:
   FrontPipeline(const PipelineConfig& config, FrontPlan plan)
-      : config_(config), plan_(plan), timer_(exec_), mesh_(exec_), bvh_(exec_), pairs_(exec_),
-        restructure_(exec_) {
-    front_[kInternalFront].bind(exec_.memory(), kInternalFront);
-    front_[kExternalFront].bind(exec_.memory(), kExternalFront);
+      : config_(config), plan_(plan), timer_(exec_), mesh_(exec_), bvh_(exec_),
+        rigid_bvh_(exec_, "rigid_bvh"), pairs_(exec_), restructure_(exec_),
+        self_(exec_, "front", kSelfCounters), inter_(exec_, "inter_front", kInterCounters),
+        rigid_self_(exec_, "rigid_front", kRigidCounters) {
     radix_.bind(exec_.memory());
     if (config_.front_cycle == 0) fail("--front-cycle must be at least 1");
     if (plan_.restructure) check_restructure_config(config_);
@@ -47,16 +51,18 @@ class FrontPipeline final : public Pipeline {
 
   void set_topology(const Topology& topology) override {
     mesh_.set_topology(exec_, topology);
-    const uint32_t n = mesh_.num_faces();
+    const ObjectSplit& split = mesh_.split();
     pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);
     pairs_.filter_queries(mesh_.face_object(), mesh_.partners());
-    bvh_.reserve(exec_, n);
-    pairs_.reserve(size_t(config_.pairs_per_triangle * n));
-    const size_t cap = std::max<size_t>(1024, size_t(config_.front_per_triangle * n));
-    front_[kInternalFront].reserve(cap, n > 1 ? n - 1 : 1);
-    front_[kExternalFront].reserve(cap, std::max<uint32_t>(n, 1));
-    if (plan_.radix_sort) radix_.reserve(exec_, cap);
-    if (plan_.restructure) restructure_.reserve(exec_, n, config_.restructure_min_leaves);
+    pairs_.reserve(size_t(config_.pairs_per_triangle * mesh_.num_faces()));
+    bvh_.reserve(exec_, mesh_.deformable().count);
+    rigid_bvh_.reserve(exec_, mesh_.rigid().count);
+    self_.plan(bvh_, bvh_, split.deformable_self, config_.front_per_triangle);
+    inter_.plan(bvh_, rigid_bvh_, split.cross, config_.front_per_triangle);
+    rigid_self_.plan(rigid_bvh_, rigid_bvh_, split.rigid_self, config_.front_per_triangle);
+    if (plan_.radix_sort)
+      radix_.reserve(exec_, std::max({self_.capacity(), inter_.capacity(), rigid_self_.capacity()}));
+    if (plan_.restructure) restructure_.reserve(exec_, bvh_.num_leaves, config_.restructure_min_leaves);
     frame_ = 0;
     pending_ = {};
     q_ref_ = 0.0;
@@ -69,33 +75,40 @@ class FrontPipeline final : public Pipeline {
     const Decision decision = decide(stats);
     const bool rebuild = frame_ == 0 || plan_.rebuild_every_frame || decision == Decision::rebuild ||
                          (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
-    stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, rebuild, config_.morton_bits, plan_.radix_sort);
+    stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild,
+                                config_.morton_bits, plan_.radix_sort);
+    update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), frame_ == 0, config_.morton_bits,
+                     plan_.radix_sort, mesh_.face_object());
     if (rebuild) generated_at_ = frame_;
-    const Op op = !rebuild && decision == Decision::restructure ? Op::restructure : choose_op(rebuild);
-    if (op == Op::update && plan_.balance) balance();
-    if (op == Op::restructure) restructure_tree_and_classify_fronts();
+    const Ops ops = choose_ops(rebuild, !rebuild && decision == Decision::restructure);
+    if (plan_.balance) balance(ops);
+    if (ops.self == Op::restructure) restructure_tree_and_classify_fronts();
     // Inspected after update (the paper's circle 3) only: right after a rebuild Q is the
     // reference, and a restructure keeps the stale front for the next update to refresh.
-    const bool inspect = plan_.restructure && q_ref_ > 0.0 && op == Op::update;
+    const bool inspect = plan_.restructure && q_ref_ > 0.0 && ops.self == Op::update;
     for (;;) {
       pairs_.reset_counters(exec_);
-      run_op(op);
+      run_ops(ops);
       if (inspect) inspect_quality();
       timer_.stop_frame();
       const auto c = pairs_.read_counters(exec_);
       bool again = pairs_.grow_if_needed();
-      if (op != Op::preserve) again = grow_front_if_needed(c) || again;
+      for (Query q : kQueries)
+        if (ops.of(q) != Op::preserve) again = query(q).grow_if_needed(c) || again;
       if (!again) {
-        if (op != Op::preserve) adopt_produced_front(c);
+        for (Query q : kQueries)
+          if (ops.of(q) != Op::preserve) query(q).adopt(c, plan_.ordered);
         break;
       }
       ++stats.query_reruns;
     }
-    if (op == Op::generate) generated_at_ = frame_;
-    stats.op += std::string("+") + op_name(op);
+    if (ops.self == Op::generate) generated_at_ = frame_;
+    stats.op += std::string("+") + op_name(ops.self);
     stats.pairs = pairs_.count();
-    stats.front_internal = front_[kInternalFront].size;
-    stats.front_external = front_[kExternalFront].size;
+    stats.front_internal = self_.size(kInternalFront);
+    stats.front_external = self_.size(kExternalFront);
+    stats.front_inter = inter_.total();
+    stats.front_rigid = rigid_self_.total();
     stats.q_root = plan_.ordered && stats.front_external
                        ? double(stats.front_internal) / double(stats.front_external)
                        : 0.0;
@@ -117,6 +130,11 @@ class FrontPipeline final : public Pipeline {
   MemoryStats memory() const override { return const_cast<Exec&>(exec_).memory().stats(); }
 
  private:
+  // The pair buffer's counters: [0] pairs, [3] balance scratch, [4..6] the inspection's;
+  // each front query counts its produced internal and external fronts in two more.
+  static constexpr size_t kSelfCounters = 1, kInterCounters = 7, kRigidCounters = 9;
+  static_assert(kRigidCounters + 2 <= PairBuffer<Exec>::kCounters, "front counters past the block");
+
   enum class Op { generate, preserve, update, restructure };
   static const char* op_name(Op op) {
     return op == Op::generate   ? "generate"
@@ -124,6 +142,18 @@ class FrontPipeline final : public Pipeline {
            : op == Op::update   ? "update"
                                 : "restructure";
   }
+
+  enum class Query { self, inter, rigid_self };
+  static constexpr std::array<Query, 3> kQueries = {Query::self, Query::inter, Query::rigid_self};
+  FrontQuery<Exec>& query(Query q) {
+    return q == Query::self ? self_ : q == Query::inter ? inter_ : rigid_self_;
+  }
+
+  // The operation of each front query this frame.
+  struct Ops {
+    Op self, inter, rigid_self;
+    Op of(Query q) const { return q == Query::self ? self : q == Query::inter ? inter : rigid_self; }
+  };
 
   enum class Decision { none, refit, restructure, rebuild };
 
@@ -152,17 +182,13 @@ class FrontPipeline final : public Pipeline {
     return d;
   }
 
-  // (5), first half: candidates described from the refitted tree, fronts classified against
-  // the old node ranges, then the candidate subtrees rebuilt. The front pass that follows
-  // (run_op) may be re-run on overflow; this part must not be.
+  // (5), first half: candidates described from the refitted T_D, its self fronts
+  // classified against the old node ranges, then the candidate subtrees rebuilt. The front
+  // pass that follows (run_ops) may be re-run on overflow; this part must not be.
   void restructure_tree_and_classify_fronts() {
     timer_.start(Phase::restructure);
     describe_candidates(exec_, bvh_, restructure_, restructuring_.count);
-    const CandidateView cand = restructure_.view();
-    for (int k = 0; k < 2; ++k)
-      exec_.for_each_n(front_[k].size, ClassifyFrontFn{bvh_.node_first.data(), bvh_.node_last.data(),
-                                                       cand, front_[k].prim.data(),
-                                                       front_[k].node.data()});
+    self_.classify(exec_, restructure_.view());
     restructure_subtrees(exec_, bvh_, restructure_, restructuring_.count, restructuring_.leaves);
     timer_.stop(Phase::restructure);
   }
@@ -175,13 +201,22 @@ class FrontPipeline final : public Pipeline {
         config_.restructure_min_leaves, uint32_t(config_.restructure_max_fraction * double(n)));
     exec_.for_each_n(n - 1, InspectQualityFn{bvh_.node_first.data(), bvh_.node_last.data(),
                                              bvh_.node_parent.data(),
-                                             front_[kInternalFront].offset_log.data(),
-                                             front_[kExternalFront].offset_log.data(),
+                                             self_.front(kInternalFront).offset_log.data(),
+                                             self_.front(kExternalFront).offset_log.data(),
                                              float(config_.restructure_quality * q_ref_),
                                              config_.restructure_min_leaves, max_leaves,
                                              restructure_.max_candidates, restructure_.node.data(),
                                              pairs_.counter(4)});
     timer_.stop(Phase::inspect);
+  }
+
+  // The self fronts of T_D follow the cycle, or restructure. The cross fronts name T_D's
+  // leaves, which a rebuild or a restructure renumbers: they regenerate then, and otherwise
+  // follow the cycle. T_R is only refitted after its build, so its self fronts follow the
+  // cycle (generating when T_D rebuilds, with everything else).
+  Ops choose_ops(bool rebuilt, bool restructure) const {
+    const Op cycle = choose_op(rebuilt);
+    return {restructure ? Op::restructure : cycle, restructure ? Op::generate : cycle, cycle};
   }
 
   Op choose_op(bool rebuilt) const {
@@ -192,158 +227,67 @@ class FrontPipeline final : public Pipeline {
     return Op::update;
   }
 
-  FrontTree tree() const {
-    return {bvh_.view(), bvh_.leaf_parent.data(), bvh_.node_parent.data()};
-  }
-
-  FrontSink produce_sink() {
-    FrontSink s{};
-    for (int k = 0; k < 2; ++k) {
-      FrontArrays<Exec>& f = front_[k];
-      s.prim[k] = f.raw_prim.data();
-      s.node[k] = f.raw_node.data();
-      s.mark[k] = f.raw_mark.data();
-      s.capacity[k] = f.raw_prim.capacity();
-      s.count_log[k] = histogram_sorted() ? f.count_log.data() : nullptr;
-    }
-    s.count = pairs_.counter(1);
-    return s;
-  }
-
-  size_t segments(int k) const {
-    const uint32_t n = bvh_.num_leaves;
-    return k == kInternalFront ? (n > 1 ? n - 1 : 0) : n;
-  }
-
   bool histogram_sorted() const { return plan_.ordered && !plan_.radix_sort; }
 
-  void zero_count_logs() {
-    for (int k = 0; k < 2; ++k) exec_.fill(front_[k].count_log.data(), segments(k) + 1, 0u);
+  static Phase phase_of(Op op) {
+    return op == Op::generate      ? Phase::generate
+           : op == Op::preserve    ? Phase::preserve
+           : op == Op::restructure ? Phase::restructure
+                                   : Phase::update;
   }
 
-  void run_op(Op op) {
-    const FrontTree t = tree();
-    const uint32_t n = bvh_.num_leaves;
-    if (op == Op::preserve) {
-      timer_.start(Phase::preserve);
-      for (int k = 0; k < 2; ++k)
-        exec_.for_each_n(front_[k].size, PreserveFrontFn{t, pairs_.sink(), front_[k].prim.data(),
-                                                         front_[k].node.data()},
-                         Balance::uneven);
-      timer_.stop(Phase::preserve);
-      return;
+  // Every active query's operation, then the ordering of the fronts they produced.
+  void run_ops(const Ops& ops) {
+    const bool histogram = histogram_sorted();
+    bool produced = false;
+    for (Query q : kQueries) {
+      FrontQuery<Exec>& fq = query(q);
+      const Op op = ops.of(q);
+      if (!fq.active()) continue;
+      timer_.start(phase_of(op));
+      switch (op) {
+        case Op::preserve:
+          fq.preserve(exec_, pairs_);
+          break;
+        case Op::generate:
+          fq.generate(exec_, pairs_, histogram);
+          break;
+        case Op::update:
+          fq.update(exec_, pairs_, histogram);
+          break;
+        case Op::restructure:
+          fq.restructure(exec_, pairs_, histogram, restructure_.view());
+          break;
+      }
+      timer_.stop(phase_of(op));
+      produced = produced || op != Op::preserve;
     }
-    const Phase phase = op == Op::generate      ? Phase::generate
-                        : op == Op::restructure ? Phase::restructure
-                                                : Phase::update;
-    timer_.start(phase);
-    if (histogram_sorted()) zero_count_logs();
-    const FrontSink sink = produce_sink();
-    if (op == Op::generate) {
-      exec_.for_each_n(n, GenerateFrontFn{t, pairs_.sink(), sink}, Balance::uneven);
-    } else if (op == Op::restructure) {
-      for (int k = 0; k < 2; ++k)
-        exec_.for_each_n(front_[k].size,
-                         RestructureFrontFn{t, pairs_.sink(), sink, restructure_.view(),
-                                            front_[k].prim.data(), front_[k].node.data()},
-                         Balance::uneven);
-    } else {
-      for (int k = 0; k < 2; ++k)
-        exec_.for_each_n(front_[k].size, UpdateFrontFn{t, pairs_.sink(), sink, front_[k].prim.data(),
-                                                       front_[k].node.data()},
-                         Balance::uneven);
-    }
-    timer_.stop(phase);
-    if (!plan_.ordered) return;
+    if (!plan_.ordered || !produced) return;
     if (plan_.radix_sort) {
       // The sort needs the produced sizes on the host: one more read-back on these frames.
       const auto c = pairs_.read_counters(exec_);
       timer_.start(Phase::front_order);
-      for (int k = 0; k < 2; ++k) {
-        FrontArrays<Exec>& f = front_[k];
-        if (c[1 + k] <= f.raw_prim.capacity())
-          radix_order_front(exec_, f, radix_, size_t(c[1 + k]), key_bits(k), f.raw_prim.data(),
-                            f.raw_node.data(), f.raw_mark.data());
-      }
+      for (Query q : kQueries)
+        if (ops.of(q) != Op::preserve) query(q).radix_order(exec_, radix_, c);
       timer_.stop(Phase::front_order);
       return;
     }
     timer_.start(Phase::front_order);
-    for (int k = 0; k < 2; ++k) {
-      FrontArrays<Exec>& f = front_[k];
-      order_front(exec_, f, segments(k), pairs_.counter(1 + k), f.raw_prim.data(), f.raw_node.data(),
-                  f.raw_mark.data(), f.raw_prim.capacity(), bvh_.temp.data(), bvh_.temp.size());
-    }
+    for (Query q : kQueries)
+      if (ops.of(q) != Op::preserve) query(q).order(exec_, pairs_);
     timer_.stop(Phase::front_order);
   }
 
-  int key_bits(int k) const {
-    int bits = 1;
-    while (bits < 63 && (uint64_t(1) << bits) < 2 * uint64_t(segments(k)) + 2) ++bits;
-    return bits;
-  }
-
-  // (4) Balance: mark each current front node with the branch it will take, then reorder
-  // the current front by node key and mark. The front's content is unchanged.
-  void balance() {
+  // (4) Balance, before each update: the fronts' content is unchanged.
+  void balance(const Ops& ops) {
+    bool any = false;
+    for (Query q : kQueries) any = any || (ops.of(q) == Op::update && query(q).active());
+    if (!any) return;
     timer_.start(Phase::balance);
-    const FrontTree t = tree();
-    if (histogram_sorted()) zero_count_logs();
-    for (int k = 0; k < 2; ++k) {
-      FrontArrays<Exec>& f = front_[k];
-      exec_.for_each_n(f.size, MarkFrontFn{t, f.prim.data(), f.node.data(), f.raw_mark.data(),
-                                           histogram_sorted() ? f.count_log.data() : nullptr});
-      if (plan_.radix_sort) {
-        radix_order_front(exec_, f, radix_, f.size, key_bits(k), f.prim.data(), f.node.data(),
-                          f.raw_mark.data());
-      } else {
-        exec_.fill(pairs_.counter(3), 1, static_cast<unsigned long long>(f.size));
-        order_front(exec_, f, segments(k), pairs_.counter(3), f.prim.data(), f.node.data(),
-                    f.raw_mark.data(), f.size, bvh_.temp.data(), bvh_.temp.size());
-      }
-      std::swap(f.prim, f.sorted_prim);
-      std::swap(f.node, f.sorted_node);
-      match_capacity(f);
-    }
+    for (Query q : kQueries)
+      if (ops.of(q) == Op::update)
+        query(q).balance(exec_, pairs_, histogram_sorted(), plan_.radix_sort ? &radix_ : nullptr);
     timer_.stop(Phase::balance);
-  }
-
-  bool grow_front_if_needed(const std::array<unsigned long long, PairBuffer<Exec>::kCounters>& c) {
-    bool grew = false;
-    for (int k = 0; k < 2; ++k) {
-      FrontArrays<Exec>& f = front_[k];
-      const unsigned long long need = c[1 + k];
-      if (need <= f.raw_prim.capacity()) continue;
-      const size_t cap = size_t(need + need / 4);
-      for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node}) a->reserve(cap);
-      f.raw_mark.reserve(cap);
-      grew = true;
-    }
-    return grew;
-  }
-
-  void adopt_produced_front(const std::array<unsigned long long, PairBuffer<Exec>::kCounters>& c) {
-    for (int k = 0; k < 2; ++k) {
-      FrontArrays<Exec>& f = front_[k];
-      if (plan_.ordered) {
-        std::swap(f.prim, f.sorted_prim);
-        std::swap(f.node, f.sorted_node);
-      } else {
-        std::swap(f.prim, f.raw_prim);
-        std::swap(f.node, f.raw_node);
-      }
-      f.size = size_t(c[1 + k]);
-      match_capacity(f);
-    }
-  }
-
-  // Scratch buffers swapped with the current front keep up with its capacity, so a front
-  // that grew does not make its next operation overflow again. Contents are scratch.
-  void match_capacity(FrontArrays<Exec>& f) {
-    const size_t cap = std::max({f.prim.capacity(), f.raw_prim.capacity(), f.sorted_prim.capacity()});
-    for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node})
-      if (a->capacity() < cap) a->reserve(cap);
-    if (f.raw_mark.capacity() < cap) f.raw_mark.reserve(cap);
   }
 
   PipelineConfig config_;
@@ -351,11 +295,14 @@ class FrontPipeline final : public Pipeline {
   Exec exec_;
   Timer timer_;
   DeviceMesh<Exec> mesh_;
-  Lbvh<Exec> bvh_;
+  Lbvh<Exec> bvh_;        // T_D: the deformable faces, or every face of an unsplit scene
+  Lbvh<Exec> rigid_bvh_;  // T_R: the rigid faces (empty unless a query needs them)
   PairBuffer<Exec> pairs_;
-  FrontArrays<Exec> front_[2];
   RadixScratch<Exec> radix_;
   RestructureScratch<Exec> restructure_;
+  FrontQuery<Exec> self_;        // T_D's leaves against T_D
+  FrontQuery<Exec> inter_;       // T_D's leaves against T_R
+  FrontQuery<Exec> rigid_self_;  // T_R's leaves against T_R
   struct Candidates {
     uint32_t count = 0, leaves = 0;
   };

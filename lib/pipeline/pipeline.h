@@ -57,7 +57,10 @@ struct FrameStats {
   // bandwidth floor's numerator, filled by the frame loop.
   uint64_t bytes_floor = 0;
   std::string op;             // what the frame did: hierarchy (build/refit) + front operation
-  uint64_t front_internal = 0, front_external = 0;  // front sizes after the frame
+  uint64_t front_internal = 0, front_external = 0;  // self front sizes after the frame
+  // A split scene's other fronts after the frame (internal + external nodes): T_D's leaves
+  // against T_R, and T_R's self fronts (docs/design.md "Deformable and rigid objects").
+  uint64_t front_inter = 0, front_rigid = 0;
   double q_root = 0.0;  // Formula 1 at the root (internal / external front nodes), when ordered
   // Pipeline c: what this frame's inspection found (candidates, their leaves, their mean Q)
   // and the Formula 2 decision taken at its start on the previous inspection ("" if none).

@@ -1,0 +1,42 @@
+#pragma once
+// Stackless query of one tree's leaves against another tree (the D-R traversal of a split
+// scene, docs/design.md "Deformable and rigid objects"): leaf i of the query tree starts at
+// the other tree's root, an overlapping internal node descends to its left child, anything
+// else jumps to its escape index. The trees hold disjoint faces, so every overlapping leaf
+// is a pair, reported once, with no i < j rule.
+#include <cstdint>
+
+#include "bvh/bvh_view.h"
+#include "core/aabb.h"
+#include "core/pair_sink.h"
+#include "exec/balance.h"
+
+namespace cdb {
+
+struct CrossQueryFn {
+  BvhView query;
+  BvhView tree;
+  PairSink sink;
+  CDB_HD void operator()(uint32_t i) const {
+    const vec4f lo = query.leaf_lo[i], hi = query.leaf_hi[i];
+    const uint32_t prim = query.leaf_prim[i];
+    uint32_t node = tree.root();
+    while (node != kNoNode) {
+      const uint32_t k = ref_index(node);
+      if (is_leaf(node)) {
+        if (overlaps(lo, hi, tree.leaf_lo[k], tree.leaf_hi[k])) sink.emit(prim, tree.leaf_prim[k]);
+        node = tree.leaf_escape[k];
+      } else {
+        node = overlaps(lo, hi, tree.node_lo[k], tree.node_hi[k]) ? tree.node_left[k]
+                                                                 : tree.node_escape[k];
+      }
+    }
+  }
+};
+
+template <class Exec>
+void cross_query(Exec& exec, const BvhView& query, const BvhView& tree, const PairSink& sink) {
+  exec.for_each_n(query.num_leaves, CrossQueryFn{query, tree, sink}, Balance::uneven);
+}
+
+}  // namespace cdb

@@ -1,0 +1,228 @@
+#pragma once
+// The BVTT fronts of one query of a front pipeline: the self fronts of a tree, or the cross
+// fronts of T_D's leaves against T_R (docs/design.md "Deformable and rigid objects"). It
+// holds both kinds of front, knows its two trees and which two pair-buffer counters count
+// its produced fronts, and runs the front operations on them; FrontPipeline decides which
+// operation runs when. A query the scene does not ask for is inactive: no fronts, no work.
+#include <algorithm>
+#include <array>
+#include <string>
+#include <utility>
+
+#include "front/front.h"
+#include "front/operations.h"
+#include "front/ordering.h"
+#include "front/radix_ordering.h"
+#include "front/restructure_front.h"
+#include "pipeline/device_mesh.h"
+
+namespace cdb {
+
+template <class Exec>
+class FrontQuery {
+ public:
+  using Counters = std::array<unsigned long long, PairBuffer<Exec>::kCounters>;
+
+  // `counter`: the first of the two counters (internal, external) of its produced fronts.
+  FrontQuery(Exec& exec, const std::string& name, size_t counter) : counter_(counter) {
+    front_[kInternalFront].bind(exec.memory(), kInternalFront, name);
+    front_[kExternalFront].bind(exec.memory(), kExternalFront, name);
+  }
+
+  // Query leaves come from `leaves`, front nodes from `tree` (the same tree: self fronts).
+  // Both trees must be reserved for their leaf counts already.
+  void plan(Lbvh<Exec>& leaves, Lbvh<Exec>& tree, bool active, double front_per_triangle) {
+    leaves_ = &leaves;
+    tree_ = &tree;
+    active_ = active;
+    for (auto& f : front_) f.size = 0;
+    if (!active_) return;
+    const size_t cap = std::max<size_t>(1024, size_t(front_per_triangle * leaves.num_leaves));
+    for (int k = 0; k < 2; ++k) front_[k].reserve(cap, std::max<size_t>(segments(k), 1));
+  }
+
+  bool active() const { return active_; }
+  size_t size(int k) const { return front_[k].size; }
+  size_t total() const { return front_[0].size + front_[1].size; }
+  size_t capacity() const { return front_[0].capacity(); }
+  const FrontArrays<Exec>& front(int k) const { return front_[k]; }
+
+  FrontView view() const {
+    const Lbvh<Exec>& t = *tree_;
+    return {{t.view(), t.leaf_parent.data(), t.node_parent.data()},
+            leaves_->leaf_lo.data(),
+            leaves_->leaf_hi.data(),
+            leaves_->leaf_prim.data(),
+            leaves_ != tree_};
+  }
+
+  // Histogram segments of kind k: the traversed tree's internal nodes or leaves.
+  size_t segments(int k) const {
+    const uint32_t n = tree_->num_leaves;
+    return k == kInternalFront ? (n > 1 ? n - 1 : 0) : n;
+  }
+
+  int key_bits(int k) const {
+    int bits = 1;
+    while (bits < 63 && (uint64_t(1) << bits) < 2 * uint64_t(segments(k)) + 2) ++bits;
+    return bits;
+  }
+
+  // (1) Generate over all query leaves. `histogram`: count the produced nodes per tree node.
+  void generate(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
+    if (!active_) return;
+    const FrontSink sink = produce_sink(exec, pairs, histogram);
+    exec.for_each_n(leaves_->num_leaves, GenerateFrontFn{view(), pairs.sink(), sink}, Balance::uneven);
+  }
+
+  // (2) Preserve: the current fronts are traversed, not rewritten.
+  void preserve(Exec& exec, PairBuffer<Exec>& pairs) {
+    if (!active_) return;
+    for (auto& f : front_)
+      exec.for_each_n(f.size, PreserveFrontFn{view(), pairs.sink(), f.prim.data(), f.node.data()},
+                      Balance::uneven);
+  }
+
+  // (3) Update: sprout and prune (Alg. 1).
+  void update(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
+    if (!active_) return;
+    const FrontSink sink = produce_sink(exec, pairs, histogram);
+    for (auto& f : front_)
+      exec.for_each_n(f.size, UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data()},
+                      Balance::uneven);
+  }
+
+  // (5), first half, for self fronts: classify against the tree's node ranges before its
+  // candidate subtrees are restructured.
+  void classify(Exec& exec, CandidateView cand) {
+    if (!active_) return;
+    for (auto& f : front_)
+      exec.for_each_n(f.size, ClassifyFrontFn{tree_->node_first.data(), tree_->node_last.data(), cand,
+                                              f.prim.data(), f.node.data()});
+  }
+
+  // (5), second half: the front pass over the classified self fronts.
+  void restructure(Exec& exec, PairBuffer<Exec>& pairs, bool histogram, CandidateView cand) {
+    if (!active_) return;
+    const FrontSink sink = produce_sink(exec, pairs, histogram);
+    for (auto& f : front_)
+      exec.for_each_n(f.size,
+                      RestructureFrontFn{view(), pairs.sink(), sink, cand, f.prim.data(), f.node.data()},
+                      Balance::uneven);
+  }
+
+  // Histogram sort of the produced fronts (sizes on the device in the counters).
+  void order(Exec& exec, PairBuffer<Exec>& pairs) {
+    if (!active_) return;
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      order_front(exec, f, segments(k), pairs.counter(counter_ + k), f.raw_prim.data(), f.raw_node.data(),
+                  f.raw_mark.data(), f.raw_prim.capacity(), tree_->temp.data(), tree_->temp.size());
+    }
+  }
+
+  // Radix sort of the produced fronts, with their sizes read back (`c`).
+  void radix_order(Exec& exec, RadixScratch<Exec>& radix, const Counters& c) {
+    if (!active_) return;
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      if (c[counter_ + k] <= f.raw_prim.capacity())
+        radix_order_front(exec, f, radix, size_t(c[counter_ + k]), key_bits(k), f.raw_prim.data(),
+                          f.raw_node.data(), f.raw_mark.data());
+    }
+  }
+
+  // (4) Balance: mark each current front node with the branch it will take, then reorder
+  // the current front by node key and mark. The front's content is unchanged.
+  void balance(Exec& exec, PairBuffer<Exec>& pairs, bool histogram, RadixScratch<Exec>* radix) {
+    if (!active_) return;
+    if (histogram) zero_count_logs(exec);
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      exec.for_each_n(f.size, MarkFrontFn{view(), f.prim.data(), f.node.data(), f.raw_mark.data(),
+                                          histogram ? f.count_log.data() : nullptr});
+      if (radix) {
+        radix_order_front(exec, f, *radix, f.size, key_bits(k), f.prim.data(), f.node.data(),
+                          f.raw_mark.data());
+      } else {
+        exec.fill(pairs.counter(3), 1, static_cast<unsigned long long>(f.size));
+        order_front(exec, f, segments(k), pairs.counter(3), f.prim.data(), f.node.data(),
+                    f.raw_mark.data(), f.size, tree_->temp.data(), tree_->temp.size());
+      }
+      std::swap(f.prim, f.sorted_prim);
+      std::swap(f.node, f.sorted_node);
+      match_capacity(f);
+    }
+  }
+
+  // After a read-back: grow each kind whose produced front did not fit; true if one grew
+  // (the caller re-runs the frame's front pass from the untouched current fronts).
+  bool grow_if_needed(const Counters& c) {
+    if (!active_) return false;
+    bool grew = false;
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      const unsigned long long need = c[counter_ + k];
+      if (need <= f.raw_prim.capacity()) continue;
+      const size_t cap = size_t(need + need / 4);
+      for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node}) a->reserve(cap);
+      f.raw_mark.reserve(cap);
+      grew = true;
+    }
+    return grew;
+  }
+
+  // The produced fronts become current: the sorted copies, or the raw ones if unordered.
+  void adopt(const Counters& c, bool ordered) {
+    if (!active_) return;
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      if (ordered) {
+        std::swap(f.prim, f.sorted_prim);
+        std::swap(f.node, f.sorted_node);
+      } else {
+        std::swap(f.prim, f.raw_prim);
+        std::swap(f.node, f.raw_node);
+      }
+      f.size = size_t(c[counter_ + k]);
+      match_capacity(f);
+    }
+  }
+
+ private:
+  void zero_count_logs(Exec& exec) {
+    for (int k = 0; k < 2; ++k) exec.fill(front_[k].count_log.data(), segments(k) + 1, 0u);
+  }
+
+  FrontSink produce_sink(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
+    if (histogram) zero_count_logs(exec);
+    FrontSink s{};
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      s.prim[k] = f.raw_prim.data();
+      s.node[k] = f.raw_node.data();
+      s.mark[k] = f.raw_mark.data();
+      s.capacity[k] = f.raw_prim.capacity();
+      s.count_log[k] = histogram ? f.count_log.data() : nullptr;
+    }
+    s.count = pairs.counter(counter_);
+    return s;
+  }
+
+  // Scratch buffers swapped with the current front keep up with its capacity, so a front
+  // that grew does not make its next operation overflow again. Contents are scratch.
+  static void match_capacity(FrontArrays<Exec>& f) {
+    const size_t cap = std::max({f.prim.capacity(), f.raw_prim.capacity(), f.sorted_prim.capacity()});
+    for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node})
+      if (a->capacity() < cap) a->reserve(cap);
+    if (f.raw_mark.capacity() < cap) f.raw_mark.reserve(cap);
+  }
+
+  FrontArrays<Exec> front_[2];
+  Lbvh<Exec>* leaves_ = nullptr;
+  Lbvh<Exec>* tree_ = nullptr;
+  size_t counter_;
+  bool active_ = false;
+};
+
+}  // namespace cdb
