@@ -6,7 +6,8 @@
 #   scripts/make_report.sh DIR OUTDIR
 #
 # DIR/*.h5: per-scene runs (curves, sort, pipelines, memory). DIR/scaling/*.h5, when present:
-# runs of one scene family at several sizes (scaling plot and exponents).
+# runs of one scene family at several sizes (scaling plot and exponents). DIR/ops/*.h5, when
+# present: the operation sweep (sweeps/h200-ops.json), one table of phases per pipeline.
 set -euo pipefail
 if [[ $# -ne 2 || ! -d $1 ]]; then
   echo "usage: scripts/make_report.sh DIR OUTDIR  (DIR: a directory of cdbench *.h5 results)" >&2
@@ -25,6 +26,7 @@ trap 'rm -f "$report.part"' EXIT
 
 inputs=("$dir")
 [[ -d $dir/scaling ]] && inputs+=("$dir/scaling")
+[[ -d $dir/ops ]] && inputs+=("$dir/ops")
 files=$(for d in "${inputs[@]}"; do ls "$d"/*.h5 2>/dev/null || true; done | wc -l)
 strategies=unordered,static,b,periodic,restructure,c,reference
 
@@ -68,6 +70,14 @@ strategies=unordered,static,b,periodic,restructure,c,reference
     echo "![scaling](scaling.png)"
   else
     echo "No $dir/scaling/ directory: no scaling runs."
+  fi
+  echo
+  echo "## Operations per size (kernel micro-benchmarks)"
+  echo
+  if [[ -d $dir/ops ]]; then
+    py table_phases.py "$dir/ops"
+  else
+    echo "No $dir/ops/ directory: no operation sweep."
   fi
   echo
   echo "## Memory"

@@ -28,6 +28,12 @@ for n in 1000 4000 16000; do
   printf '{"generator": "soup", "params": {"triangles": %d, "frames": 3}}' "$n" >"$tmp/soup-$n.json"
   run --scene "$tmp/soup-$n.json" --pipeline bvh,static --out "$res/scaling/soup-$n-{pipeline}.h5"
 done
+# The operation sweep's shape: every phase measured per size, the first frame included.
+for res_ops in 12 24; do
+  printf '{"generator": "cloth-wave", "params": {"res": %d, "frames": 3}}' "$res_ops" >"$tmp/ops-$res_ops.json"
+  run --scene "$tmp/ops-$res_ops.json" --pipeline static,radix-order --warmup 0 --front-cycle 1 \
+    --out "$res/ops/ops-$res_ops-{pipeline}.h5"
+done
 
 # An incomplete file: frame 1 has a NaN vertex, so the run stops after 1 of 2 frames.
 mkdir -p "$tmp/midway"
@@ -64,6 +70,12 @@ has "memory rows with bytes per front node" "$report" "^\| static \| [0-9.]+ \| 
 has "memory rows without fronts" "$report" "^\| bvh \| [0-9.]+ \| [0-9.]+ \| — \| — \|$"
 for p in bvh static; do
   has "exponent line $p" "$report" "^\| $p \| 3 \| 1,000 ~ 16,000 \| [0-9.]+ ~ [0-9.]+ \| -?[0-9]+\.[0-9]{2} \|$"
+done
+for p in static radix-order; do
+  has "operations table $p" "$report" "^### $p$"
+  for phase in build generate update front_order; do
+    has "operations row $p/$phase" "$report" "^\| $phase \| [0-9.]+ ms \([0-9.e+]+ ns/tri\) \| [0-9.]+ ms \([0-9.e+]+ ns/tri\) \|$"
+  done
 done
 has "incomplete file listed" "$report" "midway-bvh.h5\`: midway / bvh: incomplete \(1/2 frames\): frame 1: .*non-finite"
 has "inventory shows it incomplete" "$report" "^\| \`$res/midway-bvh.h5\` \| midway \| bvh \|.*incomplete \(1/2 frames\)"
