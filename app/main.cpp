@@ -45,6 +45,9 @@ struct CommonOptions {
   uint32_t front_cycle = 4;
   PipelineConfig restructure;  // the restructure_* and threshold_* fields
   bool skip_adjacent = false;
+  float box_margin = 0.0f;
+  std::string boxes = "discrete";
+  uint32_t refit_every = 1;
   std::vector<std::string> sets;  // generator overrides, key=value
 };
 
@@ -69,6 +72,22 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
       ->capture_default_str();
   cmd->add_flag("--skip-adjacent", o.skip_adjacent,
                 "co-vertex filtering: do not report pairs of triangles that share a vertex (oracle too)");
+  cmd->add_option("--box-margin", o.box_margin,
+                  "fat boxes: inflate every triangle box by this much (scene units) on each side; conservative "
+                  "(recall stays 1 against the exact oracle, precision drops); all pipelines")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--boxes", o.boxes,
+                  "discrete: each triangle's box at the frame; swept: its box over the frame interval (previous and "
+                  "current positions); swept is conservative with respect to the discrete oracle; all pipelines")
+      ->check(CLI::IsMember({"discrete", "swept"}))
+      ->capture_default_str();
+  cmd->add_option("--refit-every", o.refit_every,
+                  "NOT CONSERVATIVE: front pipelines and bvh refit the hierarchy only every K frames and keep stale "
+                  "boxes in between, so pairs can be missed (recall < 1 under --check); sweep, hash, grid and brute "
+                  "ignore it; 1: every frame")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   PipelineConfig& r = o.restructure;
   cmd->add_option("--restructure-quality", r.restructure_quality,
                   "pipeline c: a subtree is degraded when its Q exceeds this times Q(root) after the last rebuild")
@@ -112,6 +131,9 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.rebuild_every = o.rebuild_every;
   c.front_cycle = o.front_cycle;
   c.skip_adjacent = o.skip_adjacent;
+  c.box_margin = o.box_margin;
+  c.swept_boxes = o.boxes == "swept";
+  c.refit_every = o.refit_every;
   c.restructure_quality = o.restructure.restructure_quality;
   c.restructure_min_leaves = o.restructure.restructure_min_leaves;
   c.restructure_max_fraction = o.restructure.restructure_max_fraction;
@@ -281,6 +303,9 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     loop.copy_gbps = copy_gbps;
     loop.oracle = [&topo, &o](const std::vector<vec3f>& v) { return sweep_oracle_pairs(topo, v, o.skip_adjacent); };
     loop.faces = &topo.faces;
+    if (!config_conservative(config))
+      loop.accuracy_warning = "--refit-every " + std::to_string(config.refit_every) +
+                              " keeps stale boxes between refits: NOT conservative, pairs can be missed";
     if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, loop)) return rc;
   }
   return 0;
@@ -297,6 +322,9 @@ int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
     for (const auto& n : pipeline_names())
       if (n != oracle_pipeline()) pipelines.push_back(n);
   const bool brute_oracle = topo.faces.size() <= brute_limit;
+  // The oracle sees the same fat or swept boxes only as the brute-force pipeline.
+  if (!brute_oracle && (o.box_margin > 0 || o.boxes != "discrete"))
+    fail("verify --box-margin/--boxes swept needs the brute-force oracle (raise --brute-limit)");
   std::printf("verify: scene %s (%zu triangles), frames %u:%u, device %s, oracle %s\n",
               scene.name.c_str(), topo.faces.size(), range.first, range.last, device.c_str(),
               brute_oracle ? "brute force (same device)" : "sort-and-sweep (cpu)");
@@ -336,6 +364,9 @@ int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
                 mismatched_frames[p] ? "MISMATCH" : "exact", range.last - range.first);
     ok = ok && mismatched_frames[p] == 0;
   }
+  if (o.refit_every > 1)
+    std::printf("verify: --refit-every %u is not conservative: bvh and the front pipelines may miss pairs\n",
+                o.refit_every);
   std::printf("verify: %s\n", ok ? "all pipelines match the oracle" : "FAILED");
   return ok ? 0 : 1;
 }

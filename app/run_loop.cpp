@@ -84,6 +84,15 @@ uint64_t frame_bytes_floor(const Topology& t, uint64_t pairs) {
   return 12ull * t.num_vertices + 12ull * t.faces.size() + 8ull * pairs;
 }
 
+void print_accuracy_warning(const std::string& why, const std::vector<FrameStats>& frames, uint32_t warmup) {
+  const RunSummary r = summarize_run(frames, warmup);
+  if (r.checked_frames)
+    std::printf("  warning     %s; measured recall min %.6f over %zu checked frames (%llu missed)\n", why.c_str(),
+                r.recall_min, r.checked_frames, static_cast<unsigned long long>(r.missed));
+  else
+    std::printf("  warning     %s; recall not measured (use --check)\n", why.c_str());
+}
+
 }  // namespace
 
 int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
@@ -144,6 +153,7 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
   }
   progress.finish();
   print_summary(frames, options.warmup, pipeline.memory(), options.copy_gbps);
+  if (!options.accuracy_warning.empty()) print_accuracy_warning(options.accuracy_warning, frames, options.warmup);
   if (const int signal = interrupts.signal()) {
     const std::string why = std::string("interrupted by ") + signal_name(signal) + " after " +
                             std::to_string(frames.size()) + " of " + std::to_string(frames_per_pass) +

@@ -3,6 +3,7 @@
 // the results file, and a clean stop on an error or SIGINT/SIGTERM.
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "frame_range.h"
@@ -36,6 +37,9 @@ struct RunLoopOptions {
   double copy_gbps = 0.0;
   // The scene's faces, to count which checked pairs are true contacts (narrow/contacts.h).
   const std::vector<Tri>* faces = nullptr;
+  // Set when the configuration can miss pairs (--refit-every): printed after the summary,
+  // with the measured recall when frames were checked.
+  std::string accuracy_warning;
 };
 
 // Runs the frames of `range` (repeat passes of them), prints the summary and, given a results file, records every

@@ -3,6 +3,7 @@
 #include "baseline_cases.h"
 #include "bvh_cases.h"
 #include "inter_cases.h"
+#include "knob_cases.h"
 #include "io/scene.h"
 #include "exec/cuda_exec.cuh"
 
@@ -89,6 +90,30 @@ TEST(CudaPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   check_pipelines_on(config_for("cuda", 0.01), *wave);
   auto funnel = make_generator("funnel", {{"res", 48}, {"frames", 20}});
   check_pipelines_on(config_for("cuda", 8.0), *funnel);
+}
+
+// The speed/accuracy knobs (knob_cases.h): face_box's margin and swept boxes run in the
+// kernels exactly as the host reference computes them; lazy refits keep stale boxes.
+TEST(CudaKnobs, MarginGivesExactlyTheInflatedBoxPairs) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  auto soup = fast_soup(5);
+  check_margin("cuda", *soup, 0.25f * mean_box_extent(*soup));
+  auto cloth = rolling_cloth(5);
+  check_margin("cuda", *cloth, 0.5f * mean_box_extent(*cloth));
+}
+
+TEST(CudaKnobs, SweptGivesExactlyTheSweptBoxPairs) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  auto soup = fast_soup(5);
+  check_swept("cuda", *soup);
+  auto cloth = rolling_cloth(5);
+  check_swept("cuda", *cloth);
+}
+
+TEST(CudaKnobs, LazyRefitKeepsTheLastRefitsBoxesAndMissesPairs) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  auto soup = fast_soup(7);
+  check_lazy_refit("cuda", *soup, 3);
 }
 
 TEST(CudaPipelines, DeclaredQueriesReportOnlyWhatTheSceneAsks) {

@@ -25,15 +25,32 @@ struct Topology {
 };
 
 // What kernels see of a mesh frame: plain pointers, passed by value.
+// The speed/accuracy knobs every box goes through (docs/design.md "Speed/accuracy knobs"):
+// `prev_vertices` (null: none) makes each box also bound the triangle at the previous
+// frame (swept boxes), and `margin` (absolute, scene units, >= 0) inflates each box on
+// every side (fat boxes).
 struct MeshView {
   const vec3f* vertices;
   const Tri* faces;
   uint32_t num_faces;
+  const vec3f* prev_vertices = nullptr;
+  float margin = 0.0f;
 };
 
+// The one per-face box every pipeline and baseline uses. Subtracting / adding the margin
+// rounds to nearest, so a fat box still contains the exact box (the margin is >= 0).
 CDB_HD_INLINE void face_box(const MeshView& m, uint32_t f, vec4f& lo, vec4f& hi) {
   const Tri t = m.faces[f];
   triangle_box(m.vertices[t.v0], m.vertices[t.v1], m.vertices[t.v2], lo, hi);
+  if (m.prev_vertices) {
+    vec4f plo, phi;
+    triangle_box(m.prev_vertices[t.v0], m.prev_vertices[t.v1], m.prev_vertices[t.v2], plo, phi);
+    lo = {min_of(lo.x, plo.x), min_of(lo.y, plo.y), min_of(lo.z, plo.z), 0.0f};
+    hi = {max_of(hi.x, phi.x), max_of(hi.y, phi.y), max_of(hi.z, phi.z), 0.0f};
+  }
+  const float e = m.margin;
+  lo = {lo.x - e, lo.y - e, lo.z - e, 0.0f};
+  hi = {hi.x + e, hi.y + e, hi.z + e, 0.0f};
 }
 
 }  // namespace cdb

@@ -44,6 +44,8 @@ class BroadPhase final : public Pipeline {
         pairs_(exec_) {
     prim_lo_.bind(exec_.memory(), "brute.lo");
     prim_hi_.bind(exec_.memory(), "brute.hi");
+    mesh_.set_box_knobs(config_);
+    if (config_.refit_every == 0) fail("--refit-every must be at least 1");
   }
 
   void set_topology(const Topology& topology) override {
@@ -167,6 +169,7 @@ class BroadPhase final : public Pipeline {
         break;
     }
     const bool rebuild = frame_ == 0 || (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
+    if (!rebuild && !refit_due(frame_, config_.refit_every)) return "stale";
     update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), frame_ == 0, config_.morton_bits,
                      false, mesh_.face_object());
     return update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild, config_.morton_bits);

@@ -17,6 +17,10 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"restructure_max_fraction", c.restructure_max_fraction},
       {"threshold_refit", c.threshold_refit},
       {"threshold_build", c.threshold_build},
+      {"box_margin", c.box_margin},
+      {"boxes", c.swept_boxes ? "swept" : "discrete"},
+      {"refit_every", c.refit_every},
+      {"conservative", config_conservative(c)},
   };
 }
 

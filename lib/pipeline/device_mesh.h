@@ -1,6 +1,7 @@
 #pragma once
 // Pieces every pipeline's frame loop shares: the mesh on the executor, the ordered LBVH's
 // per-frame upkeep, and the pair buffer with its counters.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -21,7 +22,8 @@ template <class Exec>
 class DeviceMesh {
  public:
   explicit DeviceMesh(Exec& exec) {
-    vertices_.bind(exec.memory(), "mesh.vertices");
+    vertices_[0].bind(exec.memory(), "mesh.vertices");
+    vertices_[1].bind(exec.memory(), "mesh.prev_vertices");
     faces_.bind(exec.memory(), "mesh.faces");
     face_object_.bind(exec.memory(), "mesh.face_object");
     partners_.bind(exec.memory(), "mesh.partners");
@@ -32,7 +34,10 @@ class DeviceMesh {
     if (topology.faces.size() > kMaxLeaves) fail("scene has more triangles than 2^31-1");
     num_vertices_ = topology.num_vertices;
     num_faces_ = static_cast<uint32_t>(topology.faces.size());
-    vertices_.reserve(num_vertices_);
+    vertices_[0].reserve(num_vertices_);
+    if (swept_) vertices_[1].reserve(num_vertices_);
+    current_ = 0;
+    uploaded_ = have_previous_ = false;
     faces_.reserve(num_faces_);
     exec.copy_from_host(faces_.data(), topology.faces.data(), num_faces_);
     queries_declared_ = topology.queries.declared;
@@ -64,19 +69,37 @@ class DeviceMesh {
   // The scene's declared queries as the pair sink reads them, or nulls: every pair.
   const uint32_t* face_object() const { return queries_declared_ ? face_object_.data() : nullptr; }
   const uint64_t* partners() const { return queries_declared_ ? partners_.data() : nullptr; }
+  // The box knobs of PipelineConfig; call before set_topology (swept boxes need the
+  // second vertex buffer, reserved there).
+  void set_box_knobs(const PipelineConfig& config) {
+    if (!(config.box_margin >= 0.0f) || !std::isfinite(config.box_margin))
+      fail("--box-margin must be a finite number >= 0");
+    swept_ = config.swept_boxes;
+    margin_ = config.box_margin;
+  }
+  // Swept boxes: the two vertex buffers swap roles, the new positions go over the older
+  // frame's; no allocation.
   void upload(Exec& exec, const std::vector<vec3f>& vertices) {
     if (vertices.size() != num_vertices_)
       fail("frame has " + std::to_string(vertices.size()) + " vertices, topology has " +
            std::to_string(num_vertices_));
-    exec.copy_from_host(vertices_.data(), vertices.data(), num_vertices_);
+    if (swept_) {
+      have_previous_ = have_previous_ || uploaded_;
+      current_ ^= 1u;
+    }
+    uploaded_ = true;
+    exec.copy_from_host(vertices_[current_].data(), vertices.data(), num_vertices_);
   }
-  MeshView view() const { return {vertices_.data(), faces_.data(), num_faces_}; }
+  MeshView view() const {
+    const vec3f* prev = swept_ && have_previous_ ? vertices_[current_ ^ 1u].data() : nullptr;
+    return {vertices_[current_].data(), faces_.data(), num_faces_, prev, margin_};
+  }
   // The faces' vertex indices, 3 per face, for co-vertex filtering.
   const uint32_t* face_vertices() const { return reinterpret_cast<const uint32_t*>(faces_.data()); }
   uint32_t num_faces() const { return num_faces_; }
 
  private:
-  Array<vec3f> vertices_;
+  Array<vec3f> vertices_[2];  // current_ is this frame's; the other the previous frame's
   Array<Tri> faces_;
   Array<uint32_t> face_object_;
   Array<uint64_t> partners_;
@@ -84,7 +107,17 @@ class DeviceMesh {
   ObjectSplit split_;
   bool queries_declared_ = false;
   uint32_t num_vertices_ = 0, num_faces_ = 0;
+  bool swept_ = false;
+  float margin_ = 0.0f;
+  uint32_t current_ = 0;
+  bool uploaded_ = false, have_previous_ = false;
 };
+
+// --refit-every: whether a frame that does not rebuild refits its hierarchy (otherwise it
+// keeps the last frame's boxes: not conservative).
+inline bool refit_due(uint64_t frame, uint32_t refit_every) {
+  return refit_every <= 1 || frame % refit_every == 0;
+}
 
 // Starts a frame's timing and uploads its vertices (timed apart: upload is left out of the
 // frame total, since simulators hold their vertices on the device already).

@@ -46,6 +46,8 @@ class FrontPipeline final : public Pipeline {
         rigid_self_(exec_, "rigid_front", kRigidCounters) {
     radix_.bind(exec_.memory());
     if (config_.front_cycle == 0) fail("--front-cycle must be at least 1");
+    if (config_.refit_every == 0) fail("--refit-every must be at least 1");
+    mesh_.set_box_knobs(config_);
     if (plan_.restructure) check_restructure_config(config_);
   }
 
@@ -75,10 +77,16 @@ class FrontPipeline final : public Pipeline {
     const Decision decision = decide(stats);
     const bool rebuild = frame_ == 0 || plan_.rebuild_every_frame || decision == Decision::rebuild ||
                          (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
-    stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild,
-                                config_.morton_bits, plan_.radix_sort);
-    update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), frame_ == 0, config_.morton_bits,
-                     plan_.radix_sort, mesh_.face_object());
+    // --refit-every: between refits both trees keep their last boxes (not conservative).
+    const bool stale = !rebuild && !refit_due(frame_, config_.refit_every);
+    if (stale) {
+      stats.op = "stale";
+    } else {
+      stats.op = update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild,
+                                  config_.morton_bits, plan_.radix_sort);
+      update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), frame_ == 0, config_.morton_bits,
+                       plan_.radix_sort, mesh_.face_object());
+    }
     if (rebuild) generated_at_ = frame_;
     const Ops ops = choose_ops(rebuild, !rebuild && decision == Decision::restructure);
     if (plan_.balance) balance(ops);

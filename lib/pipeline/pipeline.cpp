@@ -11,6 +11,13 @@ const std::vector<std::string>& pipeline_names() {
   return names;
 }
 
+bool config_conservative(const PipelineConfig& config) {
+  // The baselines and the per-frame rebuild never keep stale boxes.
+  for (const char* n : {"sweep", "hash", "grid", "brute", "reference"})
+    if (config.name == n) return true;
+  return config.refit_every <= 1;
+}
+
 std::unique_ptr<Pipeline> make_pipeline(const PipelineConfig& config) {
   bool known = false;
   for (const auto& n : pipeline_names()) known = known || n == config.name;

@@ -41,7 +41,22 @@ struct PipelineConfig {
   double restructure_max_fraction = 0.25;
   double threshold_refit = 0.05;
   double threshold_build = 0.5;
+  // Speed/accuracy knobs (docs/design.md "Speed/accuracy knobs"), applied in face_box
+  // (geometry/mesh.h), so every pipeline and baseline sees the same boxes.
+  // Fat boxes: every triangle box grows by this much (scene units) on each side.
+  // Conservative: a superset of the exact box-overlap pairs.
+  float box_margin = 0.0f;
+  // Swept boxes: each box bounds the triangle at the previous and the current frame (the
+  // first frame its own positions). Conservative with respect to the discrete pairs.
+  bool swept_boxes = false;
+  // Front pipelines and bvh: refit only every this many frames (1: every frame), keeping
+  // the stale boxes in between. NOT conservative: pairs can be missed. Baselines ignore it.
+  uint32_t refit_every = 1;
 };
+
+// Whether the config can miss pairs of the exact box-overlap set (refit_every > 1 on a
+// pipeline that refits a hierarchy).
+bool config_conservative(const PipelineConfig& config);
 
 struct FrameStats {
   uint64_t pairs = 0;

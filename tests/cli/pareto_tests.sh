@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# The speed/accuracy knobs from the command line to the Pareto plot: tiny CPU runs of a
+# fast-moving soup with each knob under --check every; the refit-every runs of tree
+# pipelines must miss pairs (recall < 1, with the warning line), fat and swept boxes must
+# not (recall 1, precision < 1); scripts/plot_pareto.py must draw them and tabulate them.
+set -u
+cdbench=$1
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+python=/usr/bin/python3
+[[ -x $python ]] || python=python3
+source "$root/tests/cli/harness.sh"
+has() {  # has NAME FILE PATTERN: FILE has a line matching PATTERN
+  if grep -qE -- "$3" "$2"; then echo "ok   $1"; else fail "$1: no '$3' in $2"; fi
+}
+hasnt() {  # hasnt NAME FILE PATTERN: no line of FILE matches PATTERN
+  if grep -qE -- "$3" "$2"; then fail "$1: '$3' in $2"; else echo "ok   $1"; fi
+}
+
+export OMP_NUM_THREADS=1
+res=$tmp/results
+# Jitter larger than the triangles: the pairs change every frame.
+printf '{"generator": "soup", "params": {"triangles": 800, "distribution": "clustered", "jitter": 3.0, "frames": 6, "seed": 5}}' \
+  >"$tmp/soup-fast.json"
+n=0
+run() {  # run NAME ARGS...: one checked run into $res/NAME.h5, its output in $tmp/NAME.out
+  local name=$1; shift
+  "$cdbench" run --device cpu --quiet --scene "$tmp/soup-fast.json" --check every --out "$res/$name.h5" "$@" \
+    >"$tmp/$name.out" 2>&1 || { cat "$tmp/$name.out"; fail "cdbench run $*"; }
+  n=$((n + 1))
+}
+run bvh-plain --pipeline bvh
+run bvh-margin --pipeline bvh --box-margin 0.002
+run bvh-swept --pipeline bvh --boxes swept
+run bvh-lazy --pipeline bvh --refit-every 3
+run b-lazy --pipeline b --refit-every 3
+run grid-lazy --pipeline grid --refit-every 3
+run grid-margin --pipeline grid --box-margin 0.002
+
+recall='recall min ([0-9.]+)'
+has "lazy bvh misses pairs" "$tmp/bvh-lazy.out" "check .*recall min 0\.[0-9]+, "
+has "lazy bvh warns with the measured recall" "$tmp/bvh-lazy.out" \
+  "^  warning .*--refit-every 3 .*NOT conservative.*measured recall min 0\.[0-9]+ over 6 checked frames"
+has "lazy b misses pairs" "$tmp/b-lazy.out" "check .*recall min 0\.[0-9]+, "
+for name in bvh-margin bvh-swept grid-margin; do
+  has "$name keeps recall 1" "$tmp/$name.out" "check .*recall min 1\.000000, precision min 0\.[0-9]+"
+  hasnt "$name does not warn" "$tmp/$name.out" "warning"
+done
+has "grid ignores --refit-every" "$tmp/grid-lazy.out" "check .*recall min 1\.000000, precision min 1\.000000"
+hasnt "grid ignores --refit-every: no warning" "$tmp/grid-lazy.out" "warning"
+check "config records the knobs, not conservative" 0 '"boxes": "discrete".*"conservative": false.*"refit_every": 3' -- \
+  "$python" -c "import h5py, json; print(json.dumps(json.loads(h5py.File('$res/bvh-lazy.h5')['/'].attrs['params_json'])['pipeline_config'], sort_keys=True))"
+check "config records swept boxes" 0 '"boxes": "swept".*"conservative": true' -- \
+  "$python" -c "import h5py, json; print(json.dumps(json.loads(h5py.File('$res/bvh-swept.h5')['/'].attrs['params_json'])['pipeline_config'], sort_keys=True))"
+check "negative margin refused" 105 "--box-margin" -- "$cdbench" run --device cpu --scene "$tmp/soup-fast.json" --box-margin -1
+check "unknown box kind refused" 105 "--boxes" -- "$cdbench" run --device cpu --scene "$tmp/soup-fast.json" --boxes fat
+
+check "plot_pareto draws the runs" 0 "^\| pipeline \| box margin" -- \
+  "$python" "$root/scripts/plot_pareto.py" "$res" --scene soup-fast --out "$tmp/pareto.png" --table
+cp "$tmp/out" "$tmp/table.md"
+if [[ "$(head -c 8 "$tmp/pareto.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" == 89504e470d0a1a0a ]]; then
+  echo "ok   pareto.png is a PNG"
+else
+  fail "pareto.png missing or not a PNG"
+fi
+rows=$(grep -cE '^\| (bvh|b|grid) \|' "$tmp/table.md")
+[[ $rows -eq $n ]] && echo "ok   one table row per run" || fail "table has $rows rows, want $n"
+num='[0-9.]+'
+has "row: plain bvh exact" "$tmp/table.md" "^\| bvh \| 0 \| discrete \| 1 \| yes \| $num \| 1\.000000 \| 1\.000000 \| 1\.000000 \| $num \|"
+has "row: bvh margin" "$tmp/table.md" "^\| bvh \| 0\.002 \| discrete \| 1 \| yes \| $num \| 1\.000000 \| 0\.[0-9]+ \| 0\.[0-9]+ \| $num \|"
+has "row: bvh swept" "$tmp/table.md" "^\| bvh \| 0 \| swept \| 1 \| yes \| $num \| 1\.000000 \| 0\.[0-9]+ \| 0\.[0-9]+ \| $num \|"
+has "row: bvh lazy" "$tmp/table.md" "^\| bvh \| 0 \| discrete \| 3 \| \*\*no\*\* \| $num \| 0\.[0-9]+ \|"
+has "row: b lazy" "$tmp/table.md" "^\| b \| 0 \| discrete \| 3 \| \*\*no\*\* \| $num \| 0\.[0-9]+ \|"
+has "row: grid lazy is exact" "$tmp/table.md" "^\| grid \| 0 \| discrete \| 3 \| yes \| $num \| 1\.000000 \| 1\.000000 \|"
+# The fastest run of recall 1 is always on the recall front, whatever the timings.
+has "a conservative run is on the recall front" "$tmp/table.md" "^\| [a-z]+ \| [0-9.]+ \| [a-z]+ \| [0-9]+ \| yes \| $num \| 1\.000000 \| .*\| recall"
+
+"$cdbench" run --device cpu --quiet --scene "$tmp/soup-fast.json" --pipeline bvh --out "$tmp/unchecked/bvh.h5" >/dev/null 2>&1
+check "unchecked runs are left out, named" 1 "bvh.h5: no frame checked" -- \
+  "$python" "$root/scripts/plot_pareto.py" "$tmp/unchecked" --out "$tmp/x.png"
+
+finish pareto

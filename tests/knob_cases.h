@@ -1,0 +1,204 @@
+#pragma once
+// The speed/accuracy knobs (docs/design.md "Speed/accuracy knobs") through every pipeline,
+// against a plain O(N^2) reference over boxes computed here independently of face_box:
+// fat boxes (--box-margin), swept boxes (--boxes swept) and lazy refits (--refit-every).
+// test_knobs_host.cpp runs them on the host executor, test_bvh_cuda.cu on CUDA.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "bruteforce/sweep_oracle.h"
+#include "core/pair_set.h"
+#include "generators.h"
+#include "pipeline/pipeline.h"
+
+namespace cdb::test {
+
+// One face's box as the reference computes it: the triangle at `v`, grown by the
+// triangle at `prev` when given, then by `margin` on each side.
+inline void reference_box(const Tri& t, const std::vector<vec3f>& v, const std::vector<vec3f>* prev, float margin,
+                          vec4f& lo, vec4f& hi) {
+  const vec3f* pts[6] = {&v[t.v0], &v[t.v1], &v[t.v2], nullptr, nullptr, nullptr};
+  int count = 3;
+  if (prev) {
+    pts[3] = &(*prev)[t.v0];
+    pts[4] = &(*prev)[t.v1];
+    pts[5] = &(*prev)[t.v2];
+    count = 6;
+  }
+  lo = {pts[0]->x, pts[0]->y, pts[0]->z, 0};
+  hi = lo;
+  for (int k = 1; k < count; ++k) {
+    lo = {std::min(lo.x, pts[k]->x), std::min(lo.y, pts[k]->y), std::min(lo.z, pts[k]->z), 0};
+    hi = {std::max(hi.x, pts[k]->x), std::max(hi.y, pts[k]->y), std::max(hi.z, pts[k]->z), 0};
+  }
+  lo = {lo.x - margin, lo.y - margin, lo.z - margin, 0};
+  hi = {hi.x + margin, hi.y + margin, hi.z + margin, 0};
+}
+
+// Every overlapping pair of the given boxes (closed bounds), sorted by pair_key.
+inline std::vector<PrimPair> brute_pairs(const std::vector<vec4f>& lo, const std::vector<vec4f>& hi) {
+  std::vector<PrimPair> out;
+  const uint32_t n = uint32_t(lo.size());
+  for (uint32_t i = 0; i < n; ++i)
+    for (uint32_t j = i + 1; j < n; ++j)
+      if (lo[i].x <= hi[j].x && lo[j].x <= hi[i].x && lo[i].y <= hi[j].y && lo[j].y <= hi[i].y &&
+          lo[i].z <= hi[j].z && lo[j].z <= hi[i].z)
+        out.push_back({i, j});
+  return out;
+}
+
+inline std::vector<PrimPair> reference_pairs(const Topology& topo, const std::vector<vec3f>& v,
+                                             const std::vector<vec3f>* prev, float margin) {
+  const size_t n = topo.faces.size();
+  std::vector<vec4f> lo(n), hi(n);
+  for (size_t f = 0; f < n; ++f) reference_box(topo.faces[f], v, prev, margin, lo[f], hi[f]);
+  return brute_pairs(lo, hi);
+}
+
+// Every pair of `expected` is in `actual` (both sorted by pair_key).
+inline bool contains_all(const std::vector<PrimPair>& actual, const std::vector<PrimPair>& expected) {
+  const auto less = [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); };
+  return std::includes(actual.begin(), actual.end(), expected.begin(), expected.end(), less);
+}
+
+// A soup whose jitter is larger than its triangles: fast motion, pairs change every frame.
+inline std::unique_ptr<FrameSource> fast_soup(uint32_t frames) {
+  return make_generator("soup", {{"triangles", 1200}, {"distribution", "clustered"}, {"jitter", 3.0},
+                                 {"frames", frames}, {"seed", 11}});
+}
+
+inline std::unique_ptr<FrameSource> rolling_cloth(uint32_t frames) {
+  return make_generator("cloth-wave", {{"res", 16}, {"frames", frames}});
+}
+
+// Mean edge of the first frame's triangle boxes: margins are chosen relative to it.
+inline float mean_box_extent(FrameSource& source) {
+  std::vector<vec3f> v;
+  source.frame(0, v);
+  double sum = 0;
+  for (const Tri& t : source.topology().faces) {
+    vec4f lo, hi;
+    reference_box(t, v, nullptr, 0.0f, lo, hi);
+    sum += (hi.x - lo.x + hi.y - lo.y + hi.z - lo.z) / 3.0;
+  }
+  return float(sum / double(source.topology().faces.size()));
+}
+
+// Pipelines whose hierarchy --refit-every leaves stale (every tree pipeline but the
+// per-frame rebuild); the baselines ignore the knob.
+inline bool keeps_stale_boxes(const std::string& name) {
+  return !(name == "sweep" || name == "hash" || name == "grid" || name == "brute" || name == "reference");
+}
+
+// Every pipeline with fat boxes: a superset of the exact pairs, exactly the brute-force
+// set of the inflated boxes.
+inline void check_margin(const std::string& device, FrameSource& source, float margin) {
+  const Topology& topo = source.topology();
+  std::vector<vec3f> v;
+  for (const auto& name : pipeline_names()) {
+    PipelineConfig cfg;
+    cfg.device = device;
+    cfg.name = name;
+    cfg.pairs_per_triangle = 0.5;  // must grow
+    cfg.box_margin = margin;
+    auto p = make_pipeline(cfg);
+    p->set_topology(topo);
+    size_t extra = 0;
+    for (uint32_t f = 0; f < source.num_frames(); ++f) {
+      source.frame(f, v);
+      const auto exact = sweep_oracle_pairs(topo, v, false);
+      const auto expected = reference_pairs(topo, v, nullptr, margin);
+      const FrameStats s = p->run_frame(v);
+      const auto got = p->sorted_pairs();
+      ASSERT_TRUE(contains_all(got, exact)) << name << " frame " << f << " misses exact pairs";
+      const PairSetDiff d = diff_pair_sets(expected, got);
+      ASSERT_TRUE(d.equal()) << name << " frame " << f << " (" << s.op << "): " << d.missing_count << " missing, "
+                             << d.unexpected_count << " unexpected against the inflated boxes";
+      extra += got.size() - exact.size();
+    }
+    EXPECT_GT(extra, 0u) << name << ": the margin added no pair";
+  }
+}
+
+// Every pipeline with swept boxes: exactly the brute-force set of the boxes over each
+// frame interval (the first frame its own boxes), a superset of the discrete pairs.
+inline void check_swept(const std::string& device, FrameSource& source) {
+  const Topology& topo = source.topology();
+  std::vector<vec3f> v, prev;
+  for (const auto& name : pipeline_names()) {
+    PipelineConfig cfg;
+    cfg.device = device;
+    cfg.name = name;
+    cfg.pairs_per_triangle = 0.5;
+    cfg.swept_boxes = true;
+    auto p = make_pipeline(cfg);
+    // Twice: set_topology (what --repeat does) must forget the last pass's positions.
+    for (int pass = 0; pass < 2; ++pass) {
+      p->set_topology(topo);
+      size_t swept_only = 0;
+      for (uint32_t f = 0; f < source.num_frames(); ++f) {
+        source.frame(f, v);
+        const auto discrete = sweep_oracle_pairs(topo, v, false);
+        const auto expected = reference_pairs(topo, v, f == 0 ? nullptr : &prev, 0.0f);
+        const FrameStats s = p->run_frame(v);
+        const auto got = p->sorted_pairs();
+        ASSERT_TRUE(contains_all(got, discrete)) << name << " frame " << f << " misses discrete pairs";
+        const PairSetDiff d = diff_pair_sets(expected, got);
+        ASSERT_TRUE(d.equal()) << name << " pass " << pass << " frame " << f << " (" << s.op << "): "
+                               << d.missing_count << " missing, " << d.unexpected_count
+                               << " unexpected against the swept boxes";
+        swept_only += got.size() - discrete.size();
+        prev = v;
+      }
+      EXPECT_GT(swept_only, 0u) << name << ": swept boxes found no pair the discrete ones miss";
+    }
+  }
+}
+
+// --refit-every k: tree pipelines keep the boxes of their last refit or build on the
+// frames between (op "stale": only on frames not a multiple of k) and report exactly their
+// overlaps, missing pairs on a fast scene; the baselines stay exact.
+inline void check_lazy_refit(const std::string& device, FrameSource& source, uint32_t k) {
+  const Topology& topo = source.topology();
+  std::vector<vec3f> v, refitted;
+  for (const auto& name : pipeline_names()) {
+    PipelineConfig cfg;
+    cfg.device = device;
+    cfg.name = name;
+    cfg.pairs_per_triangle = 0.5;
+    cfg.refit_every = k;
+    const bool lazy = keeps_stale_boxes(name);
+    EXPECT_EQ(config_conservative(cfg), !lazy) << name;
+    auto p = make_pipeline(cfg);
+    p->set_topology(topo);
+    double recall_min = 1.0;
+    uint32_t stale_frames = 0;
+    for (uint32_t f = 0; f < source.num_frames(); ++f) {
+      source.frame(f, v);
+      const auto exact = sweep_oracle_pairs(topo, v, false);
+      const FrameStats s = p->run_frame(v);
+      const bool stale = s.op.rfind("stale", 0) == 0;
+      ASSERT_FALSE(stale && (!lazy || f % k == 0)) << name << " frame " << f << " op " << s.op;
+      stale_frames += stale;
+      if (!stale) refitted = v;
+      const auto expected = stale ? reference_pairs(topo, refitted, nullptr, 0.0f) : exact;
+      const auto got = p->sorted_pairs();
+      const PairSetDiff d = diff_pair_sets(expected, got);
+      ASSERT_TRUE(d.equal()) << name << " frame " << f << " (" << s.op << "): " << d.missing_count << " missing, "
+                             << d.unexpected_count << " unexpected against the "
+                             << (stale ? "last refit's boxes" : "exact pairs");
+      recall_min = std::min(recall_min, pair_accuracy(exact, got).recall);
+    }
+    if (lazy) {
+      EXPECT_GE(stale_frames, source.num_frames() / 2) << name;
+      EXPECT_LT(recall_min, 1.0) << name << ": stale boxes missed nothing on a fast scene";
+    } else {
+      EXPECT_EQ(recall_min, 1.0) << name;
+    }
+  }
+}
+
+}  // namespace cdb::test
