@@ -12,6 +12,7 @@
 #include "bruteforce/sweep_oracle.h"
 #include "core/pair_set.h"
 #include "generators.h"
+#include "geometry/objects.h"
 #include "pipeline/pipeline.h"
 
 namespace cdb::test {
@@ -55,7 +56,12 @@ inline std::vector<PrimPair> reference_pairs(const Topology& topo, const std::ve
   const size_t n = topo.faces.size();
   std::vector<vec4f> lo(n), hi(n);
   for (size_t f = 0; f < n; ++f) reference_box(topo.faces[f], v, prev, margin, lo[f], hi[f]);
-  return brute_pairs(lo, hi);
+  std::vector<PrimPair> pairs = brute_pairs(lo, hi);
+  if (!topo.queries.declared) return pairs;
+  // Declared queries: only the pairs the scene asks for, as every pipeline reports them.
+  const PairFilterTables t = pair_filter_tables(topo.objects, topo.queries, n);
+  std::erase_if(pairs, [&](PrimPair p) { return !pair_wanted(t.face_object.data(), t.partners.data(), p.a, p.b); });
+  return pairs;
 }
 
 // Every pair of `expected` is in `actual` (both sorted by pair_key).

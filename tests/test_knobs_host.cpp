@@ -1,3 +1,4 @@
+#include "inter_cases.h"
 #include "knob_cases.h"
 
 namespace cdb::test {
@@ -19,6 +20,14 @@ TEST(HostKnobs, SweptGivesExactlyTheSweptBoxPairs) {
 TEST(HostKnobs, LazyRefitKeepsTheLastRefitsBoxesAndMissesPairs) {
   auto soup = fast_soup(7);
   check_lazy_refit("cpu", *soup, 3);
+}
+
+// A scene split into a deformable and a rigid tree (declared queries): both trees keep
+// their last refit's boxes between refits, so the pairs are exactly the stale boxes'
+// overlaps among the pairs the scene asks for, and the teleporting rigid bodies are missed.
+TEST(HostKnobs, LazyRefitOnSplitTreesKeepsBothTreesStale) {
+  StoredFrames scene(with_queries(jumping_rigid_bodies(7, false), {"soup"}, {{"soup", "tri"}, {"soup", "box"}}));
+  check_lazy_refit("cpu", scene, 3);
 }
 
 }  // namespace cdb::test
