@@ -151,6 +151,17 @@ def load(paths):
     return complete, [r for r in runs if not r.complete]
 
 
+def pick_scene(paths, runs, scene):
+    """The scene to draw: `scene` when given, else the only scene among `runs`."""
+    if scene is not None:
+        return scene
+    scenes = sorted({r.scene for r in runs})
+    if len(scenes) != 1:
+        raise ResultsError(f"{', '.join(paths)}: --scene needed, the files "
+                           f"hold scenes {', '.join(scenes) or 'none'}")
+    return scenes[0]
+
+
 def by_scene(runs):
     """{(scene, device): [runs]} in sorted order; the device only matters when files mix them."""
     groups = {}

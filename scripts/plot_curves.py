@@ -35,12 +35,7 @@ def main():
 
     def body():
         complete, incomplete = cdb_results.load(args.paths)
-        scenes = sorted({r.scene for r in complete})
-        if args.scene is None:
-            if len(scenes) != 1:
-                raise cdb_results.ResultsError(f"{', '.join(args.paths)}: --scene needed, the files "
-                                               f"hold scenes {', '.join(scenes) or 'none'}")
-            args.scene = scenes[0]
+        args.scene = cdb_results.pick_scene(args.paths, complete, args.scene)
         wanted = args.pipelines.split(",")
         runs = [r for r in complete if r.scene == args.scene and r.pipeline in wanted]
         runs.sort(key=lambda r: (wanted.index(r.pipeline), r.label))

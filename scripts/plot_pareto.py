@@ -77,12 +77,7 @@ def main():
 
     def body():
         complete, incomplete = cdb_results.load(args.paths)
-        scenes = sorted({r.scene for r in complete})
-        if args.scene is None:
-            if len(scenes) != 1:
-                raise cdb_results.ResultsError(f"{', '.join(args.paths)}: --scene needed, the files "
-                                               f"hold scenes {', '.join(scenes) or 'none'}")
-            args.scene = scenes[0]
+        args.scene = cdb_results.pick_scene(args.paths, complete, args.scene)
         cdb_results.report_incomplete([r for r in incomplete if r.scene == args.scene], "plot_pareto")
         points = [Point(r) for r in complete if r.scene == args.scene]
         for p in points:

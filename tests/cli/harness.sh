@@ -16,6 +16,9 @@ check() {  # check NAME EXPECTED_RC PATTERN -- CMD...: exit code and a line of t
     echo "ok   $name"
   fi
 }
+has() {  # has NAME FILE PATTERN: FILE has a line matching PATTERN
+  if grep -qE -- "$3" "$2"; then echo "ok   $1"; else fail "$1: no '$3' in $2"; fi
+}
 finish() {  # finish WHAT: the summary line and the exit status
   if [[ $failures -ne 0 ]]; then echo "$failures $1 test(s) failed"; exit 1; fi
   echo "all $1 tests passed"

@@ -7,9 +7,6 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 python=/usr/bin/python3
 [[ -x $python ]] || python=python3
 source "$root/tests/cli/harness.sh"
-has() {  # has NAME FILE PATTERN: FILE has a line matching PATTERN
-  if grep -qE -- "$3" "$2"; then echo "ok   $1"; else fail "$1: no '$3' in $2"; fi
-}
 
 res=$tmp/results
 # One thread: the numbers do not matter here, and OpenMP threads waiting on a busy machine
