@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -17,6 +16,7 @@
 
 #include "cell_status.h"
 #include "core/error.h"
+#include "core/utc_time.h"
 #include "interrupt.h"
 #include "io/results_reader.h"
 
@@ -26,15 +26,6 @@ namespace cdb {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return text;
-}
 
 // The last lines of a log, at most about 2 KB: enough for the error without copying a
 // log full of progress lines into the status file.

@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <limits>
 
 #include "core/build_info.h"
 #include "core/error.h"
 #include "core/phase.h"
+#include "core/utc_time.h"
 #include "io/frame_columns.h"
 
 namespace cdb {
@@ -25,15 +25,6 @@ constexpr unsigned kDeflateLevel = 4;
 // Often enough that a killed run loses little, rarely enough that rewriting a partly
 // filled compressed chunk costs nothing measurable.
 constexpr auto kFlushInterval = std::chrono::seconds(1);
-
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return text;
-}
 
 std::string host_name() {
   char name[256] = {};
