@@ -48,6 +48,7 @@ struct CommonOptions {
   float box_margin = 0.0f;
   std::string boxes = "discrete";
   uint32_t refit_every = 1;
+  std::string cuda_graph = "on";
   std::vector<std::string> sets;  // generator overrides, key=value
 };
 
@@ -87,6 +88,11 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "boxes in between, so pairs can be missed (recall < 1 under --check); sweep, hash, grid and brute "
                   "ignore it; 1: every frame")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--cuda-graph", o.cuda_graph,
+                  "front pipelines on cuda: capture the steady-state frame (refit + preserve) in a CUDA graph once "
+                  "and replay it while its launches stay the same; off: plain launches every frame")
+      ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   PipelineConfig& r = o.restructure;
   cmd->add_option("--restructure-quality", r.restructure_quality,
@@ -134,6 +140,7 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.box_margin = o.box_margin;
   c.swept_boxes = o.boxes == "swept";
   c.refit_every = o.refit_every;
+  c.cuda_graph = o.cuda_graph == "on";
   c.restructure_quality = o.restructure.restructure_quality;
   c.restructure_min_leaves = o.restructure.restructure_min_leaves;
   c.restructure_max_fraction = o.restructure.restructure_max_fraction;

@@ -146,6 +146,48 @@ TEST(CudaPipelines, LargeUniformSoupRepeatedBuildsAreExact) {
   check_pipelines_on(config_for("cuda", 8.0), *soup);
 }
 
+// --cuda-graph: steady frames are captured once after each front change and replayed
+// after; the replays report the same pairs as plain launches, and still time their phases.
+TEST(CudaPipelines, GraphReplaysGiveThePlainLaunchesPairs) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  auto funnel = make_generator("funnel", {{"res", 40}, {"frames", 14}, {"segments", 16}, {"ball_level", 1}});
+  const Topology& topo = funnel->topology();
+  for (const std::string name : {"a", "b", "c", "unordered"}) {
+    for (bool swept : {false, true}) {
+      PipelineConfig with = config_for("cuda", 0.05, 0.05, 4), without = with;
+      with.name = without.name = name;
+      with.swept_boxes = without.swept_boxes = swept;
+      without.cuda_graph = false;
+      auto graphed = make_pipeline(with), plain = make_pipeline(without);
+      graphed->set_topology(topo);
+      plain->set_topology(topo);
+      std::vector<vec3f> v;
+      uint32_t captured = 0, replayed = 0;
+      for (uint32_t f = 0; f < funnel->num_frames(); ++f) {
+        funnel->frame(f, v);
+        const FrameStats g = graphed->run_frame(v), p = plain->run_frame(v);
+        EXPECT_EQ(p.graph, "");
+        captured += g.graph == "captured";
+        replayed += g.graph == "replayed";
+        if (!g.graph.empty()) {
+          EXPECT_GT(g.phase_ms[size_t(Phase::preserve)], 0.0) << name << " frame " << f;
+          EXPECT_GT(g.phase_ms[size_t(Phase::refit)], 0.0) << name << " frame " << f;
+        }
+        ASSERT_EQ(g.pairs, p.pairs) << name << " frame " << f;
+        ASSERT_TRUE(diff_pair_sets(plain->sorted_pairs(), graphed->sorted_pairs()).equal())
+            << name << (swept ? " swept" : "") << " frame " << f;
+      }
+      // 14 frames, cycle 4: preserve on frames 1-3, 5-7, 9-11, 13; each run of them
+      // captures once (swept boxes alternate two vertex buffers: twice). Pipeline c may
+      // turn a preserve frame into a restructure or a rebuild.
+      if (name != "c") {
+        EXPECT_EQ(captured + replayed, 10u) << name;
+        EXPECT_EQ(replayed, swept ? 3u : 6u) << name;
+      }
+    }
+  }
+}
+
 class CudaFrontCycles : public testing::TestWithParam<uint32_t> {
  protected:
   void SetUp() override {
@@ -172,6 +214,54 @@ TEST_P(CudaExtremes, EveryPipelineExactEveryFrame) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaExtremes, testing::ValuesIn(extreme_cases()), baseline_case_name);
+
+// 2^24 + 1 triangles: past the integers a float holds exactly, so an index that goes
+// through a float, or a 24-bit field, loses the last one. Pairs of overlapping triangles
+// sit in cells 4 apart (2^23 pairs) and the last triangle overlaps the first pair, so the
+// exact pair set is known: (2m, 2m + 1) for every m, (0, last) and (1, last). Three frames
+// (moving by 1e-3 each) take the front pipelines through generate, a captured and a
+// replayed preserve frame; baselines and bvh must agree on every frame.
+TEST(CudaExtremes, IndexWidthPastTwoToThe24Triangles) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  constexpr uint32_t kPairs = 1u << 23, kTriangles = 2 * kPairs + 1, kLast = kTriangles - 1;
+  Topology topo;
+  topo.faces.resize(kTriangles);
+  topo.num_vertices = 3 * kTriangles;
+  for (uint32_t t = 0; t < kTriangles; ++t) topo.faces[t] = {3 * t, 3 * t + 1, 3 * t + 2};
+  std::vector<vec3f> base(topo.num_vertices);
+  auto put = [&](uint32_t t, vec3f c) {
+    base[3 * t] = c;
+    base[3 * t + 1] = {c.x + 1.0f, c.y, c.z};
+    base[3 * t + 2] = {c.x, c.y + 1.0f, c.z + 1.0f};
+  };
+  for (uint32_t m = 0; m < kPairs; ++m) {
+    const vec3f c{4.0f * float(m % 256), 4.0f * float((m / 256) % 256), 4.0f * float(m / 65536)};
+    put(2 * m, c);
+    put(2 * m + 1, {c.x + 0.5f, c.y + 0.5f, c.z + 0.5f});
+  }
+  put(kLast, {0.25f, 0.25f, 0.25f});
+  std::vector<PrimPair> expected;
+  expected.reserve(kPairs + 2);
+  for (uint32_t m = 0; m < kPairs; ++m) expected.push_back({2 * m, 2 * m + 1});
+  expected.push_back({0, kLast});
+  expected.push_back({1, kLast});
+  std::sort(expected.begin(), expected.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+  for (const std::string name : {"b", "c", "bvh", "grid", "hash", "sweep"}) {
+    PipelineConfig cfg = config_for("cuda", 1.0, 2.0);
+    cfg.name = name;
+    auto pipeline = make_pipeline(cfg);
+    pipeline->set_topology(topo);
+    std::vector<vec3f> v(base.size());
+    for (uint32_t f = 0; f < 3; ++f) {
+      for (size_t k = 0; k < base.size(); ++k) v[k] = {base[k].x + 1e-3f * float(f), base[k].y, base[k].z};
+      const FrameStats stats = pipeline->run_frame(v);
+      ASSERT_EQ(stats.pairs, expected.size()) << name << " frame " << f;
+      const PairSetDiff d = diff_pair_sets(expected, pipeline->sorted_pairs());
+      ASSERT_TRUE(d.equal()) << name << " frame " << f << ": " << d.missing_count << " missing, "
+                             << d.unexpected_count << " unexpected";
+    }
+  }
+}
 
 TEST(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;

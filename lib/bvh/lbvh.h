@@ -62,6 +62,8 @@ struct Lbvh {
                     &build_left, &build_right, &build_parent, &build_first, &build_last,
                     &other_bound, &new_index, &refit_flag})
       a->reserve(internal);
+    // refit.h counts arrivals without resetting them: every build zeroes them here.
+    exec.fill(refit_flag.data(), internal, 0u);
     count_log.reserve(size_t(n) + 1);
     offset_log.reserve(size_t(n) + 1);
     morton.reserve(n);

@@ -1,10 +1,24 @@
 #pragma once
 // Refit: new leaf boxes from the current vertices, then one thread per leaf climbs; the
-// second thread to reach a node (atomic counter, acquire/release) merges both children.
-// Topology and depth-first order are kept.
+// second thread to reach a node merges both children and goes on. Topology and depth-first
+// order are kept.
+//
+// The climb is latency bound: each level is an atomic hand-over plus a load of the
+// sibling's box, and an LBVH over a cloth is 30 to 60 levels deep. Leaves run in tiles of
+// kTile consecutive leaves (one block on the GPU). A node whose leaves all lie in the
+// climbing thread's tile is handed over in the tile's shared memory with block-scope
+// atomics; only nodes spanning tiles (the top ~log2(N / kTile) levels of each path) pay for
+// a device-scope atomic and an L2 load.
+//
+// In-tile slots: an internal node is identified by its split, the last leaf of its left
+// child, unique among internal nodes; in-tile nodes have splits in [tile_first, tile_last).
+//
+// Spanning nodes count arrivals in refit_flag without a reset: every refit brings exactly
+// two arrivals to each spanning node (a node's tile-spanning is fixed by the topology), so
+// flags stay even between refits and the first arrival is the one that sees an even value.
+// Lbvh::reserve (each build) zeroes the flags; restructures keep them even.
 #include <cstdint>
 
-#include "exec/balance.h"
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
 #include "core/atomics.h"
@@ -13,38 +27,62 @@
 namespace cdb {
 
 struct RefitFn {
+  static constexpr uint32_t kTile = 256;
+  struct Shared {
+    uint32_t arrived[kTile];
+    vec4f lo[kTile][2], hi[kTile][2];  // [split slot][left, right child]
+  };
+
   MeshView mesh;
   const uint32_t* leaf_prim;
   const uint32_t* leaf_parent;
   const uint32_t* node_left;
   const uint32_t* node_right;
   const uint32_t* node_parent;
+  const uint32_t* node_first;
+  const uint32_t* node_last;
   vec4f* leaf_lo;
   vec4f* leaf_hi;
   vec4f* node_lo;
   vec4f* node_hi;
   uint32_t* flag;
 
-  CDB_HD void operator()(uint32_t i) const {
+  CDB_HD void init(Shared& s, uint32_t lane) const { s.arrived[lane] = 0; }
+
+  CDB_HD void operator()(uint32_t i, uint32_t tile_first, uint32_t tile_last, Shared& s) const {
     vec4f lo, hi;
     face_box(mesh, leaf_prim[i], lo, hi);
     leaf_lo[i] = lo;
     leaf_hi[i] = hi;
-    uint32_t child = leaf_ref(i);
+    uint32_t child = leaf_ref(i), first = i, last = i;  // the subtree climbed so far
     uint32_t p = leaf_parent[i];
     while (p != kNoNode) {
-      if (atomic_add_acq_rel(&flag[p], 1u) == 0) return;
       const uint32_t l = node_left[p];
-      const uint32_t sibling = l == child ? node_right[p] : l;
-      const vec4f slo = is_leaf(sibling) ? load_coherent(&leaf_lo[ref_index(sibling)])
-                                         : load_coherent(&node_lo[sibling]);
-      const vec4f shi = is_leaf(sibling) ? load_coherent(&leaf_hi[ref_index(sibling)])
-                                         : load_coherent(&node_hi[sibling]);
+      const bool from_left = l == child;
+      const uint32_t p_first = from_left ? first : node_first[p];
+      const uint32_t p_last = from_left ? node_last[p] : last;
+      vec4f slo, shi;
+      if (tile_first <= p_first && p_last <= tile_last) {
+        const uint32_t slot = (from_left ? last : first - 1) - tile_first;
+        const int side = from_left ? 0 : 1;
+        s.lo[slot][side] = lo;
+        s.hi[slot][side] = hi;
+        if (atomic_add_acq_rel_block(&s.arrived[slot], 1u) == 0) return;
+        slo = s.lo[slot][1 - side];
+        shi = s.hi[slot][1 - side];
+      } else {
+        if ((atomic_add_acq_rel(&flag[p], 1u) & 1u) == 0) return;
+        const uint32_t sibling = from_left ? node_right[p] : l;
+        slo = is_leaf(sibling) ? load_coherent(&leaf_lo[ref_index(sibling)]) : load_coherent(&node_lo[sibling]);
+        shi = is_leaf(sibling) ? load_coherent(&leaf_hi[ref_index(sibling)]) : load_coherent(&node_hi[sibling]);
+      }
       lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), 0};
       hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), 0};
       node_lo[p] = lo;
       node_hi[p] = hi;
       child = p;
+      first = p_first;
+      last = p_last;
       p = node_parent[p];
     }
   }
@@ -54,12 +92,10 @@ template <class Exec>
 void refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
-  if (n > 1) exec.fill(bvh.refit_flag.data(), n - 1, 0u);
-  exec.for_each_n(n, RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(),
-                             bvh.node_left.data(), bvh.node_right.data(), bvh.node_parent.data(),
-                             bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_lo.data(),
-                             bvh.node_hi.data(), bvh.refit_flag.data()},
-                  Balance::uneven);
+  exec.for_each_tile(n, RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
+                                bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
+                                bvh.node_last.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
+                                bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data()});
 }
 
 }  // namespace cdb

@@ -127,16 +127,86 @@ cudaEvent_t CudaPhaseTimer::next_event() {
   return pool_[used_++];
 }
 
+// While a graph is captured, an event record must become a node of the graph (external
+// event) rather than a dependency marker, or the replay would not time anything.
+void CudaPhaseTimer::record(cudaEvent_t e) {
+  cuda_check(cudaEventRecordWithFlags(e, stream_, recording_ ? cudaEventRecordExternal : cudaEventRecordDefault),
+             "event record");
+}
+
 void CudaPhaseTimer::start(Phase p) {
   cudaEvent_t e = next_event();
-  cuda_check(cudaEventRecord(e, stream_), "event record");
+  record(e);
   open_[size_t(p)] = e;
 }
 
 void CudaPhaseTimer::stop(Phase p) {
   cudaEvent_t e = next_event();
-  cuda_check(cudaEventRecord(e, stream_), "event record");
+  record(e);
   spans_.push_back({p, open_[size_t(p)], e});
+}
+
+void CudaPhaseTimer::begin_recording() {
+  recording_ = true;
+  recording_first_event_ = used_;
+  recording_first_span_ = spans_.size();
+}
+
+CudaPhaseTimer::Recording CudaPhaseTimer::end_recording() {
+  recording_ = false;
+  Recording r;
+  r.first_event = recording_first_event_;
+  r.end_event = used_;
+  r.spans.assign(spans_.begin() + std::ptrdiff_t(recording_first_span_), spans_.end());
+  return r;
+}
+
+bool CudaPhaseTimer::replay(const Recording& r) {
+  if (used_ != r.first_event || r.end_event > pool_.size()) return false;
+  used_ = r.end_event;
+  spans_.insert(spans_.end(), r.spans.begin(), r.spans.end());
+  return true;
+}
+
+CudaFrameGraph::~CudaFrameGraph() {
+  for (Slot& s : slots_)
+    if (s.graph_exec) cudaGraphExecDestroy(s.graph_exec);
+}
+
+void CudaFrameGraph::begin_capture(CudaExec& exec, CudaPhaseTimer& timer, Slot& s) {
+  s.valid = false;
+  cuda_check(cudaStreamBeginCapture(exec.stream(), cudaStreamCaptureModeThreadLocal), "graph capture begin");
+  timer.begin_recording();
+}
+
+void CudaFrameGraph::abandon_capture(CudaExec& exec, CudaPhaseTimer& timer) {
+  timer.end_recording();
+  cudaGraph_t graph = nullptr;
+  cudaStreamEndCapture(exec.stream(), &graph);
+  if (graph) cudaGraphDestroy(graph);
+}
+
+void CudaFrameGraph::end_capture(CudaExec& exec, CudaPhaseTimer& timer, Slot& s) {
+  s.recording = timer.end_recording();
+  cudaGraph_t graph = nullptr;
+  cuda_check(cudaStreamEndCapture(exec.stream(), &graph), "graph capture end");
+  if (s.graph_exec) {
+    cudaGraphExecUpdateResultInfo info{};
+    if (cudaGraphExecUpdate(s.graph_exec, graph, &info) == cudaSuccess) {
+      cudaGraphDestroy(graph);
+      return;
+    }
+    cudaGetLastError();  // a refused update is not an error: instantiate anew
+    cudaGraphExecDestroy(s.graph_exec);
+    s.graph_exec = nullptr;
+  }
+  const cudaError_t status = cudaGraphInstantiate(&s.graph_exec, graph, 0);
+  cudaGraphDestroy(graph);
+  cuda_check(status, "graph instantiation");
+}
+
+void CudaFrameGraph::launch_graph(CudaExec& exec, const Slot& s) {
+  cuda_check(cudaGraphLaunch(s.graph_exec, exec.stream()), "graph launch");
 }
 
 void CudaPhaseTimer::start_frame() {

@@ -5,6 +5,7 @@
 // pipeline/backends.h.
 #include <cuda_runtime.h>
 
+#include <array>
 #include <cstdint>
 #include <cub/block/block_reduce.cuh>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "core/aabb.h"
 #include "core/phase.h"
 #include "exec/balance.h"
+#include "exec/frame_graph.h"
 #include "exec/memory.h"
 
 namespace cdb {
@@ -31,6 +33,19 @@ template <class F>
 __global__ void for_each_kernel(uint32_t n, F f) {
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < n) f(i);
+}
+
+// One block per tile of F::kTile consecutive indices; the block's threads share one
+// F::Shared in shared memory, initialized lane by lane before any index runs.
+template <class F>
+__global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(uint32_t n, F f) {
+  __shared__ typename F::Shared shared;
+  f.init(shared, threadIdx.x);
+  __syncthreads();
+  const uint32_t first = blockIdx.x * F::kTile;
+  const uint32_t last = min(n, first + F::kTile) - 1;
+  const uint32_t i = first + threadIdx.x;
+  if (i < n) f(i, first, last, shared);
 }
 
 struct BoxUnion {
@@ -93,9 +108,12 @@ struct FillFn {
   __device__ void operator()(uint32_t i) const { p[i] = v; }
 };
 
+class CudaFrameGraph;
+
 class CudaExec {
  public:
   static constexpr bool is_device = true;
+  using FrameGraph = CudaFrameGraph;
 
   CudaExec();
   ~CudaExec();
@@ -112,6 +130,16 @@ class CudaExec {
     constexpr uint32_t threads = 256;
     const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
     for_each_kernel<<<blocks, threads, 0, stream_>>>(static_cast<uint32_t>(n), f);
+    cuda_check(cudaGetLastError(), "kernel launch");
+  }
+
+  // Indices in tiles of F::kTile that share an F::Shared: threads of one block here, so
+  // hand-overs inside a tile need only block-scope atomics (refit.h).
+  template <class F>
+  void for_each_tile(size_t n, const F& f) const {
+    if (n == 0) return;
+    const uint32_t blocks = static_cast<uint32_t>((n + F::kTile - 1) / F::kTile);
+    for_each_tile_kernel<<<blocks, F::kTile, 0, stream_>>>(static_cast<uint32_t>(n), f);
     cuda_check(cudaGetLastError(), "kernel launch");
   }
 
@@ -201,12 +229,26 @@ class CudaPhaseTimer {
   // Synchronizations of the executor since start_frame(), the frame's read-back included.
   uint64_t frame_syncs() const { return exec_->host_syncs() - syncs_at_start_; }
 
- private:
   struct Span {
     Phase phase;
     cudaEvent_t begin, end;
   };
+  // The phases a CUDA graph times: while its work is captured, start/stop record their
+  // events as event nodes of the graph; a replay of the graph records the same events again,
+  // so the frame takes over the spans (and the pool slots) of the capture.
+  struct Recording {
+    size_t first_event = 0, end_event = 0;
+    std::vector<Span> spans;
+  };
+  void begin_recording();
+  Recording end_recording();
+  // False when this frame's events so far differ from the capture's (the pool slots the
+  // graph records would clash): the caller captures again.
+  bool replay(const Recording& r);
+
+ private:
   cudaEvent_t next_event();
+  void record(cudaEvent_t e);
   const CudaExec* exec_;
   uint64_t syncs_at_start_ = 0;
   cudaStream_t stream_;
@@ -215,6 +257,71 @@ class CudaPhaseTimer {
   std::vector<Span> spans_;
   std::array<cudaEvent_t, kPhaseCount> open_{};
   cudaEvent_t frame_begin_ = nullptr, frame_end_ = nullptr;
+  bool recording_ = false;
+  size_t recording_first_event_ = 0, recording_first_span_ = 0;
+};
+
+// Recorded frames (CUDA graphs). run() captures the work `launch` enqueues on the
+// executor's stream into a graph the first time a key is seen, then launches it; with a key
+// seen before it only launches that graph: one launch instead of one per kernel, without
+// the gaps between them. Two recordings are kept (swept boxes alternate two vertex buffers,
+// so steady frames alternate two keys); a new key takes the older slot, updating its
+// instantiated graph in place (cudaGraphExecUpdate) when the shape allows.
+class CudaFrameGraph {
+ public:
+  CudaFrameGraph() = default;
+  ~CudaFrameGraph();
+  CudaFrameGraph(const CudaFrameGraph&) = delete;
+  CudaFrameGraph& operator=(const CudaFrameGraph&) = delete;
+
+  template <class F>
+  FrameGraphRun run(CudaExec& exec, CudaPhaseTimer& timer, const FrameGraphKey& key, F&& launch) {
+    ++clock_;
+    for (Slot& s : slots_) {
+      if (s.valid && s.key == key && timer.replay(s.recording)) {
+        s.last_used = clock_;
+        launch_graph(exec, s);
+        ++replays_;
+        return FrameGraphRun::replayed;
+      }
+    }
+    Slot& s = slots_[0].last_used <= slots_[1].last_used ? slots_[0] : slots_[1];
+    begin_capture(exec, timer, s);
+    try {
+      launch();
+    } catch (...) {
+      abandon_capture(exec, timer);
+      throw;
+    }
+    end_capture(exec, timer, s);
+    s.key = key;
+    s.valid = true;
+    s.last_used = clock_;
+    launch_graph(exec, s);
+    ++captures_;
+    return FrameGraphRun::captured;
+  }
+  // The next run() captures again whatever its key.
+  void invalidate() {
+    for (Slot& s : slots_) s.valid = false;
+  }
+  uint64_t captures() const { return captures_; }
+  uint64_t replays() const { return replays_; }
+
+ private:
+  struct Slot {
+    cudaGraphExec_t graph_exec = nullptr;
+    bool valid = false;
+    FrameGraphKey key{};
+    CudaPhaseTimer::Recording recording;
+    uint64_t last_used = 0;
+  };
+  void begin_capture(CudaExec& exec, CudaPhaseTimer& timer, Slot& s);
+  void end_capture(CudaExec& exec, CudaPhaseTimer& timer, Slot& s);
+  void abandon_capture(CudaExec& exec, CudaPhaseTimer& timer);
+  void launch_graph(CudaExec& exec, const Slot& s);
+  std::array<Slot, 2> slots_;
+  uint64_t clock_ = 0, captures_ = 0, replays_ = 0;
 };
 
 }  // namespace cdb

@@ -3,6 +3,7 @@
 // backend CI tests, so it implements every primitive for real (no shortcuts).
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include "core/aabb.h"
 #include "core/phase.h"
 #include "exec/balance.h"
+#include "exec/frame_graph.h"
 #include "exec/memory.h"
 
 namespace cdb {
@@ -26,9 +28,12 @@ class HostMemory final : public MemoryResource {
   void do_deallocate(void* p, size_t) override { ::operator delete(p, std::align_val_t(64)); }
 };
 
+class HostFrameGraph;
+
 class HostExec {
  public:
   static constexpr bool is_device = false;
+  using FrameGraph = HostFrameGraph;
 
   MemoryResource& memory() { return memory_; }
   const char* name() const { return "cpu"; }
@@ -42,6 +47,22 @@ class HostExec {
     } else {
 #pragma omp parallel for schedule(dynamic, 64)
       for (int64_t i = 0; i < count; ++i) f(static_cast<uint32_t>(i));
+    }
+  }
+
+  // Tiles of F::kTile consecutive indices sharing one F::Shared (see CudaExec): each tile
+  // runs its indices in order on one thread, after f.init for every lane.
+  template <class F>
+  void for_each_tile(size_t n, const F& f) const {
+    constexpr uint32_t tile = F::kTile;
+    const int64_t tiles = static_cast<int64_t>((n + tile - 1) / tile);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int64_t t = 0; t < tiles; ++t) {
+      typename F::Shared shared;
+      for (uint32_t lane = 0; lane < tile; ++lane) f.init(shared, lane);
+      const uint32_t first = static_cast<uint32_t>(t) * tile;
+      const uint32_t last = static_cast<uint32_t>(std::min<size_t>(n, size_t(first) + tile) - 1);
+      for (uint32_t i = first; i <= last; ++i) f(i, first, last, shared);
     }
   }
 
@@ -152,6 +173,17 @@ class HostPhaseTimer {
   std::array<double, kPhaseCount> ms_{};
   clock::time_point frame_begin_{};
   double frame_ms_ = 0.0;
+};
+
+// No graphs on the host: the recorded work runs as it comes, every frame.
+class HostFrameGraph {
+ public:
+  template <class F>
+  FrameGraphRun run(HostExec&, HostPhaseTimer&, const FrameGraphKey&, F&& launch) {
+    launch();
+    return FrameGraphRun::plain;
+  }
+  void invalidate() {}
 };
 
 }  // namespace cdb

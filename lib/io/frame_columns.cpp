@@ -40,6 +40,7 @@ const std::vector<FrameColumn>& frame_columns() {
         {"contacts", T::u64, "--check: reported pairs whose triangles intersect (exact test; co-vertex pairs count)", [](R r) -> ColumnValue { return r.stats.contacts; }},
         {"contact_precision", T::f64, "--check: contacts / reported pairs (1 with no pairs; 0 when not checked)", [](R r) -> ColumnValue { return r.stats.contact_precision; }},
         {"op", T::text, "what the frame did: hierarchy + front operation", [](R r) -> ColumnValue { return r.stats.op; }},
+        {"graph", T::text, "--cuda-graph: captured (recorded its CUDA graph, then launched it), replayed (launched one recorded earlier) or empty (plain launches)", [](R r) -> ColumnValue { return r.stats.graph; }},
         {"device_bytes", T::u64, "executor memory in use after the frame, bytes", [](R r) -> ColumnValue { return uint64_t(r.memory.current_bytes); }},
         {"device_peak_bytes", T::u64, "executor memory peak so far, bytes", [](R r) -> ColumnValue { return uint64_t(r.memory.peak_bytes); }},
         {"buffer_growths", T::u64, "buffer growths so far", [](R r) -> ColumnValue { return uint64_t(r.memory.growths); }},

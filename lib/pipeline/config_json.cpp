@@ -20,6 +20,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"box_margin", c.box_margin},
       {"boxes", c.swept_boxes ? "swept" : "discrete"},
       {"refit_every", c.refit_every},
+      {"cuda_graph", c.cuda_graph},
       {"conservative", config_conservative(c)},
   };
 }

@@ -52,6 +52,10 @@ struct PipelineConfig {
   // Front pipelines and bvh: refit only every this many frames (1: every frame), keeping
   // the stale boxes in between. NOT conservative: pairs can be missed. Baselines ignore it.
   uint32_t refit_every = 1;
+  // Front pipelines on CUDA: the steady-state frame (refit and preserve, the same kernels
+  // with the same arguments frame after frame) is captured once in a CUDA graph and
+  // replayed while nothing it launches changes. The host executor ignores it.
+  bool cuda_graph = true;
 };
 
 // Whether the config can miss pairs of the exact box-overlap set (refit_every > 1 on a
@@ -72,6 +76,9 @@ struct FrameStats {
   // bandwidth floor's numerator, filled by the frame loop.
   uint64_t bytes_floor = 0;
   std::string op;             // what the frame did: hierarchy (build/refit) + front operation
+  // --cuda-graph: "captured" (the frame recorded its graph, then launched it), "replayed"
+  // (it launched a graph recorded earlier) or "" (ran as plain launches).
+  std::string graph;
   uint64_t front_internal = 0, front_external = 0;  // self front sizes after the frame
   // A split scene's other fronts after the frame (internal + external nodes): T_D's leaves
   // against T_R, and T_R's self fronts (docs/design.md "Deformable and rigid objects").
