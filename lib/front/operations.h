@@ -145,6 +145,21 @@ struct UpdateFrontFn {
   CDB_HD void operator()(uint32_t e) const { update_front_node(view, pairs, front, prim[e], node[e]); }
 };
 
+// Both kinds of front (internal, external) in one launch: index e < n0 is the first's, the
+// rest the second's. Each pass is as long as its slowest traversal, so one launch lets the
+// two tails overlap instead of adding up.
+template <class F>
+struct BothFrontsFn {
+  F first, second;
+  uint32_t n0;
+  CDB_HD void operator()(uint32_t e) const {
+    if (e < n0)
+      first(e);
+    else
+      second(e - n0);
+  }
+};
+
 // (4) Balance: the opt mark each front node will take in the coming update (1 = sprout),
 // counted per BVH node for the histogram sort (count_log null when another sort orders).
 struct MarkFrontFn {
