@@ -94,6 +94,11 @@ TEST(CudaPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
 
 // The speed/accuracy knobs (knob_cases.h): face_box's margin and swept boxes run in the
 // kernels exactly as the host reference computes them; lazy refits keep stale boxes.
+TEST(CudaKnobs, OutwardRoundingGivesTheHostsBits) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_outward_rounding_on_executor<CudaExec>(2000000);
+}
+
 TEST(CudaKnobs, MarginGivesExactlyTheInflatedBoxPairs) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   auto soup = fast_soup(5);
