@@ -47,6 +47,7 @@ struct CommonOptions {
   bool skip_adjacent = false;
   float box_margin = 0.0f;
   std::string boxes = "discrete";
+  std::string box_precision = "fp32";
   uint32_t refit_every = 1;
   std::string cuda_graph = "on";
   std::vector<std::string> sets;  // generator overrides, key=value
@@ -82,6 +83,12 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "discrete: each triangle's box at the frame; swept: its box over the frame interval (previous and "
                   "current positions); swept is conservative with respect to the discrete oracle; all pipelines")
       ->check(CLI::IsMember({"discrete", "swept"}))
+      ->capture_default_str();
+  cmd->add_option("--box-precision", o.box_precision,
+                  "fp32: exact float triangle boxes; q16: boxes snapped outward onto a 16-bit grid per axis over "
+                  "the frame's vertex bounds, as a 16-bit box format stores them; conservative (recall stays 1, "
+                  "precision drops); all pipelines")
+      ->check(CLI::IsMember({"fp32", "q16"}))
       ->capture_default_str();
   cmd->add_option("--refit-every", o.refit_every,
                   "NOT CONSERVATIVE: front pipelines and bvh refit the hierarchy only every K frames and keep stale "
@@ -139,6 +146,7 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.skip_adjacent = o.skip_adjacent;
   c.box_margin = o.box_margin;
   c.swept_boxes = o.boxes == "swept";
+  c.box_precision = parse_box_precision(o.box_precision);
   c.refit_every = o.refit_every;
   c.cuda_graph = o.cuda_graph == "on";
   c.restructure_quality = o.restructure.restructure_quality;
@@ -329,9 +337,9 @@ int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
     for (const auto& n : pipeline_names())
       if (n != oracle_pipeline()) pipelines.push_back(n);
   const bool brute_oracle = topo.faces.size() <= brute_limit;
-  // The oracle sees the same fat or swept boxes only as the brute-force pipeline.
-  if (!brute_oracle && (o.box_margin > 0 || o.boxes != "discrete"))
-    fail("verify --box-margin/--boxes swept needs the brute-force oracle (raise --brute-limit)");
+  // The oracle sees the same fat, swept or quantized boxes only as the brute-force pipeline.
+  if (!brute_oracle && (o.box_margin > 0 || o.boxes != "discrete" || o.box_precision != "fp32"))
+    fail("verify --box-margin/--boxes swept/--box-precision q16 needs the brute-force oracle (raise --brute-limit)");
   std::printf("verify: scene %s (%zu triangles), frames %u:%u, device %s, oracle %s\n",
               scene.name.c_str(), topo.faces.size(), range.first, range.last, device.c_str(),
               brute_oracle ? "brute force (same device)" : "sort-and-sweep (cpu)");

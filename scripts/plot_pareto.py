@@ -3,8 +3,8 @@
 "Speed/accuracy knobs").
 
 One point per complete run checked against the oracle (`run --check`): the pipeline and its
-knobs (box_margin, boxes, refit_every from params_json's pipeline_config; older files count
-as 0 / discrete / 1). x: mean ms per frame (/summary t_total_ms_mean); left panel: worst
+knobs (box_margin, boxes, box_precision, refit_every from params_json's pipeline_config; older
+files count as 0 / discrete / fp32 / 1). x: mean ms per frame (/summary t_total_ms_mean); left panel: worst
 recall over the checked frames (recall_min), right panel: mean precision over them. The
 Pareto front of each panel (no other run is as fast and at least as accurate, one of them
 strictly) is joined and ringed. With --table, also a Markdown table of the points, fastest
@@ -37,6 +37,7 @@ class Point:
         config = json.loads(run.attrs.get("params_json", "{}") or "{}").get("pipeline_config", {})
         self.margin = float(config.get("box_margin", 0.0))
         self.boxes = str(config.get("boxes", "discrete"))
+        self.precision = str(config.get("box_precision", "fp32"))
         self.refit_every = int(config.get("refit_every", 1))
         self.conservative = bool(config.get("conservative", True))
         checked = run.frames["checked"].astype(bool) if "checked" in run.frames else np.zeros(run.rows, bool)
@@ -50,7 +51,7 @@ class Point:
         self.front = []
 
     def knobs(self):
-        return f"margin {self.margin:g}, {self.boxes}, refit every {self.refit_every}"
+        return f"margin {self.margin:g}, {self.boxes}, {self.precision}, refit every {self.refit_every}"
 
     def label(self):
         return f"{self.run.pipeline} ({self.knobs()})"
@@ -98,7 +99,8 @@ def main():
         for ax, (ylabel, key, name) in zip(axes, panels):
             for p in points:
                 ax.scatter(p.ms, key(p), color=colors[p.run.pipeline], s=22 + 60 * min(p.margin, 1.0) ** 0.5,
-                           marker=markers[(p.boxes, p.refit_every == 1)], alpha=0.8, zorder=2)
+                           marker=markers[(p.boxes, p.refit_every == 1)], alpha=0.8, zorder=2,
+                           edgecolors="black" if p.precision == "q16" else "none", linewidths=1.5)
             front = pareto(points, key)
             for p in front:
                 p.front.append(name)
@@ -115,6 +117,7 @@ def main():
         axes[0].scatter([], [], marker="o", color="gray", label="discrete, refit every frame")
         axes[0].scatter([], [], marker="s", color="gray", label="swept, refit every frame")
         axes[0].scatter([], [], marker="v", color="gray", label="lazy refit (not conservative)")
+        axes[0].scatter([], [], marker="o", color="gray", edgecolors="black", linewidths=1.5, label="q16 boxes")
         axes[0].scatter([], [], s=140, facecolors="none", edgecolors="black", label="Pareto front")
         axes[0].legend(fontsize=7)
         fig.suptitle(f"{args.scene}: speed/accuracy knobs ({points[0].run.device}); "
@@ -123,9 +126,9 @@ def main():
         # No Software entry: the PNG stays byte-identical across matplotlib versions.
         fig.savefig(args.out, dpi=110, metadata={"Software": None})
         if args.table:
-            header = ["pipeline", "box margin", "boxes", "refit every", "conservative", "mean ms", "recall min",
+            header = ["pipeline", "box margin", "boxes", "box precision", "refit every", "conservative", "mean ms", "recall min",
                       "precision min", "precision mean", "contact precision", "Pareto"]
-            rows = [[p.run.pipeline, f"{p.margin:g}", p.boxes, str(p.refit_every),
+            rows = [[p.run.pipeline, f"{p.margin:g}", p.boxes, p.precision, str(p.refit_every),
                      "yes" if p.conservative else "**no**", cdb_results.fmt(p.ms), f"{p.recall_min:.6f}",
                      f"{p.precision_min:.6f}", f"{p.precision_mean:.6f}",
                      "—" if math.isnan(p.contact_precision) else f"{p.contact_precision:.6f}",

@@ -6,10 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cfenv>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "bruteforce/sweep_oracle.h"
+#include "core/outward_rounding.h"
 #include "core/pair_set.h"
 #include "generators.h"
 #include "geometry/objects.h"
@@ -17,8 +21,81 @@
 
 namespace cdb::test {
 
+// a - b and a + b rounded by the FPU in its directed rounding modes: the reference for the
+// outward rounding face_box does in round-to-nearest arithmetic (core/outward_rounding.h).
+// volatile keeps the operations between the mode switches.
+inline float fpu_sub_down(float a, float b) {
+  volatile float x = a, y = b;
+  const int mode = std::fegetround();
+  std::fesetround(FE_DOWNWARD);
+  volatile float r = x - y;
+  std::fesetround(mode);
+  return r;
+}
+
+inline float fpu_add_up(float a, float b) {
+  volatile float x = a, y = b;
+  const int mode = std::fegetround();
+  std::fesetround(FE_UPWARD);
+  volatile float r = x + y;
+  std::fesetround(mode);
+  return r;
+}
+
+// Random (a, b >= 0) over every float exponent, subnormals included, half of them with b
+// near a's magnitude, where every rounding case occurs; the one-ulp ties first.
+inline void random_margin_operands(size_t n, std::vector<float>& a, std::vector<float>& b) {
+  a = {1.0f, 1.0f, 1.0f + 0x1p-23f, 0.0f, 1e30f, -1e30f, std::numeric_limits<float>::max()};
+  b = {0x1p-25f, 0x1p-24f, 0x1p-24f, 0x1p-149f, 1e-30f, 1e-30f, 1.0f};
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<uint32_t> bits(0, 0x7F7FFFFFu);  // finite, >= 0
+  while (a.size() < n) {
+    const float x = std::bit_cast<float>(bits(rng));
+    a.push_back(rng() & 1 ? -x : x);
+    b.push_back(a.size() % 2 ? std::bit_cast<float>(bits(rng)) : x * std::ldexp(1.0f, -int(rng() % 30)));
+  }
+}
+
+struct OutwardRoundingFn {
+  const float* a;
+  const float* b;
+  float* down;
+  float* up;
+  CDB_HD void operator()(uint32_t i) const {
+    down[i] = sub_round_down(a[i], b[i]);
+    up[i] = add_round_up(a[i], b[i]);
+  }
+};
+
+// The margin's outward rounding on the executor gives the host's bits (on CUDA: no FMA, no
+// flushed subnormals).
+template <class Exec>
+void check_outward_rounding_on_executor(size_t n) {
+  std::vector<float> a, b;
+  random_margin_operands(n, a, b);
+  Exec exec;
+  Array<float> da, db, down, up;
+  da.bind(exec.memory(), "test.a");
+  db.bind(exec.memory(), "test.b");
+  down.bind(exec.memory(), "test.down");
+  up.bind(exec.memory(), "test.up");
+  for (Array<float>* x : {&da, &db, &down, &up}) x->reserve(n);
+  exec.copy_from_host(da.data(), a.data(), n);
+  exec.copy_from_host(db.data(), b.data(), n);
+  exec.for_each_n(n, OutwardRoundingFn{da.data(), db.data(), down.data(), up.data()});
+  std::vector<float> got_down(n), got_up(n);
+  exec.copy_to_host(got_down.data(), down.data(), n);
+  exec.copy_to_host(got_up.data(), up.data(), n);
+  for (size_t i = 0; i < n; ++i) {
+    ASSERT_EQ(std::bit_cast<uint32_t>(got_down[i]), std::bit_cast<uint32_t>(sub_round_down(a[i], b[i])))
+        << a[i] << " - " << b[i];
+    ASSERT_EQ(std::bit_cast<uint32_t>(got_up[i]), std::bit_cast<uint32_t>(add_round_up(a[i], b[i])))
+        << a[i] << " + " << b[i];
+  }
+}
+
 // One face's box as the reference computes it: the triangle at `v`, grown by the
-// triangle at `prev` when given, then by `margin` on each side.
+// triangle at `prev` when given, then by `margin` on each side, rounded outward.
 inline void reference_box(const Tri& t, const std::vector<vec3f>& v, const std::vector<vec3f>* prev, float margin,
                           vec4f& lo, vec4f& hi) {
   const vec3f* pts[6] = {&v[t.v0], &v[t.v1], &v[t.v2], nullptr, nullptr, nullptr};
@@ -35,8 +112,8 @@ inline void reference_box(const Tri& t, const std::vector<vec3f>& v, const std::
     lo = {std::min(lo.x, pts[k]->x), std::min(lo.y, pts[k]->y), std::min(lo.z, pts[k]->z), 0};
     hi = {std::max(hi.x, pts[k]->x), std::max(hi.y, pts[k]->y), std::max(hi.z, pts[k]->z), 0};
   }
-  lo = {lo.x - margin, lo.y - margin, lo.z - margin, 0};
-  hi = {hi.x + margin, hi.y + margin, hi.z + margin, 0};
+  lo = {fpu_sub_down(lo.x, margin), fpu_sub_down(lo.y, margin), fpu_sub_down(lo.z, margin), 0};
+  hi = {fpu_add_up(hi.x, margin), fpu_add_up(hi.y, margin), fpu_add_up(hi.z, margin), 0};
 }
 
 // Every overlapping pair of the given boxes (closed bounds), sorted by pair_key.

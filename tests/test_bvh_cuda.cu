@@ -4,6 +4,7 @@
 #include "bvh_cases.h"
 #include "inter_cases.h"
 #include "knob_cases.h"
+#include "precision_cases.h"
 #include "io/scene.h"
 #include "exec/cuda_exec.cuh"
 
@@ -94,6 +95,11 @@ TEST(CudaPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
 
 // The speed/accuracy knobs (knob_cases.h): face_box's margin and swept boxes run in the
 // kernels exactly as the host reference computes them; lazy refits keep stale boxes.
+TEST(CudaKnobs, OutwardRoundingGivesTheHostsBits) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_outward_rounding_on_executor<CudaExec>(2000000);
+}
+
 TEST(CudaKnobs, MarginGivesExactlyTheInflatedBoxPairs) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   auto soup = fast_soup(5);
@@ -114,6 +120,38 @@ TEST(CudaKnobs, LazyRefitKeepsTheLastRefitsBoxesAndMissesPairs) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   auto soup = fast_soup(7);
   check_lazy_refit("cuda", *soup, 3);
+}
+
+// q16 boxes (precision_cases.h): the grid reduced in kernels equals the host's bit for bit,
+// and every pipeline's kernels snap exactly as the host face_box does.
+class CudaPrecision : public testing::TestWithParam<BaselineCase> {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_P(CudaPrecision, ExecutorGridEqualsTheHostGrid) {
+  const SceneFrames s = GetParam().make();
+  check_executor_grid<CudaExec>(s, false);
+  check_executor_grid<CudaExec>(s, true);
+}
+
+TEST_P(CudaPrecision, EveryPipelineReportsExactlyTheQ16Overlaps) {
+  size_t extra = 0;
+  check_q16_pipelines("cuda", GetParam().make(), extra);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaPrecision, testing::ValuesIn(precision_cases()), baseline_case_name);
+
+TEST(CudaKnobs, Q16AddsPairsAndCombinesWithMarginAndSweptBoxes) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  size_t coarse = 0, swept = 0;
+  check_q16_pipelines("cuda", with_point_at(cube_lattice(3, 1e-3f), 1e6f), coarse);
+  EXPECT_GT(coarse, 0u);
+  auto soup = fast_soup(4);
+  check_q16_pipelines("cuda", frames_of(*soup), swept, 0.1f * mean_box_extent(*soup), true);
+  EXPECT_GT(swept, 0u);
 }
 
 TEST(CudaPipelines, DeclaredQueriesReportOnlyWhatTheSceneAsks) {

@@ -1,7 +1,151 @@
+#include <limits>
+#include <random>
+
+#include "core/outward_rounding.h"
+#include "exec/host_exec.h"
 #include "inter_cases.h"
 #include "knob_cases.h"
+#include "precision_cases.h"
 
 namespace cdb::test {
+
+// The one-ulp cases of the fat-box margin: where rounding to nearest lands inside the real
+// lo - M or hi + M (ties to even at 1 +- half an ulp), at subnormals, at 1e30 against
+// 1e-30, and at overflow.
+TEST(OutwardRounding, OneUlpCases) {
+  const float inf = std::numeric_limits<float>::infinity(), max = std::numeric_limits<float>::max();
+  EXPECT_EQ(1.0f - 0x1p-25f, 1.0f);  // to nearest: the tie goes back up to 1
+  EXPECT_EQ(sub_round_down(1.0f, 0x1p-25f), 1.0f - 0x1p-24f);
+  EXPECT_EQ(1.0f + 0x1p-24f, 1.0f);
+  EXPECT_EQ(add_round_up(1.0f, 0x1p-24f), 1.0f + 0x1p-23f);
+  EXPECT_EQ(sub_round_down(1.0f, 0.25f), 0.75f);  // exact: unchanged
+  EXPECT_EQ(add_round_up(1.0f, 0.25f), 1.25f);
+  EXPECT_EQ(sub_round_down(1.0f, 0.0f), 1.0f);
+  EXPECT_EQ(sub_round_down(0.0f, 0x1p-149f), -0x1p-149f);  // subnormal, exact
+  EXPECT_EQ(sub_round_down(0x1p-126f, 0x1p-149f), 0x1p-126f - 0x1p-149f);
+  EXPECT_EQ(sub_round_down(1e30f, 1e-30f), std::nextafter(1e30f, 0.0f));
+  EXPECT_EQ(add_round_up(1e30f, 1e-30f), std::nextafter(1e30f, inf));
+  EXPECT_EQ(add_round_up(-1e30f, 1e-30f), std::nextafter(-1e30f, inf));
+  EXPECT_EQ(add_round_up(max, 1.0f), inf);  // above the largest float
+  EXPECT_EQ(sub_round_down(-max, 1.0f), -inf);
+  EXPECT_EQ(add_round_up(max, max), inf);
+  EXPECT_EQ(float_at_or_below(1.0 + 0x1p-30), 1.0f);
+  EXPECT_EQ(float_at_or_above(1.0 + 0x1p-30), 1.0f + 0x1p-23f);
+  EXPECT_EQ(float_at_or_below(-1.0 - 0x1p-30), -1.0f - 0x1p-23f);
+  EXPECT_EQ(float_at_or_above(1e39), inf);
+  EXPECT_EQ(float_at_or_below(1e39), max);
+  EXPECT_EQ(float_at_or_above(0x1p-160), 0x1p-149f);
+  EXPECT_EQ(float_at_or_below(0x1p-160), 0.0f);
+}
+
+// Random operands against the FPU's own directed rounding: the same value, not merely a
+// bound (a zero result may differ in sign: -0 from the FPU rounding down, +0 here).
+TEST(OutwardRounding, MatchesTheFpusDirectedRounding) {
+  std::vector<float> a, b;
+  random_margin_operands(2000000, a, b);
+  for (size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(sub_round_down(a[i], b[i]), fpu_sub_down(a[i], b[i])) << a[i] << " - " << b[i];
+    ASSERT_EQ(add_round_up(a[i], b[i]), fpu_add_up(a[i], b[i])) << a[i] << " + " << b[i];
+  }
+}
+
+TEST(OutwardRounding, SameBitsOnTheExecutor) { check_outward_rounding_on_executor<HostExec>(100000); }
+
+// A grid of unit cells from 0 to 65535: bounds move to the enclosing lines, lines stay.
+TEST(BoxGrid, SnapsOutwardOntoTheLines) {
+  const BoxGridAxis a = box_grid_axis(0.0f, 65535.0f);
+  EXPECT_EQ(a.cell, 1.0);
+  EXPECT_EQ(snap_down(a, 0.5f), 0.0f);
+  EXPECT_EQ(snap_up(a, 2.25f), 3.0f);
+  EXPECT_EQ(snap_down(a, 7.0f), 7.0f);
+  EXPECT_EQ(snap_up(a, 7.0f), 7.0f);
+  EXPECT_EQ(snap_down(a, 65534.5f), 65534.0f);
+  EXPECT_EQ(snap_up(a, 65534.5f), 65535.0f);
+  EXPECT_EQ(snap_up(a, 65535.0f), 65535.0f);
+  // Quarter cells: 65535 * 0.25 spans [-8192, 8191.75].
+  const BoxGridAxis q = box_grid_axis(-8192.0f, 8191.75f);
+  EXPECT_EQ(q.cell, 0.25);
+  EXPECT_EQ(snap_down(q, -0.1f), -0.25f);
+  EXPECT_EQ(snap_up(q, 0.1f), 0.25f);
+  // No extent, or no vertices: nothing snaps.
+  EXPECT_EQ(box_grid_axis(3.0f, 3.0f).cell, 0.0);
+  EXPECT_EQ(snap_down(box_grid_axis(3.0f, 3.0f), 3.0f), 3.0f);
+  EXPECT_EQ(box_grid(Aabb<float>::empty()).x.cell, 0.0);
+  // A span that overflows float (+-3e38): lines in double, finite, outward.
+  const BoxGridAxis w = box_grid_axis(-3e38f, 3e38f);
+  EXPECT_TRUE(std::isfinite(w.cell));
+  EXPECT_GT(w.cell, 9e33);
+  EXPECT_LE(snap_down(w, 1.0f), 1.0f);
+  EXPECT_GE(snap_down(w, 1.0f), 1.0f - 1.0001 * w.cell);
+  EXPECT_GE(snap_up(w, 1.0f), 1.0f);
+  EXPECT_EQ(snap_down(w, -3e38f), -3e38f);
+  EXPECT_EQ(snap_up(w, 3e38f), 3e38f);
+  // Subnormal cells, finer than the float spacing: a bound between lines goes to the next
+  // float outward (more than a cell, less than two float steps), one on a line stays.
+  const BoxGridAxis t = box_grid_axis(0.0f, 0x1p-140f);
+  EXPECT_EQ(snap_down(t, 0x1p-141f), 0x1p-141f - 0x1p-149f);
+  EXPECT_EQ(snap_up(t, 0x1p-141f), 0x1p-141f + 0x1p-149f);
+  EXPECT_EQ(snap_down(t, 0x1p-140f), 0x1p-140f);
+}
+
+// Over [0, 1] line k is the real k / 65535, never a float for 0 < k < 65535 (65535 is odd),
+// and x * 65535 is exact in double: each snapped bound must be the float just outside its
+// line (the line rounded outward), for random x.
+TEST(BoxGrid, SnapsToTheFloatJustOutsideEachLine) {
+  const BoxGridAxis a = box_grid_axis(0.0f, 1.0f);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int i = 0; i < 100000; ++i) {
+    const float x = unit(rng);
+    const double k = std::floor(double(x) * 65535.0);
+    if (k == 0.0 || k * (1.0 / 65535.0) == x) continue;
+    const double below = k / 65535.0, above = (k + 1.0) / 65535.0;
+    const float lo = snap_down(a, x), hi = snap_up(a, x);
+    ASSERT_LE(double(lo), below) << x;
+    ASSERT_GT(double(std::nextafter(lo, 2.0f)), below) << x;
+    if (k + 1.0 < 65535.0) {
+      ASSERT_GE(double(hi), above) << x;
+      ASSERT_LT(double(std::nextafter(hi, -1.0f)), above) << x;
+    }
+  }
+}
+
+class HostPrecision : public testing::TestWithParam<BaselineCase> {};
+
+TEST_P(HostPrecision, Q16BoxesContainTheExactOnesWithinOneCell) { check_q16_boxes(GetParam().make()); }
+
+TEST_P(HostPrecision, FloatBoxesContainTheDoubleBoxes) {
+  const SceneFrames s = GetParam().make();
+  for (float margin : precision_margins(s))
+    for (BoxPrecision precision : {BoxPrecision::fp32, BoxPrecision::q16}) {
+      check_contains_double_boxes(s, margin, precision);
+      if (testing::Test::HasFatalFailure()) return;
+    }
+}
+
+TEST_P(HostPrecision, ExecutorGridEqualsTheHostGrid) {
+  const SceneFrames s = GetParam().make();
+  check_executor_grid<HostExec>(s, false);
+  check_executor_grid<HostExec>(s, true);
+}
+
+TEST_P(HostPrecision, EveryPipelineReportsExactlyTheQ16Overlaps) {
+  size_t extra = 0;
+  check_q16_pipelines("cpu", GetParam().make(), extra);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, HostPrecision, testing::ValuesIn(precision_cases()), baseline_case_name);
+
+// Coarse cells (a 1e6-wide scene of 1e-3 cubes) add pairs; with swept boxes and a margin
+// on a fast soup, the grid spans the previous frame too and the margin goes on the snapped box.
+TEST(HostKnobs, Q16AddsPairsAndCombinesWithMarginAndSweptBoxes) {
+  size_t coarse = 0, swept = 0;
+  check_q16_pipelines("cpu", with_point_at(cube_lattice(3, 1e-3f), 1e6f), coarse);
+  EXPECT_GT(coarse, 0u);
+  auto soup = fast_soup(4);
+  check_q16_pipelines("cpu", frames_of(*soup), swept, 0.1f * mean_box_extent(*soup), true);
+  EXPECT_GT(swept, 0u);
+}
 
 TEST(HostKnobs, MarginGivesExactlyTheInflatedBoxPairs) {
   auto soup = fast_soup(5);

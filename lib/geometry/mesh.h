@@ -2,10 +2,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/box_grid.h"
 #include "geometry/objects.h"
 
 #include "core/aabb.h"
 #include "core/hd.h"
+#include "core/outward_rounding.h"
 #include "core/vec.h"
 
 namespace cdb {
@@ -27,18 +29,21 @@ struct Topology {
 // What kernels see of a mesh frame: plain pointers, passed by value.
 // The speed/accuracy knobs every box goes through (docs/design.md "Speed/accuracy knobs"):
 // `prev_vertices` (null: none) makes each box also bound the triangle at the previous
-// frame (swept boxes), and `margin` (absolute, scene units, >= 0) inflates each box on
-// every side (fat boxes).
+// frame (swept boxes), `grid` (null: none) snaps it outward onto this frame's 16-bit grid
+// (--box-precision q16; executor memory, written on the executor each frame), and `margin`
+// (absolute, scene units, >= 0) inflates it on every side (fat boxes).
 struct MeshView {
   const vec3f* vertices;
   const Tri* faces;
   uint32_t num_faces;
   const vec3f* prev_vertices = nullptr;
   float margin = 0.0f;
+  const BoxGrid* grid = nullptr;
 };
 
-// The one per-face box every pipeline and baseline uses. Subtracting / adding the margin
-// rounds to nearest, so a fat box still contains the exact box (the margin is >= 0).
+// The one per-face box every pipeline and baseline uses. Each step only widens the box and
+// every rounding goes outward, so the box contains the real-valued box the knobs describe:
+// the exact (swept) triangle box, snapped to the grid, grown by the margin.
 CDB_HD_INLINE void face_box(const MeshView& m, uint32_t f, vec4f& lo, vec4f& hi) {
   const Tri t = m.faces[f];
   triangle_box(m.vertices[t.v0], m.vertices[t.v1], m.vertices[t.v2], lo, hi);
@@ -48,9 +53,12 @@ CDB_HD_INLINE void face_box(const MeshView& m, uint32_t f, vec4f& lo, vec4f& hi)
     lo = {min_of(lo.x, plo.x), min_of(lo.y, plo.y), min_of(lo.z, plo.z), 0.0f};
     hi = {max_of(hi.x, phi.x), max_of(hi.y, phi.y), max_of(hi.z, phi.z), 0.0f};
   }
-  const float e = m.margin;
-  lo = {lo.x - e, lo.y - e, lo.z - e, 0.0f};
-  hi = {hi.x + e, hi.y + e, hi.z + e, 0.0f};
+  if (m.grid) snap_box_outward(*m.grid, lo, hi);
+  if (m.margin != 0.0f) {
+    const float e = m.margin;
+    lo = {sub_round_down(lo.x, e), sub_round_down(lo.y, e), sub_round_down(lo.z, e), 0.0f};
+    hi = {add_round_up(hi.x, e), add_round_up(hi.y, e), add_round_up(hi.z, e), 0.0f};
+  }
 }
 
 }  // namespace cdb

@@ -19,6 +19,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"threshold_build", c.threshold_build},
       {"box_margin", c.box_margin},
       {"boxes", c.swept_boxes ? "swept" : "discrete"},
+      {"box_precision", box_precision_name(c.box_precision)},
       {"refit_every", c.refit_every},
       {"cuda_graph", c.cuda_graph},
       {"conservative", config_conservative(c)},

@@ -2,6 +2,7 @@
 // Pieces every pipeline's frame loop shares: the mesh on the executor, the ordered LBVH's
 // per-frame upkeep, and the pair buffer with its counters.
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,9 @@ class DeviceMesh {
     partners_.bind(exec.memory(), "mesh.partners");
     deformable_faces_.bind(exec.memory(), "mesh.deformable_faces");
     rigid_faces_.bind(exec.memory(), "mesh.rigid_faces");
+    bounds_.bind(exec.memory(), "mesh.bounds");
+    grid_.bind(exec.memory(), "mesh.box_grid");
+    grid_temp_.bind(exec.memory(), "mesh.bounds_temp");
   }
   void set_topology(Exec& exec, const Topology& topology) {
     if (topology.faces.size() > kMaxLeaves) fail("scene has more triangles than 2^31-1");
@@ -38,6 +42,11 @@ class DeviceMesh {
     if (swept_) vertices_[1].reserve(num_vertices_);
     current_ = 0;
     uploaded_ = have_previous_ = false;
+    if (quantized()) {
+      bounds_.reserve(1);
+      grid_.reserve(1);
+      grid_temp_.reserve(exec.reduce_temp_bytes(num_vertices_));
+    }
     faces_.reserve(num_faces_);
     exec.copy_from_host(faces_.data(), topology.faces.data(), num_faces_);
     queries_declared_ = topology.queries.declared;
@@ -76,7 +85,9 @@ class DeviceMesh {
       fail("--box-margin must be a finite number >= 0");
     swept_ = config.swept_boxes;
     margin_ = config.box_margin;
+    precision_ = config.box_precision;
   }
+  bool quantized() const { return precision_ == BoxPrecision::q16; }
   // Swept boxes: the two vertex buffers swap roles, the new positions go over the older
   // frame's; no allocation.
   void upload(Exec& exec, const std::vector<vec3f>& vertices) {
@@ -90,15 +101,26 @@ class DeviceMesh {
     uploaded_ = true;
     exec.copy_from_host(vertices_[current_].data(), vertices.data(), num_vertices_);
   }
+  // q16: this frame's grid over its vertex bounds (with swept boxes the previous frame's
+  // too, so the grid spans every box it snaps), reduced and laid out on the executor into
+  // buffers reserved in set_topology: no read-back, no allocation.
+  void update_grid(Exec& exec) {
+    if (!quantized()) return;
+    exec.reduce_box(num_vertices_, VertexBoundsFn{vertices_[current_].data(), previous()}, bounds_.data(),
+                    grid_temp_.data(), grid_temp_.size());
+    exec.for_each_n(1, BoxGridFn{bounds_.data(), grid_.data()});
+  }
   MeshView view() const {
-    const vec3f* prev = swept_ && have_previous_ ? vertices_[current_ ^ 1u].data() : nullptr;
-    return {vertices_[current_].data(), faces_.data(), num_faces_, prev, margin_};
+    return {vertices_[current_].data(), faces_.data(), num_faces_, previous(), margin_,
+            quantized() ? grid_.data() : nullptr};
   }
   // The faces' vertex indices, 3 per face, for co-vertex filtering.
   const uint32_t* face_vertices() const { return reinterpret_cast<const uint32_t*>(faces_.data()); }
   uint32_t num_faces() const { return num_faces_; }
 
  private:
+  const vec3f* previous() const { return swept_ && have_previous_ ? vertices_[current_ ^ 1u].data() : nullptr; }
+
   Array<vec3f> vertices_[2];  // current_ is this frame's; the other the previous frame's
   Array<Tri> faces_;
   Array<uint32_t> face_object_;
@@ -109,6 +131,10 @@ class DeviceMesh {
   uint32_t num_vertices_ = 0, num_faces_ = 0;
   bool swept_ = false;
   float margin_ = 0.0f;
+  BoxPrecision precision_ = BoxPrecision::fp32;
+  Array<Aabb<float>> bounds_;
+  Array<BoxGrid> grid_;
+  Array<std::byte> grid_temp_;
   uint32_t current_ = 0;
   bool uploaded_ = false, have_previous_ = false;
 };
@@ -120,7 +146,8 @@ inline bool refit_due(uint64_t frame, uint32_t refit_every) {
 }
 
 // Starts a frame's timing and uploads its vertices (timed apart: upload is left out of the
-// frame total, since simulators hold their vertices on the device already).
+// frame total, since simulators hold their vertices on the device already); with q16 boxes
+// the frame's grid follows, in the boxes phase, for every pipeline and baseline alike.
 template <class Exec, class Timer>
 MeshView begin_frame(Exec& exec, Timer& timer, DeviceMesh<Exec>& mesh,
                      const std::vector<vec3f>& vertices) {
@@ -128,6 +155,11 @@ MeshView begin_frame(Exec& exec, Timer& timer, DeviceMesh<Exec>& mesh,
   timer.start(Phase::upload);
   mesh.upload(exec, vertices);
   timer.stop(Phase::upload);
+  if (mesh.quantized()) {
+    timer.start(Phase::boxes);
+    mesh.update_grid(exec);
+    timer.stop(Phase::boxes);
+  }
   return mesh.view();
 }
 

@@ -11,6 +11,14 @@ const std::vector<std::string>& pipeline_names() {
   return names;
 }
 
+const char* box_precision_name(BoxPrecision p) { return p == BoxPrecision::q16 ? "q16" : "fp32"; }
+
+BoxPrecision parse_box_precision(const std::string& name) {
+  if (name == "fp32") return BoxPrecision::fp32;
+  if (name == "q16") return BoxPrecision::q16;
+  fail("unknown box precision '" + name + "' (known: fp32, q16)");
+}
+
 bool config_conservative(const PipelineConfig& config) {
   // The baselines and the per-frame rebuild never keep stale boxes.
   for (const char* n : {"sweep", "hash", "grid", "brute", "reference"})

@@ -15,6 +15,15 @@
 
 namespace cdb {
 
+// How triangle boxes are stored (docs/design.md "Speed/accuracy knobs"): fp32, the exact
+// float box; q16, snapped outward onto a 16-bit grid per axis over the frame's vertex bounds
+// (conservative by construction).
+enum class BoxPrecision { fp32, q16 };
+
+const char* box_precision_name(BoxPrecision p);
+// Throws cdb::Error naming the known values.
+BoxPrecision parse_box_precision(const std::string& name);
+
 struct PipelineConfig {
   std::string name = "bvh";     // see pipeline_names()
   std::string device = "cuda";  // cuda | cpu
@@ -49,6 +58,8 @@ struct PipelineConfig {
   // Swept boxes: each box bounds the triangle at the previous and the current frame (the
   // first frame its own positions). Conservative with respect to the discrete pairs.
   bool swept_boxes = false;
+  // 16-bit quantized boxes. Conservative: each box contains its exact box.
+  BoxPrecision box_precision = BoxPrecision::fp32;
   // Front pipelines and bvh: refit only every this many frames (1: every frame), keeping
   // the stale boxes in between. NOT conservative: pairs can be missed. Baselines ignore it.
   uint32_t refit_every = 1;

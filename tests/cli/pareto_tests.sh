@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The speed/accuracy knobs from the command line to the Pareto plot: tiny CPU runs of a
 # fast-moving soup with each knob under --check every; the refit-every runs of tree
-# pipelines must miss pairs (recall < 1, with the warning line), fat and swept boxes must
-# not (recall 1, precision < 1); scripts/plot_pareto.py must draw them and tabulate them.
+# pipelines must miss pairs (recall < 1, with the warning line), fat, swept and q16 boxes
+# must not (recall 1, precision < 1); scripts/plot_pareto.py must draw them and tabulate them.
 set -u
 cdbench=$1
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
@@ -32,13 +32,15 @@ run bvh-lazy --pipeline bvh --refit-every 3
 run b-lazy --pipeline b --refit-every 3
 run grid-lazy --pipeline grid --refit-every 3
 run grid-margin --pipeline grid --box-margin 0.002
+run bvh-q16 --pipeline bvh --box-precision q16
+run grid-q16 --pipeline grid --box-precision q16
 
 recall='recall min ([0-9.]+)'
 has "lazy bvh misses pairs" "$tmp/bvh-lazy.out" "check .*recall min 0\.[0-9]+, "
 has "lazy bvh warns with the measured recall" "$tmp/bvh-lazy.out" \
   "^  warning .*--refit-every 3 .*NOT conservative.*measured recall min 0\.[0-9]+ over 6 checked frames"
 has "lazy b misses pairs" "$tmp/b-lazy.out" "check .*recall min 0\.[0-9]+, "
-for name in bvh-margin bvh-swept grid-margin; do
+for name in bvh-margin bvh-swept grid-margin bvh-q16 grid-q16; do
   has "$name keeps recall 1" "$tmp/$name.out" "check .*recall min 1\.000000, precision min 0\.[0-9]+"
   hasnt "$name does not warn" "$tmp/$name.out" "warning"
 done
@@ -48,6 +50,16 @@ check "config records the knobs, not conservative" 0 '"boxes": "discrete".*"cons
   "$python" -c "import h5py, json; print(json.dumps(json.loads(h5py.File('$res/bvh-lazy.h5')['/'].attrs['params_json'])['pipeline_config'], sort_keys=True))"
 check "config records swept boxes" 0 '"boxes": "swept".*"conservative": true' -- \
   "$python" -c "import h5py, json; print(json.dumps(json.loads(h5py.File('$res/bvh-swept.h5')['/'].attrs['params_json'])['pipeline_config'], sort_keys=True))"
+check "config records q16 boxes" 0 '"box_precision": "q16".*"conservative": true' -- \
+  "$python" -c "import h5py, json; print(json.dumps(json.loads(h5py.File('$res/bvh-q16.h5')['/'].attrs['params_json'])['pipeline_config'], sort_keys=True))"
+check "config records fp32 boxes by default" 0 '"box_precision": "fp32"' -- \
+  "$python" -c "import h5py, json; print(json.dumps(json.loads(h5py.File('$res/bvh-plain.h5')['/'].attrs['params_json'])['pipeline_config'], sort_keys=True))"
+check "q16 verifies exactly against the brute-force oracle on q16 boxes" 0 "all pipelines match the oracle" -- \
+  "$cdbench" verify --device cpu --scene "$tmp/soup-fast.json" --frames 0:3 --pipelines bvh b sweep hash grid --box-precision q16
+check "q16 verify refuses the discrete sweep oracle" 2 "--box-precision q16 needs the brute-force oracle" -- \
+  "$cdbench" verify --device cpu --scene "$tmp/soup-fast.json" --frames 0:1 --brute-limit 10 --box-precision q16
+check "unknown box precision refused" 105 "--box-precision: fp16 not in" -- \
+  "$cdbench" run --device cpu --scene "$tmp/soup-fast.json" --box-precision fp16
 check "negative margin refused" 105 "--box-margin" -- "$cdbench" run --device cpu --scene "$tmp/soup-fast.json" --box-margin -1
 check "unknown box kind refused" 105 "--boxes" -- "$cdbench" run --device cpu --scene "$tmp/soup-fast.json" --boxes fat
 
@@ -62,14 +74,15 @@ fi
 rows=$(grep -cE '^\| (bvh|b|grid) \|' "$tmp/table.md")
 [[ $rows -eq $n ]] && echo "ok   one table row per run" || fail "table has $rows rows, want $n"
 num='[0-9.]+'
-has "row: plain bvh exact" "$tmp/table.md" "^\| bvh \| 0 \| discrete \| 1 \| yes \| $num \| 1\.000000 \| 1\.000000 \| 1\.000000 \| $num \|"
-has "row: bvh margin" "$tmp/table.md" "^\| bvh \| 0\.002 \| discrete \| 1 \| yes \| $num \| 1\.000000 \| 0\.[0-9]+ \| 0\.[0-9]+ \| $num \|"
-has "row: bvh swept" "$tmp/table.md" "^\| bvh \| 0 \| swept \| 1 \| yes \| $num \| 1\.000000 \| 0\.[0-9]+ \| 0\.[0-9]+ \| $num \|"
-has "row: bvh lazy" "$tmp/table.md" "^\| bvh \| 0 \| discrete \| 3 \| \*\*no\*\* \| $num \| 0\.[0-9]+ \|"
-has "row: b lazy" "$tmp/table.md" "^\| b \| 0 \| discrete \| 3 \| \*\*no\*\* \| $num \| 0\.[0-9]+ \|"
-has "row: grid lazy is exact" "$tmp/table.md" "^\| grid \| 0 \| discrete \| 3 \| yes \| $num \| 1\.000000 \| 1\.000000 \|"
+has "row: plain bvh exact" "$tmp/table.md" "^\| bvh \| 0 \| discrete \| fp32 \| 1 \| yes \| $num \| 1\.000000 \| 1\.000000 \| 1\.000000 \| $num \|"
+has "row: bvh margin" "$tmp/table.md" "^\| bvh \| 0\.002 \| discrete \| fp32 \| 1 \| yes \| $num \| 1\.000000 \| 0\.[0-9]+ \| 0\.[0-9]+ \| $num \|"
+has "row: bvh swept" "$tmp/table.md" "^\| bvh \| 0 \| swept \| fp32 \| 1 \| yes \| $num \| 1\.000000 \| 0\.[0-9]+ \| 0\.[0-9]+ \| $num \|"
+has "row: bvh lazy" "$tmp/table.md" "^\| bvh \| 0 \| discrete \| fp32 \| 3 \| \*\*no\*\* \| $num \| 0\.[0-9]+ \|"
+has "row: b lazy" "$tmp/table.md" "^\| b \| 0 \| discrete \| fp32 \| 3 \| \*\*no\*\* \| $num \| 0\.[0-9]+ \|"
+has "row: grid lazy is exact" "$tmp/table.md" "^\| grid \| 0 \| discrete \| fp32 \| 3 \| yes \| $num \| 1\.000000 \| 1\.000000 \|"
+has "row: bvh q16" "$tmp/table.md" "^\| bvh \| 0 \| discrete \| q16 \| 1 \| yes \| $num \| 1\.000000 \| 0\.[0-9]+ \| 0\.[0-9]+ \| $num \|"
 # The fastest run of recall 1 is always on the recall front, whatever the timings.
-has "a conservative run is on the recall front" "$tmp/table.md" "^\| [a-z]+ \| [0-9.]+ \| [a-z]+ \| [0-9]+ \| yes \| $num \| 1\.000000 \| .*\| recall"
+has "a conservative run is on the recall front" "$tmp/table.md" "^\| [a-z]+ \| [0-9.]+ \| [a-z]+ \| [a-z0-9]+ \| [0-9]+ \| yes \| $num \| 1\.000000 \| .*\| recall"
 
 "$cdbench" run --device cpu --quiet --scene "$tmp/soup-fast.json" --pipeline bvh --out "$tmp/unchecked/bvh.h5" >/dev/null 2>&1
 check "unchecked runs are left out, named" 1 "bvh.h5: no frame checked" -- \
