@@ -72,7 +72,7 @@ CDB_HD_INLINE Num squared_distance_bound(float d) {
 
 // Sign (-1, 0, 1) of the polynomial f, exactly: the filter, then the exact evaluation.
 template <class Polynomial>
-CDB_HD_INLINE int exact_sign(const Polynomial& f) {
+CDB_HD_CALL int exact_sign(const Polynomial& f) {
   const BoundedDouble approx = f.template evaluate<BoundedDouble>();
   const double bound = approx.bound();
   if (approx.value > bound) return 1;
@@ -184,7 +184,7 @@ CDB_HD_INLINE bool point_point_within(const vec3f& p, const vec3f& q, float d) {
 }
 
 // The foot of p on the line of [a, b] (a != b) is on the closed segment and within d.
-CDB_HD_INLINE bool point_segment_interior_within(const vec3f& p, const vec3f& a, const vec3f& b, float d) {
+CDB_HD_CALL bool point_segment_interior_within(const vec3f& p, const vec3f& a, const vec3f& b, float d) {
   if (narrow::same_point(a, b)) return false;
   return exact_sign(PointLineExcess{p, a, b, d}) <= 0 && exact_sign(FootPastStart{p, a, b}) >= 0 &&
          exact_sign(FootPastStart{p, b, a}) >= 0;
@@ -192,7 +192,7 @@ CDB_HD_INLINE bool point_segment_interior_within(const vec3f& p, const vec3f& a,
 
 // The foot of p on the plane of the proper triangle abc is in the closed triangle and
 // within d.
-CDB_HD_INLINE bool point_face_interior_within(const vec3f& p, const vec3f& a, const vec3f& b, const vec3f& c,
+CDB_HD_CALL bool point_face_interior_within(const vec3f& p, const vec3f& a, const vec3f& b, const vec3f& c,
                                               float d) {
   return exact_sign(PointPlaneExcess{p, a, b, c, d}) <= 0 && exact_sign(InsideEdge{p, a, b, c}) >= 0 &&
          exact_sign(InsideEdge{p, b, c, a}) >= 0 && exact_sign(InsideEdge{p, c, a, b}) >= 0;
@@ -200,7 +200,7 @@ CDB_HD_INLINE bool point_face_interior_within(const vec3f& p, const vec3f& a, co
 
 // The closest points of the two (non-parallel) lines lie on both closed segments and are
 // within d.
-CDB_HD_INLINE bool segment_segment_interior_within(const vec3f& p0, const vec3f& p1, const vec3f& q0,
+CDB_HD_CALL bool segment_segment_interior_within(const vec3f& p0, const vec3f& p1, const vec3f& q0,
                                                    const vec3f& q1, float d) {
   if (exact_sign(EdgesCrossNorm{p0, p1, q0, q1}) == 0) return false;
   return exact_sign(LineLineExcess{p0, p1, q0, q1, d}) <= 0 && exact_sign(LineParameter{p0, p1, q0, q1, false}) >= 0 &&
@@ -210,7 +210,7 @@ CDB_HD_INLINE bool segment_segment_interior_within(const vec3f& p0, const vec3f&
 
 // Some axis separates the triangles' bounding boxes by more than d: then so are the
 // triangles. Exact: lo - hi - d is a sum of three doubles (expansion.h).
-CDB_HD_INLINE bool boxes_apart_by_more_than(const vec3f* s, const vec3f* t, float d) {
+CDB_HD_CALL bool boxes_apart_by_more_than(const vec3f* s, const vec3f* t, float d) {
   for (int axis = 0; axis < 3; ++axis) {
     float s_lo = coordinate(s[0], axis), s_hi = s_lo, t_lo = coordinate(t[0], axis), t_hi = t_lo;
     for (int k = 1; k < 3; ++k) {
@@ -227,7 +227,7 @@ CDB_HD_INLINE bool boxes_apart_by_more_than(const vec3f* s, const vec3f* t, floa
 }
 
 // Vertices of s against the proper triangle t (when it is one) and against t's edges.
-CDB_HD_INLINE bool vertices_within(const vec3f* s, const vec3f* t, bool t_proper, float d) {
+CDB_HD_CALL bool vertices_within(const vec3f* s, const vec3f* t, bool t_proper, float d) {
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j)
       if (point_segment_interior_within(s[i], t[j], t[(j + 1) % 3], d)) return true;

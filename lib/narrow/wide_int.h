@@ -24,7 +24,7 @@ struct WideInt {
   int sign;                   // -1, 0 or 1
 
   // x * 2^149, exactly.
-  CDB_HD_INLINE static WideInt of_float(float x) {
+  CDB_HD_CALL static WideInt of_float(float x) {
     uint32_t bits;
     memcpy(&bits, &x, sizeof bits);
     const uint32_t biased = (bits >> 23) & 0xFFu, fraction = bits & 0x7FFFFFu;
@@ -44,7 +44,7 @@ struct WideInt {
     return r;
   }
   // (x - y) * 2^149, exactly.
-  CDB_HD_INLINE static WideInt of_difference(float x, float y);
+  CDB_HD_CALL static WideInt of_difference(float x, float y);
 
   CDB_HD_INLINE void trim() {
     while (size > 0 && limb[size - 1] == 0) --size;
@@ -103,7 +103,7 @@ CDB_HD_INLINE WideInt operator-(WideInt a) {
   return a;
 }
 
-CDB_HD_INLINE WideInt operator+(const WideInt& a, const WideInt& b) {
+CDB_HD_CALL WideInt operator+(const WideInt& a, const WideInt& b) {
   if (b.sign == 0) return a;
   if (a.sign == 0) return b;
   if (a.sign == b.sign) return wide::add_magnitudes(a, b, a.sign);
@@ -117,10 +117,10 @@ CDB_HD_INLINE WideInt operator+(const WideInt& a, const WideInt& b) {
   return c > 0 ? wide::subtract_magnitudes(a, b, a.sign) : wide::subtract_magnitudes(b, a, b.sign);
 }
 
-CDB_HD_INLINE WideInt operator-(const WideInt& a, const WideInt& b) { return a + (-b); }
+CDB_HD_CALL WideInt operator-(const WideInt& a, const WideInt& b) { return a + (-b); }
 
 // Schoolbook product; a.size + b.size <= kWideLimbs (see the file comment).
-CDB_HD_INLINE WideInt operator*(const WideInt& a, const WideInt& b) {
+CDB_HD_CALL WideInt operator*(const WideInt& a, const WideInt& b) {
   WideInt r;
   r.sign = a.sign * b.sign;
   if (r.sign == 0) {
@@ -143,6 +143,6 @@ CDB_HD_INLINE WideInt operator*(const WideInt& a, const WideInt& b) {
   return r;
 }
 
-CDB_HD_INLINE WideInt WideInt::of_difference(float x, float y) { return of_float(x) - of_float(y); }
+CDB_HD_CALL WideInt WideInt::of_difference(float x, float y) { return of_float(x) - of_float(y); }
 
 }  // namespace cdb
