@@ -241,7 +241,7 @@ CDB_HD_CALL bool vertices_within(const vec3f* s, const vec3f* t, bool t_proper, 
 // Is the Euclidean distance between the closed triangles (a0, a1, a2) and (b0, b1, b2) at
 // most d? Exact for float vertices (finite) and float d; d = 0 is the intersection test,
 // d < 0 or NaN is never met, d = +inf always.
-CDB_HD_INLINE bool triangles_within(const vec3f& a0, const vec3f& a1, const vec3f& a2, const vec3f& b0,
+CDB_HD_CALL bool triangles_within(const vec3f& a0, const vec3f& a1, const vec3f& a2, const vec3f& b0,
                                     const vec3f& b1, const vec3f& b2, float d) {
   if (!(d >= 0)) return false;
   if (d > FLT_MAX) return true;
