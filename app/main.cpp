@@ -206,7 +206,26 @@ struct RunOptions {
   uint32_t repeat = 1;
   double max_noise = 0.0;  // percent on the command line, a fraction here
   bool cold = false;
+  double contact_distance = 0.0;                     // as given; used as a float
+  uint32_t contact_substeps = ContactCheck{}.substeps;
 };
+
+// --contact-distance and --contact-substeps, checked: a finite float distance >= 0, at
+// least one substep, and only with --check (they say what --check counts).
+ContactCheck contact_check(const RunOptions& r, uint32_t check_every) {
+  ContactCheck c;
+  c.distance = float(r.contact_distance);
+  c.substeps = r.contact_substeps;
+  if (!(r.contact_distance >= 0) || !std::isfinite(c.distance)) {
+    char given[32];
+    std::snprintf(given, sizeof given, "%g", r.contact_distance);
+    fail(std::string("--contact-distance ") + given + ": expected a finite distance >= 0 (within the float range)");
+  }
+  if (c.substeps == 0) fail("--contact-substeps 0: expected at least 1 (1: the two frames only)");
+  if (!check_every && (c.distance != ContactCheck{}.distance || c.substeps != ContactCheck{}.substeps))
+    fail("--contact-distance and --contact-substeps say what --check counts: they need --check");
+  return c;
+}
 
 // --check every | N | off: frames between checks against the oracle (0: none).
 uint32_t check_interval(const std::string& check) {
@@ -238,6 +257,8 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.triangles = scene.source->topology().faces.size();
   run.vertices = scene.source->topology().num_vertices;
   run.cold = r.cold;
+  run.contact_distance = double(float(r.contact_distance));
+  run.contact_substeps = r.contact_substeps;
   const auto scenes_dir = o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir);
   run.params_json = nlohmann::json{{"command", "run"},
                                    {"options", cli_options},
@@ -251,7 +272,9 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
                                      {"warmup", r.warmup},
                                      {"repeat", r.repeat},
                                      {"max_noise", r.max_noise},
-                                     {"cold", r.cold}}}}
+                                     {"cold", r.cold},
+                                     {"contact_distance", double(float(r.contact_distance))},
+                                     {"contact_substeps", r.contact_substeps}}}}
                         .dump();
   return run;
 }
@@ -273,6 +296,7 @@ std::vector<std::string> split_pipelines(const std::string& list) {
 int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options) {
   const std::string device = resolve_device(o.device);
   const std::vector<std::string> names = split_pipelines(r.pipeline);
+  const ContactCheck contact = contact_check(r, check_interval(r.check));
   if (names.size() > 1 && !r.out.empty() && r.out.find("{pipeline}") == std::string::npos)
     fail("--out " + r.out + ": several pipelines need {pipeline} in the file name");
   print_environment(device);
@@ -318,6 +342,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     loop.copy_gbps = copy_gbps;
     loop.oracle = [&topo, &o](const std::vector<vec3f>& v) { return sweep_oracle_pairs(topo, v, o.skip_adjacent); };
     loop.faces = &topo.faces;
+    loop.contact = contact;
     if (!config_conservative(config))
       loop.accuracy_warning = "--refit-every " + std::to_string(config.refit_every) +
                               " keeps stale boxes between refits: NOT conservative, pairs can be missed";
@@ -519,6 +544,14 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   run->add_flag("--cold", r.cold, "flush the device's last-level cache before every frame (outside its timing)");
+  run->add_option("--contact-distance", r.contact_distance,
+                  "--check: contacts are reported pairs whose triangles lie within this distance (scene units, "
+                  "exact test; 0: intersecting)")
+      ->capture_default_str();
+  run->add_option("--contact-substeps", r.contact_substeps,
+                  "--check: the interval from the previous frame is sampled at this many substeps (linear "
+                  "motion, both frames included) to count the contacts discrete boxes miss; a lower bound")
+      ->capture_default_str();
 
   auto* verify = app.add_subcommand("verify", "compare pipelines with the exact oracle, frame by frame");
   add_common(verify, o);

@@ -5,15 +5,17 @@
 
 #include "core/pair_set.h"
 #include "exec/memory.h"
+#include "narrow/contacts.h"
 #include "pipeline/pipeline.h"
 
 namespace cdb {
 
 int omp_threads();
 void print_frame_line(uint32_t frame, const FrameStats& s);
-// copy_gbps: the device's measured copy bandwidth, for the bandwidth floor (0: not shown).
+// copy_gbps: the device's measured copy bandwidth, for the bandwidth floor (0: not shown);
+// contact: what --check counted as a contact.
 void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const MemoryStats& mem,
-                   double copy_gbps = 0.0);
+                   double copy_gbps = 0.0, const ContactCheck& contact = {});
 void print_mismatch(const std::string& pipeline, uint32_t frame, const PairSetDiff& d);
 
 }  // namespace cdb

@@ -1,6 +1,7 @@
 #include "run_loop.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -16,8 +17,11 @@
 namespace cdb {
 namespace {
 
+// `previous`: the positions of the frame before (the frame's own on the first frame of a
+// pass, where swept boxes are discrete too).
 void check_frame_pairs(Pipeline& pipeline, const std::vector<PrimPair>& expected, const std::vector<Tri>& faces,
-                       const std::vector<vec3f>& vertices, FrameStats& s) {
+                       const std::vector<vec3f>& previous, const std::vector<vec3f>& vertices,
+                       const ContactCheck& contact, FrameStats& s) {
   const std::vector<PrimPair> reported = pipeline.sorted_pairs();
   const PairAccuracy a = pair_accuracy(expected, reported);
   s.checked = true;
@@ -25,8 +29,11 @@ void check_frame_pairs(Pipeline& pipeline, const std::vector<PrimPair>& expected
   s.precision = a.precision;
   s.missed = a.missed;
   s.false_positives = a.false_positives;
-  s.contacts = count_true_contacts(faces, vertices, reported);
+  s.contacts = count_true_contacts(faces, vertices, reported, contact.distance);
   s.contact_precision = contact_precision(s.contacts, reported.size());
+  const std::vector<PrimPair> beyond_discrete = diff_pair_sets(expected, reported, SIZE_MAX).unexpected;
+  s.discrete_missed_contacts =
+      count_interval_contacts(faces, previous, vertices, beyond_discrete, contact.distance, contact.substeps);
 }
 
 // Sample mean and relative standard deviation (0 for fewer than two samples).
@@ -104,7 +111,7 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
   Progress progress(frames_per_pass * options.repeat, options.progress);
   uint32_t done = 0;
   std::vector<FrameStats> frames;
-  std::vector<vec3f> vertices;
+  std::vector<vec3f> vertices, previous;  // previous: the last frame's positions, for --check
   EarlierPasses earlier;
   uint32_t f = range.first;
   const auto run_one = [&](uint32_t frame) {
@@ -132,8 +139,15 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     for (f = range.first; f < range.last && !interrupts.signal(); ++f) {
       frames.push_back(run_one(f));
       earlier.merge_into(frames.size() - 1, f, frames.back());
-      if (options.check_every && (f - range.first) % options.check_every == 0)
-        check_frame_pairs(pipeline, options.oracle(vertices), *options.faces, vertices, frames.back());
+      if (options.check_every) {
+        // After the timed frame. The pass's first frame has no previous one (its swept
+        // boxes are its own boxes), so its interval is the frame itself.
+        if (f == range.first) previous = vertices;
+        if ((f - range.first) % options.check_every == 0)
+          check_frame_pairs(pipeline, options.oracle(vertices), *options.faces, previous, vertices, options.contact,
+                            frames.back());
+        previous = vertices;
+      }
       if (out) {
         out->append_frame(f, frames.back(), pipeline.memory());
         if (options.save_pairs) out->write_pairs(f, pipeline.sorted_pairs());
@@ -152,7 +166,7 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     throw;
   }
   progress.finish();
-  print_summary(frames, options.warmup, pipeline.memory(), options.copy_gbps);
+  print_summary(frames, options.warmup, pipeline.memory(), options.copy_gbps, options.contact);
   if (!options.accuracy_warning.empty()) print_accuracy_warning(options.accuracy_warning, frames, options.warmup);
   if (const int signal = interrupts.signal()) {
     const std::string why = std::string("interrupted by ") + signal_name(signal) + " after " +

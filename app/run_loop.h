@@ -9,6 +9,7 @@
 #include "frame_range.h"
 #include "geometry/frame_source.h"
 #include "io/results_file.h"
+#include "narrow/contacts.h"
 #include "pipeline/device_probe.h"
 #include "pipeline/pipeline.h"
 #include "progress.h"
@@ -35,8 +36,10 @@ struct RunLoopOptions {
   DeviceProbe* probe = nullptr;
   // The device's measured copy bandwidth, for the bandwidth floor in the summary (0: none).
   double copy_gbps = 0.0;
-  // The scene's faces, to count which checked pairs are true contacts (narrow/contacts.h).
+  // The scene's faces, to count which checked pairs are true contacts (narrow/contacts.h),
+  // and what counts as one (--contact-distance, --contact-substeps).
   const std::vector<Tri>* faces = nullptr;
+  ContactCheck contact;
   // Set when the configuration can miss pairs (--refit-every): printed after the summary,
   // with the measured recall when frames were checked.
   std::string accuracy_warning;

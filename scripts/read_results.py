@@ -71,6 +71,8 @@ def print_summary(f):
         if "contact_precision" in attrs:  # files written before the narrow phase lack it
             print(f"  contacts     {text(attrs['contacts'])} of {text(attrs['checked_pairs'])} checked pairs: "
                   f"contact precision {text(attrs['contact_precision'])}, min {text(attrs['contact_precision_min'])}")
+        if "discrete_missed_contacts" in attrs:  # files written before the interval contacts lack it
+            print(f"  interval     {text(attrs['discrete_missed_contacts'])} contacts missed by discrete boxes")
     print(f"  memory       peak {text(attrs['peak_bytes'])} bytes, {text(attrs['growths'])} growths, "
           f"{text(attrs['query_reruns'])} query re-runs")
 

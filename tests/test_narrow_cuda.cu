@@ -1,6 +1,8 @@
-// The narrow-phase test compiled by nvcc and run on the GPU, where the filters' products may
-// be fused into FMAs: the same answers as the exact oracle and as the host, on the same
-// degenerate-rich small-integer pairs at every float placement.
+// The narrow-phase tests compiled by nvcc and run on the GPU, where the filters' products may
+// be fused into FMAs: the same answers as the exact oracles and as the host, on the same
+// degenerate-rich small-integer pairs at every float placement, for the intersection test
+// and for proximity (distance <= d, also through the integer similarity of
+// proximity_cases.h, whose full-width mantissas make the filters round).
 #include <gtest/gtest.h>
 
 #include <cuda_runtime.h>
@@ -9,8 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "narrow/proximity.h"
 #include "narrow/triangle_intersect.h"
 #include "narrow_cases.h"
+#include "proximity_cases.h"
 
 namespace cdb {
 namespace {
@@ -20,6 +24,13 @@ __global__ void intersect_pairs(const vec3f* corners, uint32_t n, uint8_t* meet)
   if (i >= n) return;
   const vec3f* c = corners + 6 * size_t(i);
   meet[i] = triangles_intersect(c[0], c[1], c[2], c[3], c[4], c[5]);
+}
+
+__global__ void within_pairs(const vec3f* corners, const float* distances, uint32_t n, uint8_t* within) {
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const vec3f* c = corners + 6 * size_t(i);
+  within[i] = triangles_within(c[0], c[1], c[2], c[3], c[4], c[5], distances[i]);
 }
 
 void check(cudaError_t e) { ASSERT_EQ(e, cudaSuccess) << cudaGetErrorString(e); }
@@ -69,6 +80,79 @@ TEST(NarrowCuda, DeviceAgreesWithOracleAndHost) {
   EXPECT_EQ(wrong, 0u) << "of " << n;
   EXPECT_GT(meets, n / 5);
   EXPECT_LT(meets, n - n / 5);
+}
+
+// Random pairs with d = k / 4 at the oracle's decision (k* - 1, k*, k* + 1 for the least k*
+// within: ties whenever the distance is k* / 4), plain and through the similarity, at every
+// placement: device, host and oracle agree.
+TEST(NarrowCuda, ProximityAgreesWithOracleAndHost) {
+  int devices = 0;
+  if (const cudaError_t e = cudaGetDeviceCount(&devices); e != cudaSuccess || devices == 0)
+    GTEST_SKIP() << "no GPU here (" << cudaGetErrorString(e) << "); run on the device";
+  std::vector<vec3f> corners;
+  std::vector<float> distances;
+  std::vector<uint8_t> expected;
+  uint32_t ties = 0;
+  for (const int range : {1, 3, 10}) {
+    RandomPairs gen(uint64_t(200 + range), range);
+    std::mt19937_64 rng(uint64_t(300 + range));
+    for (int it = 0; it < 6000; ++it) {
+      ITri P, Q;
+      gen.next(P, Q);
+      int64_t lo = 0, hi = 14 * range;
+      while (lo < hi) {
+        const int64_t mid = (lo + hi) / 2;
+        if (oracle_within(P, Q, mid).within)
+          hi = mid;
+        else
+          lo = mid + 1;
+      }
+      const int64_t quarters = std::max<int64_t>(0, lo + std::uniform_int_distribution<int64_t>(-1, 1)(rng));
+      const ProximityVerdict v = oracle_within(P, Q, quarters);
+      for (const bool similar : {false, true}) {
+        const ITri A = similar ? similarity(P) : P, B = similar ? similarity(Q) : Q;
+        const int64_t scaled = similar ? quarters * kSimilarityScale : quarters;
+        for (const Placement& p : kPlacements) {
+          for (const IVec& x : A) corners.push_back(place(x, p));
+          for (const IVec& x : B) corners.push_back(place(x, p));
+          distances.push_back(place_distance(scaled, p));
+          expected.push_back(v.within);
+          ties += v.tie;
+        }
+      }
+    }
+  }
+  const uint32_t n = uint32_t(expected.size());
+  vec3f* d_corners = nullptr;
+  float* d_distances = nullptr;
+  uint8_t* d_within = nullptr;
+  check(cudaMalloc(&d_corners, corners.size() * sizeof(vec3f)));
+  check(cudaMalloc(&d_distances, n * sizeof(float)));
+  check(cudaMalloc(&d_within, n));
+  check(cudaMemcpy(d_corners, corners.data(), corners.size() * sizeof(vec3f), cudaMemcpyHostToDevice));
+  check(cudaMemcpy(d_distances, distances.data(), n * sizeof(float), cudaMemcpyHostToDevice));
+  within_pairs<<<(n + 127) / 128, 128>>>(d_corners, d_distances, n, d_within);
+  check(cudaGetLastError());
+  std::vector<uint8_t> got(n);
+  check(cudaMemcpy(got.data(), d_within, n, cudaMemcpyDeviceToHost));
+  check(cudaFree(d_corners));
+  check(cudaFree(d_distances));
+  check(cudaFree(d_within));
+  uint32_t wrong = 0, within = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    const vec3f* c = &corners[6 * size_t(i)];
+    const bool host = triangles_within(c[0], c[1], c[2], c[3], c[4], c[5], distances[i]);
+    within += expected[i];
+    if (got[i] != expected[i] || host != bool(expected[i])) {
+      if (++wrong <= 5)
+        ADD_FAILURE() << "pair " << i << ": oracle " << int(expected[i]) << ", device " << int(got[i]) << ", host "
+                      << host << ", d " << distances[i];
+    }
+  }
+  EXPECT_EQ(wrong, 0u) << "of " << n;
+  EXPECT_GT(ties, n / 5);
+  EXPECT_GT(within, n / 2);
+  EXPECT_LT(within, n - n / 10);
 }
 
 }  // namespace

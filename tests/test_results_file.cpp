@@ -170,16 +170,20 @@ TEST(ResultsFile, CheckedFramesRecordContacts) {
   const fs::path path = dir / "checked.h5";
   std::vector<FrameStats> frames(3);
   frames[0].pairs = 10, frames[0].checked = true, frames[0].contacts = 4, frames[0].contact_precision = 0.4;
+  frames[0].discrete_missed_contacts = 3;
   frames[1].pairs = 0, frames[1].checked = true, frames[1].contacts = 0, frames[1].contact_precision = 1.0;
-  frames[2].pairs = 100;
+  frames[2].pairs = 100, frames[2].discrete_missed_contacts = 7;  // not checked: not summed
   const MemoryStats memory;
   const RunSummary summary = summarize_run(frames, 0);
   EXPECT_EQ(summary.contacts, 4u);
   EXPECT_EQ(summary.checked_pairs, 10u);
   EXPECT_DOUBLE_EQ(summary.contact_precision, 0.4);
   EXPECT_DOUBLE_EQ(summary.contact_precision_min, 0.4);
+  EXPECT_EQ(summary.discrete_missed_contacts, 3u);
   {
-    ResultsFile out(path, info_for("static", 3));
+    RunInfo info = info_for("static", 3);
+    info.contact_distance = 0.25, info.contact_substeps = 4;
+    ResultsFile out(path, info);
     for (uint32_t i = 0; i < 3; ++i) out.append_frame(i, frames[i], memory);
     out.finish(summary, memory);
   }
@@ -191,6 +195,10 @@ TEST(ResultsFile, CheckedFramesRecordContacts) {
   EXPECT_EQ(number_attr(f.id, "summary", "checked_pairs"), 10);
   EXPECT_EQ(number_attr(f.id, "summary", "contact_precision"), 0.4);
   EXPECT_EQ(number_attr(f.id, "summary", "contact_precision_min"), 0.4);
+  EXPECT_EQ(integers(f.id, "frames/discrete_missed_contacts"), (std::vector<uint64_t>{3, 0, 7}));
+  EXPECT_EQ(number_attr(f.id, "summary", "discrete_missed_contacts"), 3);
+  EXPECT_EQ(number_attr(f.id, ".", "contact_distance"), 0.25);
+  EXPECT_EQ(number_attr(f.id, ".", "contact_substeps"), 4);
 }
 
 TEST(ResultsFile, CompleteRunMatchesFrameStats) {

@@ -114,6 +114,8 @@ ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
   write_attr(root, "vertices", info.vertices, at);
   write_attr(root, "copy_bandwidth_gbps", info.copy_gbps, at);
   write_attr(root, "cold", uint64_t(info.cold), at);
+  write_attr(root, "contact_distance", info.contact_distance, at);
+  write_attr(root, "contact_substeps", uint64_t(info.contact_substeps), at);
   write_attr(root, "host", host_name(), at);
   write_attr(root, "created_utc", utc_now(), at);
 
@@ -259,6 +261,7 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
   write_attr(loc, "checked_pairs", uint64_t(s.checked_pairs), at);
   write_attr(loc, "contact_precision", s.checked_frames ? s.contact_precision : none, at);
   write_attr(loc, "contact_precision_min", s.checked_frames ? s.contact_precision_min : none, at);
+  write_attr(loc, "discrete_missed_contacts", uint64_t(s.discrete_missed_contacts), at);
   write_attr(loc, "peak_bytes", uint64_t(memory.peak_bytes), at);
   write_attr(loc, "allocations", uint64_t(memory.allocations), at);
   write_attr(loc, "growths", uint64_t(memory.growths), at);

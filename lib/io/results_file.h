@@ -34,6 +34,10 @@ struct RunInfo {
   uint64_t triangles = 0, vertices = 0;
   double copy_gbps = 0.0;  // the device's copy bandwidth, measured at the run's start
   bool cold = false;       // --cold: caches flushed before every frame
+  // --check's contacts: triangles within this distance (--contact-distance), the frame
+  // interval sampled at this many substeps (--contact-substeps).
+  double contact_distance = 0.0;
+  uint32_t contact_substeps = 0;
 };
 
 class ResultsFile {

@@ -2,19 +2,53 @@
 
 #include <cstddef>
 
+#include "core/error.h"
+#include "narrow/proximity.h"
 #include "narrow/triangle_intersect.h"
 
 namespace cdb {
+namespace {
+
+vec3f interpolate(const vec3f& from, const vec3f& to, float t) {
+  const float s = 1.0f - t;
+  return {s * from.x + t * to.x, s * from.y + t * to.y, s * from.z + t * to.z};
+}
+
+}  // namespace
 
 uint64_t count_true_contacts(const std::vector<Tri>& faces, const std::vector<vec3f>& vertices,
-                             const std::vector<PrimPair>& pairs) {
+                             const std::vector<PrimPair>& pairs, float distance) {
   uint64_t contacts = 0;
   const std::ptrdiff_t n = std::ptrdiff_t(pairs.size());
-#pragma omp parallel for schedule(static) reduction(+ : contacts)
+#pragma omp parallel for schedule(dynamic, 1024) reduction(+ : contacts)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const Tri s = faces[pairs[size_t(k)].a], t = faces[pairs[size_t(k)].b];
-    contacts += triangles_intersect(vertices[s.v0], vertices[s.v1], vertices[s.v2], vertices[t.v0],
-                                    vertices[t.v1], vertices[t.v2]);
+    contacts += triangles_within(vertices[s.v0], vertices[s.v1], vertices[s.v2], vertices[t.v0], vertices[t.v1],
+                                 vertices[t.v2], distance);
+  }
+  return contacts;
+}
+
+uint64_t count_interval_contacts(const std::vector<Tri>& faces, const std::vector<vec3f>& previous,
+                                 const std::vector<vec3f>& current, const std::vector<PrimPair>& pairs,
+                                 float distance, uint32_t substeps) {
+  if (substeps == 0) fail("contact substeps must be at least 1");
+  if (previous.size() != current.size()) fail("previous and current frames differ in vertex count");
+  uint64_t contacts = 0;
+  const std::ptrdiff_t n = std::ptrdiff_t(pairs.size());
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : contacts)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const Tri s = faces[pairs[size_t(k)].a], t = faces[pairs[size_t(k)].b];
+    const uint32_t corners[6] = {s.v0, s.v1, s.v2, t.v0, t.v1, t.v2};
+    for (uint32_t step = 0; step <= substeps; ++step) {
+      const float time = float(step) / float(substeps);
+      vec3f p[6];
+      for (int c = 0; c < 6; ++c) p[c] = interpolate(previous[corners[c]], current[corners[c]], time);
+      if (triangles_within(p[0], p[1], p[2], p[3], p[4], p[5], distance)) {
+        ++contacts;
+        break;
+      }
+    }
   }
   return contacts;
 }

@@ -234,7 +234,9 @@ CDB_HD_INLINE bool shape_meets_proper(const TriangleShape& s, const vec3f& a, co
 }  // namespace narrow
 
 // Do the closed triangles (p1, q1, r1) and (p2, q2, r2) share a point? Exact for float input.
-CDB_HD_INLINE bool triangles_intersect(const vec3f& p1, const vec3f& q1, const vec3f& r1, const vec3f& p2,
+// Out of line in device code: its inlined predicates are large, and every kernel calling it
+// (the intersection and the proximity test) would carry a copy.
+CDB_HD_CALL bool triangles_intersect(const vec3f& p1, const vec3f& q1, const vec3f& r1, const vec3f& p2,
                                        const vec3f& q2, const vec3f& r2) {
   using narrow::TriangleShape;
   const TriangleShape t1 = narrow::classify_triangle(p1, q1, r1);

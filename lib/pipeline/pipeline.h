@@ -105,10 +105,16 @@ struct FrameStats {
   bool checked = false;
   double recall = 0.0, precision = 0.0;
   uint64_t missed = 0, false_positives = 0;
-  // --check, narrow phase: reported pairs whose triangles truly intersect (exact test,
-  // lib/narrow) and their share of the reported pairs (1 when there are none).
+  // --check, narrow phase: reported pairs whose triangles are in contact, i.e. within
+  // --contact-distance (0: intersecting; exact tests, lib/narrow), and their share of the
+  // reported pairs (1 when there are none).
   uint64_t contacts = 0;
   double contact_precision = 0.0;
+  // --check: reported pairs the discrete oracle lacks (only swept or fat boxes find them)
+  // whose triangles come within --contact-distance at a sampled time of the interval from
+  // the previous frame to this one: contacts of the interval that discrete boxes miss (a
+  // lower bound: narrow/contacts.h count_interval_contacts).
+  uint64_t discrete_missed_contacts = 0;
 };
 
 class Pipeline {

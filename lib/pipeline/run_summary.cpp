@@ -52,6 +52,7 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
       r.missed += f.missed;
       r.false_positives += f.false_positives;
       r.contacts += f.contacts;
+      r.discrete_missed_contacts += f.discrete_missed_contacts;
       r.checked_pairs += f.pairs;
       r.contact_precision_min = std::min(r.contact_precision_min, f.contact_precision);
     }

@@ -48,6 +48,8 @@ struct RunSummary {
   // (contacts / pairs over all checked frames; 1 with no pairs) and the lowest frame's share.
   uint64_t contacts = 0, checked_pairs = 0;
   double contact_precision = 1.0, contact_precision_min = 1.0;
+  // Contacts of the frame intervals that discrete boxes miss, summed over the checked frames.
+  uint64_t discrete_missed_contacts = 0;
 };
 
 RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup);
