@@ -2,9 +2,11 @@
 // Shared by the proximity tests (host and GPU): an independent exact oracle for "the closed
 // triangles P and Q (small integer points) lie within d = k/4 of each other", in __int128,
 // and an exact similarity that turns small integer points into full-width float mantissas.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <stdexcept>
 
 #include "narrow_cases.h"
@@ -113,6 +115,21 @@ inline ProximityVerdict oracle_within(const ITri& P, const ITri& Q, int64_t quar
   verdict.within = below || equal;
   verdict.tie = equal && !below;
   return verdict;
+}
+
+// d = k / 4 right at the decision for a pair of `range` lattice triangles: k* the least k
+// within (by bisection on the oracle; a tie when the distance is k* / 4), and k one of
+// k* - 1, k*, k* + 1 (never below 0), drawn from `rng`.
+inline int64_t quarters_near_decision(const ITri& P, const ITri& Q, int range, std::mt19937_64& rng) {
+  int64_t lo = 0, hi = 14 * int64_t(range);  // 14 range / 4 > the lattice's diameter 2 sqrt(3) range
+  while (lo < hi) {
+    const int64_t mid = (lo + hi) / 2;
+    if (oracle_within(P, Q, mid).within)
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  return std::max<int64_t>(0, lo + std::uniform_int_distribution<int64_t>(-1, 1)(rng));
 }
 
 // d = quarters / 4 at a placement's scale (offsets do not change distances): exact in float

@@ -99,15 +99,7 @@ TEST(NarrowCuda, ProximityAgreesWithOracleAndHost) {
     for (int it = 0; it < 6000; ++it) {
       ITri P, Q;
       gen.next(P, Q);
-      int64_t lo = 0, hi = 14 * range;
-      while (lo < hi) {
-        const int64_t mid = (lo + hi) / 2;
-        if (oracle_within(P, Q, mid).within)
-          hi = mid;
-        else
-          lo = mid + 1;
-      }
-      const int64_t quarters = std::max<int64_t>(0, lo + std::uniform_int_distribution<int64_t>(-1, 1)(rng));
+      const int64_t quarters = quarters_near_decision(P, Q, range, rng);
       const ProximityVerdict v = oracle_within(P, Q, quarters);
       for (const bool similar : {false, true}) {
         const ITri A = similar ? similarity(P) : P, B = similar ? similarity(Q) : Q;

@@ -118,17 +118,7 @@ Outcome compare_with_oracle(uint64_t seed, int range, int count, bool similar) {
   for (int it = 0; it < count; ++it) {
     ITri P, Q;
     gen.next(P, Q);
-    // d = k / 4 right at the decision: k* the least k within (by bisection on the oracle; a
-    // tie when the distance is k* / 4), and k one of k* - 1, k*, k* + 1.
-    int64_t lo = 0, hi = 14 * range;  // 14 range / 4 > the lattice's diameter 2 sqrt(3) range
-    while (lo < hi) {
-      const int64_t mid = (lo + hi) / 2;
-      if (oracle_within(P, Q, mid).within)
-        hi = mid;
-      else
-        lo = mid + 1;
-    }
-    const int64_t quarters = std::max<int64_t>(0, lo + std::uniform_int_distribution<int64_t>(-1, 1)(rng));
+    const int64_t quarters = quarters_near_decision(P, Q, range, rng);
     const ProximityVerdict v = oracle_within(P, Q, quarters);
     (v.within ? out.within : out.apart)++;
     out.ties += v.tie;
