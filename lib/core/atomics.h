@@ -48,6 +48,16 @@ CDB_HD_INLINE uint32_t atomic_add_acq_rel_block(uint32_t* p, uint32_t v) {
 #endif
 }
 
+// Toggles bits of a word in shared memory between threads of one block, acquire-release: the
+// one-block refit's arrival flags (one bit per node; a node's second arrival sees its bit set).
+CDB_HD_INLINE uint32_t atomic_xor_acq_rel_block(uint32_t* p, uint32_t v) {
+#if defined(__CUDA_ARCH__)
+  return cuda::atomic_ref<uint32_t, cuda::thread_scope_block>(*p).fetch_xor(v, cuda::memory_order_acq_rel);
+#else
+  return std::atomic_ref<uint32_t>(*p).fetch_xor(v, std::memory_order_acq_rel);
+#endif
+}
+
 CDB_HD_INLINE uint32_t atomic_add_relaxed(uint32_t* p, uint32_t v) {
 #if defined(__CUDA_ARCH__)
   return atomicAdd(p, v);
@@ -99,6 +109,21 @@ CDB_HD_INLINE T claim_one(T* counter) {
   return base + static_cast<T>(__popc(same & ((1u << lane) - 1u)));
 #else
   return atomic_add_relaxed(counter, T(1));
+#endif
+}
+
+// Adds one to *counter for the calling thread and wants no value back. The lanes of a warp
+// that count on the same address together share one atomic, as in claim_one, but the
+// leader's add is a reduction (RED) whose result nobody waits for: the histogram sort's count
+// logs take one such add per produced front node, and a fetch-add there stalled every push
+// for an atomic's round trip.
+template <class T>
+CDB_HD_INLINE void count_one(T* counter) {
+#if defined(__CUDA_ARCH__)
+  const unsigned same = __match_any_sync(__activemask(), reinterpret_cast<unsigned long long>(counter));
+  if ((threadIdx.x & 31u) == unsigned(__ffs(same) - 1)) atomicAdd(counter, static_cast<T>(__popc(same)));
+#else
+  atomic_add_relaxed(counter, T(1));
 #endif
 }
 

@@ -48,6 +48,18 @@ __global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(uint32_t n, F f
   if (i < n) f(i, first, last, shared);
 }
 
+// One block for all n indices: thread t runs t, t + blockDim.x, ... in order. The block's
+// threads share `words` words of shared memory, zeroed before any index runs.
+inline constexpr uint32_t kOneBlockThreads = 1024;
+
+template <class F>
+__global__ void __launch_bounds__(kOneBlockThreads) for_each_in_one_block_kernel(uint32_t n, uint32_t words, F f) {
+  extern __shared__ uint32_t shared_words[];
+  for (uint32_t w = threadIdx.x; w < words; w += blockDim.x) shared_words[w] = 0u;
+  __syncthreads();
+  for (uint32_t i = threadIdx.x; i < n; i += blockDim.x) f(i, shared_words);
+}
+
 struct BoxUnion {
   __device__ Aabb<float> operator()(const Aabb<float>& a, const Aabb<float>& b) const {
     Aabb<float> r = a;
@@ -140,6 +152,16 @@ class CudaExec {
     if (n == 0) return;
     const uint32_t blocks = static_cast<uint32_t>((n + F::kTile - 1) / F::kTile);
     for_each_tile_kernel<<<blocks, F::kTile, 0, stream_>>>(static_cast<uint32_t>(n), f);
+    cuda_check(cudaGetLastError(), "kernel launch");
+  }
+
+  // All n indices in one block sharing `words` zeroed words of shared memory (at most 48 KiB):
+  // hand-overs between indices need only block-scope atomics, and nothing crosses blocks.
+  template <class F>
+  void for_each_in_one_block(size_t n, size_t words, const F& f) const {
+    if (n == 0) return;
+    for_each_in_one_block_kernel<<<1, kOneBlockThreads, words * sizeof(uint32_t), stream_>>>(
+        static_cast<uint32_t>(n), static_cast<uint32_t>(words), f);
     cuda_check(cudaGetLastError(), "kernel launch");
   }
 

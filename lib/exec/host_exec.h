@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <new>
+#include <vector>
 
 #include "core/aabb.h"
 #include "core/phase.h"
@@ -64,6 +65,14 @@ class HostExec {
       const uint32_t last = static_cast<uint32_t>(std::min<size_t>(n, size_t(first) + tile) - 1);
       for (uint32_t i = first; i <= last; ++i) f(i, first, last, shared);
     }
+  }
+
+  // All n indices in one block sharing `words` zeroed words (see CudaExec): on the host, one
+  // thread runs them in order.
+  template <class F>
+  void for_each_in_one_block(size_t n, size_t words, const F& f) const {
+    std::vector<uint32_t> shared(words, 0u);
+    for (size_t i = 0; i < n; ++i) f(static_cast<uint32_t>(i), shared.data());
   }
 
   size_t scan_temp_bytes(size_t) const { return 0; }

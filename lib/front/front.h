@@ -39,7 +39,7 @@ struct FrontSink {
       node[k][slot] = ref;
       mark[k][slot] = m;
     }
-    if (count_log[k]) claim_one(&count_log[k][ref_index(ref)]);
+    if (count_log[k]) count_one(&count_log[k][ref_index(ref)]);
   }
 
 };

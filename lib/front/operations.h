@@ -171,7 +171,7 @@ struct MarkFrontFn {
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t i = prim[e], j = node[e];
     mark[e] = view.tree.overlaps_node(view.query_lo[i], view.query_hi[i], j) ? 1 : 0;
-    if (count_log) claim_one(&count_log[ref_index(j)]);
+    if (count_log) count_one(&count_log[ref_index(j)]);
   }
 };
 
