@@ -50,7 +50,6 @@ struct CommonOptions {
   std::string box_precision = "fp32";
   uint32_t refit_every = 1;
   std::string cuda_graph = "on";
-  uint32_t refit_block_leaves = kRefitBlockLeaves;
   std::vector<std::string> sets;  // generator overrides, key=value
 };
 
@@ -102,11 +101,6 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "and replay it while its launches stay the same; off: plain launches every frame")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
-  cmd->add_option("--refit-block-leaves", o.refit_block_leaves,
-                  "front pipelines and bvh: a tree of at most this many leaves refits in one thread block (no "
-                  "device-scope hand-overs), a larger one in tiles of 256 leaves; 0: always in tiles")
-      ->check(CLI::Range(0u, kRefitBlockLeavesMax))
-      ->capture_default_str();
   PipelineConfig& r = o.restructure;
   cmd->add_option("--restructure-quality", r.restructure_quality,
                   "pipeline c: a subtree is degraded when its Q exceeds this times Q(root) after the last rebuild")
@@ -155,7 +149,6 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.box_precision = parse_box_precision(o.box_precision);
   c.refit_every = o.refit_every;
   c.cuda_graph = o.cuda_graph == "on";
-  c.refit_block_leaves = o.refit_block_leaves;
   c.restructure_quality = o.restructure.restructure_quality;
   c.restructure_min_leaves = o.restructure.restructure_min_leaves;
   c.restructure_max_fraction = o.restructure.restructure_max_fraction;

@@ -31,7 +31,9 @@ struct SameLevelPairsFn {
   const vec4f* hi;
   const GridLayout* params;
   PairSink sink;
-  CDB_HD void operator()(uint32_t k) const {
+  using Stage = PairStage;
+  CDB_HD void operator()(uint32_t k, Stage* stage = nullptr) const {
+    const PairSink out = stage ? sink.staged(stage) : sink;
     const uint32_t entries = static_cast<uint32_t>(min_of(*total, (unsigned long long)planned));
     if (k >= entries) return;
     const uint64_t key = keys[k];
@@ -44,9 +46,12 @@ struct SameLevelPairsFn {
       if (!overlaps(alo, ahi, blo, bhi)) continue;
       if (grid_key_of_point(*params, l, max_of(alo.x, blo.x), max_of(alo.y, blo.y),
                             max_of(alo.z, blo.z)) == key)
-        sink.emit(a, b);
+        out.emit(a, b);
     }
   }
+#if defined(__CUDACC__)
+  __device__ void flush(Stage& s) const { sink.flush(s); }
+#endif
 };
 
 // One thread per box: the boxes of every coarser, non-empty level in the cells its box
@@ -60,7 +65,9 @@ struct CoarserLevelPairsFn {
   const vec4f* hi;
   const GridLayout* params;
   PairSink sink;
-  CDB_HD void operator()(uint32_t a) const {
+  using Stage = PairStage;
+  CDB_HD void operator()(uint32_t a, Stage* stage = nullptr) const {
+    const PairSink out = stage ? sink.staged(stage) : sink;
     const GridLayout& p = *params;
     const vec4f alo = lo[a], ahi = hi[a];
     for (uint32_t l = level[a] + 1; l < p.levels; ++l) {
@@ -78,11 +85,14 @@ struct CoarserLevelPairsFn {
               if (!overlaps(alo, ahi, blo, bhi)) continue;
               if (grid_key_of_point(p, l, max_of(alo.x, blo.x), max_of(alo.y, blo.y),
                                     max_of(alo.z, blo.z)) == key)
-                sink.emit(a, b);
+                out.emit(a, b);
             }
           }
     }
   }
+#if defined(__CUDACC__)
+  __device__ void flush(Stage& s) const { sink.flush(s); }
+#endif
 };
 
 }  // namespace cdb

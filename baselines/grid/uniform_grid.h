@@ -155,12 +155,12 @@ template <class Exec>
 void grid_pairs(Exec& exec, const UniformGrid<Exec>& g, uint32_t n, const PairSink& sink) {
   if (n == 0) return;
   const uint32_t planned = static_cast<uint32_t>(g.built_entries);
-  exec.for_each_n(planned,
+  exec.for_each_staged(planned,
                   SameLevelPairsFn{g.sorted_keys.data(), g.sorted_boxes.data(), g.totals.data(),
                                    planned, g.level.data(), g.lo.data(), g.hi.data(),
                                    g.params.data(), sink},
                   Balance::uneven);
-  exec.for_each_n(n,
+  exec.for_each_staged(n,
                   CoarserLevelPairsFn{g.sorted_keys.data(), g.sorted_boxes.data(),
                                       g.level_begin.data(), g.level.data(), g.lo.data(),
                                       g.hi.data(), g.params.data(), sink},

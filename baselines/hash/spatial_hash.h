@@ -225,7 +225,9 @@ struct PairsInCellsFn {
   const vec4f* hi;
   const GridParams* params;
   PairSink sink;
-  CDB_HD void operator()(uint32_t k) const {
+  using Stage = PairStage;
+  CDB_HD void operator()(uint32_t k, Stage* stage = nullptr) const {
+    const PairSink out = stage ? sink.staged(stage) : sink;
     const uint64_t bucket = buckets[k], c = cell[k];
     const uint32_t a = box[k];
     const vec4f alo = lo[a], ahi = hi[a];
@@ -238,9 +240,12 @@ struct PairsInCellsFn {
       const uint64_t home = pack_cell(cell_coord(max_of(alo.x, blo.x), p.origin[0], p.inv_cell),
                                       cell_coord(max_of(alo.y, blo.y), p.origin[1], p.inv_cell),
                                       cell_coord(max_of(alo.z, blo.z), p.origin[2], p.inv_cell));
-      if (home == c) sink.emit(a, b);
+      if (home == c) out.emit(a, b);
     }
   }
+#if defined(__CUDACC__)
+  __device__ void flush(Stage& s) const { sink.flush(s); }
+#endif
 };
 
 // One thread per box: against every large box. A pair of two large boxes is reported by
@@ -252,16 +257,21 @@ struct LargePairsFn {
   const uint32_t* large;
   const uint32_t* large_count;
   PairSink sink;
-  CDB_HD void operator()(uint32_t j) const {
+  using Stage = PairStage;
+  CDB_HD void operator()(uint32_t j, Stage* stage = nullptr) const {
+    const PairSink out = stage ? sink.staged(stage) : sink;
     const uint32_t count = *large_count;
     const bool j_large = counts[j] == 0;
     const vec4f jlo = lo[j], jhi = hi[j];
     for (uint32_t q = 0; q < count; ++q) {
       const uint32_t a = large[q];
       if (a == j || (j_large && j < a)) continue;
-      if (overlaps(jlo, jhi, lo[a], hi[a])) sink.emit(a, j);
+      if (overlaps(jlo, jhi, lo[a], hi[a])) out.emit(a, j);
     }
   }
+#if defined(__CUDACC__)
+  __device__ void flush(Stage& s) const { sink.flush(s); }
+#endif
 };
 
 // Workspace of the hash: per-box arrays sized from the triangle count, per-entry arrays
@@ -376,13 +386,13 @@ uint32_t hash_build(Exec& exec, SpatialHash<Exec>& h, uint32_t n) {
 
 template <class Exec>
 void hash_pairs(Exec& exec, const SpatialHash<Exec>& h, uint32_t n, const PairSink& sink) {
-  exec.for_each_n(h.num_entries,
+  exec.for_each_staged(h.num_entries,
                   PairsInCellsFn{h.num_entries, h.sorted_keys.data(), h.sorted_box.data(),
                                  h.sorted_cell.data(), h.lo.data(), h.hi.data(), h.params.data(),
                                  sink},
                   Balance::uneven);
   if (h.num_large > 0)
-    exec.for_each_n(n, LargePairsFn{h.lo.data(), h.hi.data(), h.counts.data(), h.large.data(),
+    exec.for_each_staged(n, LargePairsFn{h.lo.data(), h.hi.data(), h.counts.data(), h.large.data(),
                                     h.large_count.data(), sink});
 }
 

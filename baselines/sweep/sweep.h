@@ -117,16 +117,21 @@ struct SweepFn {
   const vec4f* lo;  // sorted
   const vec4f* hi;  // sorted
   PairSink sink;
-  CDB_HD void operator()(uint32_t s) const {
+  using Stage = PairStage;
+  CDB_HD void operator()(uint32_t s, Stage* stage = nullptr) const {
+    const PairSink out = stage ? sink.staged(stage) : sink;
     const uint32_t ax = *axis;
     const vec4f alo = lo[s], ahi = hi[s];
     const float end = axis_of(ahi, ax);
     for (uint32_t t = s + 1; t < n; ++t) {
       const vec4f blo = lo[t];
       if (axis_of(blo, ax) > end) break;
-      if (overlaps(alo, ahi, blo, hi[t])) sink.emit(order[s], order[t]);
+      if (overlaps(alo, ahi, blo, hi[t])) out.emit(order[s], order[t]);
     }
   }
+#if defined(__CUDACC__)
+  __device__ void flush(Stage& s) const { sink.flush(s); }
+#endif
 };
 
 // Workspace of the sweep, sized once from the triangle count; a larger scene later is a
@@ -190,7 +195,7 @@ void sweep_sort(Exec& exec, SweepAndPrune<Exec>& s, uint32_t n) {
 
 template <class Exec>
 void sweep_pairs(Exec& exec, const SweepAndPrune<Exec>& s, uint32_t n, const PairSink& sink) {
-  exec.for_each_n(n, SweepFn{n, s.axis.data(), s.order.data(), s.sorted_lo.data(),
+  exec.for_each_staged(n, SweepFn{n, s.axis.data(), s.order.data(), s.sorted_lo.data(),
                              s.sorted_hi.data(), sink},
                   Balance::uneven);
 }

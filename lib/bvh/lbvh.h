@@ -10,11 +10,6 @@
 
 namespace cdb {
 
-// Default of Lbvh::refit_block_leaves (--refit-block-leaves). Its shared memory, one bit per
-// internal node, stays within the 48 KiB a block gets without opting in up to 393K leaves.
-inline constexpr uint32_t kRefitBlockLeaves = 32768;
-inline constexpr uint32_t kRefitBlockLeavesMax = 48 * 1024 * 8;
-
 // Storage of one ordered LBVH and the scratch its build needs, all from the executor's
 // memory. Sized once by reserve(num_leaves); a later reserve for more leaves is a logged
 // growth.
@@ -88,8 +83,6 @@ struct Lbvh {
 
   uint32_t num_leaves = 0;
   MortonBits morton_bits = MortonBits::b63;
-  // Trees of at most this many leaves refit in one block (refit.h); larger ones in tiles.
-  uint32_t refit_block_leaves = kRefitBlockLeaves;
 
   // The ordered tree.
   Array<vec4f> leaf_lo, leaf_hi;

@@ -88,70 +88,10 @@ struct RefitFn {
   }
 };
 
-// Small trees refit in one block instead: leaf boxes first (every thread of the GPU), then
-// one block of threads climbs. Every hand-over is then block-scope: an arrival bit per
-// internal node in shared memory (toggled twice a refit, so the word array starts and ends
-// zero) and the sibling's box through the block's own L1, with no device-scope atomic and no
-// tile boundary on the path. One block has less parallelism than the tiles, so above some
-// size (Lbvh::refit_block_leaves, --refit-block-leaves) the tiled climb is faster.
-struct LeafBoxFn {
-  MeshView mesh;
-  const uint32_t* leaf_prim;
-  vec4f* leaf_lo;
-  vec4f* leaf_hi;
-  CDB_HD void operator()(uint32_t i) const {
-    vec4f lo, hi;
-    face_box(mesh, leaf_prim[i], lo, hi);
-    leaf_lo[i] = lo;
-    leaf_hi[i] = hi;
-  }
-};
-
-struct RefitClimbFn {
-  const uint32_t* leaf_parent;
-  const uint32_t* node_left;
-  const uint32_t* node_right;
-  const uint32_t* node_parent;
-  vec4f* leaf_lo;
-  vec4f* leaf_hi;
-  vec4f* node_lo;
-  vec4f* node_hi;
-
-  static size_t shared_words(uint32_t leaves) { return leaves > 1 ? (size_t(leaves) - 2) / 32 + 1 : 0; }
-
-  CDB_HD void operator()(uint32_t i, uint32_t* arrived) const {
-    vec4f lo = leaf_lo[i], hi = leaf_hi[i];
-    uint32_t child = leaf_ref(i);
-    uint32_t p = leaf_parent[i];
-    while (p != kNoNode) {
-      const uint32_t bit = 1u << (p & 31u);
-      if ((atomic_xor_acq_rel_block(&arrived[p >> 5], bit) & bit) == 0) return;
-      const uint32_t l = node_left[p];
-      const uint32_t sibling = l == child ? node_right[p] : l;
-      const vec4f slo = is_leaf(sibling) ? leaf_lo[ref_index(sibling)] : node_lo[sibling];
-      const vec4f shi = is_leaf(sibling) ? leaf_hi[ref_index(sibling)] : node_hi[sibling];
-      lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), 0};
-      hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), 0};
-      node_lo[p] = lo;
-      node_hi[p] = hi;
-      child = p;
-      p = node_parent[p];
-    }
-  }
-};
-
 template <class Exec>
 void refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
-  if (n <= bvh.refit_block_leaves) {
-    exec.for_each_n(n, LeafBoxFn{mesh, bvh.leaf_prim.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data()});
-    exec.for_each_in_one_block(n, RefitClimbFn::shared_words(n),
-                               RefitClimbFn{bvh.leaf_parent.data(), bvh.node_left.data(), bvh.node_right.data(),
-                                            bvh.node_parent.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
-                                            bvh.node_lo.data(), bvh.node_hi.data()});
-    return;
-  }
   exec.for_each_tile(n, RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
                                 bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
                                 bvh.node_last.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),

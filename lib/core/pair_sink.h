@@ -1,4 +1,5 @@
 #pragma once
+#include "core/append_stage.h"
 #include "core/atomics.h"
 #include "core/pair.h"
 
@@ -25,15 +26,30 @@ struct PairSink {
   // Declared queries (geometry/objects.h): per face its object, per object its partners.
   const uint32_t* face_object = nullptr;
   const uint64_t* partners = nullptr;
+  // The block's stage in shared memory (core/append_stage.h), set inside a staged kernel.
+  PairStage* stage = nullptr;
+
+  CDB_HD_INLINE PairSink staged(PairStage* s) const {
+    PairSink p = *this;
+    p.stage = s;
+    return p;
+  }
 
   CDB_HD_INLINE void emit(uint32_t i, uint32_t j) const {
     if (face_object && !((partners[face_object[i]] >> face_object[j]) & 1u)) return;
     if (skip_adjacent_faces && share_vertex(skip_adjacent_faces + 3 * size_t(i),
                                             skip_adjacent_faces + 3 * size_t(j)))
       return;
+    const PrimPair p = make_pair_ordered(i, j);
+    if (stage && stage->put(p)) return;
     const unsigned long long slot = claim_one(count);
-    if (slot < capacity) out[slot] = make_pair_ordered(i, j);
+    if (slot < capacity) out[slot] = p;
   }
+
+#if defined(__CUDACC__)
+  // Every thread of a staged kernel's block, after its last emit (and a barrier).
+  __device__ void flush(PairStage& s) const { s.flush(count, out, capacity); }
+#endif
 };
 
 }  // namespace cdb

@@ -48,16 +48,17 @@ __global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(uint32_t n, F f
   if (i < n) f(i, first, last, shared);
 }
 
-// One block for all n indices: thread t runs t, t + blockDim.x, ... in order. The block's
-// threads share `words` words of shared memory, zeroed before any index runs.
-inline constexpr uint32_t kOneBlockThreads = 1024;
-
+// One thread per index; the block shares one F::Stage (core/append_stage.h) that its indices
+// append to and that F::flush writes out once every index of the block is done.
 template <class F>
-__global__ void __launch_bounds__(kOneBlockThreads) for_each_in_one_block_kernel(uint32_t n, uint32_t words, F f) {
-  extern __shared__ uint32_t shared_words[];
-  for (uint32_t w = threadIdx.x; w < words; w += blockDim.x) shared_words[w] = 0u;
+__global__ void for_each_staged_kernel(uint32_t n, F f) {
+  __shared__ typename F::Stage stage;
+  if (threadIdx.x == 0) stage.reset();
   __syncthreads();
-  for (uint32_t i = threadIdx.x; i < n; i += blockDim.x) f(i, shared_words);
+  const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) f(i, &stage);
+  __syncthreads();
+  f.flush(stage);
 }
 
 struct BoxUnion {
@@ -145,6 +146,17 @@ class CudaExec {
     cuda_check(cudaGetLastError(), "kernel launch");
   }
 
+  // Indices whose appends (pairs, front nodes) are staged per block in shared memory and
+  // written out at the block's end (core/append_stage.h): f(i, stage), then f.flush(stage).
+  template <class F>
+  void for_each_staged(size_t n, const F& f, Balance = Balance::even) const {
+    if (n == 0) return;
+    constexpr uint32_t threads = 256;
+    const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
+    for_each_staged_kernel<<<blocks, threads, 0, stream_>>>(static_cast<uint32_t>(n), f);
+    cuda_check(cudaGetLastError(), "kernel launch");
+  }
+
   // Indices in tiles of F::kTile that share an F::Shared: threads of one block here, so
   // hand-overs inside a tile need only block-scope atomics (refit.h).
   template <class F>
@@ -152,16 +164,6 @@ class CudaExec {
     if (n == 0) return;
     const uint32_t blocks = static_cast<uint32_t>((n + F::kTile - 1) / F::kTile);
     for_each_tile_kernel<<<blocks, F::kTile, 0, stream_>>>(static_cast<uint32_t>(n), f);
-    cuda_check(cudaGetLastError(), "kernel launch");
-  }
-
-  // All n indices in one block sharing `words` zeroed words of shared memory (at most 48 KiB):
-  // hand-overs between indices need only block-scope atomics, and nothing crosses blocks.
-  template <class F>
-  void for_each_in_one_block(size_t n, size_t words, const F& f) const {
-    if (n == 0) return;
-    for_each_in_one_block_kernel<<<1, kOneBlockThreads, words * sizeof(uint32_t), stream_>>>(
-        static_cast<uint32_t>(n), static_cast<uint32_t>(words), f);
     cuda_check(cudaGetLastError(), "kernel launch");
   }
 

@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <cstring>
 #include <new>
-#include <vector>
 
 #include "core/aabb.h"
 #include "core/phase.h"
@@ -51,6 +50,13 @@ class HostExec {
     }
   }
 
+  // Staged appends (see CudaExec): the host has no block stage, so f(i, nullptr) appends
+  // directly.
+  template <class F>
+  void for_each_staged(size_t n, const F& f, Balance balance = Balance::even) const {
+    for_each_n(n, [&f](uint32_t i) { f(i, static_cast<typename F::Stage*>(nullptr)); }, balance);
+  }
+
   // Tiles of F::kTile consecutive indices sharing one F::Shared (see CudaExec): each tile
   // runs its indices in order on one thread, after f.init for every lane.
   template <class F>
@@ -65,14 +71,6 @@ class HostExec {
       const uint32_t last = static_cast<uint32_t>(std::min<size_t>(n, size_t(first) + tile) - 1);
       for (uint32_t i = first; i <= last; ++i) f(i, first, last, shared);
     }
-  }
-
-  // All n indices in one block sharing `words` zeroed words (see CudaExec): on the host, one
-  // thread runs them in order.
-  template <class F>
-  void for_each_in_one_block(size_t n, size_t words, const F& f) const {
-    std::vector<uint32_t> shared(words, 0u);
-    for (size_t i = 0; i < n; ++i) f(static_cast<uint32_t>(i), shared.data());
   }
 
   size_t scan_temp_bytes(size_t) const { return 0; }

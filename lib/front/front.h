@@ -10,6 +10,7 @@
 #include <string>
 
 #include "bvh/node_ref.h"
+#include "core/append_stage.h"
 #include "core/atomics.h"
 #include "exec/memory.h"
 
@@ -29,18 +30,32 @@ struct FrontSink {
   unsigned long long* count;  // count[kind]
   unsigned long long capacity[2];
   uint32_t* count_log[2];     // null for unordered fronts
+  // The block's stage in shared memory (core/append_stage.h), set inside a staged kernel.
+  FrontStage* stage = nullptr;
+
+  CDB_HD_INLINE FrontSink staged(FrontStage* s) const {
+    FrontSink f = *this;
+    f.stage = s;
+    return f;
+  }
 
   // mark: 1 = produced by sprouting, 0 = kept by pruning (the paper's opt mark).
   CDB_HD_INLINE void push(uint32_t i, uint32_t ref, uint8_t m) const {
     const int k = front_kind(ref);
+    if (count_log[k]) count_one(&count_log[k][ref_index(ref)]);
+    if (stage && stage->put(k, i, ref, m)) return;
     const unsigned long long slot = claim_one(&count[k]);
     if (slot < capacity[k]) {
       prim[k][slot] = i;
       node[k][slot] = ref;
       mark[k][slot] = m;
     }
-    if (count_log[k]) count_one(&count_log[k][ref_index(ref)]);
   }
+
+#if defined(__CUDACC__)
+  // Every thread of a staged kernel's block, after its last push (and a barrier).
+  __device__ void flush(FrontStage& s) const { s.flush(count, prim, node, mark, capacity); }
+#endif
 
 };
 

@@ -76,32 +76,45 @@ CDB_HD_INLINE void traverse_range(const FrontView& v, uint32_t i, const vec4f& l
 // (1) Generate: the leaf algorithm from leaf i's start (escape index, or the root of a
 // cross front), recording its stop nodes.
 struct GenerateFrontFn {
+  using Stage = PairFrontStage;
   FrontView view;
   PairSink pairs;
   FrontSink front;
-  CDB_HD void operator()(uint32_t i) const {
+  CDB_HD void operator()(uint32_t i, Stage* stage = nullptr) const {
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-    traverse_range<true>(view, i, lo, hi, view.start(i), kNoNode, pairs, front);
+    traverse_range<true>(view, i, lo, hi, view.start(i), kNoNode, stage ? pairs.staged(&stage->pairs) : pairs,
+                         stage ? front.staged(&stage->front) : front);
   }
+#if defined(__CUDACC__)
+  __device__ void flush(Stage& s) const {
+    pairs.flush(s.pairs);
+    front.flush(s.front);
+  }
+#endif
 };
 
 // (2) Preserve: traverse from every stored front node; the front is not rewritten.
 struct PreserveFrontFn {
+  using Stage = PairStage;
   FrontView view;
   PairSink pairs;
   const uint32_t* prim;
   const uint32_t* node;
-  CDB_HD void operator()(uint32_t e) const {
+  CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
+    const PairSink sink = stage ? pairs.staged(stage) : pairs;
     const FrontTree& tree = view.tree;
     const uint32_t i = prim[e], j = node[e];
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     if (is_leaf(j)) {
-      if (tree.overlaps_node(lo, hi, j)) pairs.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
+      if (tree.overlaps_node(lo, hi, j)) sink.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
     } else if (tree.overlaps_node(lo, hi, j)) {
-      traverse_range<false>(view, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
+      traverse_range<false>(view, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], sink,
                             FrontSink{});
     }
   }
+#if defined(__CUDACC__)
+  __device__ void flush(Stage& s) const { pairs.flush(s); }
+#endif
 };
 
 // (3) Update: an overlapping front node sprouts (its subtree's stop nodes replace it); a
@@ -137,27 +150,42 @@ CDB_HD_INLINE void update_front_node(const FrontView& view, const PairSink& pair
 }
 
 struct UpdateFrontFn {
+  using Stage = PairFrontStage;
   FrontView view;
   PairSink pairs;
   FrontSink front;
   const uint32_t* prim;
   const uint32_t* node;
-  CDB_HD void operator()(uint32_t e) const { update_front_node(view, pairs, front, prim[e], node[e]); }
+  CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
+    update_front_node(view, stage ? pairs.staged(&stage->pairs) : pairs,
+                      stage ? front.staged(&stage->front) : front, prim[e], node[e]);
+  }
+#if defined(__CUDACC__)
+  __device__ void flush(Stage& s) const {
+    pairs.flush(s.pairs);
+    front.flush(s.front);
+  }
+#endif
 };
 
 // Both kinds of front (internal, external) in one launch: index e < n0 is the first's, the
 // rest the second's. Each pass is as long as its slowest traversal, so one launch lets the
-// two tails overlap instead of adding up.
+// two tails overlap instead of adding up. Both passes append to the same sinks, so the
+// first's flush writes out the stage of both.
 template <class F>
 struct BothFrontsFn {
+  using Stage = typename F::Stage;
   F first, second;
   uint32_t n0;
-  CDB_HD void operator()(uint32_t e) const {
+  CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
     if (e < n0)
-      first(e);
+      first(e, stage);
     else
-      second(e - n0);
+      second(e - n0, stage);
   }
+#if defined(__CUDACC__)
+  __device__ void flush(Stage& s) const { first.flush(s); }
+#endif
 };
 
 // (4) Balance: the opt mark each front node will take in the coming update (1 = sprout),

@@ -71,7 +71,6 @@ class BroadPhase final : public Pipeline {
       case BroadPhaseMethod::bvh:
         bvh_.reserve(exec_, mesh_.deformable().count);
         rigid_bvh_.reserve(exec_, mesh_.rigid().count);
-        bvh_.refit_block_leaves = rigid_bvh_.refit_block_leaves = config_.refit_block_leaves;
         break;
     }
     frame_ = 0;

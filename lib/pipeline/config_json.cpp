@@ -22,7 +22,6 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"box_precision", box_precision_name(c.box_precision)},
       {"refit_every", c.refit_every},
       {"cuda_graph", c.cuda_graph},
-      {"refit_block_leaves", c.refit_block_leaves},
       {"conservative", config_conservative(c)},
   };
 }

@@ -60,7 +60,6 @@ class FrontPipeline final : public Pipeline {
     pairs_.reserve(size_t(config_.pairs_per_triangle * mesh_.num_faces()));
     bvh_.reserve(exec_, mesh_.deformable().count);
     rigid_bvh_.reserve(exec_, mesh_.rigid().count);
-    bvh_.refit_block_leaves = rigid_bvh_.refit_block_leaves = config_.refit_block_leaves;
     self_.plan(bvh_, bvh_, split.deformable_self, config_.front_per_triangle);
     inter_.plan(bvh_, rigid_bvh_, split.cross, config_.front_per_triangle);
     rigid_self_.plan(rigid_bvh_, rigid_bvh_, split.rigid_self, config_.front_per_triangle);

@@ -72,7 +72,7 @@ class FrontQuery {
   void generate(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
     if (!active_) return;
     const FrontSink sink = produce_sink(exec, pairs, histogram);
-    exec.for_each_n(leaves_->num_leaves, GenerateFrontFn{view(), pairs.sink(), sink}, Balance::uneven);
+    exec.for_each_staged(leaves_->num_leaves, GenerateFrontFn{view(), pairs.sink(), sink}, Balance::uneven);
   }
 
   // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch.
@@ -81,8 +81,8 @@ class FrontQuery {
     auto pass = [&](const FrontArrays<Exec>& f) {
       return PreserveFrontFn{view(), pairs.sink(), f.prim.data(), f.node.data()};
     };
-    exec.for_each_n(total(), BothFrontsFn<PreserveFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
-                    Balance::uneven);
+    exec.for_each_staged(total(), BothFrontsFn<PreserveFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
+                         Balance::uneven);
   }
 
   // (3) Update: sprout and prune (Alg. 1). Both kinds in one launch.
@@ -92,8 +92,8 @@ class FrontQuery {
     auto pass = [&](const FrontArrays<Exec>& f) {
       return UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data()};
     };
-    exec.for_each_n(total(), BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
-                    Balance::uneven);
+    exec.for_each_staged(total(), BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
+                         Balance::uneven);
   }
 
   // (5), first half, for self fronts: classify against the tree's node ranges before its

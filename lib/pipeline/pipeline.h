@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "bvh/lbvh.h"
 #include "core/morton.h"
 #include "core/pair.h"
 #include "core/phase.h"
@@ -68,9 +67,6 @@ struct PipelineConfig {
   // with the same arguments frame after frame) is captured once in a CUDA graph and
   // replayed while nothing it launches changes. The host executor ignores it.
   bool cuda_graph = true;
-  // Front pipelines and bvh: trees of at most this many leaves refit in one block (block-scope
-  // hand-overs only), larger ones in tiles (bvh/refit.h); 0: always in tiles.
-  uint32_t refit_block_leaves = kRefitBlockLeaves;
 };
 
 // Whether the config can miss pairs of the exact box-overlap set (refit_every > 1 on a
