@@ -2,8 +2,9 @@
 # Runs on the GPU machine from a device bundle: the runs behind the GPU performance targets
 # (docs/results.md, "Performance targets"), one HDF5 file per scene and pipeline under
 # $OUT/targets, each run's summary in $OUT/targets.log; scripts/perf_targets.py turns the
-# files into the targets table. With BASE_BIN=DIR (a second cdbench) every cell also runs
-# with that binary, right after the first, into $OUT/base (A/B in one call, same GPU).
+# files into the targets table. With BASE_BIN="NAME=PATH ..." (other cdbench binaries) every
+# cell also runs with each of them, right after the first, into $OUT/NAME (A/B in one call,
+# same GPU).
 #
 #   TARGET_GROUPS  which groups run (default: all): steady cloth coherent nbody scaling
 #   NCU=1          also profile the kernels behind each bottleneck into $OUT/ncu-*.csv
@@ -20,9 +21,8 @@ nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem --f
 cell() {
   local group=$1 scene=$2 pipelines=$3
   shift 3
-  for b in "$bin" ${BASE_BIN:+"$BASE_BIN"}; do
-    local dir=$out/targets
-    [[ "$b" == "${BASE_BIN:-}" ]] && dir=$out/base
+  for entry in "targets=$bin" ${BASE_BIN:-}; do
+    local dir=$out/${entry%%=*} b=${entry#*=}
     mkdir -p "$dir"
     echo "=== $group $scene $pipelines $* ($b)"
     "$b" run --device cuda --scene "$scene" --pipeline "$pipelines" --quiet \
@@ -59,7 +59,7 @@ groups=${TARGET_GROUPS:-steady cloth coherent nbody scaling}
       scaling)
         for res in 72 224 708 2236; do
           cell scaling "cloth-wave" b,c,bvh,grid --set res=$res --set frames=8 --repeat 2
-          for f in "$out"/targets/scaling-cloth-wave-*.h5 ${BASE_BIN:+"$out"/base/scaling-cloth-wave-*.h5}; do
+          for f in "$out"/*/scaling-cloth-wave-*.h5; do
             [[ "$f" == *-res* ]] || mv "$f" "${f%.h5}-res$res.h5"
           done
         done
@@ -84,4 +84,8 @@ if [[ "${NCU:-0}" == 1 ]]; then
   profile funnel-c -k regex:"for_each|one_block|tile" "$bin" run --device cuda --scene funnel \
     --pipeline c --frames 0:6 --quiet --cuda-graph off
 fi
-tar -C "$out" -cf "$out/h5.tar" targets ${BASE_BIN:+base} && rm -rf "$out/targets" "$out/base"
+# One archive per binary: the device tool brings back few files, each at most 16 MiB.
+for e in "targets=" ${BASE_BIN:-}; do
+  d=${e%%=*}
+  tar -C "$out" -cf "$out/h5-$d.tar" "$d" && rm -rf "${out:?}/$d"
+done

@@ -17,16 +17,14 @@ struct CrossQueryFn {
   BvhView query;
   BvhView tree;
   PairSink sink;
-  using Stage = PairStage;
-  CDB_HD void operator()(uint32_t i, Stage* stage = nullptr) const {
-    const PairSink out = stage ? sink.staged(stage) : sink;
+  CDB_HD void operator()(uint32_t i) const {
     const vec4f lo = query.leaf_lo[i], hi = query.leaf_hi[i];
     const uint32_t prim = query.leaf_prim[i];
     uint32_t node = tree.root();
     while (node != kNoNode) {
       const uint32_t k = ref_index(node);
       if (is_leaf(node)) {
-        if (overlaps(lo, hi, tree.leaf_lo[k], tree.leaf_hi[k])) out.emit(prim, tree.leaf_prim[k]);
+        if (overlaps(lo, hi, tree.leaf_lo[k], tree.leaf_hi[k])) sink.emit(prim, tree.leaf_prim[k]);
         node = tree.leaf_escape[k];
       } else {
         node = overlaps(lo, hi, tree.node_lo[k], tree.node_hi[k]) ? tree.node_left[k]
@@ -34,14 +32,11 @@ struct CrossQueryFn {
       }
     }
   }
-#if defined(__CUDACC__)
-  __device__ void flush(Stage& s) const { sink.flush(s); }
-#endif
 };
 
 template <class Exec>
 void cross_query(Exec& exec, const BvhView& query, const BvhView& tree, const PairSink& sink) {
-  exec.for_each_staged(query.num_leaves, CrossQueryFn{query, tree, sink}, Balance::uneven);
+  exec.for_each_n(query.num_leaves, CrossQueryFn{query, tree, sink}, Balance::uneven);
 }
 
 }  // namespace cdb

@@ -15,16 +15,14 @@ namespace cdb {
 struct SelfQueryFn {
   BvhView bvh;
   PairSink sink;
-  using Stage = PairStage;
-  CDB_HD void operator()(uint32_t i, Stage* stage = nullptr) const {
-    const PairSink out = stage ? sink.staged(stage) : sink;
+  CDB_HD void operator()(uint32_t i) const {
     const vec4f lo = bvh.leaf_lo[i], hi = bvh.leaf_hi[i];
     const uint32_t prim = bvh.leaf_prim[i];
     uint32_t node = bvh.leaf_escape[i];
     while (node != kNoNode) {
       const uint32_t k = ref_index(node);
       if (is_leaf(node)) {
-        if (overlaps(lo, hi, bvh.leaf_lo[k], bvh.leaf_hi[k])) out.emit(prim, bvh.leaf_prim[k]);
+        if (overlaps(lo, hi, bvh.leaf_lo[k], bvh.leaf_hi[k])) sink.emit(prim, bvh.leaf_prim[k]);
         node = bvh.leaf_escape[k];
       } else {
         node = overlaps(lo, hi, bvh.node_lo[k], bvh.node_hi[k]) ? bvh.node_left[k]
@@ -32,14 +30,11 @@ struct SelfQueryFn {
       }
     }
   }
-#if defined(__CUDACC__)
-  __device__ void flush(Stage& s) const { sink.flush(s); }
-#endif
 };
 
 template <class Exec>
 void self_query(Exec& exec, const BvhView& bvh, const PairSink& sink) {
-  exec.for_each_staged(bvh.num_leaves, SelfQueryFn{bvh, sink}, Balance::uneven);
+  exec.for_each_n(bvh.num_leaves, SelfQueryFn{bvh, sink}, Balance::uneven);
 }
 
 }  // namespace cdb

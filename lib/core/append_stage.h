@@ -11,7 +11,16 @@
 // issue hundreds of thousands of such instructions a frame.
 //
 // A stage holds kCapacity entries; entries past that go to the global counter directly, as
-// unstaged ones always do, so nothing is dropped and every entry is counted once. The order
+// unstaged ones always do, so nothing is dropped and every entry is counted once.
+//
+// Staging costs each block a barrier and a flush at its end (an atomic's round trip), so it
+// pays where blocks produce many entries and not where they produce few: measured on the
+// H100 (docs/results.md), update and the baselines' pair kernels gain everywhere, preserve
+// gains on cloth (60-90 pairs per block) and loses on n-body (11 pairs per block of front
+// nodes), so preserve stages only while the last frame's pairs per front node say it pays
+// (FrontQuery::preserve). Stages of 256 entries instead of 1024 / 512 lost 5-25%; the
+// leaf-per-thread query of bvh and the brute force produce thousands of pairs per block,
+// far past any stage, and lost 5-18% staged: they append directly. The order
 // within an output changes, never the set: pairs are a set, and produced fronts are sorted
 // afterwards (histogram or radix) or used in any order.
 //
@@ -32,6 +41,7 @@ struct PairStage {
 
   // True if staged; false: the stage is full, the caller appends directly.
   CDB_HD_INLINE bool put(PrimPair p) {
+    if (size >= kCapacity) return false;
     const uint32_t s = atomic_add_relaxed(&size, 1u);
     if (s >= kCapacity) return false;
     pair[s] = p;
@@ -65,6 +75,7 @@ struct FrontStage {
   uint8_t mark[2][kCapacity];
 
   CDB_HD_INLINE bool put(int kind, uint32_t p, uint32_t n, uint8_t m) {
+    if (size[kind] >= kCapacity) return false;
     const uint32_t s = atomic_add_relaxed(&size[kind], 1u);
     if (s >= kCapacity) return false;
     prim[kind][s] = p;

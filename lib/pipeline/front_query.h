@@ -75,14 +75,18 @@ class FrontQuery {
     exec.for_each_staged(leaves_->num_leaves, GenerateFrontFn{view(), pairs.sink(), sink}, Balance::uneven);
   }
 
-  // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch.
-  void preserve(Exec& exec, PairBuffer<Exec>& pairs) {
+  // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch;
+  // pairs staged per block or appended directly (`staged`, core/append_stage.h).
+  void preserve(Exec& exec, PairBuffer<Exec>& pairs, bool staged) {
     if (!active_) return;
     auto pass = [&](const FrontArrays<Exec>& f) {
       return PreserveFrontFn{view(), pairs.sink(), f.prim.data(), f.node.data()};
     };
-    exec.for_each_staged(total(), BothFrontsFn<PreserveFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
-                         Balance::uneven);
+    const BothFrontsFn<PreserveFrontFn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)};
+    if (staged)
+      exec.for_each_staged(total(), both, Balance::uneven);
+    else
+      exec.for_each_n(total(), both, Balance::uneven);
   }
 
   // (3) Update: sprout and prune (Alg. 1). Both kinds in one launch.
