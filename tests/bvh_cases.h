@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <set>
 #include <string>
 
@@ -112,8 +113,28 @@ void expect_self_query_exact(Exec& exec, const Lbvh<Exec>& bvh, const Topology& 
                          << d.unexpected_count << " unexpected";
 }
 
+// Both refits of the spanning top (one block, bvh/refit_top.h; hand-overs between blocks)
+// give the same boxes, bit for bit: a box is a min/max merge whatever the order of arrivals.
+template <class Exec>
+void expect_refits_agree(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, const std::string& where) {
+  bvh.refit_top_in_block = false;
+  refit(exec, bvh, mesh);
+  const HostBvh between_blocks = download(exec, bvh);
+  bvh.refit_top_in_block = true;
+  refit(exec, bvh, mesh);
+  const HostBvh one_block = download(exec, bvh);
+  auto same = [](const std::vector<vec4f>& a, const std::vector<vec4f>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(vec4f)) == 0;
+  };
+  EXPECT_TRUE(same(between_blocks.leaf_lo, one_block.leaf_lo) && same(between_blocks.leaf_hi, one_block.leaf_hi))
+      << where << ": leaf boxes differ between the two refits of the top";
+  EXPECT_TRUE(same(between_blocks.node_lo, one_block.node_lo) && same(between_blocks.node_hi, one_block.node_hi))
+      << where << ": node boxes differ between the two refits of the top";
+}
+
 // Build + order on frame 0, refit on frames 1 and 2: after each, the tree must pass every
-// reference check and the self query must report exactly the oracle's pairs.
+// reference check and the self query must report exactly the oracle's pairs; on refit frames
+// both refits of the spanning top agree.
 template <class Exec>
 void check_soup_case(const SoupCase& c) {
   auto source = soup_source(c);
@@ -130,6 +151,7 @@ void check_soup_case(const SoupCase& c) {
       build_hierarchy(exec, bvh, mesh, c.bits);
       order_depth_first(exec, bvh);
     } else {
+      expect_refits_agree(exec, bvh, mesh, "frame " + std::to_string(f));
       refit(exec, bvh, mesh);
     }
     const HostBvh h = download(exec, bvh);
@@ -334,6 +356,42 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
     }
     expect_self_query_exact(exec, bvh, topo, v, m.pairs, m.count, f);
     if (testing::Test::HasFatalFailure()) return;
+    // The restructured tree's spanning nodes are indexed anew: both refits of its top agree
+    // and keep it valid.
+    expect_refits_agree(exec, bvh, mesh, "restructured, frame " + std::to_string(f));
+    HostBvh refitted = download(exec, bvh);
+    refitted.count_log.clear();
+    ASSERT_EQ(check_bvh(refitted, topo, v), "") << "refit after restructure, frame " << f;
+  }
+}
+
+// With fewer shared-memory slots than spanning nodes (refit_top.h), the slots past them go
+// through global memory: the refit must still agree with the hand-over between blocks and
+// keep the tree valid, frame after frame.
+template <class Exec>
+void check_refit_top_spill() {
+  auto source = soup_source({kRefitTopMaxLeaves, "clustered", 1.0, 0.0, MortonBits::b63});
+  const Topology& topo = source->topology();
+  Exec exec;
+  Lbvh<Exec> bvh(exec);
+  bvh.refit_top_shared_slots = 64;
+  TestMesh<Exec> m(exec, topo);
+  const MeshView mesh = m.view();
+  std::vector<vec3f> v;
+  for (uint32_t f = 0; f < source->num_frames(); ++f) {
+    source->frame(f, v);
+    m.upload(exec, v);
+    if (f == 0) {
+      build_hierarchy(exec, bvh, mesh, MortonBits::b63);
+      order_depth_first(exec, bvh);
+      uint32_t spanning = 0;
+      exec.copy_to_host(&spanning, bvh.span_count.data(), 1);
+      ASSERT_GT(spanning, 4 * bvh.refit_top_shared_slots) << "the case no longer spills past shared memory";
+      continue;
+    }
+    expect_refits_agree(exec, bvh, mesh, "frame " + std::to_string(f));
+    HostBvh h = download(exec, bvh);
+    ASSERT_EQ(check_bvh(h, topo, v), "") << "frame " << f;
   }
 }
 

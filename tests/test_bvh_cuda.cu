@@ -301,6 +301,11 @@ TEST(CudaExtremes, IndexWidthPastTwoToThe24Triangles) {
   }
 }
 
+TEST(CudaRefit, TopInOneBlockSpillsPastSharedMemoryAndAgrees) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_refit_top_spill<CudaExec>();
+}
+
 TEST(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   for (uint32_t depth : {0u, 1u, 4u, 9u}) {

@@ -131,6 +131,8 @@ TEST(HostPipelines, SecondPassAfterGrowthMatchesTheFirst) {
   check_second_pass_matches_first(config_for("cpu", 0.01, 0.05, 2), *funnel);
 }
 
+TEST(HostRefit, TopInOneBlockSpillsPastSharedMemoryAndAgrees) { check_refit_top_spill<HostExec>(); }
+
 TEST(HostRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   for (uint32_t depth : {0u, 1u, 3u, 6u}) {
     auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 4}});

@@ -10,6 +10,15 @@
 
 namespace cdb {
 
+// Leaves per refit tile (bvh/refit.h); the largest tree whose spanning top refits in one
+// block (bvh/refit_top.h), past which handing the top over between blocks is faster (H100:
+// refit 32 -> 21 us on funnel's 8.7K leaves, 39 -> 31 us on cloth-wave's 32K, but 49 -> 65 us
+// on cloth-ball's 93K and 52 -> 115 us on n-body's 148K); and the spanning nodes the block
+// keeps in shared memory (about 3.4% of the internal nodes span tiles: 1,100 at 2^15 leaves).
+inline constexpr uint32_t kRefitTile = 256;
+inline constexpr uint32_t kRefitTopMaxLeaves = 1u << 15;
+inline constexpr uint32_t kRefitTopSharedSlots = 1536;
+
 // Storage of one ordered LBVH and the scratch its build needs, all from the executor's
 // memory. Sized once by reserve(num_leaves); a later reserve for more leaves is a logged
 // growth.
@@ -49,6 +58,14 @@ struct Lbvh {
     other_bound.bind(mr, name + ".other_bound");
     new_index.bind(mr, name + ".new_index");
     refit_flag.bind(mr, name + ".refit_flag");
+    span_flag.bind(mr, name + ".span_flag");
+    span_scan.bind(mr, name + ".span_scan");
+    span_count.bind(mr, name + ".span_count");
+    span_node.bind(mr, name + ".span_node");
+    span_parent.bind(mr, name + ".span_parent");
+    span_child.bind(mr, name + ".span_child");
+    span_lo.bind(mr, name + ".span_lo");
+    span_hi.bind(mr, name + ".span_hi");
     temp.bind(mr, name + ".temp");
   }
 
@@ -64,6 +81,13 @@ struct Lbvh {
       a->reserve(internal);
     // refit.h counts arrivals without resetting them: every build zeroes them here.
     exec.fill(refit_flag.data(), internal, 0u);
+    if (refit_top_fits()) {
+      for (auto* a : {&span_flag, &span_scan, &span_node, &span_parent}) a->reserve(internal);
+      span_child.reserve(2 * internal);
+      span_lo.reserve(2 * internal);
+      span_hi.reserve(2 * internal);
+      span_count.reserve(1);
+    }
     count_log.reserve(size_t(n) + 1);
     offset_log.reserve(size_t(n) + 1);
     morton.reserve(n);
@@ -83,6 +107,13 @@ struct Lbvh {
 
   uint32_t num_leaves = 0;
   MortonBits morton_bits = MortonBits::b63;
+  // Refit the nodes spanning tiles in one block (bvh/refit_top.h) when the tree allows;
+  // false: hand them over between blocks (tests compare the two).
+  bool refit_top_in_block = true;
+  // Spanning nodes kept in shared memory, at most kRefitTopSharedSlots; the rest in global
+  // memory (tests lower it to cover that path).
+  uint32_t refit_top_shared_slots = kRefitTopSharedSlots;
+  bool refit_top_fits() const { return num_leaves > kRefitTile && num_leaves <= kRefitTopMaxLeaves; }
 
   // The ordered tree.
   Array<vec4f> leaf_lo, leaf_hi;
@@ -102,6 +133,9 @@ struct Lbvh {
   Array<vec4f> build_lo, build_hi;
   Array<uint32_t> build_left, build_right, build_parent, build_first, build_last;
   Array<uint32_t> other_bound, new_index, refit_flag;
+  // The spanning nodes' index for refit_top.h (only for trees where refit_top_fits()).
+  Array<uint32_t> span_flag, span_scan, span_count, span_node, span_parent, span_child;
+  Array<vec4f> span_lo, span_hi;
   Array<std::byte> temp;
 };
 

@@ -10,6 +10,7 @@
 #include "exec/balance.h"
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
+#include "bvh/refit_top.h"
 
 namespace cdb {
 
@@ -127,6 +128,7 @@ void order_depth_first(Exec& exec, Lbvh<Exec>& bvh) {
   exec.for_each_n(n, NumberChainFn{layout}, Balance::uneven);
   exec.for_each_n(n - 1, ScatterNodesFn{layout, n});
   exec.for_each_n(n, LinkLeavesFn{layout, n});
+  index_spanning_nodes(exec, bvh);
 }
 
 // The radix-sort baseline of the same layout (for the paper's Fig. 6 comparison, issue
@@ -170,6 +172,7 @@ void order_depth_first_radix(Exec& exec, Lbvh<Exec>& bvh) {
   const DepthFirstLayout layout = depth_first_layout(bvh);
   exec.for_each_n(n - 1, ScatterNodesFn{layout, n});
   exec.for_each_n(n, LinkLeavesFn{layout, n});
+  index_spanning_nodes(exec, bvh);
 }
 
 }  // namespace cdb

@@ -17,17 +17,19 @@
 // two arrivals to each spanning node (a node's tile-spanning is fixed by the topology), so
 // flags stay even between refits and the first arrival is the one that sees an even value.
 // Lbvh::reserve (each build) zeroes the flags; restructures keep them even.
+#include <algorithm>
 #include <cstdint>
 
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
+#include "bvh/refit_top.h"
 #include "core/atomics.h"
 #include "geometry/mesh.h"
 
 namespace cdb {
 
 struct RefitFn {
-  static constexpr uint32_t kTile = 256;
+  static constexpr uint32_t kTile = kRefitTile;
   struct Shared {
     uint32_t arrived[kTile];
     vec4f lo[kTile][2], hi[kTile][2];  // [split slot][left, right child]
@@ -46,6 +48,7 @@ struct RefitFn {
   vec4f* node_lo;
   vec4f* node_hi;
   uint32_t* flag;
+  bool stop_at_spanning;  // the spanning top is refitted by RefitTopFn (refit_top.h)
 
   CDB_HD void init(Shared& s, uint32_t lane) const { s.arrived[lane] = 0; }
 
@@ -71,6 +74,7 @@ struct RefitFn {
         slo = s.lo[slot][1 - side];
         shi = s.hi[slot][1 - side];
       } else {
+        if (stop_at_spanning) return;
         if ((atomic_add_acq_rel(&flag[p], 1u) & 1u) == 0) return;
         const uint32_t sibling = from_left ? node_right[p] : l;
         slo = is_leaf(sibling) ? load_coherent(&leaf_lo[ref_index(sibling)]) : load_coherent(&node_lo[sibling]);
@@ -92,10 +96,15 @@ template <class Exec>
 void refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
+  const bool top_in_block = bvh.refit_top_in_block && bvh.refit_top_fits();
   exec.for_each_tile(n, RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
                                 bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
                                 bvh.node_last.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
-                                bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data()});
+                                bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data(), top_in_block});
+  if (!top_in_block) return;
+  exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots), bvh.span_count.data(), bvh.span_node.data(), bvh.span_parent.data(),
+                               bvh.span_child.data(), bvh.span_flag.data(), bvh.span_lo.data(), bvh.span_hi.data(),
+                               bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_lo.data(), bvh.node_hi.data()});
 }
 
 }  // namespace cdb

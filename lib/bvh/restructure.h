@@ -18,6 +18,7 @@
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
 #include "bvh/order.h"
+#include "bvh/refit_top.h"
 #include "core/atomics.h"
 #include "core/morton.h"
 #include "exec/balance.h"
@@ -299,6 +300,8 @@ void restructure_subtrees(Exec& exec, Lbvh<Exec>& bvh, RestructureScratch<Exec>&
                   Balance::uneven);
   exec.for_each_n(leaves, SubtreePlaceFn{layout, cand, rs.parent.data(), rs.keys_sorted.data(),
                                          rs.new_leaf.data()});
+  // Node ranges inside the candidates changed: so may which of them span refit tiles.
+  index_spanning_nodes(exec, bvh);
 }
 
 }  // namespace cdb

@@ -48,6 +48,16 @@ CDB_HD_INLINE uint32_t atomic_add_acq_rel_block(uint32_t* p, uint32_t v) {
 #endif
 }
 
+// Toggles bits of a word between threads of one block, acquire-release: arrival bits of the
+// refit's top (bvh/refit_top.h), one bit per node, whose second arrival sees its bit set.
+CDB_HD_INLINE uint32_t atomic_xor_acq_rel_block(uint32_t* p, uint32_t v) {
+#if defined(__CUDA_ARCH__)
+  return cuda::atomic_ref<uint32_t, cuda::thread_scope_block>(*p).fetch_xor(v, cuda::memory_order_acq_rel);
+#else
+  return std::atomic_ref<uint32_t>(*p).fetch_xor(v, std::memory_order_acq_rel);
+#endif
+}
+
 CDB_HD_INLINE uint32_t atomic_add_relaxed(uint32_t* p, uint32_t v) {
 #if defined(__CUDA_ARCH__)
   return atomicAdd(p, v);

@@ -61,6 +61,20 @@ __global__ void for_each_staged_kernel(uint32_t n, F f) {
   f.flush(stage);
 }
 
+// One block of kOneBlockThreads threads running F's kPhases phases with a block barrier
+// between them, sharing one F::Shared in dynamic shared memory.
+inline constexpr uint32_t kOneBlockThreads = 1024;
+
+template <class F>
+__global__ void __launch_bounds__(kOneBlockThreads) in_one_block_kernel(F f) {
+  extern __shared__ __align__(16) unsigned char shared_bytes[];
+  auto& shared = *reinterpret_cast<typename F::Shared*>(shared_bytes);
+  for (int p = 0; p < F::kPhases; ++p) {
+    if (p > 0) __syncthreads();
+    f.phase(p, threadIdx.x, blockDim.x, shared);
+  }
+}
+
 struct BoxUnion {
   __device__ Aabb<float> operator()(const Aabb<float>& a, const Aabb<float>& b) const {
     Aabb<float> r = a;
@@ -143,6 +157,17 @@ class CudaExec {
     constexpr uint32_t threads = 256;
     const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
     for_each_kernel<<<blocks, threads, 0, stream_>>>(static_cast<uint32_t>(n), f);
+    cuda_check(cudaGetLastError(), "kernel launch");
+  }
+
+  // F's phases in one block (see in_one_block_kernel): work too small and too serial for the
+  // whole GPU, whose hand-overs need only block-scope atomics and shared memory.
+  template <class F>
+  void in_one_block(const F& f) const {
+    constexpr size_t bytes = sizeof(typename F::Shared);
+    cuda_check(cudaFuncSetAttribute(in_one_block_kernel<F>, cudaFuncAttributeMaxDynamicSharedMemorySize, int(bytes)),
+               "shared memory size");
+    in_one_block_kernel<<<1, kOneBlockThreads, bytes, stream_>>>(f);
     cuda_check(cudaGetLastError(), "kernel launch");
   }
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <new>
 
 #include "core/aabb.h"
@@ -55,6 +56,13 @@ class HostExec {
   template <class F>
   void for_each_staged(size_t n, const F& f, Balance balance = Balance::even) const {
     for_each_n(n, [&f](uint32_t i) { f(i, static_cast<typename F::Stage*>(nullptr)); }, balance);
+  }
+
+  // F's phases in one block (see CudaExec): on the host, one thread runs each phase.
+  template <class F>
+  void in_one_block(const F& f) const {
+    const auto shared = std::make_unique<typename F::Shared>();
+    for (int p = 0; p < F::kPhases; ++p) f.phase(p, 0, 1, *shared);
   }
 
   // Tiles of F::kTile consecutive indices sharing one F::Shared (see CudaExec): each tile
