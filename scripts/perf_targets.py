@@ -133,6 +133,7 @@ def report(runs, base):
             x = np.log([t for t, _, _ in pts])
             y = np.log([m for _, m, _ in pts])
             exps[p] = float(np.polyfit(x, y, 1)[0])
+            exps[p + " (last decade)"] = float((y[-1] - y[-2]) / (x[-1] - x[-2]))
             for t, m, f in pts:
                 srows.append([p, f"{t:,}", fmt(m), fmt(f, 4), f"{m / f:.1f}x"])
     if exps:
@@ -142,7 +143,8 @@ def report(runs, base):
             ratio = float(biggest[4][:-1])
             targets.append([f"{biggest[1]} triangles within 2x of the bandwidth floor",
                             f"{biggest[0]}: {biggest[2]} ms, floor {biggest[3]} ms: {biggest[4]}", verdict(ratio <= 2.0)])
-        targets.append(["near-linear scaling 10K→10M (exponent)", ", ".join(f"{p} {e:.2f}" for p, e in exps.items()),
+        targets.append(["near-linear scaling 10K→10M (exponent of a power-law fit; and between the two largest)",
+                        ", ".join(f"{p} {e:.2f}" for p, e in exps.items()),
                         verdict(all(e <= 1.1 for e in exps.values()))])
         details += ["### Scaling: travelling-wave cloth, 8 frames (exponent of mean time against triangles)", ""]
         details += cr.markdown_table(["pipeline", "triangles", "mean", "floor", "above floor"], srows) + [""]
@@ -243,12 +245,15 @@ def report(runs, base):
                 g, s, p, res = key
                 arows.append([f"{g}/{s}" + (f" res {res}" if res else ""), p, fmt(mean(b)), fmt(mean(r)),
                               f"{mean(b) / mean(r):.2f}x", fmt(b.stat("t_total_ms_median")),
-                              fmt(r.stat("t_total_ms_median"))])
+                              fmt(r.stat("t_total_ms_median")),
+                              f"{100 * b.stat('noise_median'):.0f}% / {100 * r.stat('noise_median'):.0f}%"])
         if arows:
             bsha = next(iter(base.values())).git_sha
             lines += [f"### A/B in the same call: base {bsha} against {any_run.git_sha} (> 1x: faster now)", ""]
-            lines += cr.markdown_table(["cell", "pipeline", "base mean", "mean", "speed-up", "base median", "median"],
-                                       arows) + [""]
+            lines += ["Noise: the median relative standard deviation of a frame's time over the run's passes "
+                      "(--repeat); a cell whose noise is large says little.", ""]
+            lines += cr.markdown_table(["cell", "pipeline", "base mean", "mean", "speed-up", "base median", "median",
+                                        "noise base / now"], arows) + [""]
     return "\n".join(lines)
 
 
