@@ -114,7 +114,9 @@ struct RefitTopFn {
       // links and the boxes of the non-spanning children, put on their sides of the slots.
       for (uint32_t s = t; s < in_shared; s += threads) sh.parent[s] = span_parent[s];
       for (uint32_t w = t; w < kSharedSlots / 32; w += threads) sh.arrived[w] = 0u;
+#if defined(__CUDA_ARCH__)
 #pragma unroll 4
+#endif
       for (uint32_t e = t; e < 2 * count; e += threads) {
         const uint32_t c = span_child[e];
         if (c == kNoNode) continue;
