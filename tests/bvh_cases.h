@@ -135,12 +135,15 @@ void expect_refits_agree(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, cons
 // Build + order on frame 0, refit on frames 1 and 2: after each, the tree must pass every
 // reference check and the self query must report exactly the oracle's pairs; on refit frames
 // both refits of the spanning top agree.
+// `shared_slots`: the refit top's shared-memory slots (Lbvh::refit_top_shared_slots); below
+// the default the case must spill past them.
 template <class Exec>
-void check_soup_case(const SoupCase& c) {
+void check_soup_case(const SoupCase& c, uint32_t shared_slots = kRefitTopSharedSlots) {
   auto source = soup_source(c);
   const Topology& topo = source->topology();
   Exec exec;
   Lbvh<Exec> bvh(exec);
+  bvh.refit_top_shared_slots = shared_slots;
   TestMesh<Exec> m(exec, topo);
   const MeshView mesh = m.view();
   std::vector<vec3f> v;
@@ -150,6 +153,11 @@ void check_soup_case(const SoupCase& c) {
     if (f == 0) {
       build_hierarchy(exec, bvh, mesh, c.bits);
       order_depth_first(exec, bvh);
+      if (shared_slots < kRefitTopSharedSlots) {
+        uint32_t spanning = 0;
+        exec.copy_to_host(&spanning, bvh.span_count.data(), 1);
+        ASSERT_GT(spanning, 4 * shared_slots) << "the case no longer spills past shared memory";
+      }
     } else {
       expect_refits_agree(exec, bvh, mesh, "frame " + std::to_string(f));
       refit(exec, bvh, mesh);
@@ -366,33 +374,11 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
 }
 
 // With fewer shared-memory slots than spanning nodes (refit_top.h), the slots past them go
-// through global memory: the refit must still agree with the hand-over between blocks and
-// keep the tree valid, frame after frame.
+// through global memory: the refit must still agree with the hand-over between blocks, keep
+// the tree valid and the query exact, frame after frame.
 template <class Exec>
 void check_refit_top_spill() {
-  auto source = soup_source({kRefitTopMaxLeaves, "clustered", 1.0, 0.0, MortonBits::b63});
-  const Topology& topo = source->topology();
-  Exec exec;
-  Lbvh<Exec> bvh(exec);
-  bvh.refit_top_shared_slots = 64;
-  TestMesh<Exec> m(exec, topo);
-  const MeshView mesh = m.view();
-  std::vector<vec3f> v;
-  for (uint32_t f = 0; f < source->num_frames(); ++f) {
-    source->frame(f, v);
-    m.upload(exec, v);
-    if (f == 0) {
-      build_hierarchy(exec, bvh, mesh, MortonBits::b63);
-      order_depth_first(exec, bvh);
-      uint32_t spanning = 0;
-      exec.copy_to_host(&spanning, bvh.span_count.data(), 1);
-      ASSERT_GT(spanning, 4 * bvh.refit_top_shared_slots) << "the case no longer spills past shared memory";
-      continue;
-    }
-    expect_refits_agree(exec, bvh, mesh, "frame " + std::to_string(f));
-    HostBvh h = download(exec, bvh);
-    ASSERT_EQ(check_bvh(h, topo, v), "") << "frame " << f;
-  }
+  check_soup_case<Exec>({kRefitTopMaxLeaves, "clustered", 1.0, 0.0, MortonBits::b63}, 64);
 }
 
 // The radix-sort ordering of the BVH gives the histogram ordering's tree, node for node.
