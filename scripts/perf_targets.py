@@ -6,7 +6,8 @@ second binary in the same call) a table of per-cell means, base against new, fol
 
   scripts/perf_targets.py DIR [--base DIR] > report.md
 
-Files are named GROUP-SCENE-PIPELINE.h5 (scaling cells end in -resR). Steady frames are the
+Files are named GROUP-SCENE-PIPELINE.h5 (scaling cells end in -resR); scene and pipeline
+are read from the files themselves. Steady frames are the
 frames whose operation was refit+preserve (the CUDA graph's replays); "mean" is over every
 measured frame, as in every other table here.
 """
@@ -21,7 +22,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cdb_results as cr  # noqa: E402
 
-FILE = re.compile(r"^(steady|cloth|coherent|nbody|scaling)-(.+)-([a-z-]+?)(?:-res(\d+))?\.h5$")
+FILE = re.compile(r"^(steady|cloth|coherent|nbody|scaling)-.*?(?:-res(\d+))?\.h5$")
 PIPELINES = ["unordered", "b", "c", "a", "periodic", "radix-order", "bvh", "grid", "hash", "sweep"]
 FRONTS = {"unordered", "b", "c", "a", "periodic", "radix-order"}
 BASELINES = {"bvh", "grid", "hash", "sweep"}
@@ -38,14 +39,8 @@ def index(directory):
         if not run.complete:
             print(f"perf_targets: {path}: {run.incomplete_reason()}; left out", file=sys.stderr)
             continue
-        group, scene, pipeline, res = m.groups()
-        if pipeline not in PIPELINES:
-            # the scene name may end in a pipeline-like word: split at the known pipeline
-            for p in sorted(PIPELINES, key=len, reverse=True):
-                if f"{scene}-{pipeline}".endswith("-" + p):
-                    scene, pipeline = f"{scene}-{pipeline}"[: -len(p) - 1], p
-                    break
-        runs[(group, scene, pipeline, int(res) if res else 0)] = run
+        group, res = m.groups()
+        runs[(group, run.scene, run.pipeline, int(res) if res else 0)] = run
     return runs
 
 
@@ -100,14 +95,12 @@ def report(runs, base):
 
     # 1. Funnel-size steady frame, a/b/c.
     rows = []
-    best = math.inf
     for scene in ("funnel", "funnel-large"):
         for p in ("a", "b", "c"):
             r = get(runs, "steady", scene, p)
             if not r:
                 continue
             med, n = steady(r)
-            best = min(best, med) if scene == "funnel-large" else best
             rows.append([scene, f"{r.triangles:,}", p, fmt(med), str(n), fmt(mean(r)), fmt(phase_mean(r, "refit")),
                          fmt(phase_mean(r, "preserve")), fmt(r.stat("host_syncs_mean"), 2)])
     if rows:

@@ -33,7 +33,7 @@ struct SameLevelPairsFn {
   PairSink sink;
   using Stage = PairStage;
   CDB_HD void operator()(uint32_t k, Stage* stage = nullptr) const {
-    const PairSink out = stage ? sink.staged(stage) : sink;
+    const PairSink out = sink.staged(stage);
     const uint32_t entries = static_cast<uint32_t>(min_of(*total, (unsigned long long)planned));
     if (k >= entries) return;
     const uint64_t key = keys[k];
@@ -67,7 +67,7 @@ struct CoarserLevelPairsFn {
   PairSink sink;
   using Stage = PairStage;
   CDB_HD void operator()(uint32_t a, Stage* stage = nullptr) const {
-    const PairSink out = stage ? sink.staged(stage) : sink;
+    const PairSink out = sink.staged(stage);
     const GridLayout& p = *params;
     const vec4f alo = lo[a], ahi = hi[a];
     for (uint32_t l = level[a] + 1; l < p.levels; ++l) {

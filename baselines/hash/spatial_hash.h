@@ -227,7 +227,7 @@ struct PairsInCellsFn {
   PairSink sink;
   using Stage = PairStage;
   CDB_HD void operator()(uint32_t k, Stage* stage = nullptr) const {
-    const PairSink out = stage ? sink.staged(stage) : sink;
+    const PairSink out = sink.staged(stage);
     const uint64_t bucket = buckets[k], c = cell[k];
     const uint32_t a = box[k];
     const vec4f alo = lo[a], ahi = hi[a];
@@ -259,7 +259,7 @@ struct LargePairsFn {
   PairSink sink;
   using Stage = PairStage;
   CDB_HD void operator()(uint32_t j, Stage* stage = nullptr) const {
-    const PairSink out = stage ? sink.staged(stage) : sink;
+    const PairSink out = sink.staged(stage);
     const uint32_t count = *large_count;
     const bool j_large = counts[j] == 0;
     const vec4f jlo = lo[j], jhi = hi[j];

@@ -119,7 +119,7 @@ struct SweepFn {
   PairSink sink;
   using Stage = PairStage;
   CDB_HD void operator()(uint32_t s, Stage* stage = nullptr) const {
-    const PairSink out = stage ? sink.staged(stage) : sink;
+    const PairSink out = sink.staged(stage);
     const uint32_t ax = *axis;
     const vec4f alo = lo[s], ahi = hi[s];
     const float end = axis_of(ahi, ax);

@@ -102,7 +102,8 @@ void refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh) {
                                 bvh.node_last.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
                                 bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data(), top_in_block});
   if (!top_in_block) return;
-  exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots), bvh.span_count.data(), bvh.span_node.data(), bvh.span_parent.data(),
+  exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots),
+                               bvh.span_count.data(), bvh.span_node.data(), bvh.span_parent.data(),
                                bvh.span_child.data(), bvh.span_flag.data(), bvh.span_lo.data(), bvh.span_hi.data(),
                                bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_lo.data(), bvh.node_hi.data()});
 }

@@ -98,7 +98,7 @@ struct RefitTopFn {
   const uint32_t* span_node;
   const uint32_t* span_parent;
   const uint32_t* span_child;
-  uint32_t* span_arrived;  // arrival bits of the slots past kSharedSlots
+  uint32_t* span_arrived;  // arrival bits of the slots past shared_slots
   vec4f* span_lo;          // their boxes, [2 * slot + side]
   vec4f* span_hi;
   const vec4f* leaf_lo;

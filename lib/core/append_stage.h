@@ -33,6 +33,10 @@
 
 namespace cdb {
 
+// Threads of a staged kernel's block (Exec::for_each_staged): what a stage's capacity and the
+// front pipelines' choice to stage preserve are sized against.
+inline constexpr uint32_t kStagedThreads = 256;
+
 struct PairStage {
   static constexpr uint32_t kCapacity = 1024;
   uint32_t size;

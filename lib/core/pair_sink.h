@@ -26,7 +26,8 @@ struct PairSink {
   // Declared queries (geometry/objects.h): per face its object, per object its partners.
   const uint32_t* face_object = nullptr;
   const uint64_t* partners = nullptr;
-  // The block's stage in shared memory (core/append_stage.h), set inside a staged kernel.
+  // The block's stage in shared memory (core/append_stage.h), set inside a staged kernel;
+  // null: append directly.
   PairStage* stage = nullptr;
 
   CDB_HD_INLINE PairSink staged(PairStage* s) const {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/aabb.h"
+#include "core/append_stage.h"
 #include "core/phase.h"
 #include "exec/balance.h"
 #include "exec/frame_graph.h"
@@ -176,7 +177,7 @@ class CudaExec {
   template <class F>
   void for_each_staged(size_t n, const F& f, Balance = Balance::even) const {
     if (n == 0) return;
-    constexpr uint32_t threads = 256;
+    constexpr uint32_t threads = kStagedThreads;
     const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
     for_each_staged_kernel<<<blocks, threads, 0, stream_>>>(static_cast<uint32_t>(n), f);
     cuda_check(cudaGetLastError(), "kernel launch");

@@ -30,7 +30,8 @@ struct FrontSink {
   unsigned long long* count;  // count[kind]
   unsigned long long capacity[2];
   uint32_t* count_log[2];     // null for unordered fronts
-  // The block's stage in shared memory (core/append_stage.h), set inside a staged kernel.
+  // The block's stage in shared memory (core/append_stage.h), set inside a staged kernel;
+  // null: append directly.
   FrontStage* stage = nullptr;
 
   CDB_HD_INLINE FrontSink staged(FrontStage* s) const {

@@ -82,8 +82,8 @@ struct GenerateFrontFn {
   FrontSink front;
   CDB_HD void operator()(uint32_t i, Stage* stage = nullptr) const {
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-    traverse_range<true>(view, i, lo, hi, view.start(i), kNoNode, stage ? pairs.staged(&stage->pairs) : pairs,
-                         stage ? front.staged(&stage->front) : front);
+    traverse_range<true>(view, i, lo, hi, view.start(i), kNoNode, pairs.staged(stage ? &stage->pairs : nullptr),
+                         front.staged(stage ? &stage->front : nullptr));
   }
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const {
@@ -101,7 +101,7 @@ struct PreserveFrontFn {
   const uint32_t* prim;
   const uint32_t* node;
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
-    const PairSink sink = stage ? pairs.staged(stage) : pairs;
+    const PairSink sink = pairs.staged(stage);
     const FrontTree& tree = view.tree;
     const uint32_t i = prim[e], j = node[e];
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
@@ -157,8 +157,8 @@ struct UpdateFrontFn {
   const uint32_t* prim;
   const uint32_t* node;
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
-    update_front_node(view, stage ? pairs.staged(&stage->pairs) : pairs,
-                      stage ? front.staged(&stage->front) : front, prim[e], node[e]);
+    update_front_node(view, pairs.staged(stage ? &stage->pairs : nullptr),
+                      front.staged(stage ? &stage->front : nullptr), prim[e], node[e]);
   }
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const {

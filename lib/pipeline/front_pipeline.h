@@ -329,10 +329,9 @@ class FrontPipeline final : public Pipeline {
   // nodes in the frame just read back (cloth scenes 60-90, n-body 11 on the H100). A change
   // is a different launch, so the steady frame's graph is recorded again.
   static constexpr uint64_t kStagedPairsPerBlock = 32;
-  static constexpr uint64_t kBlockIndices = 256;
   void choose_preserve_staging(uint64_t pairs) {
     const uint64_t fronts = self_.total() + inter_.total() + rigid_self_.total();
-    const bool stage = pairs * kBlockIndices >= kStagedPairsPerBlock * fronts;
+    const bool stage = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts;
     if (stage != stage_preserve_) ++graph_version_;
     stage_preserve_ = stage;
   }
