@@ -50,6 +50,7 @@ struct CommonOptions {
   std::string box_precision = "fp32";
   uint32_t refit_every = 1;
   std::string cuda_graph = "on";
+  uint32_t refit_top_leaves = kRefitTopMaxLeaves;
   std::vector<std::string> sets;  // generator overrides, key=value
 };
 
@@ -101,6 +102,12 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "and replay it while its launches stay the same; off: plain launches every frame")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  cmd->add_option("--refit-top-leaves", o.refit_top_leaves,
+                  "front pipelines and bvh: trees of up to this many leaves refit their top (the nodes whose leaves "
+                  "span refit tiles) in one block of threads, larger trees hand it over between blocks; 0: always "
+                  "hand over")
+      ->check(CLI::Range(0u, kRefitTopLeavesLimit))
+      ->capture_default_str();
   PipelineConfig& r = o.restructure;
   cmd->add_option("--restructure-quality", r.restructure_quality,
                   "pipeline c: a subtree is degraded when its Q exceeds this times Q(root) after the last rebuild")
@@ -149,6 +156,7 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.box_precision = parse_box_precision(o.box_precision);
   c.refit_every = o.refit_every;
   c.cuda_graph = o.cuda_graph == "on";
+  c.refit_top_leaves = o.refit_top_leaves;
   c.restructure_quality = o.restructure.restructure_quality;
   c.restructure_min_leaves = o.restructure.restructure_min_leaves;
   c.restructure_max_fraction = o.restructure.restructure_max_fraction;

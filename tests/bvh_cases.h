@@ -117,10 +117,11 @@ void expect_self_query_exact(Exec& exec, const Lbvh<Exec>& bvh, const Topology& 
 // give the same boxes, bit for bit: a box is a min/max merge whatever the order of arrivals.
 template <class Exec>
 void expect_refits_agree(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, const std::string& where) {
-  bvh.refit_top_in_block = false;
+  const uint32_t top_max_leaves = bvh.refit_top_max_leaves;
+  bvh.refit_top_max_leaves = 0;
   refit(exec, bvh, mesh);
   const HostBvh between_blocks = download(exec, bvh);
-  bvh.refit_top_in_block = true;
+  bvh.refit_top_max_leaves = top_max_leaves;
   refit(exec, bvh, mesh);
   const HostBvh one_block = download(exec, bvh);
   auto same = [](const std::vector<vec4f>& a, const std::vector<vec4f>& b) {
@@ -136,14 +137,16 @@ void expect_refits_agree(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, cons
 // reference check and the self query must report exactly the oracle's pairs; on refit frames
 // both refits of the spanning top agree.
 // `shared_slots`: the refit top's shared-memory slots (Lbvh::refit_top_shared_slots); below
-// the default the case must spill past them.
+// the default the case must spill past them. `top_max_leaves`: Lbvh::refit_top_max_leaves.
 template <class Exec>
-void check_soup_case(const SoupCase& c, uint32_t shared_slots = kRefitTopSharedSlots) {
+void check_soup_case(const SoupCase& c, uint32_t shared_slots = kRefitTopSharedSlots,
+                     uint32_t top_max_leaves = kRefitTopMaxLeaves) {
   auto source = soup_source(c);
   const Topology& topo = source->topology();
   Exec exec;
   Lbvh<Exec> bvh(exec);
   bvh.refit_top_shared_slots = shared_slots;
+  bvh.refit_top_max_leaves = top_max_leaves;
   TestMesh<Exec> m(exec, topo);
   const MeshView mesh = m.view();
   std::vector<vec3f> v;
@@ -379,6 +382,13 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
 template <class Exec>
 void check_refit_top_spill() {
   check_soup_case<Exec>({kRefitTopMaxLeaves, "clustered", 1.0, 0.0, MortonBits::b63}, 64);
+}
+
+// A tree past the default size with its top in one block anyway (--refit-top-leaves): some
+// thousands of spanning nodes, about as many as shared memory holds.
+template <class Exec>
+void check_refit_top_large_tree() {
+  check_soup_case<Exec>({100000, "clustered", 1.0, 0.0, MortonBits::b63}, kRefitTopSharedSlots, kRefitTopLeavesLimit);
 }
 
 // The radix-sort ordering of the BVH gives the histogram ordering's tree, node for node.

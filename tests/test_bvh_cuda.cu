@@ -306,6 +306,11 @@ TEST(CudaRefit, TopInOneBlockSpillsPastSharedMemoryAndAgrees) {
   check_refit_top_spill<CudaExec>();
 }
 
+TEST(CudaRefit, TopInOneBlockOfALargeTreeAgrees) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_refit_top_large_tree<CudaExec>();
+}
+
 TEST(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   for (uint32_t depth : {0u, 1u, 4u, 9u}) {

@@ -4,20 +4,12 @@
 #include <string>
 
 #include "bvh/bvh_view.h"
+#include "bvh/refit_tiles.h"
 #include "core/aabb.h"
 #include "core/morton.h"
 #include "exec/memory.h"
 
 namespace cdb {
-
-// Leaves per refit tile (bvh/refit.h); the largest tree whose spanning top refits in one
-// block (bvh/refit_top.h), past which handing the top over between blocks is faster (H100:
-// refit 32 -> 21 us on funnel's 8.7K leaves, 39 -> 31 us on cloth-wave's 32K, but 49 -> 65 us
-// on cloth-ball's 93K and 52 -> 115 us on n-body's 148K); and the spanning nodes the block
-// keeps in shared memory (about 3.4% of the internal nodes span tiles: 1,100 at 2^15 leaves).
-inline constexpr uint32_t kRefitTile = 256;
-inline constexpr uint32_t kRefitTopMaxLeaves = 1u << 15;
-inline constexpr uint32_t kRefitTopSharedSlots = 1536;
 
 // Storage of one ordered LBVH and the scratch its build needs, all from the executor's
 // memory. Sized once by reserve(num_leaves); a later reserve for more leaves is a logged
@@ -107,13 +99,14 @@ struct Lbvh {
 
   uint32_t num_leaves = 0;
   MortonBits morton_bits = MortonBits::b63;
-  // Refit the nodes spanning tiles in one block (bvh/refit_top.h) when the tree allows;
-  // false: hand them over between blocks (tests compare the two).
-  bool refit_top_in_block = true;
+  // Trees of up to this many leaves refit the nodes spanning tiles in one block
+  // (bvh/refit_top.h); larger ones, or all with 0, hand them over between blocks (tests
+  // compare the two). Set before reserve, which sizes the spanning index.
+  uint32_t refit_top_max_leaves = kRefitTopMaxLeaves;
   // Spanning nodes kept in shared memory, at most kRefitTopSharedSlots; the rest in global
   // memory (tests lower it to cover that path).
   uint32_t refit_top_shared_slots = kRefitTopSharedSlots;
-  bool refit_top_fits() const { return num_leaves > kRefitTile && num_leaves <= kRefitTopMaxLeaves; }
+  bool refit_top_fits() const { return num_leaves > kRefitTile && num_leaves <= refit_top_max_leaves; }
 
   // The ordered tree.
   Array<vec4f> leaf_lo, leaf_hi;

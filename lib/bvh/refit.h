@@ -96,7 +96,7 @@ template <class Exec>
 void refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
-  const bool top_in_block = bvh.refit_top_in_block && bvh.refit_top_fits();
+  const bool top_in_block = bvh.refit_top_fits();
   exec.for_each_tile(n, RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
                                 bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
                                 bvh.node_last.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),

@@ -69,6 +69,7 @@ class BroadPhase final : public Pipeline {
         hash_.reserve(exec_, n);
         break;
       case BroadPhaseMethod::bvh:
+        bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.refit_top_leaves;
         bvh_.reserve(exec_, mesh_.deformable().count);
         rigid_bvh_.reserve(exec_, mesh_.rigid().count);
         break;

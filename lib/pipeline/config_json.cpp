@@ -22,6 +22,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"box_precision", box_precision_name(c.box_precision)},
       {"refit_every", c.refit_every},
       {"cuda_graph", c.cuda_graph},
+      {"refit_top_leaves", c.refit_top_leaves},
       {"conservative", config_conservative(c)},
   };
 }

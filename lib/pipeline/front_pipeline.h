@@ -58,6 +58,7 @@ class FrontPipeline final : public Pipeline {
     pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);
     pairs_.filter_queries(mesh_.face_object(), mesh_.partners());
     pairs_.reserve(size_t(config_.pairs_per_triangle * mesh_.num_faces()));
+    bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.refit_top_leaves;
     bvh_.reserve(exec_, mesh_.deformable().count);
     rigid_bvh_.reserve(exec_, mesh_.rigid().count);
     self_.plan(bvh_, bvh_, split.deformable_self, config_.front_per_triangle);

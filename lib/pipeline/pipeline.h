@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bvh/refit_tiles.h"
 #include "core/morton.h"
 #include "core/pair.h"
 #include "core/phase.h"
@@ -67,6 +68,10 @@ struct PipelineConfig {
   // with the same arguments frame after frame) is captured once in a CUDA graph and
   // replayed while nothing it launches changes. The host executor ignores it.
   bool cuda_graph = true;
+  // Refit: trees of up to this many leaves refit their top (the nodes spanning refit
+  // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
+  // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/lbvh.h).
+  uint32_t refit_top_leaves = kRefitTopMaxLeaves;
 };
 
 // Whether the config can miss pairs of the exact box-overlap set (refit_every > 1 on a
