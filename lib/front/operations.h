@@ -189,17 +189,39 @@ struct BothFrontsFn {
 };
 
 // (4) Balance: the opt mark each front node will take in the coming update (1 = sprout),
-// counted per BVH node for the histogram sort (count_log null when another sort orders).
+// for the radix sort, which orders by node and mark.
 struct MarkFrontFn {
   FrontView view;
   const uint32_t* prim;
   const uint32_t* node;
   uint8_t* mark;
-  uint32_t* count_log;
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t i = prim[e], j = node[e];
     mark[e] = view.tree.overlaps_node(view.query_lo[i], view.query_hi[i], j) ? 1 : 0;
-    if (count_log) count_one(&count_log[ref_index(j)]);
+  }
+};
+
+// (4) Balance with the histogram sort, in one pass: the current front has not changed
+// since the histogram sort that ordered it, so that sort's offset log still gives each BVH
+// node's segment; each front node takes its opt mark and goes straight to its side of the
+// segment (sprouts from the back, as ScatterFrontFn places them). No count, no scan, no
+// mark array.
+struct MarkScatterFrontFn {
+  FrontView view;
+  const uint32_t* prim;
+  const uint32_t* node;
+  const uint32_t* offset_log;
+  uint32_t* cursor_front;
+  uint32_t* cursor_back;
+  uint32_t* out_prim;
+  uint32_t* out_node;
+  CDB_HD void operator()(uint32_t e) const {
+    const uint32_t i = prim[e], j = node[e], key = ref_index(j);
+    const bool sprout = view.tree.overlaps_node(view.query_lo[i], view.query_hi[i], j);
+    const uint32_t pos = sprout ? offset_log[key + 1] - 1 - claim_one(&cursor_back[key])
+                                : offset_log[key] + claim_one(&cursor_front[key]);
+    out_prim[pos] = i;
+    out_node[pos] = j;
   }
 };
 

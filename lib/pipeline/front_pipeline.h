@@ -150,7 +150,7 @@ class FrontPipeline final : public Pipeline {
   MemoryStats memory() const override { return const_cast<Exec&>(exec_).memory().stats(); }
 
  private:
-  // The pair buffer's counters: [0] pairs, [3] balance scratch, [4..6] the inspection's;
+  // The pair buffer's counters: [0] pairs, [4..6] the inspection's ([3] is free);
   // each front query counts its produced internal and external fronts in two more.
   static constexpr size_t kSelfCounters = 1, kInterCounters = 7, kRigidCounters = 9;
   static_assert(kRigidCounters + 2 <= PairBuffer<Exec>::kCounters, "front counters past the block");
@@ -345,7 +345,7 @@ class FrontPipeline final : public Pipeline {
     timer_.start(Phase::balance);
     for (Query q : kQueries)
       if (ops.of(q) == Op::update)
-        query(q).balance(exec_, pairs_, histogram_sorted(), plan_.radix_sort ? &radix_ : nullptr);
+        query(q).balance(exec_, plan_.radix_sort ? &radix_ : nullptr);
     timer_.stop(Phase::balance);
   }
 

@@ -141,21 +141,23 @@ class FrontQuery {
   }
 
   // (4) Balance: mark each current front node with the branch it will take, then reorder
-  // the current front by node key and mark. The front's content is unchanged.
-  void balance(Exec& exec, PairBuffer<Exec>& pairs, bool histogram, RadixScratch<Exec>* radix) {
+  // the current front by node key and mark. The front's content is unchanged. Ordered by the
+  // histogram sort, the front keeps the offset log of the sort that ordered it (every
+  // operation that changes a front orders it again), so one pass marks and scatters.
+  void balance(Exec& exec, RadixScratch<Exec>* radix) {
     if (!active_) return;
-    if (histogram) zero_count_logs(exec);
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
-      exec.for_each_n(f.size, MarkFrontFn{view(), f.prim.data(), f.node.data(), f.raw_mark.data(),
-                                          histogram ? f.count_log.data() : nullptr});
       if (radix) {
+        exec.for_each_n(f.size, MarkFrontFn{view(), f.prim.data(), f.node.data(), f.raw_mark.data()});
         radix_order_front(exec, f, *radix, f.size, key_bits(k), f.prim.data(), f.node.data(),
                           f.raw_mark.data());
       } else {
-        exec.fill(pairs.counter(3), 1, static_cast<unsigned long long>(f.size));
-        order_front(exec, f, segments(k), pairs.counter(3), f.prim.data(), f.node.data(),
-                    f.raw_mark.data(), f.size, tree_->temp.data(), tree_->temp.size());
+        exec.fill(f.cursor_front.data(), segments(k), 0u);
+        exec.fill(f.cursor_back.data(), segments(k), 0u);
+        exec.for_each_n(f.size, MarkScatterFrontFn{view(), f.prim.data(), f.node.data(), f.offset_log.data(),
+                                                   f.cursor_front.data(), f.cursor_back.data(),
+                                                   f.sorted_prim.data(), f.sorted_node.data()});
       }
       std::swap(f.prim, f.sorted_prim);
       std::swap(f.node, f.sorted_node);
