@@ -252,17 +252,6 @@ inline std::vector<std::unique_ptr<FrameSource>> front_scenes(uint32_t cloth_res
   return s;
 }
 
-// Balance grouped across the whole front (--balance-grouping front) instead of within
-// segments: the pipelines that balance stay exact on every front scene, fronts far too
-// small at the start so they grow while sprouting.
-inline void check_balance_across_front(const std::string& device, uint32_t cloth_res, uint32_t frames,
-                                       uint32_t cycle) {
-  PipelineConfig cfg = config_for(device, 0.5, 0.05, cycle);
-  cfg.balance_grouping = BalanceGrouping::front;
-  for (auto& scene : front_scenes(cloth_res, frames))
-    check_pipelines_on(cfg, *scene, 100000, {"b", "static", "periodic", "c"});
-}
-
 // Runs one pipeline over every frame of a scene against the sweep oracle; returns the
 // frames' stats for the caller to check which operations ran.
 inline std::vector<FrameStats> run_exact(const PipelineConfig& cfg, FrameSource& source) {

@@ -237,8 +237,6 @@ TEST_P(CudaFrontCycles, AllPipelinesExactEveryFrame) {
   for (auto& scene : front_scenes(96, 16)) check_pipelines_on(config_for("cuda", 0.5, 0.05, GetParam()), *scene);
 }
 
-TEST_P(CudaFrontCycles, BalanceAcrossTheFrontExactEveryFrame) { check_balance_across_front("cuda", 96, 16, GetParam()); }
-
 INSTANTIATE_TEST_SUITE_P(Cycles, CudaFrontCycles, testing::Values(1u, 2u, 3u, 5u));
 
 class CudaExtremes : public testing::TestWithParam<BaselineCase> {

@@ -75,8 +75,6 @@ TEST_P(HostFrontCycles, AllPipelinesExactEveryFrame) {
   for (auto& scene : front_scenes(24, 12)) check_pipelines_on(config_for("cpu", 0.5, 0.05, GetParam()), *scene);
 }
 
-TEST_P(HostFrontCycles, BalanceAcrossTheFrontExactEveryFrame) { check_balance_across_front("cpu", 24, 12, GetParam()); }
-
 INSTANTIATE_TEST_SUITE_P(Cycles, HostFrontCycles, testing::Values(1u, 2u, 3u, 5u));
 
 TEST(HostFrontPipelines, RecordTheOperationsOfTheirCycle) {

@@ -201,19 +201,6 @@ struct MarkFrontFn {
   }
 };
 
-// (4) Balance across the whole front, first pass: 1 where the node will sprout, as a word
-// for the scan that ranks the sprouts (PartitionFrontFn, front/ordering.h).
-struct SproutFlagFn {
-  FrontView view;
-  const uint32_t* prim;
-  const uint32_t* node;
-  uint32_t* flag;
-  CDB_HD void operator()(uint32_t e) const {
-    const uint32_t i = prim[e], j = node[e];
-    flag[e] = view.tree.overlaps_node(view.query_lo[i], view.query_hi[i], j) ? 1u : 0u;
-  }
-};
-
 // (4) Balance with the histogram sort, in one pass: the current front has not changed
 // since the histogram sort that ordered it, so that sort's offset log still gives each BVH
 // node's segment; each front node takes its opt mark and goes straight to its side of the

@@ -32,25 +32,6 @@ struct ScatterFrontFn {
   }
 };
 
-// A stable partition of a front: the nodes that will prune keep their order at the start,
-// those that will sprout follow in theirs. `rank` is the exclusive scan of `flag` (1 =
-// sprout), so node e is the rank[e]-th sprout or the (e - rank[e])-th prune.
-struct PartitionFrontFn {
-  const uint32_t* flag;
-  const uint32_t* rank;
-  uint32_t n;
-  const uint32_t* prim;
-  const uint32_t* node;
-  uint32_t* out_prim;
-  uint32_t* out_node;
-  CDB_HD void operator()(uint32_t e) const {
-    const uint32_t prunes = n - (rank[n - 1] + flag[n - 1]);
-    const uint32_t pos = flag[e] ? prunes + rank[e] : e - rank[e];
-    out_prim[pos] = prim[e];
-    out_node[pos] = node[e];
-  }
-};
-
 // Orders a produced front (raw arrays, size on the device in *count, at most the raw
 // capacity, `launch`) into the sorted arrays, using a filled count log with `segments`
 // entries.

@@ -23,7 +23,6 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"refit_every", c.refit_every},
       {"cuda_graph", c.cuda_graph},
       {"refit_top_leaves", c.refit_top_leaves},
-      {"balance_grouping", balance_grouping_name(c.balance_grouping)},
       {"conservative", config_conservative(c)},
   };
 }

@@ -61,9 +61,9 @@ class FrontPipeline final : public Pipeline {
     bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.refit_top_leaves;
     bvh_.reserve(exec_, mesh_.deformable().count);
     rigid_bvh_.reserve(exec_, mesh_.rigid().count);
-    self_.plan(exec_, bvh_, bvh_, split.deformable_self, config_.front_per_triangle);
-    inter_.plan(exec_, bvh_, rigid_bvh_, split.cross, config_.front_per_triangle);
-    rigid_self_.plan(exec_, rigid_bvh_, rigid_bvh_, split.rigid_self, config_.front_per_triangle);
+    self_.plan(bvh_, bvh_, split.deformable_self, config_.front_per_triangle);
+    inter_.plan(bvh_, rigid_bvh_, split.cross, config_.front_per_triangle);
+    rigid_self_.plan(rigid_bvh_, rigid_bvh_, split.rigid_self, config_.front_per_triangle);
     if (plan_.radix_sort)
       radix_.reserve(exec_, std::max({self_.capacity(), inter_.capacity(), rigid_self_.capacity()}));
     if (plan_.restructure) restructure_.reserve(exec_, bvh_.num_leaves, config_.restructure_min_leaves);
@@ -345,7 +345,7 @@ class FrontPipeline final : public Pipeline {
     timer_.start(Phase::balance);
     for (Query q : kQueries)
       if (ops.of(q) == Op::update)
-        query(q).balance(exec_, plan_.radix_sort ? &radix_ : nullptr, config_.balance_grouping);
+        query(q).balance(exec_, plan_.radix_sort ? &radix_ : nullptr);
     timer_.stop(Phase::balance);
   }
 

@@ -27,12 +27,11 @@ class FrontQuery {
   FrontQuery(Exec& exec, const std::string& name, size_t counter) : counter_(counter) {
     front_[kInternalFront].bind(exec.memory(), kInternalFront, name);
     front_[kExternalFront].bind(exec.memory(), kExternalFront, name);
-    scan_temp_.bind(exec.memory(), name + ".scan_temp");
   }
 
   // Query leaves come from `leaves`, front nodes from `tree` (the same tree: self fronts).
   // Both trees must be reserved for their leaf counts already.
-  void plan(Exec& exec, Lbvh<Exec>& leaves, Lbvh<Exec>& tree, bool active, double front_per_triangle) {
+  void plan(Lbvh<Exec>& leaves, Lbvh<Exec>& tree, bool active, double front_per_triangle) {
     leaves_ = &leaves;
     tree_ = &tree;
     active_ = active;
@@ -40,7 +39,6 @@ class FrontQuery {
     if (!active_) return;
     const size_t cap = std::max<size_t>(1024, size_t(front_per_triangle * leaves.num_leaves));
     for (int k = 0; k < 2; ++k) front_[k].reserve(cap, std::max<size_t>(segments(k), 1));
-    scan_temp_.reserve(std::max<size_t>(exec.scan_temp_bytes(cap), 1));
   }
 
   bool active() const { return active_; }
@@ -146,9 +144,7 @@ class FrontQuery {
   // the current front by node key and mark. The front's content is unchanged. Ordered by the
   // histogram sort, the front keeps the offset log of the sort that ordered it (every
   // operation that changes a front orders it again), so one pass marks and scatters.
-  // Grouped across the whole front, the marks are flags in raw_prim, ranked by a scan into
-  // raw_node (both free until the update appends there).
-  void balance(Exec& exec, RadixScratch<Exec>* radix, BalanceGrouping grouping) {
+  void balance(Exec& exec, RadixScratch<Exec>* radix) {
     if (!active_) return;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
@@ -156,8 +152,6 @@ class FrontQuery {
         exec.for_each_n(f.size, MarkFrontFn{view(), f.prim.data(), f.node.data(), f.raw_mark.data()});
         radix_order_front(exec, f, *radix, f.size, key_bits(k), f.prim.data(), f.node.data(),
                           f.raw_mark.data());
-      } else if (grouping == BalanceGrouping::front) {
-        if (f.size > 0) partition_by_mark(exec, f);
       } else {
         exec.fill(f.cursor_front.data(), segments(k), 0u);
         exec.fill(f.cursor_back.data(), segments(k), 0u);
@@ -206,16 +200,6 @@ class FrontQuery {
   }
 
  private:
-  void partition_by_mark(Exec& exec, FrontArrays<Exec>& f) {
-    // Grows with the front (counted, logged), as the front's own arrays do.
-    const size_t temp = exec.scan_temp_bytes(f.size);
-    if (scan_temp_.capacity() < temp) scan_temp_.reserve(temp);
-    exec.for_each_n(f.size, SproutFlagFn{view(), f.prim.data(), f.node.data(), f.raw_prim.data()});
-    exec.exclusive_scan(f.raw_prim.data(), f.raw_node.data(), f.size, scan_temp_.data(), scan_temp_.capacity());
-    exec.for_each_n(f.size, PartitionFrontFn{f.raw_prim.data(), f.raw_node.data(), uint32_t(f.size), f.prim.data(),
-                                             f.node.data(), f.sorted_prim.data(), f.sorted_node.data()});
-  }
-
   void zero_count_logs(Exec& exec) {
     for (int k = 0; k < 2; ++k) exec.fill(front_[k].count_log.data(), segments(k) + 1, 0u);
   }
@@ -245,7 +229,6 @@ class FrontQuery {
   }
 
   FrontArrays<Exec> front_[2];
-  Array<std::byte> scan_temp_;  // balance across the whole front: its scan's temp storage
   Lbvh<Exec>* leaves_ = nullptr;
   Lbvh<Exec>* tree_ = nullptr;
   size_t counter_;

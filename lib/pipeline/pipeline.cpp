@@ -19,14 +19,6 @@ BoxPrecision parse_box_precision(const std::string& name) {
   fail("unknown box precision '" + name + "' (known: fp32, q16)");
 }
 
-const char* balance_grouping_name(BalanceGrouping g) { return g == BalanceGrouping::front ? "front" : "segment"; }
-
-BalanceGrouping parse_balance_grouping(const std::string& name) {
-  if (name == "segment") return BalanceGrouping::segment;
-  if (name == "front") return BalanceGrouping::front;
-  fail("unknown balance grouping '" + name + "' (known: segment, front)");
-}
-
 bool config_conservative(const PipelineConfig& config) {
   // The baselines and the per-frame rebuild never keep stale boxes.
   for (const char* n : {"sweep", "hash", "grid", "brute", "reference"})

@@ -21,14 +21,6 @@ namespace cdb {
 // (conservative by construction).
 enum class BoxPrecision { fp32, q16 };
 
-// How balance (step 4) groups the front nodes that will sprout apart from those that will
-// prune: within each BVH node's segment of the ordered front (the paper's histogram sort),
-// or across the whole front (a stable partition: every prune, then every sprout, each in
-// node order).
-enum class BalanceGrouping { segment, front };
-const char* balance_grouping_name(BalanceGrouping g);
-BalanceGrouping parse_balance_grouping(const std::string& name);
-
 const char* box_precision_name(BoxPrecision p);
 // Throws cdb::Error naming the known values.
 BoxPrecision parse_box_precision(const std::string& name);
@@ -80,9 +72,6 @@ struct PipelineConfig {
   // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/lbvh.h).
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
-  // Front pipelines that balance with the histogram sort (b, static, periodic, c): see
-  // BalanceGrouping. The radix-sorted baseline always groups within segments.
-  BalanceGrouping balance_grouping = BalanceGrouping::segment;
 };
 
 // Whether the config can miss pairs of the exact box-overlap set (refit_every > 1 on a
