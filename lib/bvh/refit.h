@@ -52,6 +52,18 @@ struct RefitFn {
 
   CDB_HD void init(Shared& s, uint32_t lane) const { s.arrived[lane] = 0; }
 
+  // A node's links and leaf range: written by the build, read-only here.
+  struct Links {
+    uint32_t left, right, parent, first, last;
+  };
+  CDB_HD Links links(uint32_t k) const {
+    if (k == kNoNode) return {kNoNode, kNoNode, kNoNode, 0, 0};
+    return {node_left[k], node_right[k], node_parent[k], node_first[k], node_last[k]};
+  }
+
+  // Each level's links are loaded together, one level ahead: the loads of the parent's
+  // links go out before this level's hand-over and arrive while it waits, so a level costs
+  // the hand-over and the sibling's box, not also a chain of topology loads.
   CDB_HD void operator()(uint32_t i, uint32_t tile_first, uint32_t tile_last, Shared& s) const {
     vec4f lo, hi;
     face_box(mesh, leaf_prim[i], lo, hi);
@@ -59,11 +71,12 @@ struct RefitFn {
     leaf_hi[i] = hi;
     uint32_t child = leaf_ref(i), first = i, last = i;  // the subtree climbed so far
     uint32_t p = leaf_parent[i];
+    Links at = links(p);
     while (p != kNoNode) {
-      const uint32_t l = node_left[p];
-      const bool from_left = l == child;
-      const uint32_t p_first = from_left ? first : node_first[p];
-      const uint32_t p_last = from_left ? node_last[p] : last;
+      const bool from_left = at.left == child;
+      const uint32_t p_first = from_left ? first : at.first;
+      const uint32_t p_last = from_left ? at.last : last;
+      const Links up = links(at.parent);
       vec4f slo, shi;
       if (tile_first <= p_first && p_last <= tile_last) {
         const uint32_t slot = (from_left ? last : first - 1) - tile_first;
@@ -76,7 +89,7 @@ struct RefitFn {
       } else {
         if (stop_at_spanning) return;
         if ((atomic_add_acq_rel(&flag[p], 1u) & 1u) == 0) return;
-        const uint32_t sibling = from_left ? node_right[p] : l;
+        const uint32_t sibling = from_left ? at.right : at.left;
         slo = is_leaf(sibling) ? load_coherent(&leaf_lo[ref_index(sibling)]) : load_coherent(&node_lo[sibling]);
         shi = is_leaf(sibling) ? load_coherent(&leaf_hi[ref_index(sibling)]) : load_coherent(&node_hi[sibling]);
       }
@@ -87,7 +100,8 @@ struct RefitFn {
       child = p;
       first = p_first;
       last = p_last;
-      p = node_parent[p];
+      p = at.parent;
+      at = up;
     }
   }
 };
