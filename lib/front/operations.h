@@ -125,13 +125,10 @@ struct PreserveFrontFn {
 // a node holding leaf i: such a node contains leaf i's box and so always overlaps. A cross
 // front partitions all leaves: its climb may end at the root, which is then kept (father
 // kNoNode), and the leftmost-node argument is the same.
-// The climb loads each father's links with its box and its own father one level ahead, so
-// a level of the climb is one round of loads.
 CDB_HD_INLINE void update_front_node(const FrontView& view, const PairSink& pairs,
                                      const FrontSink& front, uint32_t i, uint32_t j) {
   const FrontTree& tree = view.tree;
   const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-  const uint32_t up = tree.parent(j);
   if (tree.overlaps_node(lo, hi, j)) {
     if (is_leaf(j)) {
       pairs.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
@@ -142,20 +139,14 @@ CDB_HD_INLINE void update_front_node(const FrontView& view, const PairSink& pair
     }
     return;
   }
-  uint32_t child = j, father = up;
-  for (;;) {
-    if (father == kNoNode) break;
-    const uint32_t left = tree.bvh.node_left[father], grand = tree.node_parent[father];
-    const bool hit = tree.overlaps_node(lo, hi, father);
-    if (left != child) {
-      if (!hit) return;  // a right child under a missing father: dropped
-      break;
-    }
-    if (hit) break;
+  uint32_t child = j, father = tree.parent(j);
+  while (father != kNoNode && tree.bvh.node_left[father] == child &&
+         !tree.overlaps_node(lo, hi, father)) {
     child = father;
-    father = grand;
+    father = tree.parent(father);
   }
-  front.push(i, child, 0);
+  if (father == kNoNode || tree.bvh.node_left[father] == child || tree.overlaps_node(lo, hi, father))
+    front.push(i, child, 0);
 }
 
 struct UpdateFrontFn {
