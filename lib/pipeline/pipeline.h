@@ -70,7 +70,7 @@ struct PipelineConfig {
   bool cuda_graph = true;
   // Refit: trees of up to this many leaves refit their top (the nodes spanning refit
   // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
-  // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/lbvh.h).
+  // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
 };
 
