@@ -112,4 +112,16 @@ check "make_report stops on a non-results file" 1 "notes.h5: not a cdbench resul
   bash "$root/scripts/make_report.sh" "$tmp/bad" "$tmp/out3"
 check "missing file" 1 "nowhere.h5: no such file" -- "$python" "$root/scripts/table_memory.py" "$tmp/nowhere.h5"
 
+# The targets report's A/B table against itself: every speed-up is 1.00x, so the control
+# range is 1.00x-1.00x, the control cell says so and the other cell lies inside it.
+mkdir -p "$tmp/targets"
+cp "$res/funnel-bvh.h5" "$tmp/targets/steady-funnel-bvh.h5"
+cp "$res/funnel-static.h5" "$tmp/targets/steady-funnel-static.h5"
+check "perf_targets control range" 0 "^Controls \(bvh: code shared by both binaries\): speed-ups 1\.00x–1\.00x over 1 cells" -- \
+  "$python" "$root/scripts/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls bvh
+has "perf_targets control cell" "$tmp/out" "^\| steady/funnel \| bvh \|.* \| control \|$"
+has "perf_targets cell inside the control range" "$tmp/out" "^\| steady/funnel \| static \| .* \| 1\.00x \|.* \| no \|$"
+check "perf_targets unknown control" 1 "--controls: unknown pipeline\(s\) gird" -- \
+  "$python" "$root/scripts/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls gird
+
 finish plots
