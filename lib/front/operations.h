@@ -10,6 +10,7 @@
 #include "core/aabb.h"
 #include "core/pair_sink.h"
 #include "front/front.h"
+#include "front/ordering.h"
 
 namespace cdb {
 
@@ -210,18 +211,10 @@ struct MarkScatterFrontFn {
   FrontView view;
   const uint32_t* prim;
   const uint32_t* node;
-  const uint32_t* offset_log;
-  uint32_t* cursor_front;
-  uint32_t* cursor_back;
-  uint32_t* out_prim;
-  uint32_t* out_node;
+  SegmentScatter to;
   CDB_HD void operator()(uint32_t e) const {
-    const uint32_t i = prim[e], j = node[e], key = ref_index(j);
-    const bool sprout = view.tree.overlaps_node(view.query_lo[i], view.query_hi[i], j);
-    const uint32_t pos = sprout ? offset_log[key + 1] - 1 - claim_one(&cursor_back[key])
-                                : offset_log[key] + claim_one(&cursor_front[key]);
-    out_prim[pos] = i;
-    out_node[pos] = j;
+    const uint32_t i = prim[e], j = node[e];
+    to.place(i, j, view.tree.overlaps_node(view.query_lo[i], view.query_hi[i], j));
   }
 };
 

@@ -153,11 +153,8 @@ class FrontQuery {
         radix_order_front(exec, f, *radix, f.size, key_bits(k), f.prim.data(), f.node.data(),
                           f.raw_mark.data());
       } else {
-        exec.fill(f.cursor_front.data(), segments(k), 0u);
-        exec.fill(f.cursor_back.data(), segments(k), 0u);
-        exec.for_each_n(f.size, MarkScatterFrontFn{view(), f.prim.data(), f.node.data(), f.offset_log.data(),
-                                                   f.cursor_front.data(), f.cursor_back.data(),
-                                                   f.sorted_prim.data(), f.sorted_node.data()});
+        exec.for_each_n(f.size, MarkScatterFrontFn{view(), f.prim.data(), f.node.data(),
+                                                   start_segment_scatter(exec, f, segments(k))});
       }
       std::swap(f.prim, f.sorted_prim);
       std::swap(f.node, f.sorted_node);
