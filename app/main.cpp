@@ -51,7 +51,6 @@ struct CommonOptions {
   uint32_t refit_every = 1;
   std::string cuda_graph = "on";
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
-  std::string preserve = "split";
   std::vector<std::string> sets;  // generator overrides, key=value
 };
 
@@ -109,12 +108,6 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "hand over")
       ->check(CLI::Range(0u, kRefitTopLeavesLimit))
       ->capture_default_str();
-  cmd->add_option("--preserve", o.preserve,
-                  "front pipelines: split: preserve in two passes, every front node's own test, then the descents "
-                  "below the internal front nodes that overlap; inline: one pass, each front node descending where "
-                  "it overlaps")
-      ->check(CLI::IsMember({"split", "inline"}))
-      ->capture_default_str();
   PipelineConfig& r = o.restructure;
   cmd->add_option("--restructure-quality", r.restructure_quality,
                   "pipeline c: a subtree is degraded when its Q exceeds this times Q(root) after the last rebuild")
@@ -164,7 +157,6 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.refit_every = o.refit_every;
   c.cuda_graph = o.cuda_graph == "on";
   c.refit_top_leaves = o.refit_top_leaves;
-  c.preserve_split = o.preserve == "split";
   c.restructure_quality = o.restructure.restructure_quality;
   c.restructure_min_leaves = o.restructure.restructure_min_leaves;
   c.restructure_max_fraction = o.restructure.restructure_max_fraction;

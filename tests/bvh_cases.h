@@ -252,21 +252,6 @@ inline std::vector<std::unique_ptr<FrameSource>> front_scenes(uint32_t cloth_res
   return s;
 }
 
-// --preserve: the one-pass preserve (inline) and the default two passes (split) report
-// the same, exact pairs on scenes whose fronts sprout and prune, with front cycles of 2
-// and 5 frames.
-inline void check_preserve_variants(const std::string& device, uint32_t cloth_res, uint32_t frames) {
-  for (bool split : {false, true})
-    for (uint32_t cycle : {2u, 5u})
-      for (auto& scene : front_scenes(cloth_res, frames)) {
-        SCOPED_TRACE(std::string(split ? "split" : "inline") + " cycle " + std::to_string(cycle));
-        PipelineConfig cfg = config_for(device, 0.5, 0.05, cycle);
-        cfg.preserve_split = split;
-        check_pipelines_on(cfg, *scene, 0, {"unordered", "static", "periodic", "a", "b", "c", "radix-order"});
-        if (testing::Test::HasFatalFailure()) return;
-      }
-}
-
 // Runs one pipeline over every frame of a scene against the sweep oracle; returns the
 // frames' stats for the caller to check which operations ran.
 inline std::vector<FrameStats> run_exact(const PipelineConfig& cfg, FrameSource& source) {

@@ -238,11 +238,6 @@ inline void check_inter_pipelines(const std::string& device, const InterCase& c)
   PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
   cfg.rebuild_every = 3;
   check_pipelines_on(cfg, scene, 0, only);
-  if (testing::Test::HasFatalFailure()) return;
-  SCOPED_TRACE("--preserve inline");
-  PipelineConfig one_pass = config_for(device, 0.5, 0.05, 3);
-  one_pass.preserve_split = false;
-  check_pipelines_on(one_pass, scene, 0, only);
 }
 
 // The fronts a split scene keeps, per front pipeline and frame: self fronts of T_D only

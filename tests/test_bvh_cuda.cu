@@ -226,11 +226,6 @@ TEST(CudaPipelines, GraphReplaysGiveThePlainLaunchesPairs) {
   }
 }
 
-TEST(CudaFrontPipelines, PreserveInOneOrTwoPassesIsExact) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  check_preserve_variants("cuda", 96, 16);
-}
-
 class CudaFrontCycles : public testing::TestWithParam<uint32_t> {
  protected:
   void SetUp() override {

@@ -77,8 +77,6 @@ TEST_P(HostFrontCycles, AllPipelinesExactEveryFrame) {
 
 INSTANTIATE_TEST_SUITE_P(Cycles, HostFrontCycles, testing::Values(1u, 2u, 3u, 5u));
 
-TEST(HostFrontPipelines, PreserveInOneOrTwoPassesIsExact) { check_preserve_variants("cpu", 24, 12); }
-
 TEST(HostFrontPipelines, RecordTheOperationsOfTheirCycle) {
   auto wave = make_generator("cloth-wave", {{"res", 16}, {"frames", 9}});
   const std::vector<std::pair<std::string, std::vector<std::string>>> expected_ops = {

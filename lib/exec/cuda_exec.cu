@@ -45,11 +45,6 @@ void launch_reduce_box_final(const Aabb<float>* partials, uint32_t count, Aabb<f
 
 CudaExec::CudaExec() {
   cuda_check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "stream creation");
-  int device = 0, sms = 0, per_sm = 0;
-  cuda_check(cudaGetDevice(&device), "device query");
-  cuda_check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "device query");
-  cuda_check(cudaDeviceGetAttribute(&per_sm, cudaDevAttrMaxThreadsPerMultiProcessor, device), "device query");
-  resident_threads_ = size_t(sms) * size_t(per_sm);
 }
 
 CudaExec::~CudaExec() {

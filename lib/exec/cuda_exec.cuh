@@ -5,7 +5,6 @@
 // pipeline/backends.h.
 #include <cuda_runtime.h>
 
-#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cub/block/block_reduce.cuh>
@@ -61,26 +60,6 @@ __global__ void for_each_staged_kernel(uint32_t n, F f) {
   if (i < n) f(i, &stage);
   __syncthreads();
   f.flush(stage);
-}
-
-// As for_each_staged_kernel, over the first min(*count, max_n) indices: a count only the
-// device knows (a list an earlier kernel appended to), so the launch stays the same frame
-// after frame and a CUDA graph can hold it. The grid is what the GPU holds at once; each
-// block strides over the indices and flushes its stage after every stride.
-template <class F>
-__global__ void for_each_staged_counted_kernel(const unsigned long long* count, uint32_t max_n, F f) {
-  __shared__ typename F::Stage stage;
-  const uint64_t n = min(*count, static_cast<unsigned long long>(max_n));
-  const uint64_t stride = uint64_t(gridDim.x) * blockDim.x;
-  for (uint64_t first = uint64_t(blockIdx.x) * blockDim.x; first < n; first += stride) {
-    if (threadIdx.x == 0) stage.reset();
-    __syncthreads();
-    const uint64_t i = first + threadIdx.x;
-    if (i < n) f(static_cast<uint32_t>(i), &stage);
-    __syncthreads();
-    f.flush(stage);
-    __syncthreads();
-  }
 }
 
 // One block of kOneBlockThreads threads running F's kPhases phases with a block barrier
@@ -204,19 +183,6 @@ class CudaExec {
     cuda_check(cudaGetLastError(), "kernel launch");
   }
 
-  // for_each_staged over the first min(*count, max_n) indices, *count in device memory
-  // (for_each_staged_counted_kernel): max_n bounds the grid, the device reads the count.
-  template <class F>
-  void for_each_staged_counted(const unsigned long long* count, size_t max_n, const F& f,
-                               Balance = Balance::even) const {
-    if (max_n == 0) return;
-    constexpr uint32_t threads = kStagedThreads;
-    const size_t needed = (max_n + threads - 1) / threads;
-    const uint32_t blocks = static_cast<uint32_t>(std::min<size_t>(needed, resident_threads_ / threads));
-    for_each_staged_counted_kernel<<<blocks, threads, 0, stream_>>>(count, static_cast<uint32_t>(max_n), f);
-    cuda_check(cudaGetLastError(), "kernel launch");
-  }
-
   // Indices in tiles of F::kTile that share an F::Shared: threads of one block here, so
   // hand-overs inside a tile need only block-scope atomics (refit.h).
   template <class F>
@@ -292,7 +258,6 @@ class CudaExec {
   void copy_from_host_bytes(void* dst, const void* src, size_t bytes) const;
   void copy_bytes(void* dst, const void* src, size_t bytes) const;
   cudaStream_t stream_ = nullptr;
-  size_t resident_threads_ = 0;  // threads the GPU holds at once (multiprocessors x threads each)
   CudaMemory memory_;
   mutable uint64_t host_syncs_ = 0;
 };

@@ -58,13 +58,6 @@ class HostExec {
     for_each_n(n, [&f](uint32_t i) { f(i, static_cast<typename F::Stage*>(nullptr)); }, balance);
   }
 
-  // for_each_staged over the first min(*count, max_n) indices (see CudaExec).
-  template <class F>
-  void for_each_staged_counted(const unsigned long long* count, size_t max_n, const F& f,
-                               Balance balance = Balance::even) const {
-    for_each_staged(std::min<size_t>(size_t(*count), max_n), f, balance);
-  }
-
   // F's phases in one block (see CudaExec): on the host, one thread runs each phase.
   template <class F>
   void in_one_block(const F& f) const {

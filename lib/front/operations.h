@@ -94,13 +94,6 @@ struct GenerateFrontFn {
 #endif
 };
 
-// Preserve's descent below internal front node j once it overlaps leaf i's box: the
-// stackless traversal of j's subtree (left child up to j's escape index).
-CDB_HD_INLINE void descend(const FrontView& v, uint32_t i, const vec4f& lo, const vec4f& hi, uint32_t j,
-                           const PairSink& sink) {
-  traverse_range<false>(v, i, lo, hi, v.tree.bvh.node_left[j], v.tree.bvh.node_escape[j], sink, FrontSink{});
-}
-
 // (2) Preserve: traverse from every stored front node; the front is not rewritten.
 struct PreserveFrontFn {
   using Stage = PairStage;
@@ -113,56 +106,12 @@ struct PreserveFrontFn {
     const FrontTree& tree = view.tree;
     const uint32_t i = prim[e], j = node[e];
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-    if (!tree.overlaps_node(lo, hi, j)) return;
-    if (is_leaf(j))
-      sink.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
-    else
-      descend(view, i, lo, hi, j, sink);
-  }
-#if defined(__CUDACC__)
-  __device__ void flush(Stage& s) const { pairs.flush(s); }
-#endif
-};
-
-// (2) Preserve in two passes (--preserve split), the first: each front node's own test. A
-// leaf that overlaps is a pair; an internal node that overlaps is listed as a descent (in
-// `descents`, an internal-kind front sink) for the second pass. Most front nodes stop at
-// their own test; one pass holding both kinds of thread keeps every block waiting on its
-// few long descents, with most lanes idle.
-struct PreserveTestFn {
-  using Stage = PairFrontStage;
-  FrontView view;
-  PairSink pairs;
-  FrontSink descents;
-  const uint32_t* prim;
-  const uint32_t* node;
-  CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
-    const FrontTree& tree = view.tree;
-    const uint32_t i = prim[e], j = node[e];
-    if (!tree.overlaps_node(view.query_lo[i], view.query_hi[i], j)) return;
-    if (is_leaf(j))
-      pairs.staged(stage ? &stage->pairs : nullptr).emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
-    else
-      descents.staged(stage ? &stage->front : nullptr).push(i, j, 1);
-  }
-#if defined(__CUDACC__)
-  __device__ void flush(Stage& s) const {
-    pairs.flush(s.pairs);
-    descents.flush(s.front);
-  }
-#endif
-};
-
-// The second pass: the listed descents only, so that the lanes of a block all traverse.
-struct PreserveDescentFn {
-  using Stage = PairStage;
-  FrontView view;
-  PairSink pairs;
-  const uint32_t* prim;
-  const uint32_t* node;
-  CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
-    const uint32_t i = prim[e];
-    descend(view, i, view.query_lo[i], view.query_hi[i], node[e], pairs.staged(stage));
+    if (is_leaf(j)) {
+      if (tree.overlaps_node(lo, hi, j)) sink.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
+    } else if (tree.overlaps_node(lo, hi, j)) {
+      traverse_range<false>(view, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], sink,
+                            FrontSink{});
+    }
   }
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const { pairs.flush(s); }

@@ -23,7 +23,6 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"refit_every", c.refit_every},
       {"cuda_graph", c.cuda_graph},
       {"refit_top_leaves", c.refit_top_leaves},
-      {"preserve", c.preserve_split ? "split" : "inline"},
       {"conservative", config_conservative(c)},
   };
 }

@@ -151,8 +151,7 @@ class FrontPipeline final : public Pipeline {
 
  private:
   // The pair buffer's counters: [0] pairs, [4..6] the inspection's ([3] is free);
-  // each front query counts its produced internal and external fronts in two more (on
-  // preserve frames with --preserve split, the first counts its descents).
+  // each front query counts its produced internal and external fronts in two more.
   static constexpr size_t kSelfCounters = 1, kInterCounters = 7, kRigidCounters = 9;
   static_assert(kRigidCounters + 2 <= PairBuffer<Exec>::kCounters, "front counters past the block");
 
@@ -295,10 +294,7 @@ class FrontPipeline final : public Pipeline {
       timer_.start(phase_of(op));
       switch (op) {
         case Op::preserve:
-          if (config_.preserve_split)
-            fq.preserve_split(exec_, pairs_);
-          else
-            fq.preserve(exec_, pairs_, stage_preserve_);
+          fq.preserve(exec_, pairs_, stage_preserve_);
           break;
         case Op::generate:
           fq.generate(exec_, pairs_, histogram);
@@ -335,7 +331,6 @@ class FrontPipeline final : public Pipeline {
   // is a different launch, so the steady frame's graph is recorded again.
   static constexpr uint64_t kStagedPairsPerBlock = 32;
   void choose_preserve_staging(uint64_t pairs) {
-    if (config_.preserve_split) return;  // both passes always stage
     const uint64_t fronts = self_.total() + inter_.total() + rigid_self_.total();
     const bool stage = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts;
     if (stage != stage_preserve_) ++graph_version_;

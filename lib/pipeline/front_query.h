@@ -89,30 +89,6 @@ class FrontQuery {
       exec.for_each_n(total(), both, Balance::uneven);
   }
 
-  // (2) Preserve in two passes (--preserve split, operations.h): every front node's own
-  // test, listing the internal ones that overlap; then the listed descents alone. The list
-  // is the internal front's raw arrays (scratch outside generate and update, and as large
-  // as the internal front, so it always fits) and its count the query's first counter,
-  // which only fronts that are produced use otherwise: after the frame it holds the
-  // descents. The second launch reads that count on the device.
-  void preserve_split(Exec& exec, PairBuffer<Exec>& pairs) {
-    if (!active_) return;
-    FrontArrays<Exec>& in = front_[kInternalFront];
-    FrontSink descents{};
-    descents.prim[kInternalFront] = in.raw_prim.data();
-    descents.node[kInternalFront] = in.raw_node.data();
-    descents.mark[kInternalFront] = in.raw_mark.data();
-    descents.capacity[kInternalFront] = in.raw_prim.capacity();
-    descents.count = pairs.counter(counter_);
-    auto test = [&](const FrontArrays<Exec>& f) {
-      return PreserveTestFn{view(), pairs.sink(), descents, f.prim.data(), f.node.data()};
-    };
-    exec.for_each_staged(total(), BothFrontsFn<PreserveTestFn>{test(front_[0]), test(front_[1]), uint32_t(front_[0].size)});
-    exec.for_each_staged_counted(pairs.counter(counter_), in.size,
-                                 PreserveDescentFn{view(), pairs.sink(), in.raw_prim.data(), in.raw_node.data()},
-                                 Balance::uneven);
-  }
-
   // (3) Update: sprout and prune (Alg. 1). Both kinds in one launch.
   void update(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
     if (!active_) return;

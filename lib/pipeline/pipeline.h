@@ -72,9 +72,6 @@ struct PipelineConfig {
   // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
-  // Front pipelines: preserve in two passes, each front node's own test then the descents
-  // of the internal ones that overlap (FrontQuery::preserve_split); false: one pass.
-  bool preserve_split = true;
 };
 
 // Whether the config can miss pairs of the exact box-overlap set (refit_every > 1 on a
