@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "bvh/bvh_view.h"
+#include "bvh/next_node.h"
 #include "core/aabb.h"
 #include "core/pair_sink.h"
 #include "exec/balance.h"
@@ -22,14 +23,9 @@ struct CrossQueryFn {
     const uint32_t prim = query.leaf_prim[i];
     uint32_t node = tree.root();
     while (node != kNoNode) {
-      const uint32_t k = ref_index(node);
-      if (is_leaf(node)) {
-        if (overlaps(lo, hi, tree.leaf_lo[k], tree.leaf_hi[k])) sink.emit(prim, tree.leaf_prim[k]);
-        node = tree.leaf_escape[k];
-      } else {
-        node = overlaps(lo, hi, tree.node_lo[k], tree.node_hi[k]) ? tree.node_left[k]
-                                                                 : tree.node_escape[k];
-      }
+      const NextNode step = next_node(tree, node, lo, hi);
+      if (step.leaf_hit) sink.emit(prim, step.prim);
+      node = step.next;
     }
   }
 };

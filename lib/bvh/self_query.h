@@ -7,6 +7,7 @@
 
 #include "exec/balance.h"
 #include "bvh/bvh_view.h"
+#include "bvh/next_node.h"
 #include "core/aabb.h"
 #include "core/pair_sink.h"
 
@@ -20,14 +21,9 @@ struct SelfQueryFn {
     const uint32_t prim = bvh.leaf_prim[i];
     uint32_t node = bvh.leaf_escape[i];
     while (node != kNoNode) {
-      const uint32_t k = ref_index(node);
-      if (is_leaf(node)) {
-        if (overlaps(lo, hi, bvh.leaf_lo[k], bvh.leaf_hi[k])) sink.emit(prim, bvh.leaf_prim[k]);
-        node = bvh.leaf_escape[k];
-      } else {
-        node = overlaps(lo, hi, bvh.node_lo[k], bvh.node_hi[k]) ? bvh.node_left[k]
-                                                               : bvh.node_escape[k];
-      }
+      const NextNode step = next_node(bvh, node, lo, hi);
+      if (step.leaf_hit) sink.emit(prim, step.prim);
+      node = step.next;
     }
   }
 };

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "bvh/bvh_view.h"
+#include "bvh/next_node.h"
 #include "core/aabb.h"
 #include "core/pair_sink.h"
 #include "front/front.h"
@@ -52,7 +53,8 @@ struct FrontView {
 
 // Stackless traversal of the nodes from `node` up to (not including) `end` in depth-first
 // order: overlapping internal nodes descend, everything else is a stop node. Leaves that
-// overlap are pairs. Stop nodes are pushed to the sink when one is given.
+// overlap are pairs. Stop nodes are pushed to the sink when one is given. Each step loads
+// a node's links with its box (bvh/next_node.h): one round trip a step, not two.
 template <bool kRecord>
 CDB_HD_INLINE void traverse_range(const FrontView& v, uint32_t i, const vec4f& lo, const vec4f& hi,
                                   uint32_t node, uint32_t end, const PairSink& pairs,
@@ -60,17 +62,10 @@ CDB_HD_INLINE void traverse_range(const FrontView& v, uint32_t i, const vec4f& l
   const FrontTree& t = v.tree;
   const uint32_t prim = v.query_prim[i];
   while (node != end) {
-    const uint32_t k = ref_index(node);
-    if (is_leaf(node)) {
-      if (overlaps(lo, hi, t.bvh.leaf_lo[k], t.bvh.leaf_hi[k])) pairs.emit(prim, t.bvh.leaf_prim[k]);
-      if (kRecord) front.push(i, node, 1);
-      node = t.bvh.leaf_escape[k];
-    } else if (overlaps(lo, hi, t.bvh.node_lo[k], t.bvh.node_hi[k])) {
-      node = t.bvh.node_left[k];
-    } else {
-      if (kRecord) front.push(i, node, 1);
-      node = t.bvh.node_escape[k];
-    }
+    const NextNode step = next_node(t.bvh, node, lo, hi);
+    if (step.leaf_hit) pairs.emit(prim, step.prim);
+    if (kRecord && step.stop) front.push(i, node, 1);
+    node = step.next;
   }
 }
 
@@ -106,12 +101,11 @@ struct PreserveFrontFn {
     const FrontTree& tree = view.tree;
     const uint32_t i = prim[e], j = node[e];
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-    if (is_leaf(j)) {
-      if (tree.overlaps_node(lo, hi, j)) sink.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
-    } else if (tree.overlaps_node(lo, hi, j)) {
-      traverse_range<false>(view, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], sink,
-                            FrontSink{});
-    }
+    const NextNode step = next_node(tree.bvh, j, lo, hi);
+    if (step.leaf_hit)
+      sink.emit(view.query_prim[i], step.prim);
+    else if (!step.stop)
+      traverse_range<false>(view, i, lo, hi, step.next, step.escape, sink, FrontSink{});
   }
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const { pairs.flush(s); }
@@ -130,14 +124,14 @@ CDB_HD_INLINE void update_front_node(const FrontView& view, const PairSink& pair
                                      const FrontSink& front, uint32_t i, uint32_t j) {
   const FrontTree& tree = view.tree;
   const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-  if (tree.overlaps_node(lo, hi, j)) {
-    if (is_leaf(j)) {
-      pairs.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
-      front.push(i, j, 1);
-    } else {
-      traverse_range<true>(view, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
-                           front);
-    }
+  const NextNode step = next_node(tree.bvh, j, lo, hi);
+  if (step.leaf_hit) {
+    pairs.emit(view.query_prim[i], step.prim);
+    front.push(i, j, 1);
+    return;
+  }
+  if (!step.stop) {
+    traverse_range<true>(view, i, lo, hi, step.next, step.escape, pairs, front);
     return;
   }
   uint32_t child = j, father = tree.parent(j);

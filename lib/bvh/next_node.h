@@ -1,0 +1,34 @@
+#pragma once
+// One step of the stackless depth-first traversal by escape indices (paper Alg. 1, lines
+// 1-11) against a query box: where it goes next, and what it met. A step loads the node's
+// links (and a leaf's primitive) together with its box, before the overlap test picks one:
+// the loads are in flight at once, so a step costs one memory round trip, where loading the
+// chosen link after the test cost two, and a hit's pair needs no further load.
+#include <cstdint>
+
+#include "bvh/bvh_view.h"
+#include "bvh/node_ref.h"
+#include "core/aabb.h"
+
+namespace cdb {
+
+struct NextNode {
+  uint32_t next;    // the left child of an internal node that overlaps, else the escape index
+  uint32_t escape;  // the escape index: where the node's subtree ends
+  uint32_t prim;    // a leaf's primitive
+  bool leaf_hit;    // a leaf that overlaps: a pair
+  bool stop;        // a leaf, or an internal node that misses: where a front records a node
+};
+
+CDB_HD_INLINE NextNode next_node(const BvhView& bvh, uint32_t node, const vec4f& lo, const vec4f& hi) {
+  const uint32_t k = ref_index(node);
+  if (is_leaf(node)) {
+    const uint32_t escape = bvh.leaf_escape[k], prim = bvh.leaf_prim[k];
+    return {escape, escape, prim, overlaps(lo, hi, bvh.leaf_lo[k], bvh.leaf_hi[k]), true};
+  }
+  const uint32_t left = bvh.node_left[k], escape = bvh.node_escape[k];
+  const bool hit = overlaps(lo, hi, bvh.node_lo[k], bvh.node_hi[k]);
+  return {hit ? left : escape, escape, 0u, false, !hit};
+}
+
+}  // namespace cdb
