@@ -17,6 +17,6 @@ inline constexpr uint32_t kRefitTopMaxLeaves = 1u << 15;
 inline constexpr uint32_t kRefitTopLeavesLimit = 1u << 24;
 // Spanning nodes the block keeps in shared memory (about 3.4% of the internal nodes span
 // tiles: 1,100 at 2^15 leaves); the rest live in global memory.
-inline constexpr uint32_t kRefitTopSharedSlots = 4096;
+inline constexpr uint32_t kRefitTopSharedSlots = 1536;
 
 }  // namespace cdb
