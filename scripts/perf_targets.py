@@ -2,7 +2,8 @@
 """The GPU performance targets (docs/results.md, "Performance targets") measured from the
 results files of scripts/device-targets.sh: one Markdown table of target, measured figure
 and verdict, then the tables behind each figure. With --base DIR (the same cells run by a
-second binary in the same call) a table of per-cell means, base against new, follows.
+second binary in the same call) a table of per-cell means, base against new, follows, and
+one of per-phase means.
 
   scripts/perf_targets.py DIR [--base DIR [--controls grid,hash,sweep]] > report.md
 
@@ -255,7 +256,44 @@ def report(runs, base, controls=frozenset()):
                           "speed-up lies outside that range; inside it, a difference is not evidence on its own.", ""]
             lines += cr.markdown_table(["cell", "pipeline", "base mean", "mean", "speed-up", "base median", "median",
                                         "noise base / now", "beyond controls"], arows) + [""]
+        lines += phase_ab(pairs, controls)
     return "\n".join(lines)
+
+
+# The phases an A/B compares: GPU-timed around their kernels, so host-side gaps between
+# launches, which move a frame's total from run to run, do not enter them.
+AB_PHASES = ["build", "refit", "query", "generate", "preserve", "update", "balance", "front_order"]
+
+
+def phase_ab(pairs, controls):
+    """Per cell, pipeline and phase: the phase's mean, base against new, with the controls'
+    phases giving the range of differences the change did not cause."""
+    rows, ctrl = [], []
+    for (g, s, p, res), b, r in pairs:
+        for ph in AB_PHASES:
+            tb, tr = phase_mean(b, ph), phase_mean(r, ph)
+            if math.isnan(tb) or math.isnan(tr) or tr <= 0:
+                continue
+            rows.append(((g, s, p, res, ph), tb, tr))
+            if p in controls:
+                ctrl.append(tb / tr)
+    if not rows:
+        return []
+    lo, hi = (min(ctrl), max(ctrl)) if ctrl else (math.nan, math.nan)
+    out = ["### A/B by phase (ms, mean over the frames where the phase ran; > 1x: faster now)", "",
+           "A phase is timed on the GPU around its kernels: the host-side gaps that move a frame's total from run "
+           "to run are not in it."]
+    if ctrl:
+        out[-1] += (f" Controls' phases ({', '.join(sorted(controls))}): {lo:.2f}x–{hi:.2f}x over {len(ctrl)} "
+                    "phases.")
+    out.append("")
+    table = []
+    for (g, s, p, res, ph), tb, tr in rows:
+        speed = tb / tr
+        beyond = "control" if p in controls else ("" if not ctrl else ("yes" if speed < lo or speed > hi else "no"))
+        table.append([f"{g}/{s}" + (f" res {res}" if res else ""), p, ph, fmt(tb), fmt(tr), f"{speed:.2f}x", beyond])
+    return out + cr.markdown_table(["cell", "pipeline", "phase", "base", "now", "speed-up", "beyond controls"],
+                                   table) + [""]
 
 
 def main():

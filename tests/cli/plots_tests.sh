@@ -121,6 +121,28 @@ check "perf_targets control range" 0 "^Controls \(bvh: code shared by both binar
   "$python" "$root/scripts/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls bvh
 has "perf_targets control cell" "$tmp/out" "^\| steady/funnel \| bvh \|.* \| control \|$"
 has "perf_targets cell inside the control range" "$tmp/out" "^\| steady/funnel \| static \| .* \| 1\.00x \|.* \| no \|$"
+# ... and per phase: the static pipeline's preserve against itself, and bvh's query as the control.
+has "perf_targets phase control range" "$tmp/out" "Controls' phases \(bvh\): 1\.00x–1\.00x over [0-9]+ phases"
+has "perf_targets phase row" "$tmp/out" "^\| steady/funnel \| static \| preserve \| [0-9.]+ \| [0-9.]+ \| 1\.00x \| no \|$"
+has "perf_targets phase control row" "$tmp/out" "^\| steady/funnel \| bvh \| query \| [0-9.]+ \| [0-9.]+ \| 1\.00x \| control \|$"
+# ab_phases.py on a log in device-targets.sh's printed format: one cell, two binaries.
+cat >"$tmp/ab.log" <<'LOG'
+=== cloth cloth-ball b --repeat 3 (/x/bin/cdbench)
+pipeline: b on cuda
+  per frame   mean 0.300  median 0.200  p95 0.500  min 0.100 ms (upload excluded)
+  preserve    mean 0.120  median 0.100  p95 0.200 ms  (45 frames)
+=== cloth cloth-ball b --repeat 3 (/x/base/cdbench-base)
+pipeline: b on cuda
+  per frame   mean 0.330  median 0.220  p95 0.500  min 0.100 ms (upload excluded)
+  preserve    mean 0.150  median 0.110  p95 0.200 ms  (45 frames)
+LOG
+check "ab_phases phase speed-up" 0 "^cloth/cloth-ball +b +preserve +cdbench-base 0\.150/0\.110 \| cdbench 0\.120/0\.100 1\.25x$" -- \
+  "$python" "$root/scripts/ab_phases.py" "$tmp/ab.log" cdbench-base cdbench
+has "ab_phases frame row" "$tmp/out" "^cloth/cloth-ball +b +per frame +cdbench-base 0\.330/0\.220 \| cdbench 0\.300/0\.200 1\.10x$"
+check "ab_phases unknown binary" 1 "no cell run by cdbench-other" -- \
+  "$python" "$root/scripts/ab_phases.py" "$tmp/ab.log" cdbench-other cdbench
+check "ab_phases missing log" 1 "nowhere.log: No such file or directory" -- \
+  "$python" "$root/scripts/ab_phases.py" "$tmp/nowhere.log" cdbench-base cdbench
 check "perf_targets unknown control" 1 "--controls: unknown pipeline\(s\) gird" -- \
   "$python" "$root/scripts/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls gird
 
