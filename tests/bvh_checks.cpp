@@ -82,6 +82,9 @@ std::string check_bvh(const HostBvh& h, const Topology& topology, const std::vec
                  is_leaf(c) ? h.leaf_hi[ref_index(c)] : h.node_hi[c]);
         if (!same_box(u.lo, h.node_lo[ref]) || !same_box(u.hi, h.node_hi[ref]))
           problem = "box of node " + std::to_string(ref) + " is not the union of its children";
+        // The box's spare lanes carry the left and escape links (bvh/node_ref.h).
+        if (lane_link(h.node_lo[ref].w) != h.node_left[ref] || lane_link(h.node_hi[ref].w) != h.node_escape[ref])
+          problem = "link lanes of node " + std::to_string(ref) + " differ from its links";
       };
   uint32_t f, l;
   if (h.node_parent[0] != kNoNode) return "root (node 0) has a parent";

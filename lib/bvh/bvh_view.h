@@ -7,7 +7,8 @@
 namespace cdb {
 
 // An ordered LBVH as kernels see it. Leaves are stored apart from internal nodes, both
-// with SoA boxes (one 16-byte load per corner). Leaves are in Morton order; internal nodes
+// with SoA boxes (one 16-byte load per corner); an internal node's corners carry its left
+// and escape links in their spare lanes (node_ref.h). Leaves are in Morton order; internal nodes
 // are in depth-first (pre-)order, so the root is node 0 and an internal left child of node
 // k is node k + 1. Node k covers leaves [node_first[k], node_last[k]].
 struct BvhView {

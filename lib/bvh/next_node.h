@@ -3,7 +3,8 @@
 // 1-11) against a query box: where it goes next, and what it met. A step loads the node's
 // links (and a leaf's primitive) together with its box, before the overlap test picks one:
 // the loads are in flight at once, so a step costs one memory round trip, where loading the
-// chosen link after the test cost two, and a hit's pair needs no further load.
+// chosen link after the test cost two, and a hit's pair needs no further load. An internal
+// node's links come in its box (node_ref.h).
 #include <cstdint>
 
 #include "bvh/bvh_view.h"
@@ -26,9 +27,12 @@ CDB_HD_INLINE NextNode next_node(const BvhView& bvh, uint32_t node, const vec4f&
     const uint32_t escape = bvh.leaf_escape[k], prim = bvh.leaf_prim[k];
     return {escape, escape, prim, overlaps(lo, hi, bvh.leaf_lo[k], bvh.leaf_hi[k]), true};
   }
-  const uint32_t left = bvh.node_left[k], escape = bvh.node_escape[k];
-  const bool hit = overlaps(lo, hi, bvh.node_lo[k], bvh.node_hi[k]);
-  return {hit ? left : escape, escape, 0u, false, !hit};
+  // The links ride in the box's spare lanes (node_ref.h): two loads from one 32-byte
+  // sector pair where four arrays took four lines.
+  const vec4f nlo = bvh.node_lo[k], nhi = bvh.node_hi[k];
+  const bool hit = overlaps(lo, hi, nlo, nhi);
+  const uint32_t escape = lane_link(nhi.w);
+  return {hit ? lane_link(nlo.w) : escape, escape, 0u, false, !hit};
 }
 
 }  // namespace cdb

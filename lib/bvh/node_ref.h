@@ -16,4 +16,26 @@ CDB_HD_INLINE bool is_leaf(uint32_t ref) { return (ref & kLeafBit) != 0; }
 CDB_HD_INLINE uint32_t leaf_ref(uint32_t leaf) { return leaf | kLeafBit; }
 CDB_HD_INLINE uint32_t ref_index(uint32_t ref) { return ref & ~kLeafBit; }
 
+// An internal node's box carries its links in the spare lane of each corner: node_lo[k].w
+// holds node_left[k] and node_hi[k].w node_escape[k], bit for bit (bvh/next_node.h reads
+// them with the box). Moved as raw bits, never as arithmetic floats.
+CDB_HD_INLINE float link_lane(uint32_t ref) {
+#if defined(__CUDA_ARCH__)
+  return __uint_as_float(ref);
+#else
+  float f;
+  __builtin_memcpy(&f, &ref, sizeof f);
+  return f;
+#endif
+}
+CDB_HD_INLINE uint32_t lane_link(float lane) {
+#if defined(__CUDA_ARCH__)
+  return __float_as_uint(lane);
+#else
+  uint32_t r;
+  __builtin_memcpy(&r, &lane, sizeof r);
+  return r;
+#endif
+}
+
 }  // namespace cdb

@@ -58,9 +58,8 @@ struct DepthFirstLayout {
   CDB_HD_INLINE void place_node(uint32_t k, uint32_t t, uint32_t last_escape,
                                 uint32_t root_parent) const {
     const uint32_t p = new_index[k];
-    node_lo[p] = build_lo[k];
-    node_hi[p] = build_hi[k];
-    node_left[p] = remap(build_left[k]);
+    const uint32_t left = remap(build_left[k]);
+    node_left[p] = left;
     node_right[p] = remap(build_right[k]);
     const uint32_t parent = build_parent[k];
     node_parent[p] = parent == kNoNode ? root_parent : new_index[parent];
@@ -69,7 +68,11 @@ struct DepthFirstLayout {
     node_last[p] = r;
     // Escape (Fig. 2.2): the node after subtree [l, r] in depth-first order is the right
     // child of internal node r; past the last leaf it is whatever followed the whole range.
-    node_escape[p] = r == t ? last_escape : remap(build_right[r]);
+    const uint32_t escape = r == t ? last_escape : remap(build_right[r]);
+    node_escape[p] = escape;
+    const vec4f lo = build_lo[k], hi = build_hi[k];
+    node_lo[p] = {lo.x, lo.y, lo.z, link_lane(left)};
+    node_hi[p] = {hi.x, hi.y, hi.z, link_lane(escape)};
   }
   CDB_HD_INLINE void link_leaf(uint32_t i, uint32_t t, uint32_t last_escape) const {
     leaf_escape[i] = i == t ? last_escape : remap(build_right[i]);

@@ -43,6 +43,7 @@ struct RefitFn {
   const uint32_t* node_parent;
   const uint32_t* node_first;
   const uint32_t* node_last;
+  const uint32_t* node_escape;
   vec4f* leaf_lo;
   vec4f* leaf_hi;
   vec4f* node_lo;
@@ -52,13 +53,14 @@ struct RefitFn {
 
   CDB_HD void init(Shared& s, uint32_t lane) const { s.arrived[lane] = 0; }
 
-  // A node's links and leaf range: written by the build, read-only here.
+  // A node's links and leaf range: written by the build, read-only here. Left and escape
+  // go back into the box's link lanes (node_ref.h).
   struct Links {
-    uint32_t left, right, parent, first, last;
+    uint32_t left, right, parent, first, last, escape;
   };
   CDB_HD Links links(uint32_t k) const {
-    if (k == kNoNode) return {kNoNode, kNoNode, kNoNode, 0, 0};
-    return {node_left[k], node_right[k], node_parent[k], node_first[k], node_last[k]};
+    if (k == kNoNode) return {kNoNode, kNoNode, kNoNode, 0, 0, kNoNode};
+    return {node_left[k], node_right[k], node_parent[k], node_first[k], node_last[k], node_escape[k]};
   }
 
   // Each level's links are loaded together, one level ahead: the loads of the parent's
@@ -93,8 +95,8 @@ struct RefitFn {
         slo = is_leaf(sibling) ? load_coherent(&leaf_lo[ref_index(sibling)]) : load_coherent(&node_lo[sibling]);
         shi = is_leaf(sibling) ? load_coherent(&leaf_hi[ref_index(sibling)]) : load_coherent(&node_hi[sibling]);
       }
-      lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), 0};
-      hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), 0};
+      lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), link_lane(at.left)};
+      hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), link_lane(at.escape)};
       node_lo[p] = lo;
       node_hi[p] = hi;
       child = p;
@@ -113,13 +115,14 @@ void refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh) {
   const bool top_in_block = bvh.refit_top_fits();
   exec.for_each_tile(n, RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
                                 bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
-                                bvh.node_last.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
+                                bvh.node_last.data(), bvh.node_escape.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
                                 bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data(), top_in_block});
   if (!top_in_block) return;
   exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots),
                                bvh.span_count.data(), bvh.span_node.data(), bvh.span_parent.data(),
                                bvh.span_child.data(), bvh.span_flag.data(), bvh.span_lo.data(), bvh.span_hi.data(),
-                               bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_lo.data(), bvh.node_hi.data()});
+                               bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_left.data(), bvh.node_escape.data(),
+                               bvh.node_lo.data(), bvh.node_hi.data()});
 }
 
 }  // namespace cdb

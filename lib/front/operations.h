@@ -134,14 +134,22 @@ CDB_HD_INLINE void update_front_node(const FrontView& view, const PairSink& pair
     traverse_range<true>(view, i, lo, hi, step.next, step.escape, pairs, front);
     return;
   }
+  // Each father's left link comes with its box (node_ref.h).
   uint32_t child = j, father = tree.parent(j);
-  while (father != kNoNode && tree.bvh.node_left[father] == child &&
-         !tree.overlaps_node(lo, hi, father)) {
+  for (;;) {
+    if (father == kNoNode) {
+      front.push(i, child, 0);
+      return;
+    }
+    const vec4f flo = tree.bvh.node_lo[father], fhi = tree.bvh.node_hi[father];
+    const bool left_child = lane_link(flo.w) == child, hit = overlaps(lo, hi, flo, fhi);
+    if (!left_child || hit) {
+      if (left_child || hit) front.push(i, child, 0);
+      return;
+    }
     child = father;
-    father = tree.parent(father);
+    father = tree.node_parent[father];
   }
-  if (father == kNoNode || tree.bvh.node_left[father] == child || tree.overlaps_node(lo, hi, father))
-    front.push(i, child, 0);
 }
 
 struct UpdateFrontFn {
