@@ -29,6 +29,11 @@ std::string check_bvh(const HostBvh& h, const Topology& topology, const std::vec
       err << "leaf " << i << " box differs from its triangle's";
       return err.str();
     }
+    // The box's spare lanes carry the escape index and the primitive (bvh/node_ref.h).
+    if (lane_link(h.leaf_lo[i].w) != h.leaf_escape[i] || lane_link(h.leaf_hi[i].w) != h.leaf_prim[i]) {
+      err << "link lanes of leaf " << i << " differ from its escape index and primitive";
+      return err.str();
+    }
   }
   for (uint32_t p = 0; p < n; ++p)
     if (seen[p] != 1) {

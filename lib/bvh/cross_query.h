@@ -20,7 +20,7 @@ struct CrossQueryFn {
   PairSink sink;
   CDB_HD void operator()(uint32_t i) const {
     const vec4f lo = query.leaf_lo[i], hi = query.leaf_hi[i];
-    const uint32_t prim = query.leaf_prim[i];
+    const uint32_t prim = lane_link(hi.w);
     uint32_t node = tree.root();
     while (node != kNoNode) {
       const NextNode step = next_node(tree, node, lo, hi);

@@ -3,8 +3,8 @@
 // 1-11) against a query box: where it goes next, and what it met. A step loads the node's
 // links (and a leaf's primitive) together with its box, before the overlap test picks one:
 // the loads are in flight at once, so a step costs one memory round trip, where loading the
-// chosen link after the test cost two, and a hit's pair needs no further load. An internal
-// node's links come in its box (node_ref.h).
+// chosen link after the test cost two, and a hit's pair needs no further load. The links
+// and a leaf's primitive come in the box's spare lanes (node_ref.h).
 #include <cstdint>
 
 #include "bvh/bvh_view.h"
@@ -24,8 +24,9 @@ struct NextNode {
 CDB_HD_INLINE NextNode next_node(const BvhView& bvh, uint32_t node, const vec4f& lo, const vec4f& hi) {
   const uint32_t k = ref_index(node);
   if (is_leaf(node)) {
-    const uint32_t escape = bvh.leaf_escape[k], prim = bvh.leaf_prim[k];
-    return {escape, escape, prim, overlaps(lo, hi, bvh.leaf_lo[k], bvh.leaf_hi[k]), true};
+    const vec4f llo = bvh.leaf_lo[k], lhi = bvh.leaf_hi[k];
+    const uint32_t escape = lane_link(llo.w);
+    return {escape, escape, lane_link(lhi.w), overlaps(lo, hi, llo, lhi), true};
   }
   // The links ride in the box's spare lanes (node_ref.h): two loads from one 32-byte
   // sector pair where four arrays took four lines.

@@ -2,6 +2,7 @@
 #include <cstdint>
 
 #include "core/hd.h"
+#include "core/vec.h"
 
 namespace cdb {
 
@@ -16,9 +17,10 @@ CDB_HD_INLINE bool is_leaf(uint32_t ref) { return (ref & kLeafBit) != 0; }
 CDB_HD_INLINE uint32_t leaf_ref(uint32_t leaf) { return leaf | kLeafBit; }
 CDB_HD_INLINE uint32_t ref_index(uint32_t ref) { return ref & ~kLeafBit; }
 
-// An internal node's box carries its links in the spare lane of each corner: node_lo[k].w
-// holds node_left[k] and node_hi[k].w node_escape[k], bit for bit (bvh/next_node.h reads
-// them with the box). Moved as raw bits, never as arithmetic floats.
+// A box carries its links in the spare lane of each corner, bit for bit: an internal
+// node's node_lo[k].w holds node_left[k] and node_hi[k].w node_escape[k]; a leaf's
+// leaf_lo[i].w holds leaf_escape[i] and leaf_hi[i].w leaf_prim[i]. bvh/next_node.h reads
+// them with the box. Moved as raw bits, never as arithmetic floats.
 CDB_HD_INLINE float link_lane(uint32_t ref) {
 #if defined(__CUDA_ARCH__)
   return __uint_as_float(ref);
@@ -36,6 +38,12 @@ CDB_HD_INLINE uint32_t lane_link(float lane) {
   __builtin_memcpy(&r, &lane, sizeof r);
   return r;
 #endif
+}
+
+// Writes leaf i's lanes (the layout of bvh/order.h; the refit writes whole boxes).
+CDB_HD_INLINE void set_leaf_lanes(vec4f* lo, vec4f* hi, uint32_t i, uint32_t escape, uint32_t prim) {
+  lo[i].w = link_lane(escape);
+  hi[i].w = link_lane(prim);
 }
 
 }  // namespace cdb

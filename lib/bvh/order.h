@@ -39,6 +39,9 @@ struct DepthFirstLayout {
   uint32_t* node_last;
   uint32_t* leaf_parent;
   uint32_t* leaf_escape;
+  const uint32_t* leaf_prim;
+  vec4f* leaf_lo;
+  vec4f* leaf_hi;
 
   CDB_HD_INLINE uint32_t remap(uint32_t ref) const {
     return (ref == kNoNode || is_leaf(ref)) ? ref : new_index[ref];
@@ -75,8 +78,10 @@ struct DepthFirstLayout {
     node_hi[p] = {hi.x, hi.y, hi.z, link_lane(escape)};
   }
   CDB_HD_INLINE void link_leaf(uint32_t i, uint32_t t, uint32_t last_escape) const {
-    leaf_escape[i] = i == t ? last_escape : remap(build_right[i]);
+    const uint32_t escape = i == t ? last_escape : remap(build_right[i]);
+    leaf_escape[i] = escape;
     leaf_parent[i] = new_index[leaf_parent[i]];
+    set_leaf_lanes(leaf_lo, leaf_hi, i, escape, leaf_prim[i]);
   }
 };
 
@@ -88,7 +93,8 @@ DepthFirstLayout depth_first_layout(Lbvh<Exec>& bvh) {
           bvh.build_last.data(),   bvh.node_lo.data(),     bvh.node_hi.data(),
           bvh.node_left.data(),    bvh.node_right.data(),  bvh.node_parent.data(),
           bvh.node_escape.data(),  bvh.node_first.data(),  bvh.node_last.data(),
-          bvh.leaf_parent.data(),  bvh.leaf_escape.data()};
+          bvh.leaf_parent.data(),  bvh.leaf_escape.data(), bvh.leaf_prim.data(),
+          bvh.leaf_lo.data(),      bvh.leaf_hi.data()};
 }
 
 struct NumberChainFn {
@@ -111,9 +117,13 @@ struct LinkLeavesFn {
 struct SingleLeafFn {
   uint32_t* leaf_parent;
   uint32_t* leaf_escape;
+  const uint32_t* leaf_prim;
+  vec4f* leaf_lo;
+  vec4f* leaf_hi;
   CDB_HD void operator()(uint32_t) const {
     leaf_parent[0] = kNoNode;
     leaf_escape[0] = kNoNode;
+    set_leaf_lanes(leaf_lo, leaf_hi, 0, kNoNode, leaf_prim[0]);
   }
 };
 
@@ -122,7 +132,7 @@ void order_depth_first(Exec& exec, Lbvh<Exec>& bvh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
   if (n == 1) {
-    exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data()});
+    exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data(), bvh.leaf_prim.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data()});
     return;
   }
   exec.exclusive_scan(bvh.count_log.data(), bvh.offset_log.data(), size_t(n) + 1,
@@ -160,7 +170,7 @@ void order_depth_first_radix(Exec& exec, Lbvh<Exec>& bvh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
   if (n == 1) {
-    exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data()});
+    exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data(), bvh.leaf_prim.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data()});
     return;
   }
   // Build scratch that is free once the climb is done: keys in morton/morton_sorted, node

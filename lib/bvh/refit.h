@@ -44,6 +44,7 @@ struct RefitFn {
   const uint32_t* node_first;
   const uint32_t* node_last;
   const uint32_t* node_escape;
+  const uint32_t* leaf_escape;
   vec4f* leaf_lo;
   vec4f* leaf_hi;
   vec4f* node_lo;
@@ -68,9 +69,10 @@ struct RefitFn {
   // the hand-over and the sibling's box, not also a chain of topology loads.
   CDB_HD void operator()(uint32_t i, uint32_t tile_first, uint32_t tile_last, Shared& s) const {
     vec4f lo, hi;
-    face_box(mesh, leaf_prim[i], lo, hi);
-    leaf_lo[i] = lo;
-    leaf_hi[i] = hi;
+    const uint32_t prim = leaf_prim[i], escape = leaf_escape[i];
+    face_box(mesh, prim, lo, hi);
+    leaf_lo[i] = {lo.x, lo.y, lo.z, link_lane(escape)};
+    leaf_hi[i] = {hi.x, hi.y, hi.z, link_lane(prim)};
     uint32_t child = leaf_ref(i), first = i, last = i;  // the subtree climbed so far
     uint32_t p = leaf_parent[i];
     Links at = links(p);
@@ -115,7 +117,7 @@ void refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh) {
   const bool top_in_block = bvh.refit_top_fits();
   exec.for_each_tile(n, RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
                                 bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
-                                bvh.node_last.data(), bvh.node_escape.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
+                                bvh.node_last.data(), bvh.node_escape.data(), bvh.leaf_escape.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
                                 bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data(), top_in_block});
   if (!top_in_block) return;
   exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots),

@@ -18,8 +18,8 @@ struct SelfQueryFn {
   PairSink sink;
   CDB_HD void operator()(uint32_t i) const {
     const vec4f lo = bvh.leaf_lo[i], hi = bvh.leaf_hi[i];
-    const uint32_t prim = bvh.leaf_prim[i];
-    uint32_t node = bvh.leaf_escape[i];
+    const uint32_t prim = lane_link(hi.w);
+    uint32_t node = lane_link(lo.w);
     while (node != kNoNode) {
       const NextNode step = next_node(bvh, node, lo, hi);
       if (step.leaf_hit) sink.emit(prim, step.prim);

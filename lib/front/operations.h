@@ -60,7 +60,7 @@ CDB_HD_INLINE void traverse_range(const FrontView& v, uint32_t i, const vec4f& l
                                   uint32_t node, uint32_t end, const PairSink& pairs,
                                   const FrontSink& front) {
   const FrontTree& t = v.tree;
-  const uint32_t prim = v.query_prim[i];
+  const uint32_t prim = lane_link(hi.w);  // the query leaf's primitive rides in its box (node_ref.h)
   while (node != end) {
     const NextNode step = next_node(t.bvh, node, lo, hi);
     if (step.leaf_hit) pairs.emit(prim, step.prim);
@@ -103,7 +103,7 @@ struct PreserveFrontFn {
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     const NextNode step = next_node(tree.bvh, j, lo, hi);
     if (step.leaf_hit)
-      sink.emit(view.query_prim[i], step.prim);
+      sink.emit(lane_link(hi.w), step.prim);
     else if (!step.stop)
       traverse_range<false>(view, i, lo, hi, step.next, step.escape, sink, FrontSink{});
   }
@@ -126,7 +126,7 @@ CDB_HD_INLINE void update_front_node(const FrontView& view, const PairSink& pair
   const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
   const NextNode step = next_node(tree.bvh, j, lo, hi);
   if (step.leaf_hit) {
-    pairs.emit(view.query_prim[i], step.prim);
+    pairs.emit(lane_link(hi.w), step.prim);
     front.push(i, j, 1);
     return;
   }
