@@ -20,9 +20,7 @@ CDB_HD_INLINE uint32_t ref_index(uint32_t ref) { return ref & ~kLeafBit; }
 // A box carries its links in the spare lane of each corner, bit for bit: an internal
 // node's node_lo[k].w holds node_left[k] and node_hi[k].w node_escape[k]; a leaf's
 // leaf_lo[i].w holds leaf_escape[i] and leaf_hi[i].w leaf_prim[i]. bvh/next_node.h reads
-// them with the box. The depth-first layout (bvh/order.h) writes them with the topology;
-// refits store corner coordinates only (store_corner). Moved as raw bits, never as
-// arithmetic floats.
+// them with the box. Moved as raw bits, never as arithmetic floats.
 CDB_HD_INLINE float link_lane(uint32_t ref) {
 #if defined(__CUDA_ARCH__)
   return __uint_as_float(ref);
@@ -42,15 +40,7 @@ CDB_HD_INLINE uint32_t lane_link(float lane) {
 #endif
 }
 
-// A corner's coordinates, its lane left as the layout wrote it: what the refits store, so
-// they need not load the links to write them again.
-CDB_HD_INLINE void store_corner(vec4f* at, const vec4f& v) {
-  at->x = v.x;
-  at->y = v.y;
-  at->z = v.z;
-}
-
-// Writes leaf i's lanes (the layout of bvh/order.h).
+// Writes leaf i's lanes (the layout of bvh/order.h; the refit writes whole boxes).
 CDB_HD_INLINE void set_leaf_lanes(vec4f* lo, vec4f* hi, uint32_t i, uint32_t escape, uint32_t prim) {
   lo[i].w = link_lane(escape);
   hi[i].w = link_lane(prim);

@@ -43,6 +43,8 @@ struct RefitFn {
   const uint32_t* node_parent;
   const uint32_t* node_first;
   const uint32_t* node_last;
+  const uint32_t* node_escape;
+  const uint32_t* leaf_escape;
   vec4f* leaf_lo;
   vec4f* leaf_hi;
   vec4f* node_lo;
@@ -52,14 +54,14 @@ struct RefitFn {
 
   CDB_HD void init(Shared& s, uint32_t lane) const { s.arrived[lane] = 0; }
 
-  // A node's links and leaf range: written by the build, read-only here. Boxes are stored
-  // corner coordinates only, keeping the link lanes the layout wrote (node_ref.h).
+  // A node's links and leaf range: written by the build, read-only here. Left and escape
+  // go back into the box's link lanes (node_ref.h).
   struct Links {
-    uint32_t left, right, parent, first, last;
+    uint32_t left, right, parent, first, last, escape;
   };
   CDB_HD Links links(uint32_t k) const {
-    if (k == kNoNode) return {kNoNode, kNoNode, kNoNode, 0, 0};
-    return {node_left[k], node_right[k], node_parent[k], node_first[k], node_last[k]};
+    if (k == kNoNode) return {kNoNode, kNoNode, kNoNode, 0, 0, kNoNode};
+    return {node_left[k], node_right[k], node_parent[k], node_first[k], node_last[k], node_escape[k]};
   }
 
   // Each level's links are loaded together, one level ahead: the loads of the parent's
@@ -67,9 +69,10 @@ struct RefitFn {
   // the hand-over and the sibling's box, not also a chain of topology loads.
   CDB_HD void operator()(uint32_t i, uint32_t tile_first, uint32_t tile_last, Shared& s) const {
     vec4f lo, hi;
-    face_box(mesh, leaf_prim[i], lo, hi);
-    store_corner(&leaf_lo[i], lo);
-    store_corner(&leaf_hi[i], hi);
+    const uint32_t prim = leaf_prim[i], escape = leaf_escape[i];
+    face_box(mesh, prim, lo, hi);
+    leaf_lo[i] = {lo.x, lo.y, lo.z, link_lane(escape)};
+    leaf_hi[i] = {hi.x, hi.y, hi.z, link_lane(prim)};
     uint32_t child = leaf_ref(i), first = i, last = i;  // the subtree climbed so far
     uint32_t p = leaf_parent[i];
     Links at = links(p);
@@ -94,10 +97,10 @@ struct RefitFn {
         slo = is_leaf(sibling) ? load_coherent(&leaf_lo[ref_index(sibling)]) : load_coherent(&node_lo[sibling]);
         shi = is_leaf(sibling) ? load_coherent(&leaf_hi[ref_index(sibling)]) : load_coherent(&node_hi[sibling]);
       }
-      lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), 0};
-      hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), 0};
-      store_corner(&node_lo[p], lo);
-      store_corner(&node_hi[p], hi);
+      lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), link_lane(at.left)};
+      hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), link_lane(at.escape)};
+      node_lo[p] = lo;
+      node_hi[p] = hi;
       child = p;
       first = p_first;
       last = p_last;
@@ -114,13 +117,14 @@ void refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh) {
   const bool top_in_block = bvh.refit_top_fits();
   exec.for_each_tile(n, RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
                                 bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
-                                bvh.node_last.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
+                                bvh.node_last.data(), bvh.node_escape.data(), bvh.leaf_escape.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
                                 bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data(), top_in_block});
   if (!top_in_block) return;
   exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots),
                                bvh.span_count.data(), bvh.span_node.data(), bvh.span_parent.data(),
                                bvh.span_child.data(), bvh.span_flag.data(), bvh.span_lo.data(), bvh.span_hi.data(),
-                               bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_lo.data(), bvh.node_hi.data()});
+                               bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_left.data(), bvh.node_escape.data(),
+                               bvh.node_lo.data(), bvh.node_hi.data()});
 }
 
 }  // namespace cdb

@@ -103,6 +103,8 @@ struct RefitTopFn {
   vec4f* span_hi;
   const vec4f* leaf_lo;
   const vec4f* leaf_hi;
+  const uint32_t* node_left;  // link lanes of the written boxes (node_ref.h)
+  const uint32_t* node_escape;
   vec4f* node_lo;
   vec4f* node_hi;
 
@@ -130,14 +132,15 @@ struct RefitTopFn {
     } else {
       for (uint32_t s = t; s < count; s += threads) {
         const uint32_t k = span_node[s];
-        // Corner coordinates only: the link lanes stay as the layout wrote them.
+        const float left = link_lane(node_left[k]), escape = link_lane(node_escape[k]);
         if (s < shared_slots) {
           const float* b = sh.box[s][0];
-          store_corner(&node_lo[k], {b[0], b[1], b[2], 0});
-          store_corner(&node_hi[k], {b[3], b[4], b[5], 0});
+          node_lo[k] = {b[0], b[1], b[2], left};
+          node_hi[k] = {b[3], b[4], b[5], escape};
         } else {
-          store_corner(&node_lo[k], span_lo[2 * size_t(s)]);
-          store_corner(&node_hi[k], span_hi[2 * size_t(s)]);
+          const vec4f lo = span_lo[2 * size_t(s)], hi = span_hi[2 * size_t(s)];
+          node_lo[k] = {lo.x, lo.y, lo.z, left};
+          node_hi[k] = {hi.x, hi.y, hi.z, escape};
         }
       }
     }
