@@ -10,10 +10,10 @@
 // of its two boxes.
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #include "bvh/build.h"
 #include "core/aabb.h"
+#include "core/float_bits.h"
 #include "core/pair_sink.h"
 #include "exec/balance.h"
 #include "exec/memory.h"
@@ -90,12 +90,7 @@ CDB_HD_INLINE float axis_of(const vec4f& v, uint32_t axis) {
 // for negatives). -0 sorts just before +0; they compare equal as floats, so the sorted
 // minima stay non-decreasing, which is all the sweep needs.
 CDB_HD_INLINE uint32_t ordered_key(float f) {
-#if defined(__CUDA_ARCH__)
-  const uint32_t bits = __float_as_uint(f);
-#else
-  uint32_t bits;
-  std::memcpy(&bits, &f, sizeof(bits));
-#endif
+  const uint32_t bits = float_bits(f);
   return (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 
+#include "core/float_bits.h"
 #include "core/hd.h"
 #include "core/vec.h"
 
@@ -21,26 +22,10 @@ CDB_HD_INLINE uint32_t ref_index(uint32_t ref) { return ref & ~kLeafBit; }
 // node's node_lo[k].w holds node_left[k] and node_hi[k].w node_escape[k]; a leaf's
 // leaf_lo[i].w holds leaf_escape[i] and leaf_hi[i].w leaf_prim[i]. bvh/next_node.h reads
 // them with the box. Moved as raw bits, never as arithmetic floats.
-CDB_HD_INLINE float link_lane(uint32_t ref) {
-#if defined(__CUDA_ARCH__)
-  return __uint_as_float(ref);
-#else
-  float f;
-  __builtin_memcpy(&f, &ref, sizeof f);
-  return f;
-#endif
-}
-CDB_HD_INLINE uint32_t lane_link(float lane) {
-#if defined(__CUDA_ARCH__)
-  return __float_as_uint(lane);
-#else
-  uint32_t r;
-  __builtin_memcpy(&r, &lane, sizeof r);
-  return r;
-#endif
-}
+CDB_HD_INLINE float link_lane(uint32_t ref) { return bits_float(ref); }
+CDB_HD_INLINE uint32_t lane_link(float lane) { return float_bits(lane); }
 
-// Writes leaf i's lanes (the layout of bvh/order.h; the refit writes whole boxes).
+// Writes leaf i's lanes (the layout of bvh/order.h; the refit writes whole corners).
 CDB_HD_INLINE void set_leaf_lanes(vec4f* lo, vec4f* hi, uint32_t i, uint32_t escape, uint32_t prim) {
   lo[i].w = link_lane(escape);
   hi[i].w = link_lane(prim);
