@@ -127,12 +127,19 @@ struct SingleLeafFn {
   }
 };
 
+// A one-leaf tree: no internal node, nothing after the leaf (both orders).
+template <class Exec>
+void link_single_leaf(Exec& exec, Lbvh<Exec>& bvh) {
+  exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data(), bvh.leaf_prim.data(),
+                                  bvh.leaf_lo.data(), bvh.leaf_hi.data()});
+}
+
 template <class Exec>
 void order_depth_first(Exec& exec, Lbvh<Exec>& bvh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
   if (n == 1) {
-    exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data(), bvh.leaf_prim.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data()});
+    link_single_leaf(exec, bvh);
     return;
   }
   exec.exclusive_scan(bvh.count_log.data(), bvh.offset_log.data(), size_t(n) + 1,
@@ -170,7 +177,7 @@ void order_depth_first_radix(Exec& exec, Lbvh<Exec>& bvh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
   if (n == 1) {
-    exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data(), bvh.leaf_prim.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data()});
+    link_single_leaf(exec, bvh);
     return;
   }
   // Build scratch that is free once the climb is done: keys in morton/morton_sorted, node
