@@ -237,14 +237,13 @@ def report(runs, base, controls=frozenset()):
         # two binaries differ in one call for reasons other than the change; a cell inside
         # that range is not evidence on its own.
         ctrl = [mean(b) / mean(r) for (_, _, p, _), b, r in pairs if p in controls]
-        lo, hi = (min(ctrl), max(ctrl)) if ctrl else (math.nan, math.nan)
         arows = []
         for (g, s, p, res), b, r in pairs:
             speed = mean(b) / mean(r)
-            beyond = "control" if p in controls else ("" if not ctrl else ("yes" if speed < lo or speed > hi else "no"))
-            arows.append([f"{g}/{s}" + (f" res {res}" if res else ""), p, fmt(mean(b)), fmt(mean(r)), f"{speed:.2f}x",
+            arows.append([cell_name(g, s, res), p, fmt(mean(b)), fmt(mean(r)), f"{speed:.2f}x",
                           fmt(b.stat("t_total_ms_median")), fmt(r.stat("t_total_ms_median")),
-                          f"{100 * b.stat('noise_median'):.0f}% / {100 * r.stat('noise_median'):.0f}%", beyond])
+                          f"{100 * b.stat('noise_median'):.0f}% / {100 * r.stat('noise_median'):.0f}%",
+                          beyond_controls(p, speed, controls, ctrl)])
         if arows:
             bsha = pairs[0][1].git_sha
             lines += [f"### A/B in the same call: base {bsha} against {any_run.git_sha} (> 1x: faster now)", ""]
@@ -252,12 +251,26 @@ def report(runs, base, controls=frozenset()):
                       "(--repeat); a cell whose noise is large says little.", ""]
             if ctrl:
                 lines += [f"Controls ({', '.join(sorted(controls))}: code shared by both binaries): speed-ups "
-                          f"{lo:.2f}x–{hi:.2f}x over {len(ctrl)} cells. \"beyond controls\": whether a cell's "
+                          f"{min(ctrl):.2f}x–{max(ctrl):.2f}x over {len(ctrl)} cells. \"beyond controls\": whether a cell's "
                           "speed-up lies outside that range; inside it, a difference is not evidence on its own.", ""]
             lines += cr.markdown_table(["cell", "pipeline", "base mean", "mean", "speed-up", "base median", "median",
                                         "noise base / now", "beyond controls"], arows) + [""]
         lines += phase_ab(pairs, controls)
     return "\n".join(lines)
+
+
+def cell_name(group, scene, res):
+    return f"{group}/{scene}" + (f" res {res}" if res else "")
+
+
+def beyond_controls(pipeline, speed, controls, control_speeds):
+    """An A/B cell's last column: "control" for a control, else whether its speed-up lies
+    outside the controls' range ("yes"/"no"; "" without controls)."""
+    if pipeline in controls:
+        return "control"
+    if not control_speeds:
+        return ""
+    return "yes" if speed < min(control_speeds) or speed > max(control_speeds) else "no"
 
 
 # The phases an A/B compares: GPU-timed around their kernels, so host-side gaps between
@@ -279,19 +292,18 @@ def phase_ab(pairs, controls):
                 ctrl.append(tb / tr)
     if not rows:
         return []
-    lo, hi = (min(ctrl), max(ctrl)) if ctrl else (math.nan, math.nan)
     out = ["### A/B by phase (ms, mean over the frames where the phase ran; > 1x: faster now)", "",
            "A phase is timed on the GPU around its kernels: the host-side gaps that move a frame's total from run "
            "to run are not in it."]
     if ctrl:
-        out[-1] += (f" Controls' phases ({', '.join(sorted(controls))}): {lo:.2f}x–{hi:.2f}x over {len(ctrl)} "
-                    "phases.")
+        out[-1] += (f" Controls' phases ({', '.join(sorted(controls))}): {min(ctrl):.2f}x–{max(ctrl):.2f}x over "
+                    f"{len(ctrl)} phases.")
     out.append("")
     table = []
     for (g, s, p, res, ph), tb, tr in rows:
         speed = tb / tr
-        beyond = "control" if p in controls else ("" if not ctrl else ("yes" if speed < lo or speed > hi else "no"))
-        table.append([f"{g}/{s}" + (f" res {res}" if res else ""), p, ph, fmt(tb), fmt(tr), f"{speed:.2f}x", beyond])
+        table.append([cell_name(g, s, res), p, ph, fmt(tb), fmt(tr), f"{speed:.2f}x",
+                      beyond_controls(p, speed, controls, ctrl)])
     return out + cr.markdown_table(["cell", "pipeline", "phase", "base", "now", "speed-up", "beyond controls"],
                                    table) + [""]
 
