@@ -28,6 +28,13 @@
 
 namespace cdb {
 
+// Counters a refit zeroes on its way (the pair buffer's, before the front pass that counts
+// into them): a steady frame then needs no launch of its own to reset them.
+struct CounterReset {
+  unsigned long long* counters = nullptr;
+  uint32_t count = 0;
+};
+
 struct RefitFn {
   static constexpr uint32_t kTile = kRefitTile;
   struct Shared {
@@ -51,6 +58,7 @@ struct RefitFn {
   vec4f* node_hi;
   uint32_t* flag;
   bool stop_at_spanning;  // the spanning top is refitted by RefitTopFn (refit_top.h)
+  CounterReset reset;     // zeroed by the first tile's first lanes
 
   CDB_HD void init(Shared& s, uint32_t lane) const { s.arrived[lane] = 0; }
 
@@ -68,6 +76,7 @@ struct RefitFn {
   // links go out before this level's hand-over and arrive while it waits, so a level costs
   // the hand-over and the sibling's box, not also a chain of topology loads.
   CDB_HD void operator()(uint32_t i, uint32_t tile_first, uint32_t tile_last, Shared& s) const {
+    if (i < reset.count) reset.counters[i] = 0;
     vec4f lo, hi;
     const uint32_t prim = leaf_prim[i], escape = leaf_escape[i];
     face_box(mesh, prim, lo, hi);
@@ -110,21 +119,25 @@ struct RefitFn {
   }
 };
 
+// Refits the tree, zeroing `reset` on the way; true if it did (not for a tree with fewer
+// leaves than counters to zero: then the caller must).
 template <class Exec>
-void refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh) {
+bool refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, CounterReset reset = {}) {
   const uint32_t n = bvh.num_leaves;
-  if (n == 0) return;
+  if (n < reset.count) reset = {};
+  if (n == 0) return false;
   const bool top_in_block = bvh.refit_top_fits();
   exec.for_each_tile(n, RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
                                 bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
                                 bvh.node_last.data(), bvh.node_escape.data(), bvh.leaf_escape.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
-                                bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data(), top_in_block});
-  if (!top_in_block) return;
-  exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots),
-                               bvh.span_count.data(), bvh.span_node.data(), bvh.span_parent.data(),
-                               bvh.span_child.data(), bvh.span_flag.data(), bvh.span_lo.data(), bvh.span_hi.data(),
-                               bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_left.data(), bvh.node_escape.data(),
-                               bvh.node_lo.data(), bvh.node_hi.data()});
+                                bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data(), top_in_block, reset});
+  if (top_in_block)
+    exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots),
+                                 bvh.span_count.data(), bvh.span_node.data(), bvh.span_parent.data(),
+                                 bvh.span_child.data(), bvh.span_flag.data(), bvh.span_lo.data(), bvh.span_hi.data(),
+                                 bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_left.data(), bvh.node_escape.data(),
+                                 bvh.node_lo.data(), bvh.node_hi.data()});
+  return reset.count > 0;
 }
 
 }  // namespace cdb

@@ -1,5 +1,6 @@
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
+#include <cstring>
 #include <string>
 
 #include "core/error.h"
@@ -45,10 +46,35 @@ void launch_reduce_box_final(const Aabb<float>* partials, uint32_t count, Aabb<f
 
 CudaExec::CudaExec() {
   cuda_check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "stream creation");
+  cuda_check(cudaEventCreateWithFlags(&staging_copied_, cudaEventDisableTiming), "event creation");
 }
 
 CudaExec::~CudaExec() {
+  if (staging_) cudaFreeHost(staging_);
+  if (staging_copied_) cudaEventDestroy(staging_copied_);
   if (stream_) cudaStreamDestroy(stream_);
+}
+
+void CudaExec::reserve_upload(size_t bytes) {
+  if (bytes <= staging_bytes_) return;
+  // The buffer being replaced may still feed a copy.
+  cuda_check(cudaEventSynchronize(staging_copied_), "upload staging");
+  if (staging_) cudaFreeHost(staging_);
+  staging_ = nullptr;
+  cuda_check(cudaMallocHost(&staging_, bytes), "upload staging allocation");
+  if (staging_bytes_ > 0) memory_.note_growth("upload_staging (bytes)", staging_bytes_, bytes);
+  staging_bytes_ = bytes;
+}
+
+void CudaExec::upload_bytes(void* dst, const void* src, size_t bytes) {
+  if (!bytes) return;
+  reserve_upload(bytes);
+  // The last upload's copy must have left the staging buffer before it is overwritten. Every
+  // frame ends in a read-back, so by the next frame's upload this never waits.
+  cuda_check(cudaEventSynchronize(staging_copied_), "upload staging");
+  std::memcpy(staging_, src, bytes);
+  cuda_check(cudaMemcpyAsync(dst, staging_, bytes, cudaMemcpyHostToDevice, stream_), "upload");
+  cuda_check(cudaEventRecord(staging_copied_, stream_), "event record");
 }
 
 size_t CudaExec::scan_temp_bytes(size_t n) const {

@@ -147,6 +147,12 @@ class HostExec {
   void copy(T* dst, const T* src, size_t n) const {
     if (n) std::memcpy(dst, src, n * sizeof(T));
   }
+  // A frame's input from the host (see CudaExec): a copy, no staging needed.
+  void reserve_upload(size_t) {}
+  template <class T>
+  void upload(T* dst, const T* src, size_t n) {
+    if (n) std::memcpy(dst, src, n * sizeof(T));
+  }
   void sync() const { ++host_syncs_; }
   // Read-backs and waits so far: where the CUDA executor would stop the host until the
   // device caught up, counted the same way so CPU tests can check the per-frame count.

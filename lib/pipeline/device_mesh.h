@@ -40,6 +40,7 @@ class DeviceMesh {
     num_faces_ = static_cast<uint32_t>(topology.faces.size());
     vertices_[0].reserve(num_vertices_);
     if (swept_) vertices_[1].reserve(num_vertices_);
+    exec.reserve_upload(num_vertices_ * sizeof(vec3f));
     current_ = 0;
     uploaded_ = have_previous_ = false;
     if (quantized()) {
@@ -99,7 +100,7 @@ class DeviceMesh {
       current_ ^= 1u;
     }
     uploaded_ = true;
-    exec.copy_from_host(vertices_[current_].data(), vertices.data(), num_vertices_);
+    exec.upload(vertices_[current_].data(), vertices.data(), num_vertices_);
   }
   // q16: this frame's grid over its vertex bounds (with swept boxes the previous frame's
   // too, so the grid spans every box it snaps), reduced and laid out on the executor into
@@ -211,6 +212,8 @@ class PairBuffer {
     counters_.reserve(kCounters);
   }
   void reset_counters(Exec& exec) { exec.fill(counters_.data(), kCounters, 0ull); }
+  // The same reset, done by a refit on its way (bvh/refit.h).
+  CounterReset counter_reset() { return {counters_.data(), uint32_t(kCounters)}; }
   PairSink sink() {
     return {pairs_.data(), counters_.data(), pairs_.capacity(), skip_adjacent_faces_, face_object_, partners_};
   }

@@ -186,13 +186,22 @@ class FrontPipeline final : public Pipeline {
     return op;
   }
 
+  // A steady frame's refit of both trees; T_D's zeroes the pair buffer's counters on its
+  // way, which saves the frame a launch. True if it did.
+  bool refit_trees(const MeshView& mesh) {
+    timer_.start(Phase::refit);
+    const bool zeroed = refit(exec_, bvh_, mesh, pairs_.counter_reset());
+    refit(exec_, rigid_bvh_, mesh);
+    timer_.stop(Phase::refit);
+    return zeroed;
+  }
+
   // A steady frame's work (refit unless stale, counters, preserve), through the frame graph
   // with --cuda-graph. The key holds what the launches depend on besides graph_version_:
   // the vertex buffers (swept boxes alternate them) and whether the frame refits.
   FrameGraphRun run_steady(const MeshView& mesh, bool stale, const Ops& ops) {
     auto launch = [&] {
-      if (!stale) update_trees(mesh, false);
-      pairs_.reset_counters(exec_);
+      if (stale || !refit_trees(mesh)) pairs_.reset_counters(exec_);
       run_ops(ops);
     };
     if (!config_.cuda_graph) {
