@@ -74,30 +74,39 @@ struct FrontArrays {
     raw_mark.bind(mr, k + "raw_mark");
     sorted_prim.bind(mr, k + "sorted_prim");
     sorted_node.bind(mr, k + "sorted_node");
-    count_log.bind(mr, k + "count_log");
+    order_counts.bind(mr, k + "order_counts");
     offset_log.bind(mr, k + "offset_log");
-    cursor_front.bind(mr, k + "cursor_front");
-    cursor_back.bind(mr, k + "cursor_back");
   }
   // Capacity for front nodes (all buffers of the kind) and segment count (BVH nodes).
   void reserve(size_t capacity, size_t segments) {
     for (auto* a : {&prim, &node, &raw_prim, &raw_node, &sorted_prim, &sorted_node})
       a->reserve(capacity);
     raw_mark.reserve(capacity);
-    count_log.reserve(segments + 1);
+    segments_ = segments;
+    order_counts.reserve(3 * segments + 1);
     offset_log.reserve(segments + 1);
-    cursor_front.reserve(segments);
-    cursor_back.reserve(segments);
   }
   size_t capacity() const { return prim.capacity(); }
+
+  // The histogram sort's counters, in one buffer so that one fill zeroes them all before a
+  // front is produced: the count log (front nodes per BVH node, segments + 1 entries, its
+  // scan is offset_log) and the scatter's cursors (places taken from the front and from the
+  // back of each node's segment).
+  uint32_t* count_log() { return order_counts.data(); }
+  uint32_t* cursor_front() { return order_counts.data() + segments_ + 1; }
+  uint32_t* cursor_back() { return cursor_front() + segments_; }
+  size_t segments() const { return segments_; }
 
   Array<uint32_t> prim, node;          // the current front
   Array<uint32_t> raw_prim, raw_node;  // produced by generate/update, unordered
   Array<uint8_t> raw_mark;
   Array<uint32_t> sorted_prim, sorted_node;
-  Array<uint32_t> count_log, offset_log;  // order log: front nodes per BVH node, its scan
-  Array<uint32_t> cursor_front, cursor_back;
+  Array<uint32_t> order_counts;  // count log and cursors (count_log(), cursor_front(), cursor_back())
+  Array<uint32_t> offset_log;    // the count log's exclusive scan
   size_t size = 0;  // nodes in the current front (host copy from the frame's read-back)
+
+ private:
+  size_t segments_ = 0;
 };
 
 }  // namespace cdb

@@ -42,25 +42,30 @@ struct ScatterFrontFn {
   }
 };
 
-// A scatter of front f into its sorted arrays by f's offset log (`segments` entries), its
-// cursors zeroed.
+// A scatter of front f into its sorted arrays by f's offset log. Its cursors must be zero:
+// the fill of f's order counts before the front was produced zeroed them with the count log
+// (FrontQuery::produce_sink), or zero_cursors did.
 template <class Exec>
-SegmentScatter start_segment_scatter(Exec& exec, FrontArrays<Exec>& f, size_t segments) {
-  exec.fill(f.cursor_front.data(), segments, 0u);
-  exec.fill(f.cursor_back.data(), segments, 0u);
-  return {f.offset_log.data(), f.cursor_front.data(), f.cursor_back.data(), f.sorted_prim.data(),
-          f.sorted_node.data()};
+SegmentScatter segment_scatter(FrontArrays<Exec>& f) {
+  return {f.offset_log.data(), f.cursor_front(), f.cursor_back(), f.sorted_prim.data(), f.sorted_node.data()};
+}
+
+// Zeroes f's cursors (both sides, one fill) for a scatter of a front that was not just
+// produced (balance).
+template <class Exec>
+void zero_cursors(Exec& exec, FrontArrays<Exec>& f) {
+  exec.fill(f.cursor_front(), 2 * f.segments(), 0u);
 }
 
 // Orders a produced front (raw arrays, size on the device in *count, at most the raw
-// capacity, `launch`) into the sorted arrays, using a filled count log with `segments`
-// entries.
+// capacity, `launch`) into the sorted arrays, using its filled count log with `segments`
+// entries: a scan and one scatter.
 template <class Exec>
 void order_front(Exec& exec, FrontArrays<Exec>& f, size_t segments, const unsigned long long* count,
                  const uint32_t* prim, const uint32_t* node, const uint8_t* mark, size_t launch,
                  void* temp, size_t temp_bytes) {
-  exec.exclusive_scan(f.count_log.data(), f.offset_log.data(), segments + 1, temp, temp_bytes);
-  exec.for_each_n(launch, ScatterFrontFn{count, launch, prim, node, mark, start_segment_scatter(exec, f, segments)});
+  exec.exclusive_scan(f.count_log(), f.offset_log.data(), segments + 1, temp, temp_bytes);
+  exec.for_each_n(launch, ScatterFrontFn{count, launch, prim, node, mark, segment_scatter(f)});
 }
 
 }  // namespace cdb

@@ -153,8 +153,8 @@ class FrontQuery {
         radix_order_front(exec, f, *radix, f.size, key_bits(k), f.prim.data(), f.node.data(),
                           f.raw_mark.data());
       } else {
-        exec.for_each_n(f.size, MarkScatterFrontFn{view(), f.prim.data(), f.node.data(),
-                                                   start_segment_scatter(exec, f, segments(k))});
+        zero_cursors(exec, f);
+        exec.for_each_n(f.size, MarkScatterFrontFn{view(), f.prim.data(), f.node.data(), segment_scatter(f)});
       }
       std::swap(f.prim, f.sorted_prim);
       std::swap(f.node, f.sorted_node);
@@ -197,12 +197,13 @@ class FrontQuery {
   }
 
  private:
-  void zero_count_logs(Exec& exec) {
-    for (int k = 0; k < 2; ++k) exec.fill(front_[k].count_log.data(), segments(k) + 1, 0u);
+  // The count logs and the scatter's cursors (front.h, order_counts): one fill a kind.
+  void zero_order_counts(Exec& exec) {
+    for (auto& f : front_) exec.fill(f.order_counts.data(), 3 * f.segments() + 1, 0u);
   }
 
   FrontSink produce_sink(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
-    if (histogram) zero_count_logs(exec);
+    if (histogram) zero_order_counts(exec);
     FrontSink s{};
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
@@ -210,7 +211,7 @@ class FrontQuery {
       s.node[k] = f.raw_node.data();
       s.mark[k] = f.raw_mark.data();
       s.capacity[k] = f.raw_prim.capacity();
-      s.count_log[k] = histogram ? f.count_log.data() : nullptr;
+      s.count_log[k] = histogram ? f.count_log() : nullptr;
     }
     s.count = pairs.counter(counter_);
     return s;
