@@ -9,8 +9,9 @@ one of per-phase means.
 
 Files are named GROUP-SCENE-PIPELINE.h5 (scaling cells end in -resR); scene and pipeline
 are read from the files themselves. Steady frames are the
-frames whose operation was refit+preserve (the CUDA graph's replays); "mean" is over every
-measured frame, as in every other table here.
+frames whose operation was refit+preserve and whose graph was replayed: the first such
+frame after each update records the graph, and its host-side capture lies inside its GPU
+time. "mean" is over every measured frame, as in every other table here.
 """
 import argparse
 import math
@@ -55,10 +56,10 @@ def phase_mean(run, phase):
 
 
 def steady(run):
-    """Median and count of the frames that only refit and preserve (the graph's frames)."""
-    op = run.column("op")
+    """Median and count of the frames that only refit and preserve, replaying the graph."""
+    op, graph = run.column("op"), run.column("graph")
     t = run.column("t_total_ms")
-    sel = np.array([o == "refit+preserve" for o in op])
+    sel = np.array([o == "refit+preserve" and g == "replayed" for o, g in zip(op, graph)])
     return (float(np.median(t[sel])) if sel.any() else math.nan), int(sel.sum())
 
 
