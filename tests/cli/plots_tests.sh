@@ -143,6 +143,14 @@ check "ab_phases unknown binary" 1 "no cell run by cdbench-other" -- \
   "$python" "$root/scripts/ab_phases.py" "$tmp/ab.log" cdbench-other cdbench
 check "ab_phases missing log" 1 "nowhere.log: No such file or directory" -- \
   "$python" "$root/scripts/ab_phases.py" "$tmp/nowhere.log" cdbench-base cdbench
+# steady_breakdown.py: the committed GPU results have graph-replayed steady frames, one row
+# a pipeline; CPU results record no graph, and the script says so.
+mkdir -p "$tmp/gpu"
+tar -xJf "$root/results/gpu-targets/h5-now.tar.xz" -C "$tmp/gpu"
+check "steady_breakdown on GPU results" 0 "^\| targets \| steady-funnel-b \| [0-9]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|$" -- \
+  "$python" "$root/scripts/steady_breakdown.py" "$tmp/gpu/targets"
+check "steady_breakdown without replayed frames" 1 "no graph-replayed refit\+preserve frames" -- \
+  "$python" "$root/scripts/steady_breakdown.py" "$tmp/targets"
 check "perf_targets unknown control" 1 "--controls: unknown pipeline\(s\) gird" -- \
   "$python" "$root/scripts/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls gird
 
