@@ -14,7 +14,9 @@ import re
 import sys
 
 PHASES = {"per frame", "refit", "preserve", "update", "generate", "query", "balance", "front_order"}
-CELL = re.compile(r"^=== (\S+) (\S+) \S+ .*\((\S+)\)$")
+CELL = re.compile(r"^=== (\S+) (\S+) \S+ (.*)\((\S+)\)$")
+# Generator overrides that tell cells of one scene apart (the scaling group's sizes).
+SET = re.compile(r"--set (\S+)=(\S+)")
 PIPELINE = re.compile(r"^pipeline: (\S+) on")
 STAT = re.compile(r"^  (per frame|\S+)\s+mean ([0-9.]+)\s+median ([0-9.]+)")
 
@@ -27,7 +29,8 @@ def parse(path):
             line = line.rstrip("\n")
             m = CELL.match(line)
             if m:
-                cell, binary, pipeline = f"{m.group(1)}/{m.group(2)}", m.group(3).rsplit("/", 1)[-1], None
+                sets = "".join(f" {k}={v}" for k, v in SET.findall(m.group(3)) if k != "frames")
+                cell, binary, pipeline = f"{m.group(1)}/{m.group(2)}{sets}", m.group(4).rsplit("/", 1)[-1], None
                 continue
             m = PIPELINE.match(line)
             if m:
@@ -57,7 +60,7 @@ def main(argv):
           f"speed-up = {base}'s mean over the other's (> 1x: the other is faster).")
     for (cell, pipeline, phase), v in rows:
         b = v[base]
-        line = f"{cell:<22} {pipeline:<12} {phase:<11} {base} {b[0]:.3f}/{b[1]:.3f}"
+        line = f"{cell:<31} {pipeline:<12} {phase:<11} {base} {b[0]:.3f}/{b[1]:.3f}"
         for o in others:
             if o in v:
                 n = v[o]

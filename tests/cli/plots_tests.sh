@@ -139,6 +139,18 @@ LOG
 check "ab_phases phase speed-up" 0 "^cloth/cloth-ball +b +preserve +cdbench-base 0\.150/0\.110 \| cdbench 0\.120/0\.100 1\.25x$" -- \
   "$python" "$root/scripts/ab_phases.py" "$tmp/ab.log" cdbench-base cdbench
 has "ab_phases frame row" "$tmp/out" "^cloth/cloth-ball +b +per frame +cdbench-base 0\.330/0\.220 \| cdbench 0\.300/0\.200 1\.10x$"
+# Cells of one scene with other generator settings stay apart (the scaling group's sizes).
+cat >"$tmp/ab-sizes.log" <<'LOG'
+=== scaling cloth-wave b --set res=72 --set frames=8 --repeat 2 (/x/bin/cdbench)
+pipeline: b on cuda
+  per frame   mean 0.100  median 0.100  p95 0.100  min 0.100 ms (upload excluded)
+=== scaling cloth-wave b --set res=224 --set frames=8 --repeat 2 (/x/bin/cdbench)
+pipeline: b on cuda
+  per frame   mean 0.200  median 0.200  p95 0.200  min 0.200 ms (upload excluded)
+LOG
+check "ab_phases keeps sizes apart" 0 "^scaling/cloth-wave res=72 +b +per frame +cdbench 0\.100/0\.100$" -- \
+  "$python" "$root/scripts/ab_phases.py" "$tmp/ab-sizes.log" cdbench
+has "ab_phases second size" "$tmp/out" "^scaling/cloth-wave res=224 +b +per frame +cdbench 0\.200/0\.200$"
 check "ab_phases unknown binary" 1 "no cell run by cdbench-other" -- \
   "$python" "$root/scripts/ab_phases.py" "$tmp/ab.log" cdbench-other cdbench
 check "ab_phases missing log" 1 "nowhere.log: No such file or directory" -- \
