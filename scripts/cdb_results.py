@@ -151,6 +151,14 @@ def load(paths):
     return complete, [r for r in runs if not r.complete]
 
 
+def steady_replays(run):
+    """Mask of a run's measured frames that only refit and preserve, replaying the frame's
+    CUDA graph (the frame that records the graph carries the host-side capture between its
+    events, and is left out)."""
+    op, graph = run.column("op"), run.column("graph")
+    return np.array([text(o) == "refit+preserve" and text(g) == "replayed" for o, g in zip(op, graph)], dtype=bool)
+
+
 def pick_scene(paths, runs, scene):
     """The scene to draw: `scene` when given, else the only scene among `runs`."""
     if scene is not None:

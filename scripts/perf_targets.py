@@ -57,9 +57,8 @@ def phase_mean(run, phase):
 
 def steady(run):
     """Median and count of the frames that only refit and preserve, replaying the graph."""
-    op, graph = run.column("op"), run.column("graph")
     t = run.column("t_total_ms")
-    sel = np.array([o == "refit+preserve" and g == "replayed" for o, g in zip(op, graph)])
+    sel = cr.steady_replays(run)
     return (float(np.median(t[sel])) if sel.any() else math.nan), int(sel.sum())
 
 

@@ -18,17 +18,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cdb_results as cr  # noqa: E402
 
 
-def replayed(run):
-    """The measured frames that only refit and preserve, replaying the frame's graph."""
-    op, graph = run.column("op"), run.column("graph")
-    return np.array([o == "refit+preserve" and g == "replayed" for o, g in zip(op, graph)])
-
-
 def rows_of(directory):
     complete, _ = cr.load([directory])
     rows = []
     for run in complete:
-        sel = replayed(run)
+        sel = cr.steady_replays(run)
         if not sel.any():
             continue
         us = {name: run.column(f"t_{name}_ms")[sel] * 1e3 for name in ("total", "refit", "preserve", "upload")}
