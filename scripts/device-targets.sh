@@ -84,8 +84,12 @@ if [[ "${NCU:-0}" == 1 ]]; then
   profile funnel-c -k regex:"for_each|one_block|tile" "$bin" run --device cuda --scene funnel \
     --pipeline c --frames 0:6 --quiet --cuda-graph off
 fi
-# One archive per binary: the device tool brings back few files, each at most 16 MiB.
+# One compressed archive per binary (HDF5 compresses about 40 to 1), and the profiles
+# compressed: the device tool brings back at most 8 files of at most 16 MiB each.
 for e in "targets=" ${BASE_BIN:-}; do
   d=${e%%=*}
-  tar -C "$out" -cf "$out/h5-$d.tar" "$d" && rm -rf "${out:?}/$d"
+  tar -C "$out" -cJf "$out/h5-$d.tar.xz" "$d" && rm -rf "${out:?}/$d"
+done
+for f in "$out"/ncu-*.csv; do
+  if [[ -f "$f" ]]; then xz -T0 "$f"; fi
 done
