@@ -391,6 +391,47 @@ void check_refit_top_large_tree() {
   check_soup_case<Exec>({100000, "clustered", 1.0, 0.0, MortonBits::b63}, kRefitTopSharedSlots, kRefitTopLeavesLimit);
 }
 
+// A refit handed counters to zero (CounterReset, the steady frame's pair counters) zeroes
+// every one of them and gives the boxes of a refit without; a tree with fewer leaves than
+// counters leaves them alone and says so, so that the caller zeroes them itself.
+template <class Exec>
+void check_refit_counter_reset() {
+  constexpr uint32_t kCount = 12;
+  const std::vector<unsigned long long> poison(kCount, 0xdeadbeefull);
+  for (uint64_t triangles : {3ull, 12ull, 1000ull, 20000ull}) {
+    SCOPED_TRACE("triangles " + std::to_string(triangles));
+    auto source = soup_source({triangles, "clustered", 1.0, 0.0, MortonBits::b63});
+    const Topology& topo = source->topology();
+    Exec exec;
+    Lbvh<Exec> bvh(exec);
+    TestMesh<Exec> m(exec, topo);
+    Array<unsigned long long> counters(exec.memory(), "test.counters");
+    counters.reserve(kCount);
+    std::vector<vec3f> v;
+    source->frame(0, v);
+    m.upload(exec, v);
+    const MeshView mesh = m.view();
+    build_hierarchy(exec, bvh, mesh, MortonBits::b63);
+    order_depth_first(exec, bvh);
+    source->frame(1, v);
+    m.upload(exec, v);
+    EXPECT_FALSE(refit(exec, bvh, mesh));
+    const HostBvh plain = download(exec, bvh);
+    exec.copy_from_host(counters.data(), poison.data(), kCount);
+    const bool zeroed = refit(exec, bvh, mesh, CounterReset{counters.data(), kCount});
+    std::vector<unsigned long long> after(kCount);
+    exec.copy_to_host(after.data(), counters.data(), kCount);
+    EXPECT_EQ(zeroed, triangles >= kCount);
+    EXPECT_EQ(after, zeroed ? std::vector<unsigned long long>(kCount, 0ull) : poison);
+    const HostBvh with_reset = download(exec, bvh);
+    EXPECT_EQ(with_reset.leaf_lo.size(), plain.leaf_lo.size());
+    EXPECT_TRUE(std::memcmp(with_reset.node_lo.data(), plain.node_lo.data(), plain.node_lo.size() * sizeof(vec4f)) == 0 &&
+                std::memcmp(with_reset.node_hi.data(), plain.node_hi.data(), plain.node_hi.size() * sizeof(vec4f)) == 0 &&
+                std::memcmp(with_reset.leaf_lo.data(), plain.leaf_lo.data(), plain.leaf_lo.size() * sizeof(vec4f)) == 0)
+        << "boxes differ with the counters zeroed on the way";
+  }
+}
+
 // The radix-sort ordering of the BVH gives the histogram ordering's tree, node for node.
 template <class Exec>
 void check_radix_order_matches(const SoupCase& c) {

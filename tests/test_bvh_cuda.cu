@@ -311,6 +311,11 @@ TEST(CudaRefit, TopInOneBlockOfALargeTreeAgrees) {
   check_refit_top_large_tree<CudaExec>();
 }
 
+TEST(CudaRefit, ZeroesTheCountersItIsHandedOnItsWay) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_refit_counter_reset<CudaExec>();
+}
+
 TEST(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   for (uint32_t depth : {0u, 1u, 4u, 9u}) {

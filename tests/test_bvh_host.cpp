@@ -133,6 +133,7 @@ TEST(HostPipelines, SecondPassAfterGrowthMatchesTheFirst) {
 
 TEST(HostRefit, TopInOneBlockSpillsPastSharedMemoryAndAgrees) { check_refit_top_spill<HostExec>(); }
 TEST(HostRefit, TopInOneBlockOfALargeTreeAgrees) { check_refit_top_large_tree<HostExec>(); }
+TEST(HostRefit, ZeroesTheCountersItIsHandedOnItsWay) { check_refit_counter_reset<HostExec>(); }
 
 TEST(HostRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   for (uint32_t depth : {0u, 1u, 3u, 6u}) {
