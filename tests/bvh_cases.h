@@ -113,6 +113,15 @@ void expect_self_query_exact(Exec& exec, const Lbvh<Exec>& bvh, const Topology& 
                          << d.unexpected_count << " unexpected";
 }
 
+// Two downloads of one tree hold the same boxes, leaves and internal nodes, bit for bit.
+inline bool same_boxes(const HostBvh& a, const HostBvh& b) {
+  auto same = [](const std::vector<vec4f>& x, const std::vector<vec4f>& y) {
+    return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(vec4f)) == 0;
+  };
+  return same(a.leaf_lo, b.leaf_lo) && same(a.leaf_hi, b.leaf_hi) && same(a.node_lo, b.node_lo) &&
+         same(a.node_hi, b.node_hi);
+}
+
 // Both refits of the spanning top (one block, bvh/refit_top.h; hand-overs between blocks)
 // give the same boxes, bit for bit: a box is a min/max merge whatever the order of arrivals.
 template <class Exec>
@@ -124,13 +133,7 @@ void expect_refits_agree(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, cons
   bvh.refit_top_max_leaves = top_max_leaves;
   refit(exec, bvh, mesh);
   const HostBvh one_block = download(exec, bvh);
-  auto same = [](const std::vector<vec4f>& a, const std::vector<vec4f>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(vec4f)) == 0;
-  };
-  EXPECT_TRUE(same(between_blocks.leaf_lo, one_block.leaf_lo) && same(between_blocks.leaf_hi, one_block.leaf_hi))
-      << where << ": leaf boxes differ between the two refits of the top";
-  EXPECT_TRUE(same(between_blocks.node_lo, one_block.node_lo) && same(between_blocks.node_hi, one_block.node_hi))
-      << where << ": node boxes differ between the two refits of the top";
+  EXPECT_TRUE(same_boxes(between_blocks, one_block)) << where << ": boxes differ between the two refits of the top";
 }
 
 // Build + order on frame 0, refit on frames 1 and 2: after each, the tree must pass every
@@ -423,12 +426,7 @@ void check_refit_counter_reset() {
     exec.copy_to_host(after.data(), counters.data(), kCount);
     EXPECT_EQ(zeroed, triangles >= kCount);
     EXPECT_EQ(after, zeroed ? std::vector<unsigned long long>(kCount, 0ull) : poison);
-    const HostBvh with_reset = download(exec, bvh);
-    EXPECT_EQ(with_reset.leaf_lo.size(), plain.leaf_lo.size());
-    EXPECT_TRUE(std::memcmp(with_reset.node_lo.data(), plain.node_lo.data(), plain.node_lo.size() * sizeof(vec4f)) == 0 &&
-                std::memcmp(with_reset.node_hi.data(), plain.node_hi.data(), plain.node_hi.size() * sizeof(vec4f)) == 0 &&
-                std::memcmp(with_reset.leaf_lo.data(), plain.leaf_lo.data(), plain.leaf_lo.size() * sizeof(vec4f)) == 0)
-        << "boxes differ with the counters zeroed on the way";
+    EXPECT_TRUE(same_boxes(download(exec, bvh), plain)) << "boxes differ with the counters zeroed on the way";
   }
 }
 

@@ -199,7 +199,7 @@ class FrontQuery {
  private:
   // The count logs and the scatter's cursors (front.h, order_counts): one fill a kind.
   void zero_order_counts(Exec& exec) {
-    for (auto& f : front_) exec.fill(f.order_counts.data(), 3 * f.segments() + 1, 0u);
+    for (auto& f : front_) exec.fill(f.order_counts.data(), f.order_counts.size(), 0u);
   }
 
   FrontSink produce_sink(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
