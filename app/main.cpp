@@ -50,6 +50,8 @@ struct CommonOptions {
   std::string box_precision = "fp32";
   uint32_t refit_every = 1;
   std::string cuda_graph = "on";
+  std::string dependent_launch = "on";
+  std::string phase_timing = "on";
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
   std::vector<std::string> sets;  // generator overrides, key=value
 };
@@ -100,6 +102,16 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--cuda-graph", o.cuda_graph,
                   "front pipelines on cuda: capture the steady-state frame (refit + preserve) in a CUDA graph once "
                   "and replay it while its launches stay the same; off: plain launches every frame")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--dependent-launch", o.dependent_launch,
+                  "cuda: launch every kernel with programmatic stream serialization (sm_90 and later), so it is "
+                  "scheduled while the kernel before it runs and waits for it on the device; off: plain launches")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--phase-timing", o.phase_timing,
+                  "time each phase of a frame with events; off: only the frame and its upload (no event between "
+                  "kernels, which in a CUDA graph costs a node and keeps the next kernel from launching early)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--refit-top-leaves", o.refit_top_leaves,
@@ -156,6 +168,8 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.box_precision = parse_box_precision(o.box_precision);
   c.refit_every = o.refit_every;
   c.cuda_graph = o.cuda_graph == "on";
+  c.dependent_launch = o.dependent_launch == "on";
+  c.phase_timing = o.phase_timing == "on";
   c.refit_top_leaves = o.refit_top_leaves;
   c.restructure_quality = o.restructure.restructure_quality;
   c.restructure_min_leaves = o.restructure.restructure_min_leaves;

@@ -176,6 +176,40 @@ inline bool keeps_stale_boxes(const std::string& name) {
   return !(name == "sweep" || name == "hash" || name == "grid" || name == "brute" || name == "reference");
 }
 
+// --dependent-launch (kernels scheduled while their predecessors run, waiting for them on
+// the device) and --phase-timing off: every pipeline reports exactly the oracle's pairs,
+// every frame, with and without frame graphs; with phases off no phase but the upload has
+// a time and the frame has one.
+inline void check_launch_knobs(const std::string& device, bool graph, bool dependent) {
+  auto funnel = make_generator("funnel", {{"res", 40}, {"frames", 10}, {"segments", 16}, {"ball_level", 1}});
+  const Topology& topo = funnel->topology();
+  std::vector<vec3f> v;
+  for (const auto& name : pipeline_names()) {
+    PipelineConfig cfg;
+    cfg.device = device;
+    cfg.name = name;
+    cfg.pairs_per_triangle = 0.5;  // must grow
+    cfg.front_cycle = 4;
+    cfg.cuda_graph = graph;
+    cfg.dependent_launch = dependent;
+    cfg.phase_timing = false;
+    auto p = make_pipeline(cfg);
+    p->set_topology(topo);
+    for (uint32_t f = 0; f < funnel->num_frames(); ++f) {
+      funnel->frame(f, v);
+      const FrameStats s = p->run_frame(v);
+      const std::string where = name + (graph ? " graph" : "") + (dependent ? " dependent" : "") + " frame " +
+                                std::to_string(f);
+      EXPECT_GT(s.total_ms, 0.0) << where;
+      EXPECT_GT(s.phase_ms[size_t(Phase::upload)], 0.0) << where;
+      for (size_t ph = 0; ph < kPhaseCount; ++ph)
+        if (Phase(ph) != Phase::upload) EXPECT_EQ(s.phase_ms[ph], 0.0) << where << ", phase " << ph;
+      const PairSetDiff d = diff_pair_sets(sweep_oracle_pairs(topo, v, false), p->sorted_pairs());
+      ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count << " extra";
+    }
+  }
+}
+
 // Every pipeline with fat boxes: a superset of the exact pairs, exactly the brute-force
 // set of the inflated boxes.
 inline void check_margin(const std::string& device, FrameSource& source, float margin) {

@@ -226,6 +226,12 @@ TEST(CudaPipelines, GraphReplaysGiveThePlainLaunchesPairs) {
   }
 }
 
+TEST(CudaKnobs, DependentLaunchesAndUntimedPhasesKeepEveryPipelineExact) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  for (bool graph : {false, true})
+    for (bool dependent : {false, true}) check_launch_knobs("cuda", graph, dependent);
+}
+
 class CudaFrontCycles : public testing::TestWithParam<uint32_t> {
  protected:
   void SetUp() override {

@@ -174,4 +174,6 @@ TEST(HostKnobs, LazyRefitOnSplitTreesKeepsBothTreesStale) {
   check_lazy_refit("cpu", scene, 3);
 }
 
+TEST(HostKnobs, UntimedPhasesKeepEveryPipelineExact) { check_launch_knobs("cpu", false, false); }
+
 }  // namespace cdb::test

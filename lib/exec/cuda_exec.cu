@@ -30,6 +30,7 @@ void CudaMemory::do_deallocate(void* p, size_t) { cudaFree(p); }
 
 __global__ void reduce_box_final_kernel(const Aabb<float>* partials, uint32_t count,
                                         Aabb<float>* out) {
+  dependent_launch_entry();
   using Reduce = cub::BlockReduce<Aabb<float>, kReduceThreads>;
   __shared__ typename Reduce::TempStorage storage;
   Aabb<float> acc = Aabb<float>::empty();
@@ -39,12 +40,11 @@ __global__ void reduce_box_final_kernel(const Aabb<float>* partials, uint32_t co
 }
 
 void launch_reduce_box_final(const Aabb<float>* partials, uint32_t count, Aabb<float>* out,
-                             cudaStream_t stream) {
-  reduce_box_final_kernel<<<1, kReduceThreads, 0, stream>>>(partials, count, out);
-  cuda_check(cudaGetLastError(), "reduce launch");
+                             cudaStream_t stream, bool dependent_launch) {
+  launch_kernel(stream, dependent_launch, reduce_box_final_kernel, 1, kReduceThreads, 0, partials, count, out);
 }
 
-CudaExec::CudaExec() {
+CudaExec::CudaExec(const ExecOptions& options) : options_(options) {
   cuda_check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "stream creation");
   cuda_check(cudaEventCreateWithFlags(&staging_copied_, cudaEventDisableTiming), "event creation");
 }
@@ -133,7 +133,7 @@ void CudaExec::copy_bytes(void* dst, const void* src, size_t bytes) const {
   cuda_check(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToDevice, stream_), "device copy");
 }
 
-CudaPhaseTimer::CudaPhaseTimer(CudaExec& exec) : exec_(&exec), stream_(exec.stream()) {
+CudaPhaseTimer::CudaPhaseTimer(CudaExec& exec, bool phases) : exec_(&exec), phases_(phases), stream_(exec.stream()) {
   cuda_check(cudaEventCreate(&frame_begin_), "event creation");
   cuda_check(cudaEventCreate(&frame_end_), "event creation");
 }
@@ -161,12 +161,14 @@ void CudaPhaseTimer::record(cudaEvent_t e) {
 }
 
 void CudaPhaseTimer::start(Phase p) {
+  if (!timed(p)) return;
   cudaEvent_t e = next_event();
   record(e);
   open_[size_t(p)] = e;
 }
 
 void CudaPhaseTimer::stop(Phase p) {
+  if (!timed(p)) return;
   cudaEvent_t e = next_event();
   record(e);
   spans_.push_back({p, open_[size_t(p)], e});

@@ -14,6 +14,7 @@
 #include "core/append_stage.h"
 #include "core/phase.h"
 #include "exec/balance.h"
+#include "exec/exec_options.h"
 #include "exec/frame_graph.h"
 #include "exec/memory.h"
 
@@ -30,8 +31,21 @@ class CudaMemory final : public MemoryResource {
   void do_deallocate(void* p, size_t bytes) override;
 };
 
+// The first thing every kernel of the executor does (ExecOptions::dependent_launch): let the
+// next kernel on the stream be scheduled now, its blocks waiting as this one's do, then wait
+// until the kernel before this one has completed and its writes are visible. Nothing runs
+// before the wait, so the order is that of serial launches; launched without the attribute
+// both instructions return at once.
+__device__ __forceinline__ void dependent_launch_entry() {
+#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ >= 900
+  asm volatile("griddepcontrol.launch_dependents;" ::: "memory");
+  asm volatile("griddepcontrol.wait;" ::: "memory");
+#endif
+}
+
 template <class F>
 __global__ void for_each_kernel(uint32_t n, F f) {
+  dependent_launch_entry();
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < n) f(i);
 }
@@ -40,6 +54,7 @@ __global__ void for_each_kernel(uint32_t n, F f) {
 // F::Shared in shared memory, initialized lane by lane before any index runs.
 template <class F>
 __global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(uint32_t n, F f) {
+  dependent_launch_entry();
   __shared__ typename F::Shared shared;
   f.init(shared, threadIdx.x);
   __syncthreads();
@@ -53,6 +68,7 @@ __global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(uint32_t n, F f
 // append to and that F::flush writes out once every index of the block is done.
 template <class F>
 __global__ void for_each_staged_kernel(uint32_t n, F f) {
+  dependent_launch_entry();
   __shared__ typename F::Stage stage;
   if (threadIdx.x == 0) stage.reset();
   __syncthreads();
@@ -68,6 +84,7 @@ inline constexpr uint32_t kOneBlockThreads = 1024;
 
 template <class F>
 __global__ void __launch_bounds__(kOneBlockThreads) in_one_block_kernel(F f) {
+  dependent_launch_entry();
   extern __shared__ __align__(16) unsigned char shared_bytes[];
   auto& shared = *reinterpret_cast<typename F::Shared*>(shared_bytes);
   for (int p = 0; p < F::kPhases; ++p) {
@@ -90,6 +107,7 @@ inline constexpr uint32_t kReduceBlocks = 512;
 template <class F>
 __global__ void __launch_bounds__(kReduceThreads)
     reduce_box_partials_kernel(uint32_t n, F box_of, Aabb<float>* partials) {
+  dependent_launch_entry();
   using Reduce = cub::BlockReduce<Aabb<float>, kReduceThreads>;
   __shared__ typename Reduce::TempStorage storage;
   Aabb<float> acc = Aabb<float>::empty();
@@ -105,6 +123,7 @@ __global__ void __launch_bounds__(kReduceThreads)
 template <class T, class F, class Op>
 __global__ void __launch_bounds__(kReduceThreads)
     reduce_partials_kernel(uint32_t n, F map, Op op, T identity, T* partials) {
+  dependent_launch_entry();
   using Reduce = cub::BlockReduce<T, kReduceThreads>;
   __shared__ typename Reduce::TempStorage storage;
   T acc = identity;
@@ -118,6 +137,7 @@ __global__ void __launch_bounds__(kReduceThreads)
 template <class T, class Op>
 __global__ void __launch_bounds__(kReduceThreads)
     reduce_final_kernel(const T* partials, uint32_t count, Op op, T identity, T* out) {
+  dependent_launch_entry();
   using Reduce = cub::BlockReduce<T, kReduceThreads>;
   __shared__ typename Reduce::TempStorage storage;
   T acc = identity;
@@ -126,8 +146,25 @@ __global__ void __launch_bounds__(kReduceThreads)
   if (threadIdx.x == 0) *out = total;
 }
 
+// Every kernel of the executor is launched here: one place decides the launch attributes.
+template <class... Params, class... Args>
+void launch_kernel(cudaStream_t stream, bool dependent_launch, void (*kernel)(Params...), uint32_t blocks,
+                   uint32_t threads, size_t shared_bytes, const Args&... args) {
+  cudaLaunchAttribute dependent{};
+  dependent.id = cudaLaunchAttributeProgrammaticStreamSerialization;
+  dependent.val.programmaticStreamSerializationAllowed = 1;
+  cudaLaunchConfig_t config{};
+  config.gridDim = dim3(blocks);
+  config.blockDim = dim3(threads);
+  config.dynamicSmemBytes = shared_bytes;
+  config.stream = stream;
+  config.attrs = &dependent;
+  config.numAttrs = dependent_launch ? 1 : 0;
+  cuda_check(cudaLaunchKernelEx(&config, kernel, args...), "kernel launch");
+}
+
 void launch_reduce_box_final(const Aabb<float>* partials, uint32_t count, Aabb<float>* out,
-                             cudaStream_t stream);
+                             cudaStream_t stream, bool dependent_launch);
 
 template <class T>
 struct FillFn {
@@ -143,7 +180,7 @@ class CudaExec {
   static constexpr bool is_device = true;
   using FrameGraph = CudaFrameGraph;
 
-  CudaExec();
+  explicit CudaExec(const ExecOptions& options = {});
   ~CudaExec();
   CudaExec(const CudaExec&) = delete;
   CudaExec& operator=(const CudaExec&) = delete;
@@ -157,8 +194,7 @@ class CudaExec {
     if (n == 0) return;
     constexpr uint32_t threads = 256;
     const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
-    for_each_kernel<<<blocks, threads, 0, stream_>>>(static_cast<uint32_t>(n), f);
-    cuda_check(cudaGetLastError(), "kernel launch");
+    launch(for_each_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
   }
 
   // F's phases in one block (see in_one_block_kernel): work too small and too serial for the
@@ -168,8 +204,7 @@ class CudaExec {
     constexpr size_t bytes = sizeof(typename F::Shared);
     cuda_check(cudaFuncSetAttribute(in_one_block_kernel<F>, cudaFuncAttributeMaxDynamicSharedMemorySize, int(bytes)),
                "shared memory size");
-    in_one_block_kernel<<<1, kOneBlockThreads, bytes, stream_>>>(f);
-    cuda_check(cudaGetLastError(), "kernel launch");
+    launch(in_one_block_kernel<F>, 1, kOneBlockThreads, bytes, f);
   }
 
   // Indices whose appends (pairs, front nodes) are staged per block in shared memory and
@@ -179,8 +214,7 @@ class CudaExec {
     if (n == 0) return;
     constexpr uint32_t threads = kStagedThreads;
     const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
-    for_each_staged_kernel<<<blocks, threads, 0, stream_>>>(static_cast<uint32_t>(n), f);
-    cuda_check(cudaGetLastError(), "kernel launch");
+    launch(for_each_staged_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
   }
 
   // Indices in tiles of F::kTile that share an F::Shared: threads of one block here, so
@@ -189,8 +223,7 @@ class CudaExec {
   void for_each_tile(size_t n, const F& f) const {
     if (n == 0) return;
     const uint32_t blocks = static_cast<uint32_t>((n + F::kTile - 1) / F::kTile);
-    for_each_tile_kernel<<<blocks, F::kTile, 0, stream_>>>(static_cast<uint32_t>(n), f);
-    cuda_check(cudaGetLastError(), "kernel launch");
+    launch(for_each_tile_kernel<F>, blocks, F::kTile, 0, static_cast<uint32_t>(n), f);
   }
 
   size_t scan_temp_bytes(size_t n) const;
@@ -208,10 +241,8 @@ class CudaExec {
     auto* partials = static_cast<Aabb<float>*>(temp);
     const uint32_t blocks = static_cast<uint32_t>(
         n == 0 ? 1 : std::min<size_t>(kReduceBlocks, (n + kReduceThreads - 1) / kReduceThreads));
-    reduce_box_partials_kernel<<<blocks, kReduceThreads, 0, stream_>>>(uint32_t(n), box_of,
-                                                                        partials);
-    cuda_check(cudaGetLastError(), "reduce launch");
-    launch_reduce_box_final(partials, blocks, out, stream_);
+    launch(reduce_box_partials_kernel<F>, blocks, kReduceThreads, 0, uint32_t(n), box_of, partials);
+    launch_reduce_box_final(partials, blocks, out, stream_, options_.dependent_launch);
   }
 
   // Generic reduction of map(i) under an associative, commutative op.
@@ -225,11 +256,9 @@ class CudaExec {
     auto* partials = static_cast<T*>(temp);
     const uint32_t blocks = static_cast<uint32_t>(
         n == 0 ? 1 : std::min<size_t>(kReduceBlocks, (n + kReduceThreads - 1) / kReduceThreads));
-    reduce_partials_kernel<<<blocks, kReduceThreads, 0, stream_>>>(uint32_t(n), map, op,
-                                                                    identity, partials);
-    cuda_check(cudaGetLastError(), "reduce launch");
-    reduce_final_kernel<<<1, kReduceThreads, 0, stream_>>>(partials, blocks, op, identity, out);
-    cuda_check(cudaGetLastError(), "reduce launch");
+    launch(reduce_partials_kernel<T, F, Op>, blocks, kReduceThreads, 0, uint32_t(n), map, op, identity,
+           partials);
+    launch(reduce_final_kernel<T, Op>, 1, kReduceThreads, 0, partials, blocks, op, identity, out);
   }
 
   template <class T>
@@ -264,10 +293,16 @@ class CudaExec {
   uint64_t host_syncs() const { return host_syncs_; }
 
  private:
+  template <class... Params, class... Args>
+  void launch(void (*kernel)(Params...), uint32_t blocks, uint32_t threads, size_t shared_bytes,
+              const Args&... args) const {
+    launch_kernel(stream_, options_.dependent_launch, kernel, blocks, threads, shared_bytes, args...);
+  }
   void copy_to_host_bytes(void* dst, const void* src, size_t bytes) const;
   void copy_from_host_bytes(void* dst, const void* src, size_t bytes) const;
   void copy_bytes(void* dst, const void* src, size_t bytes) const;
   void upload_bytes(void* dst, const void* src, size_t bytes);
+  ExecOptions options_;
   cudaStream_t stream_ = nullptr;
   CudaMemory memory_;
   mutable uint64_t host_syncs_ = 0;
@@ -277,10 +312,13 @@ class CudaExec {
 };
 
 // Phase timer from CUDA events on the executor's stream; a phase that runs several times
-// in a frame (a query re-run after its pair buffer grew) adds up.
+// in a frame (a query re-run after its pair buffer grew) adds up. With phases off
+// (--phase-timing off) only the frame and its upload are timed: no event between kernels,
+// which in a recorded frame are graph nodes of their own and keep the kernels around them
+// from launching early (ExecOptions::dependent_launch).
 class CudaPhaseTimer {
  public:
-  explicit CudaPhaseTimer(CudaExec& exec);
+  explicit CudaPhaseTimer(CudaExec& exec, bool phases = true);
   ~CudaPhaseTimer();
   CudaPhaseTimer(const CudaPhaseTimer&) = delete;
   CudaPhaseTimer& operator=(const CudaPhaseTimer&) = delete;
@@ -313,7 +351,9 @@ class CudaPhaseTimer {
  private:
   cudaEvent_t next_event();
   void record(cudaEvent_t e);
+  bool timed(Phase p) const { return phases_ || p == Phase::upload; }
   const CudaExec* exec_;
+  bool phases_;
   uint64_t syncs_at_start_ = 0;
   cudaStream_t stream_;
   std::vector<cudaEvent_t> pool_;

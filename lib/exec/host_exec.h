@@ -13,6 +13,7 @@
 #include "core/aabb.h"
 #include "core/phase.h"
 #include "exec/balance.h"
+#include "exec/exec_options.h"
 #include "exec/frame_graph.h"
 #include "exec/memory.h"
 
@@ -35,6 +36,8 @@ class HostExec {
  public:
   static constexpr bool is_device = false;
   using FrameGraph = HostFrameGraph;
+
+  explicit HostExec(const ExecOptions& = {}) {}
 
   MemoryResource& memory() { return memory_; }
   const char* name() const { return "cpu"; }
@@ -163,12 +166,16 @@ class HostExec {
   mutable uint64_t host_syncs_ = 0;
 };
 
-// Wall-clock phase timer for the host executor.
+// Wall-clock phase timer for the host executor; with phases off only the frame and its
+// upload, as CudaPhaseTimer.
 class HostPhaseTimer {
  public:
-  explicit HostPhaseTimer(HostExec& exec) : exec_(&exec) {}
-  void start(Phase p) { begin_[size_t(p)] = clock::now(); }
+  explicit HostPhaseTimer(HostExec& exec, bool phases = true) : exec_(&exec), phases_(phases) {}
+  void start(Phase p) {
+    if (timed(p)) begin_[size_t(p)] = clock::now();
+  }
   void stop(Phase p) {
+    if (!timed(p)) return;
     ms_[size_t(p)] +=
         std::chrono::duration<double, std::milli>(clock::now() - begin_[size_t(p)]).count();
   }
@@ -187,7 +194,9 @@ class HostPhaseTimer {
   uint64_t frame_syncs() const { return exec_->host_syncs() - syncs_at_start_; }
 
  private:
+  bool timed(Phase p) const { return phases_ || p == Phase::upload; }
   const HostExec* exec_;
+  bool phases_;
   uint64_t syncs_at_start_ = 0;
   using clock = std::chrono::steady_clock;
   std::array<clock::time_point, kPhaseCount> begin_{};

@@ -22,6 +22,8 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"box_precision", box_precision_name(c.box_precision)},
       {"refit_every", c.refit_every},
       {"cuda_graph", c.cuda_graph},
+      {"dependent_launch", c.dependent_launch},
+      {"phase_timing", c.phase_timing},
       {"refit_top_leaves", c.refit_top_leaves},
       {"conservative", config_conservative(c)},
   };

@@ -68,6 +68,12 @@ struct PipelineConfig {
   // with the same arguments frame after frame) is captured once in a CUDA graph and
   // replayed while nothing it launches changes. The host executor ignores it.
   bool cuda_graph = true;
+  // CUDA: launch kernels so that each may be scheduled while the one before it runs
+  // (ExecOptions::dependent_launch). The host executor ignores it.
+  bool dependent_launch = true;
+  // Time each phase of a frame (refit, preserve, ...) with events; off: only the frame and
+  // its upload, so no event stands between two kernels.
+  bool phase_timing = true;
   // Refit: trees of up to this many leaves refit their top (the nodes spanning refit
   // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
