@@ -35,10 +35,14 @@ groups=${TARGET_GROUPS:-steady cloth coherent nbody scaling}
 {
   for g in $groups; do
     case $g in
-      # Funnel-size steady frames (graph replay of refit + preserve), pipelines a, b, c.
+      # Funnel-size steady frames (graph replay of refit + preserve), pipelines a, b, c:
+      # with every phase timed, and untimed (--phase-timing off: no event node between the
+      # graph's kernels), the frame a simulator runs.
       steady)
         cell steady funnel a,b,c,unordered --repeat 3
         cell steady funnel-large a,b,c,unordered --repeat 3
+        cell untimed funnel a,b,c,unordered --repeat 3 --phase-timing off
+        cell untimed funnel-large a,b,c,unordered --repeat 3 --phase-timing off
         ;;
       # Cloth-ball: c against 0.3 ms; static against unordered; histogram against radix
       # sort on the same fronts; preserve against generate; every baseline; memory.
