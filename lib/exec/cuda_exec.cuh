@@ -43,11 +43,20 @@ __device__ __forceinline__ void dependent_launch_entry() {
 #endif
 }
 
+// A functor whose indices share work within a warp (front/warp_traversal.h) runs on every
+// thread of the launch, those past n included, as f.warp(i, n, stage): all lanes of a warp
+// take part in its warp-wide votes and shuffles.
+template <class F>
+concept WarpCooperative = requires(const F& f, typename F::Stage* stage) { f.warp(0u, 0u, stage); };
+
 template <class F>
 __global__ void for_each_kernel(uint32_t n, F f) {
   dependent_launch_entry();
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) f(i);
+  if constexpr (WarpCooperative<F>)
+    f.warp(i, n, static_cast<typename F::Stage*>(nullptr));
+  else if (i < n)
+    f(i);
 }
 
 // One block per tile of F::kTile consecutive indices; the block's threads share one
@@ -73,7 +82,10 @@ __global__ void for_each_staged_kernel(uint32_t n, F f) {
   if (threadIdx.x == 0) stage.reset();
   __syncthreads();
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < n) f(i, &stage);
+  if constexpr (WarpCooperative<F>)
+    f.warp(i, n, &stage);
+  else if (i < n)
+    f(i, &stage);
   __syncthreads();
   f.flush(stage);
 }

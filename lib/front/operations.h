@@ -12,6 +12,7 @@
 #include "core/pair_sink.h"
 #include "front/front.h"
 #include "front/ordering.h"
+#include "front/warp_traversal.h"
 
 namespace cdb {
 
@@ -89,23 +90,28 @@ struct GenerateFrontFn {
 #endif
 };
 
-// (2) Preserve: traverse from every stored front node; the front is not rewritten.
+// (2) Preserve: traverse from every stored front node; the front is not rewritten. On the
+// GPU the traversals left after the first step are shared out within each warp
+// (front/warp_traversal.h).
 struct PreserveFrontFn {
   using Stage = PairStage;
+  static constexpr bool kWarpTraversal = true;
   FrontView view;
   PairSink pairs;
   const uint32_t* prim;
   const uint32_t* node;
-  CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
-    const PairSink sink = pairs.staged(stage);
-    const FrontTree& tree = view.tree;
+  // Front node e's own test: its pair if it is a leaf that overlaps, and the rest.
+  CDB_HD PreserveTask first_step(uint32_t e, const PairSink& sink) const {
     const uint32_t i = prim[e], j = node[e];
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-    const NextNode step = next_node(tree.bvh, j, lo, hi);
-    if (step.leaf_hit)
-      sink.emit(lane_link(hi.w), step.prim);
-    else if (!step.stop)
-      traverse_range<false>(view, i, lo, hi, step.next, step.escape, sink, FrontSink{});
+    const NextNode step = next_node(view.tree.bvh, j, lo, hi);
+    if (step.leaf_hit) sink.emit(lane_link(hi.w), step.prim);
+    return {lo, hi, step.next, step.escape, !step.stop};
+  }
+  CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
+    const PairSink sink = pairs.staged(stage);
+    const PreserveTask t = first_step(e, sink);
+    if (t.busy) traverse_range<false>(view, 0, t.lo, t.hi, t.node, t.end, sink, FrontSink{});
   }
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const { pairs.flush(s); }
@@ -188,6 +194,16 @@ struct BothFrontsFn {
   }
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const { first.flush(s); }
+  // Every thread of the launch, e past the fronts included (those lanes only help): each
+  // lane's first step, then the rest shared out in the warp. Both passes share the tree.
+  __device__ void warp(uint32_t e, uint32_t n, Stage* stage) const
+    requires F::kWarpTraversal
+  {
+    const PairSink sink = first.pairs.staged(stage);
+    PreserveTask t;
+    if (e < n) t = e < n0 ? first.first_step(e, sink) : second.first_step(e - n0, sink);
+    traverse_in_warp(first.view.tree.bvh, t, sink);
+  }
 #endif
 };
 
