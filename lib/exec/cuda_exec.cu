@@ -45,6 +45,11 @@ void launch_reduce_box_final(const Aabb<float>* partials, uint32_t count, Aabb<f
 }
 
 CudaExec::CudaExec(const ExecOptions& options) : options_(options) {
+  int device = 0, sms = 0, per_sm = 0;
+  cuda_check(cudaGetDevice(&device), "device query");
+  cuda_check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "SM count query");
+  cuda_check(cudaDeviceGetAttribute(&per_sm, cudaDevAttrMaxThreadsPerMultiProcessor, device), "threads per SM query");
+  resident_threads_ = uint64_t(sms) * uint64_t(per_sm);
   cuda_check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "stream creation");
   cuda_check(cudaEventCreateWithFlags(&staging_copied_, cudaEventDisableTiming), "event creation");
 }

@@ -199,6 +199,8 @@ class CudaExec {
 
   MemoryResource& memory() { return memory_; }
   cudaStream_t stream() const { return stream_; }
+  // Threads the GPU holds at once (SMs x threads per SM): a launch's wave.
+  uint64_t resident_threads() const { return resident_threads_; }
   const char* name() const { return "cuda"; }
 
   template <class F>
@@ -315,6 +317,7 @@ class CudaExec {
   void copy_bytes(void* dst, const void* src, size_t bytes) const;
   void upload_bytes(void* dst, const void* src, size_t bytes);
   ExecOptions options_;
+  uint64_t resident_threads_ = 0;
   cudaStream_t stream_ = nullptr;
   CudaMemory memory_;
   mutable uint64_t host_syncs_ = 0;

@@ -41,6 +41,8 @@ class HostExec {
 
   MemoryResource& memory() { return memory_; }
   const char* name() const { return "cpu"; }
+  // The threads that run at once (OpenMP's).
+  uint64_t resident_threads() const { return uint64_t(omp_get_max_threads()); }
 
   template <class F>
   void for_each_n(size_t n, const F& f, Balance balance = Balance::even) const {

@@ -100,6 +100,7 @@ struct PreserveFrontFn {
   PairSink pairs;
   const uint32_t* prim;
   const uint32_t* node;
+  bool share_in_warp = true;  // on the GPU: each lane alone when false
   // Front node e's own test: its pair if it is a leaf that overlaps, and the rest.
   CDB_HD PreserveTask first_step(uint32_t e, const PairSink& sink) const {
     const uint32_t i = prim[e], j = node[e];
@@ -199,6 +200,10 @@ struct BothFrontsFn {
   __device__ void warp(uint32_t e, uint32_t n, Stage* stage) const
     requires F::kWarpTraversal
   {
+    if (!first.share_in_warp) {
+      if (e < n) (*this)(e, stage);
+      return;
+    }
     const PairSink sink = first.pairs.staged(stage);
     PreserveTask t;
     if (e < n) t = e < n0 ? first.first_step(e, sink) : second.first_step(e - n0, sink);

@@ -77,10 +77,10 @@ class FrontQuery {
 
   // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch;
   // pairs staged per block or appended directly (`staged`, core/append_stage.h).
-  void preserve(Exec& exec, PairBuffer<Exec>& pairs, bool staged) {
+  void preserve(Exec& exec, PairBuffer<Exec>& pairs, bool staged, bool share_in_warp) {
     if (!active_) return;
     auto pass = [&](const FrontArrays<Exec>& f) {
-      return PreserveFrontFn{view(), pairs.sink(), f.prim.data(), f.node.data()};
+      return PreserveFrontFn{view(), pairs.sink(), f.prim.data(), f.node.data(), share_in_warp};
     };
     const BothFrontsFn<PreserveFrontFn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)};
     if (staged)

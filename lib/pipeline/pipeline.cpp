@@ -19,6 +19,17 @@ BoxPrecision parse_box_precision(const std::string& name) {
   fail("unknown box precision '" + name + "' (known: fp32, q16)");
 }
 
+const char* preserve_warp_name(PreserveWarp w) {
+  return w == PreserveWarp::on ? "on" : w == PreserveWarp::off ? "off" : "auto";
+}
+
+PreserveWarp parse_preserve_warp(const std::string& name) {
+  if (name == "auto") return PreserveWarp::automatic;
+  if (name == "on") return PreserveWarp::on;
+  if (name == "off") return PreserveWarp::off;
+  fail("unknown preserve warp sharing '" + name + "' (known: auto, on, off)");
+}
+
 bool config_conservative(const PipelineConfig& config) {
   // The baselines and the per-frame rebuild never keep stale boxes.
   for (const char* n : {"sweep", "hash", "grid", "brute", "reference"})
