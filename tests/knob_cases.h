@@ -176,6 +176,15 @@ inline bool keeps_stale_boxes(const std::string& name) {
   return !(name == "sweep" || name == "hash" || name == "grid" || name == "brute" || name == "reference");
 }
 
+// A pipeline on `device` whose pair buffer starts too small, so that it must grow.
+inline PipelineConfig growing_config(const std::string& device, const std::string& name) {
+  PipelineConfig cfg;
+  cfg.device = device;
+  cfg.name = name;
+  cfg.pairs_per_triangle = 0.5;
+  return cfg;
+}
+
 // --dependent-launch (kernels scheduled while their predecessors run, waiting for them on
 // the device), --preserve-warp (on with dependent launches, off without) and --phase-timing
 // off: every pipeline reports exactly the oracle's pairs, every frame, with and without
@@ -185,10 +194,7 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
   const Topology& topo = funnel->topology();
   std::vector<vec3f> v;
   for (const auto& name : pipeline_names()) {
-    PipelineConfig cfg;
-    cfg.device = device;
-    cfg.name = name;
-    cfg.pairs_per_triangle = 0.5;  // must grow
+    PipelineConfig cfg = growing_config(device, name);
     cfg.front_cycle = 4;
     cfg.cuda_graph = graph;
     cfg.dependent_launch = dependent;
@@ -219,10 +225,7 @@ inline void check_margin(const std::string& device, FrameSource& source, float m
   const Topology& topo = source.topology();
   std::vector<vec3f> v;
   for (const auto& name : pipeline_names()) {
-    PipelineConfig cfg;
-    cfg.device = device;
-    cfg.name = name;
-    cfg.pairs_per_triangle = 0.5;  // must grow
+    PipelineConfig cfg = growing_config(device, name);
     cfg.box_margin = margin;
     auto p = make_pipeline(cfg);
     p->set_topology(topo);
