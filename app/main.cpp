@@ -52,7 +52,7 @@ struct CommonOptions {
   std::string cuda_graph = "on";
   std::string dependent_launch = "on";
   std::string phase_timing = "on";
-  std::string warp_traversal = "auto";
+  std::string preserve_warp = "auto";
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
   std::vector<std::string> sets;  // generator overrides, key=value
 };
@@ -115,9 +115,9 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "kernels, which in a CUDA graph costs a node and keeps the next kernel from launching early)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
-  cmd->add_option("--warp-traversal", o.warp_traversal,
-                  "front pipelines on cuda: preserve and update share each front node's traversal with the idle "
-                  "lanes of its warp; auto: while the fronts fit in 32 waves of the GPU's resident threads")
+  cmd->add_option("--preserve-warp", o.preserve_warp,
+                  "front pipelines on cuda: preserve shares each front node's traversal with the idle lanes of its "
+                  "warp; auto: while the fronts fit in 32 waves of the GPU's resident threads")
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   cmd->add_option("--refit-top-leaves", o.refit_top_leaves,
@@ -176,7 +176,7 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.cuda_graph = o.cuda_graph == "on";
   c.dependent_launch = o.dependent_launch == "on";
   c.phase_timing = o.phase_timing == "on";
-  c.warp_traversal = parse_warp_traversal(o.warp_traversal);
+  c.preserve_warp = parse_preserve_warp(o.preserve_warp);
   c.refit_top_leaves = o.refit_top_leaves;
   c.restructure_quality = o.restructure.restructure_quality;
   c.restructure_min_leaves = o.restructure.restructure_min_leaves;

@@ -186,7 +186,7 @@ inline PipelineConfig growing_config(const std::string& device, const std::strin
 }
 
 // --dependent-launch (kernels scheduled while their predecessors run, waiting for them on
-// the device), --warp-traversal (on with dependent launches, off without) and --phase-timing
+// the device), --preserve-warp (on with dependent launches, off without) and --phase-timing
 // off: every pipeline reports exactly the oracle's pairs, every frame, with and without
 // frame graphs; with phases off no phase but the upload has a time and the frame has one.
 inline void check_launch_knobs(const std::string& device, bool graph, bool dependent) {
@@ -198,7 +198,7 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
     cfg.front_cycle = 4;
     cfg.cuda_graph = graph;
     cfg.dependent_launch = dependent;
-    cfg.warp_traversal = dependent ? WarpTraversal::on : WarpTraversal::off;
+    cfg.preserve_warp = dependent ? PreserveWarp::on : PreserveWarp::off;
     cfg.phase_timing = false;
     auto p = make_pipeline(cfg);
     p->set_topology(topo);

@@ -102,21 +102,19 @@ struct PreserveFrontFn {
   const uint32_t* node;
   bool share_in_warp = true;  // on the GPU: each lane alone when false
   // Front node e's own test: its pair if it is a leaf that overlaps, and the rest.
-  CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
+  CDB_HD PreserveTask first_step(uint32_t e, const PairSink& sink) const {
     const uint32_t i = prim[e], j = node[e];
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     const NextNode step = next_node(view.tree.bvh, j, lo, hi);
-    if (step.leaf_hit) pairs.staged(stage).emit(lane_link(hi.w), step.prim);
-    return {lo, hi, i, step.next, step.escape, !step.stop};
+    if (step.leaf_hit) sink.emit(lane_link(hi.w), step.prim);
+    return {lo, hi, step.next, step.escape, !step.stop};
   }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
-    const TraversalTask t = first_step(e, stage);
-    if (t.busy) traverse_range<false>(view, t.query, t.lo, t.hi, t.node, t.end, pairs.staged(stage), FrontSink{});
+    const PairSink sink = pairs.staged(stage);
+    const PreserveTask t = first_step(e, sink);
+    if (t.busy) traverse_range<false>(view, 0, t.lo, t.hi, t.node, t.end, sink, FrontSink{});
   }
 #if defined(__CUDACC__)
-  __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
-    traverse_in_warp<false>(view.tree.bvh, t, pairs.staged(stage), FrontSink{});
-  }
   __device__ void flush(Stage& s) const { pairs.flush(s); }
 #endif
 };
@@ -128,31 +126,33 @@ struct PreserveFrontFn {
 // to it, so the front stays a partition of (i, N-1]. In a self front the climb never reaches
 // a node holding leaf i: such a node contains leaf i's box and so always overlaps. A cross
 // front partitions all leaves: its climb may end at the root, which is then kept (father
-// kNoNode), and the leftmost-node argument is the same. Everything but the sprout's
-// traversal, which is returned as a task (busy when front node j sprouts).
-CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const PairSink& pairs,
-                                                    const FrontSink& front, uint32_t i, uint32_t j) {
+// kNoNode), and the leftmost-node argument is the same.
+CDB_HD_INLINE void update_front_node(const FrontView& view, const PairSink& pairs,
+                                     const FrontSink& front, uint32_t i, uint32_t j) {
   const FrontTree& tree = view.tree;
   const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
   const NextNode step = next_node(tree.bvh, j, lo, hi);
   if (step.leaf_hit) {
     pairs.emit(lane_link(hi.w), step.prim);
     front.push(i, j, 1);
-    return {};
+    return;
   }
-  if (!step.stop) return {lo, hi, i, step.next, step.escape, true};
+  if (!step.stop) {
+    traverse_range<true>(view, i, lo, hi, step.next, step.escape, pairs, front);
+    return;
+  }
   // Each father's left link comes with its box (node_ref.h).
   uint32_t child = j, father = tree.parent(j);
   for (;;) {
     if (father == kNoNode) {
       front.push(i, child, 0);
-      return {};
+      return;
     }
     const vec4f flo = tree.bvh.node_lo[father], fhi = tree.bvh.node_hi[father];
     const bool left_child = lane_link(flo.w) == child, hit = overlaps(lo, hi, flo, fhi);
     if (!left_child || hit) {
       if (left_child || hit) front.push(i, child, 0);
-      return {};
+      return;
     }
     child = father;
     father = tree.node_parent[father];
@@ -161,26 +161,16 @@ CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const
 
 struct UpdateFrontFn {
   using Stage = PairFrontStage;
-  static constexpr bool kWarpTraversal = true;
   FrontView view;
   PairSink pairs;
   FrontSink front;
   const uint32_t* prim;
   const uint32_t* node;
-  bool share_in_warp = true;  // on the GPU: each lane alone when false
-  CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
-  CDB_HD FrontSink front_sink(Stage* stage) const { return front.staged(stage ? &stage->front : nullptr); }
-  CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
-    return update_front_node_first(view, pair_sink(stage), front_sink(stage), prim[e], node[e]);
-  }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
-    const TraversalTask t = first_step(e, stage);
-    if (t.busy) traverse_range<true>(view, t.query, t.lo, t.hi, t.node, t.end, pair_sink(stage), front_sink(stage));
+    update_front_node(view, pairs.staged(stage ? &stage->pairs : nullptr),
+                      front.staged(stage ? &stage->front : nullptr), prim[e], node[e]);
   }
 #if defined(__CUDACC__)
-  __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
-    traverse_in_warp<true>(view.tree.bvh, t, pair_sink(stage), front_sink(stage));
-  }
   __device__ void flush(Stage& s) const {
     pairs.flush(s.pairs);
     front.flush(s.front);
@@ -206,8 +196,7 @@ struct BothFrontsFn {
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const { first.flush(s); }
   // Every thread of the launch, e past the fronts included (those lanes only help): each
-  // lane's first step, then the rest shared out in the warp. Both passes share the tree
-  // and the sinks.
+  // lane's first step, then the rest shared out in the warp. Both passes share the tree.
   __device__ void warp(uint32_t e, uint32_t n, Stage* stage) const
     requires F::kWarpTraversal
   {
@@ -215,9 +204,10 @@ struct BothFrontsFn {
       if (e < n) (*this)(e, stage);
       return;
     }
-    TraversalTask t;
-    if (e < n) t = e < n0 ? first.first_step(e, stage) : second.first_step(e - n0, stage);
-    first.rest_in_warp(t, stage);
+    const PairSink sink = first.pairs.staged(stage);
+    PreserveTask t;
+    if (e < n) t = e < n0 ? first.first_step(e, sink) : second.first_step(e - n0, sink);
+    traverse_in_warp(first.view.tree.bvh, t, sink);
   }
 #endif
 };

@@ -24,7 +24,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"cuda_graph", c.cuda_graph},
       {"dependent_launch", c.dependent_launch},
       {"phase_timing", c.phase_timing},
-      {"warp_traversal", warp_traversal_name(c.warp_traversal)},
+      {"preserve_warp", preserve_warp_name(c.preserve_warp)},
       {"refit_top_leaves", c.refit_top_leaves},
       {"conservative", config_conservative(c)},
   };

@@ -69,7 +69,7 @@ class FrontPipeline final : public Pipeline {
     if (plan_.restructure) restructure_.reserve(exec_, bvh_.num_leaves, config_.restructure_min_leaves);
     frame_ = 0;
     stage_preserve_ = true;
-    warp_traversal_ = true;
+    warp_preserve_ = true;
     pending_ = {};
     q_ref_ = 0.0;
     ++graph_version_;
@@ -142,7 +142,7 @@ class FrontPipeline final : public Pipeline {
       stats.q_candidates = c[4] ? double(c[6]) / 1000.0 / double(c[4]) : 0.0;
     }
     record_timings(timer_, stats);
-    choose_front_launches(stats.pairs);
+    choose_preserve_launch(stats.pairs);
     ++frame_;
     return stats;
   }
@@ -304,13 +304,13 @@ class FrontPipeline final : public Pipeline {
       timer_.start(phase_of(op));
       switch (op) {
         case Op::preserve:
-          fq.preserve(exec_, pairs_, stage_preserve_, warp_traversal_);
+          fq.preserve(exec_, pairs_, stage_preserve_, warp_preserve_);
           break;
         case Op::generate:
           fq.generate(exec_, pairs_, histogram);
           break;
         case Op::update:
-          fq.update(exec_, pairs_, histogram, warp_traversal_);
+          fq.update(exec_, pairs_, histogram);
           break;
         case Op::restructure:
           fq.restructure(exec_, pairs_, histogram, restructure_.view());
@@ -338,19 +338,18 @@ class FrontPipeline final : public Pipeline {
   // Preserve stages its pairs per block while blocks produce enough of them to pay for the
   // stage's flush (core/append_stage.h): at least kStagedPairsPerBlock per block of front
   // nodes in the frame just read back (cloth scenes 60-90, n-body 11 on the H100). A change
-  // is a different launch, so the steady frame's graph is recorded again. Preserve's and
-  // update's traversals are shared within warps as --warp-traversal says (WarpTraversal),
-  // from the fronts the frame leaves.
+  // is a different launch, so the steady frame's graph is recorded again.
+  // The traversals are shared within warps as --preserve-warp says (PreserveWarp).
   static constexpr uint64_t kStagedPairsPerBlock = 32;
-  void choose_front_launches(uint64_t pairs) {
+  void choose_preserve_launch(uint64_t pairs) {
     const uint64_t fronts = self_.total() + inter_.total() + rigid_self_.total();
     const bool stage = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts;
-    const bool warp = config_.warp_traversal == WarpTraversal::on ||
-                      (config_.warp_traversal == WarpTraversal::automatic &&
-                       fronts <= kWarpTraversalWaves * exec_.resident_threads());
-    if (stage != stage_preserve_ || warp != warp_traversal_) ++graph_version_;
+    const bool warp = config_.preserve_warp == PreserveWarp::on ||
+                      (config_.preserve_warp == PreserveWarp::automatic &&
+                       fronts <= kPreserveWarpWaves * exec_.resident_threads());
+    if (stage != stage_preserve_ || warp != warp_preserve_) ++graph_version_;
     stage_preserve_ = stage;
-    warp_traversal_ = warp;
+    warp_preserve_ = warp;
   }
 
   // (4) Balance, before each update: the fronts' content is unchanged.
@@ -387,8 +386,8 @@ class FrontPipeline final : public Pipeline {
   uint64_t frame_ = 0, generated_at_ = 0;
   typename Exec::FrameGraph graph_;  // the steady frame's recording (--cuda-graph)
   uint64_t graph_version_ = 0;       // changes whenever fronts or buffers may have
-  bool stage_preserve_ = true;  // preserve's pairs staged per block (choose_front_launches)
-  bool warp_traversal_ = true;   // preserve's and update's traversals shared within warps (choose_front_launches)
+  bool stage_preserve_ = true;  // preserve's pairs staged per block (choose_preserve_launch)
+  bool warp_preserve_ = true;   // preserve's traversals shared within warps (choose_preserve_launch)
 };
 
 }  // namespace cdb

@@ -90,11 +90,11 @@ class FrontQuery {
   }
 
   // (3) Update: sprout and prune (Alg. 1). Both kinds in one launch.
-  void update(Exec& exec, PairBuffer<Exec>& pairs, bool histogram, bool share_in_warp) {
+  void update(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
     if (!active_) return;
     const FrontSink sink = produce_sink(exec, pairs, histogram);
     auto pass = [&](const FrontArrays<Exec>& f) {
-      return UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data(), share_in_warp};
+      return UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data()};
     };
     exec.for_each_staged(total(), BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
                          Balance::uneven);

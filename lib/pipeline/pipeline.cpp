@@ -19,15 +19,15 @@ BoxPrecision parse_box_precision(const std::string& name) {
   fail("unknown box precision '" + name + "' (known: fp32, q16)");
 }
 
-const char* warp_traversal_name(WarpTraversal w) {
-  return w == WarpTraversal::on ? "on" : w == WarpTraversal::off ? "off" : "auto";
+const char* preserve_warp_name(PreserveWarp w) {
+  return w == PreserveWarp::on ? "on" : w == PreserveWarp::off ? "off" : "auto";
 }
 
-WarpTraversal parse_warp_traversal(const std::string& name) {
-  if (name == "auto") return WarpTraversal::automatic;
-  if (name == "on") return WarpTraversal::on;
-  if (name == "off") return WarpTraversal::off;
-  fail("unknown --warp-traversal '" + name + "' (known: auto, on, off)");
+PreserveWarp parse_preserve_warp(const std::string& name) {
+  if (name == "auto") return PreserveWarp::automatic;
+  if (name == "on") return PreserveWarp::on;
+  if (name == "off") return PreserveWarp::off;
+  fail("unknown preserve warp sharing '" + name + "' (known: auto, on, off)");
 }
 
 bool config_conservative(const PipelineConfig& config) {

@@ -25,17 +25,16 @@ const char* box_precision_name(BoxPrecision p);
 // Throws cdb::Error naming the known values.
 BoxPrecision parse_box_precision(const std::string& name);
 
-// Front traversals on CUDA (front/warp_traversal.h): preserve and update share each front
-// node's traversal with the idle lanes of its warp. automatic: while the fronts fit in
-// kWarpTraversalWaves waves of the GPU's resident threads, where the launch's tail is its
-// longest lanes; past that the SMs are full anyway and the sharing's votes cost more than
-// they save.
-enum class WarpTraversal { automatic, on, off };
-inline constexpr uint64_t kWarpTraversalWaves = 32;
+// Preserve on CUDA (front/warp_traversal.h): share each front node's traversal with the idle
+// lanes of its warp. automatic: while the fronts fit in kPreserveWarpWaves waves of the
+// GPU's resident threads, where the launch's tail is its longest lanes; past that the SMs
+// are full anyway and the sharing's votes cost more than they save.
+enum class PreserveWarp { automatic, on, off };
+inline constexpr uint64_t kPreserveWarpWaves = 32;
 
-const char* warp_traversal_name(WarpTraversal w);
+const char* preserve_warp_name(PreserveWarp w);
 // Throws cdb::Error naming the known values.
-WarpTraversal parse_warp_traversal(const std::string& name);
+PreserveWarp parse_preserve_warp(const std::string& name);
 
 struct PipelineConfig {
   std::string name = "bvh";     // see pipeline_names()
@@ -86,7 +85,7 @@ struct PipelineConfig {
   // Time each phase of a frame (refit, preserve, ...) with events; off: only the frame and
   // its upload, so no event stands between two kernels.
   bool phase_timing = true;
-  WarpTraversal warp_traversal = WarpTraversal::automatic;
+  PreserveWarp preserve_warp = PreserveWarp::automatic;
   // Refit: trees of up to this many leaves refit their top (the nodes spanning refit
   // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
