@@ -5,10 +5,12 @@ an A/B call), the medians over its graph-replayed refit+preserve frames of the f
 the refit and preserve phases, the time outside them (total - refit - preserve: launches
 and event nodes between the phases, the gap before the recorded frame starts) and the
 upload, which the total leaves out. Medians are taken per column, so the outside column is
-the median of each frame's difference, not the difference of the medians.
+the median of each frame's difference, not the difference of the medians. Runs made with
+--phase-timing off have a total and an upload only (their phase columns read "—").
 
   scripts/steady_breakdown.py DIR [DIR ...] > breakdown.md
 """
+import json
 import os
 import sys
 
@@ -16,6 +18,12 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cdb_results as cr  # noqa: E402
+
+
+def phases_timed(run):
+    """False for a run made with --phase-timing off (files from before the flag timed them)."""
+    options = json.loads(run.attrs.get("params_json", "{}") or "{}").get("options", {})
+    return options.get("phase-timing", "on") != "off"
 
 
 def rows_of(directory):
@@ -28,9 +36,11 @@ def rows_of(directory):
         us = {name: run.column(f"t_{name}_ms")[sel] * 1e3 for name in ("total", "refit", "preserve", "upload")}
         outside = us["total"] - us["refit"] - us["preserve"]
         stem = os.path.splitext(os.path.basename(run.path))[0]
+        # --phase-timing off: only the total and the upload were timed.
+        timed = phases_timed(run)
+        phase = (lambda x: f"{np.median(x):.1f}") if timed else (lambda x: "—")
         rows.append([os.path.basename(os.path.normpath(directory)), stem, str(int(sel.sum())),
-                     f"{np.median(us['total']):.1f}", f"{np.median(us['refit']):.1f}",
-                     f"{np.median(us['preserve']):.1f}", f"{np.median(outside):.1f}",
+                     f"{np.median(us['total']):.1f}", phase(us["refit"]), phase(us["preserve"]), phase(outside),
                      f"{np.median(us['upload']):.1f}"])
     return rows
 

@@ -161,6 +161,12 @@ mkdir -p "$tmp/gpu"
 tar -xJf "$root/results/gpu-targets/h5-now.tar.xz" -C "$tmp/gpu"
 check "steady_breakdown on GPU results" 0 "^\| targets \| steady-funnel-b \| [0-9]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|$" -- \
   "$python" "$root/scripts/steady_breakdown.py" "$tmp/gpu/targets"
+# Runs made with --phase-timing off have a total and an upload, no phases.
+has "steady_breakdown untimed run" "$tmp/out" "^\| targets \| untimed-funnel-b \| [0-9]+ \| [0-9.]+ \| — \| — \| — \| [0-9.]+ \|$"
+# The funnel-size target is judged on the untimed runs, with four digits.
+check "perf_targets judges the steady frame untimed" 0 \
+  "^\| steady frame of a/b/c at funnel size ≤ 0\.050 \| 0\.[0-9]{4}–0\.[0-9]{4} \(median of the graph-replayed refit\+preserve frames, phases untimed\) \| (met|\*\*not met\*\*) \|$" -- \
+  "$python" "$root/scripts/perf_targets.py" "$tmp/gpu/targets"
 check "steady_breakdown without replayed frames" 1 "no graph-replayed refit\+preserve frames" -- \
   "$python" "$root/scripts/steady_breakdown.py" "$tmp/targets"
 check "perf_targets unknown control" 1 "--controls: unknown pipeline\(s\) gird" -- \
