@@ -117,7 +117,8 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
       ->capture_default_str();
   cmd->add_option("--preserve-warp", o.preserve_warp,
                   "front pipelines on cuda: preserve shares each front node's traversal with the idle lanes of its "
-                  "warp; auto: while the fronts fit in 32 waves of the GPU's resident threads")
+                  "warp; auto: while the fronts fit in " + std::to_string(kPreserveWarpWaves) +
+                      " waves of the GPU's resident threads")
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   cmd->add_option("--refit-top-leaves", o.refit_top_leaves,

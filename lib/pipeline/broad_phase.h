@@ -34,7 +34,8 @@ class BroadPhase final : public Pipeline {
   BroadPhase(const PipelineConfig& config, BroadPhaseMethod method)
       : config_(config),
         method_(method),
-        exec_(ExecOptions{config.dependent_launch}), timer_(exec_, config.phase_timing),
+        exec_(ExecOptions{config.dependent_launch}),
+        timer_(exec_, config.phase_timing),
         mesh_(exec_),
         bvh_(exec_),
         rigid_bvh_(exec_, "rigid_bvh"),

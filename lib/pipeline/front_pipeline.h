@@ -41,7 +41,8 @@ template <class Exec, class Timer>
 class FrontPipeline final : public Pipeline {
  public:
   FrontPipeline(const PipelineConfig& config, FrontPlan plan)
-      : config_(config), plan_(plan), exec_(ExecOptions{config.dependent_launch}), timer_(exec_, config.phase_timing), mesh_(exec_), bvh_(exec_),
+      : config_(config), plan_(plan), exec_(ExecOptions{config.dependent_launch}),
+        timer_(exec_, config.phase_timing), mesh_(exec_), bvh_(exec_),
         rigid_bvh_(exec_, "rigid_bvh"), pairs_(exec_), restructure_(exec_),
         self_(exec_, "front", kSelfCounters), inter_(exec_, "inter_front", kInterCounters),
         rigid_self_(exec_, "rigid_front", kRigidCounters) {
