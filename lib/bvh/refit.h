@@ -39,7 +39,7 @@ struct RefitFn {
   static constexpr uint32_t kTile = kRefitTile;
   struct Shared {
     uint32_t arrived[kTile];
-    vec4f lo[kTile][2], hi[kTile][2];  // [split slot][left, right child]
+    float box[kTile][2][6];  // [split slot][left, right child]: lo xyz, hi xyz (handover_store)
   };
 
   MeshView mesh;
@@ -94,11 +94,13 @@ struct RefitFn {
       if (tile_first <= p_first && p_last <= tile_last) {
         const uint32_t slot = (from_left ? last : first - 1) - tile_first;
         const int side = from_left ? 0 : 1;
-        s.lo[slot][side] = lo;
-        s.hi[slot][side] = hi;
+        float* mine = s.box[slot][side];
+        handover_store(&mine[0], lo.x), handover_store(&mine[1], lo.y), handover_store(&mine[2], lo.z);
+        handover_store(&mine[3], hi.x), handover_store(&mine[4], hi.y), handover_store(&mine[5], hi.z);
         if (atomic_add_acq_rel_block(&s.arrived[slot], 1u) == 0) return;
-        slo = s.lo[slot][1 - side];
-        shi = s.hi[slot][1 - side];
+        float* other = s.box[slot][1 - side];
+        slo = {handover_load(&other[0]), handover_load(&other[1]), handover_load(&other[2]), 0};
+        shi = {handover_load(&other[3]), handover_load(&other[4]), handover_load(&other[5]), 0};
       } else {
         if (stop_at_spanning) return;
         if ((atomic_add_acq_rel(&flag[p], 1u) & 1u) == 0) return;

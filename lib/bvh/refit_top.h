@@ -150,17 +150,18 @@ struct RefitTopFn {
   CDB_HD void put(uint32_t s, uint32_t side, const vec4f& lo, const vec4f& hi, Shared& sh) const {
     if (s < shared_slots) {
       float* b = sh.box[s][side];
-      b[0] = lo.x, b[1] = lo.y, b[2] = lo.z, b[3] = hi.x, b[4] = hi.y, b[5] = hi.z;
+      handover_store(&b[0], lo.x), handover_store(&b[1], lo.y), handover_store(&b[2], lo.z);
+      handover_store(&b[3], hi.x), handover_store(&b[4], hi.y), handover_store(&b[5], hi.z);
     } else {
       span_lo[2 * size_t(s) + side] = lo;
       span_hi[2 * size_t(s) + side] = hi;
     }
   }
-  CDB_HD void get(uint32_t s, uint32_t side, vec4f& lo, vec4f& hi, const Shared& sh) const {
+  CDB_HD void get(uint32_t s, uint32_t side, vec4f& lo, vec4f& hi, Shared& sh) const {
     if (s < shared_slots) {
-      const float* b = sh.box[s][side];
-      lo = {b[0], b[1], b[2], 0};
-      hi = {b[3], b[4], b[5], 0};
+      float* b = sh.box[s][side];
+      lo = {handover_load(&b[0]), handover_load(&b[1]), handover_load(&b[2]), 0};
+      hi = {handover_load(&b[3]), handover_load(&b[4]), handover_load(&b[5]), 0};
     } else {
       lo = span_lo[2 * size_t(s) + side];
       hi = span_hi[2 * size_t(s) + side];

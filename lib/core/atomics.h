@@ -48,6 +48,28 @@ CDB_HD_INLINE uint32_t atomic_add_acq_rel_block(uint32_t* p, uint32_t v) {
 #endif
 }
 
+// Floats handed over between threads of one block through shared memory (the refit's
+// in-tile boxes): written and read with block-scope atomics. The order comes from the
+// acquire-release arrival atomic beside them either way, and plain accesses would do on the
+// hardware; but compute-sanitizer's racecheck does not model that order and reports plain
+// ones as hazards, and a race checker that stays silent on correct code is worth a few
+// shared-memory atomics a level. Relaxed: the arrival atomic orders them.
+CDB_HD_INLINE void handover_store(float* p, float v) {
+#if defined(__CUDA_ARCH__)
+  atomicExch_block(p, v);
+#else
+  *p = v;
+#endif
+}
+
+CDB_HD_INLINE float handover_load(float* p) {
+#if defined(__CUDA_ARCH__)
+  return __uint_as_float(atomicOr_block(reinterpret_cast<unsigned*>(p), 0u));
+#else
+  return *p;
+#endif
+}
+
 // Toggles bits of a word between threads of one block, acquire-release: arrival bits of the
 // refit's top (bvh/refit_top.h), one bit per node, whose second arrival sees its bit set.
 CDB_HD_INLINE uint32_t atomic_xor_acq_rel_block(uint32_t* p, uint32_t v) {
