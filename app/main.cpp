@@ -42,7 +42,7 @@ struct CommonOptions {
   std::string scenes_dir;
   int morton_bits = 63;
   uint32_t rebuild_every = 0;
-  uint32_t front_cycle = 4;
+  std::string front_cycle = "auto";
   PipelineConfig restructure;  // the restructure_* and threshold_* fields
   bool skip_adjacent = false;
   float box_margin = 0.0f;
@@ -73,8 +73,16 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "bvh pipeline: rebuild every K frames (0: build on the first frame only)")
       ->capture_default_str();
   cmd->add_option("--front-cycle", o.front_cycle,
-                  "front pipelines: frames per maintenance cycle (update on the last, preserve on the others)")
-      ->check(CLI::PositiveNumber)
+                  "front pipelines: when fronts are updated instead of preserved; auto: once the measured growth of "
+                  "the steady frames' cost since the last update has paid for one (rent or buy); K: every K-th frame "
+                  "since the fronts were generated (the paper's fixed cycle)")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            if (v == "auto") return "";
+            const bool digits = !v.empty() && v.size() < 10 && v.find_first_not_of("0123456789") == std::string::npos;
+            return digits && std::stoul(v) > 0 ? "" : "auto or a positive whole number of frames, not " + v;
+          },
+          "auto|K"))
       ->capture_default_str();
   cmd->add_flag("--skip-adjacent", o.skip_adjacent,
                 "co-vertex filtering: do not report pairs of triangles that share a vertex (oracle too)");
@@ -168,7 +176,7 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.device = device;
   c.morton_bits = o.morton_bits == 30 ? MortonBits::b30 : MortonBits::b63;
   c.rebuild_every = o.rebuild_every;
-  c.front_cycle = o.front_cycle;
+  c.front_cycle = o.front_cycle == "auto" ? 0u : uint32_t(std::stoul(o.front_cycle));
   c.skip_adjacent = o.skip_adjacent;
   c.box_margin = o.box_margin;
   c.swept_boxes = o.boxes == "swept";

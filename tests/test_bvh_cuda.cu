@@ -243,7 +243,7 @@ TEST_P(CudaFrontCycles, AllPipelinesExactEveryFrame) {
   for (auto& scene : front_scenes(96, 16)) check_pipelines_on(config_for("cuda", 0.5, 0.05, GetParam()), *scene);
 }
 
-INSTANTIATE_TEST_SUITE_P(Cycles, CudaFrontCycles, testing::Values(1u, 2u, 3u, 5u));
+INSTANTIATE_TEST_SUITE_P(Cycles, CudaFrontCycles, testing::Values(1u, 2u, 3u, 5u, 0u));
 
 class CudaExtremes : public testing::TestWithParam<BaselineCase> {
  protected:

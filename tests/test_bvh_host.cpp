@@ -66,8 +66,9 @@ TEST(HostPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   check_pipelines_on(config_for("cpu", 8.0), *funnel);
 }
 
-// Every front operation sequence: update every frame (cycle 1), alternating (2), and
-// longer cycles (3, 5: periodic's generate-instead-of-update); fronts that start far too
+// Every front operation sequence: update every frame (cycle 1), alternating (2), longer
+// cycles (3, 5: periodic's generate-instead-of-update) and the adaptive rule (0: auto,
+// whose schedule follows measured times); fronts that start far too
 // small so they must grow while sprouting.
 class HostFrontCycles : public testing::TestWithParam<uint32_t> {};
 
@@ -75,7 +76,7 @@ TEST_P(HostFrontCycles, AllPipelinesExactEveryFrame) {
   for (auto& scene : front_scenes(24, 12)) check_pipelines_on(config_for("cpu", 0.5, 0.05, GetParam()), *scene);
 }
 
-INSTANTIATE_TEST_SUITE_P(Cycles, HostFrontCycles, testing::Values(1u, 2u, 3u, 5u));
+INSTANTIATE_TEST_SUITE_P(Cycles, HostFrontCycles, testing::Values(1u, 2u, 3u, 5u, 0u));
 
 TEST(HostFrontPipelines, RecordTheOperationsOfTheirCycle) {
   auto wave = make_generator("cloth-wave", {{"res", 16}, {"frames", 9}});

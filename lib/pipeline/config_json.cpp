@@ -10,7 +10,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"rebuild_every", c.rebuild_every},
       {"pairs_per_triangle", c.pairs_per_triangle},
       {"front_per_triangle", c.front_per_triangle},
-      {"front_cycle", c.front_cycle},
+      {"front_cycle", c.front_cycle == 0 ? nlohmann::json("auto") : nlohmann::json(c.front_cycle)},
       {"skip_adjacent", c.skip_adjacent},
       {"restructure_quality", c.restructure_quality},
       {"restructure_min_leaves", c.restructure_min_leaves},

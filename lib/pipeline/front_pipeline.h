@@ -1,12 +1,12 @@
 #pragma once
-// Front-based pipelines (paper Fig. 4, §5.2) as one state machine over the executor. Each
-// frame: refit (or rebuild), then one front operation — (1) generate, (2) preserve,
-// (3) update, with (4) balance before it in pipeline b, or (5) restructure in pipeline c —
-// decided on the host from the frame counter and, in c, from the counters of the last
-// inspection (already read back with that frame's counters). Produced fronts are ordered by
+// Front-based pipelines (paper Fig. 4, §5.2): the executor of the frame plans that
+// FramePlanner (pipeline/frame_plan.h) decides. Each frame: refit (or rebuild), then one
+// front operation per query — (1) generate, (2) preserve, (3) update, with (4) balance
+// before it in pipelines b and c, or (5) restructure in c. Produced fronts are ordered by
 // histogram sort unless the strategy is `unordered`. One read-back a frame: pair, front and
 // inspection counters together; an overflow grows the buffer (logged, counted) and re-runs
-// the operation from the untouched current front.
+// the operation from the untouched current front. The steady frame (refit + preserve)
+// replays a CUDA graph while nothing it launches changed.
 //
 // A scene with declared queries and rigid objects is split (geometry/object_split.h): T_D
 // over the deformable faces follows this state machine; T_R over the rigid faces is built
@@ -23,34 +23,25 @@
 
 #include "front/quality.h"
 #include "pipeline/device_mesh.h"
+#include "pipeline/frame_plan.h"
 #include "pipeline/front_query.h"
 #include "pipeline/pipeline.h"
 
 namespace cdb {
 
-struct FrontPlan {
-  bool ordered = true;             // histogram-sort fronts after producing them
-  bool balance = false;            // (4) before every (3)
-  bool periodic = false;           // (1) instead of (3) every second cycle
-  bool rebuild_every_frame = false;  // the reference strategy
-  bool radix_sort = false;  // order fronts and BVH with a radix sort instead of the histogram (Fig. 6 baseline)
-  bool restructure = false;  // pipeline c: inspect quality, Formula 2, (5) restructure
-};
-
 template <class Exec, class Timer>
 class FrontPipeline final : public Pipeline {
  public:
-  FrontPipeline(const PipelineConfig& config, FrontPlan plan)
-      : config_(config), plan_(plan), exec_(ExecOptions{config.dependent_launch}),
+  FrontPipeline(const PipelineConfig& config, FrontStrategy strategy)
+      : config_(config), planner_(strategy, config), exec_(ExecOptions{config.dependent_launch}),
         timer_(exec_, config.phase_timing), mesh_(exec_), bvh_(exec_),
         rigid_bvh_(exec_, "rigid_bvh"), pairs_(exec_), restructure_(exec_),
         self_(exec_, "front", kSelfCounters), inter_(exec_, "inter_front", kInterCounters),
         rigid_self_(exec_, "rigid_front", kRigidCounters) {
     radix_.bind(exec_.memory());
-    if (config_.front_cycle == 0) fail("--front-cycle must be at least 1");
     if (config_.refit_every == 0) fail("--refit-every must be at least 1");
     mesh_.set_box_knobs(config_);
-    if (plan_.restructure) check_restructure_config(config_);
+    if (strategy().restructure) check_restructure_config(config_);
   }
 
   void set_topology(const Topology& topology) override {
@@ -65,14 +56,12 @@ class FrontPipeline final : public Pipeline {
     self_.plan(bvh_, bvh_, split.deformable_self, config_.front_per_triangle);
     inter_.plan(bvh_, rigid_bvh_, split.cross, config_.front_per_triangle);
     rigid_self_.plan(rigid_bvh_, rigid_bvh_, split.rigid_self, config_.front_per_triangle);
-    if (plan_.radix_sort)
+    if (strategy().radix_sort)
       radix_.reserve(exec_, std::max({self_.capacity(), inter_.capacity(), rigid_self_.capacity()}));
-    if (plan_.restructure) restructure_.reserve(exec_, bvh_.num_leaves, config_.restructure_min_leaves);
-    frame_ = 0;
+    if (strategy().restructure) restructure_.reserve(exec_, bvh_.num_leaves, config_.restructure_min_leaves);
+    planner_.reset();
     stage_preserve_ = true;
     warp_preserve_ = true;
-    pending_ = {};
-    q_ref_ = 0.0;
     ++graph_version_;
     exec_.sync();
   }
@@ -80,71 +69,62 @@ class FrontPipeline final : public Pipeline {
   FrameStats run_frame(const std::vector<vec3f>& vertices) override {
     FrameStats stats;
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
-    const Decision decision = decide(stats);
-    const bool rebuild = frame_ == 0 || plan_.rebuild_every_frame || decision == Decision::rebuild ||
-                         (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
-    // --refit-every: between refits both trees keep their last boxes (not conservative).
-    const bool stale = !rebuild && !refit_due(frame_, config_.refit_every);
-    if (rebuild) generated_at_ = frame_;
-    const Ops ops = choose_ops(rebuild, !rebuild && decision == Decision::restructure);
-    // The steady state: every query preserves its fronts, so the frame launches what the
-    // last steady frame launched, unless a buffer or a front changed since (graph_version_).
-    const bool steady = !rebuild && ops.self == Op::preserve && ops.inter == Op::preserve &&
-                        ops.rigid_self == Op::preserve;
+    const FramePlan plan = planner_.plan(bvh_.num_leaves);
+    stats.decision = formula2_name(plan.decision);
+    // The steady state launches what the last steady frame launched, unless a buffer or a
+    // front changed since (graph_version_).
+    const bool steady = plan.steady();
     if (!steady) {
       ++graph_version_;
-      stats.op = stale ? "stale" : update_trees(mesh, rebuild);
+      stats.op = plan.stale ? "stale" : update_trees(mesh, plan.rebuild);
     } else {
-      stats.op = stale ? "stale" : "refit";
+      stats.op = plan.stale ? "stale" : "refit";
     }
-    if (plan_.balance) balance(ops);
-    if (ops.self == Op::restructure) restructure_tree_and_classify_fronts();
-    // Inspected after update (the paper's circle 3) only: right after a rebuild Q is the
-    // reference, and a restructure keeps the stale front for the next update to refresh.
-    const bool inspect = plan_.restructure && q_ref_ > 0.0 && ops.self == Op::update;
+    if (plan.balance) balance(plan);
+    if (plan.self == FrontOp::restructure) restructure_tree_and_classify_fronts(plan.restructuring);
     for (bool first_pass = true;; first_pass = false) {
       if (steady && first_pass) {
-        stats.graph = frame_graph_run_name(run_steady(mesh, stale, ops));
+        stats.graph = frame_graph_run_name(run_steady(mesh, plan));
       } else {
         pairs_.reset_counters(exec_);
-        run_ops(ops);
+        run_ops(plan);
       }
-      if (inspect) inspect_quality();
+      if (plan.inspect) inspect_quality();
       timer_.stop_frame();
       const auto c = pairs_.read_counters(exec_);
       bool again = pairs_.grow_if_needed();
       for (Query q : kQueries)
-        if (ops.of(q) != Op::preserve) again = query(q).grow_if_needed(c) || again;
+        if (op_of(plan, q) != FrontOp::preserve) again = query(q).grow_if_needed(c) || again;
       if (!again) {
         for (Query q : kQueries)
-          if (ops.of(q) != Op::preserve) query(q).adopt(c, plan_.ordered);
+          if (op_of(plan, q) != FrontOp::preserve) query(q).adopt(c, strategy().ordered);
         break;
       }
       ++graph_version_;
       ++stats.query_reruns;
     }
-    if (ops.self == Op::generate) generated_at_ = frame_;
-    stats.op += std::string("+") + op_name(ops.self);
+    stats.op += std::string("+") + front_op_name(plan.self);
     stats.pairs = pairs_.count();
     stats.front_internal = self_.size(kInternalFront);
     stats.front_external = self_.size(kExternalFront);
     stats.front_inter = inter_.total();
     stats.front_rigid = rigid_self_.total();
-    stats.q_root = plan_.ordered && stats.front_external
+    stats.q_root = strategy().ordered && stats.front_external
                        ? double(stats.front_internal) / double(stats.front_external)
                        : 0.0;
-    if (plan_.restructure && rebuild) q_ref_ = stats.q_root;
-    if (inspect) {
+    Candidates found;
+    if (plan.inspect) {
       const auto c = pairs_.last_counters();
-      pending_.count = uint32_t(std::min<unsigned long long>(c[4], restructure_.max_candidates));
-      pending_.leaves = uint32_t(c[5]);
-      stats.candidates = c[4];
-      stats.candidate_leaves = c[5];
-      stats.q_candidates = c[4] ? double(c[6]) / 1000.0 / double(c[4]) : 0.0;
+      found.count = uint32_t(std::min<unsigned long long>(c[kCandidatesCounter], restructure_.max_candidates));
+      found.leaves = uint32_t(c[kCandidateLeavesCounter]);
+      stats.candidates = c[kCandidatesCounter];
+      stats.candidate_leaves = c[kCandidateLeavesCounter];
+      stats.q_candidates =
+          c[kCandidatesCounter] ? double(c[kCandidateQCounter]) / 1000.0 / double(c[kCandidatesCounter]) : 0.0;
     }
     record_timings(timer_, stats);
+    planner_.finish(plan, stats.total_ms, stats.q_root, found);
     choose_preserve_launch(stats.pairs);
-    ++frame_;
     return stats;
   }
 
@@ -152,18 +132,14 @@ class FrontPipeline final : public Pipeline {
   MemoryStats memory() const override { return const_cast<Exec&>(exec_).memory().stats(); }
 
  private:
-  // The pair buffer's counters: [0] pairs, [4..6] the inspection's ([3] is free);
-  // each front query counts its produced internal and external fronts in two more.
-  static constexpr size_t kSelfCounters = 1, kInterCounters = 7, kRigidCounters = 9;
+  // The pair buffer's counter block (PairBuffer, read back once a frame), by slot: [0] the
+  // pairs; each front query counts its produced internal and external fronts in two
+  // consecutive slots; pipeline c's inspection counts its candidate subtrees, their leaves
+  // and their summed Q (times 1000) in three (front/quality.h).
+  static constexpr size_t kSelfCounters = 1;
+  static constexpr size_t kCandidatesCounter = 3, kCandidateLeavesCounter = 4, kCandidateQCounter = 5;
+  static constexpr size_t kInterCounters = 6, kRigidCounters = 8;
   static_assert(kRigidCounters + 2 <= PairBuffer<Exec>::kCounters, "front counters past the block");
-
-  enum class Op { generate, preserve, update, restructure };
-  static const char* op_name(Op op) {
-    return op == Op::generate   ? "generate"
-           : op == Op::preserve ? "preserve"
-           : op == Op::update   ? "update"
-                                : "restructure";
-  }
 
   enum class Query { self, inter, rigid_self };
   static constexpr std::array<Query, 3> kQueries = {Query::self, Query::inter, Query::rigid_self};
@@ -171,20 +147,18 @@ class FrontPipeline final : public Pipeline {
     return q == Query::self ? self_ : q == Query::inter ? inter_ : rigid_self_;
   }
 
-  // The operation of each front query this frame.
-  struct Ops {
-    Op self, inter, rigid_self;
-    Op of(Query q) const { return q == Query::self ? self : q == Query::inter ? inter : rigid_self; }
-  };
+  const FrontStrategy& strategy() const { return planner_.strategy(); }
 
-  enum class Decision { none, refit, restructure, rebuild };
+  static FrontOp op_of(const FramePlan& p, Query q) {
+    return q == Query::self ? p.self : q == Query::inter ? p.inter : p.rigid_self;
+  }
 
   // Refit or rebuild T_D; T_R is built on the first frame and refitted after.
   std::string update_trees(const MeshView& mesh, bool rebuild) {
     const std::string op = update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild,
-                                            config_.morton_bits, plan_.radix_sort);
-    update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), frame_ == 0, config_.morton_bits,
-                     plan_.radix_sort, mesh_.face_object());
+                                            config_.morton_bits, strategy().radix_sort);
+    update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), planner_.frame() == 0,
+                     config_.morton_bits, strategy().radix_sort, mesh_.face_object());
     return op;
   }
 
@@ -201,10 +175,11 @@ class FrontPipeline final : public Pipeline {
   // A steady frame's work (refit unless stale, counters, preserve), through the frame graph
   // with --cuda-graph. The key holds what the launches depend on besides graph_version_:
   // the vertex buffers (swept boxes alternate them) and whether the frame refits.
-  FrameGraphRun run_steady(const MeshView& mesh, bool stale, const Ops& ops) {
+  FrameGraphRun run_steady(const MeshView& mesh, const FramePlan& plan) {
+    const bool stale = plan.stale;
     auto launch = [&] {
       if (stale || !refit_trees(mesh)) pairs_.reset_counters(exec_);
-      run_ops(ops);
+      run_ops(plan);
     };
     if (!config_.cuda_graph) {
       launch();
@@ -224,30 +199,14 @@ class FrontPipeline final : public Pipeline {
       fail("thresholds must satisfy 0 <= --threshold-refit <= --threshold-build");
   }
 
-  // Formula 2 (paper §4.2) on the candidates of the last inspection, as a share of the
-  // leaves. The paper prints the rebuild and restructure branches the other way round;
-  // restructuring many subtrees costs more than a rebuild and restructuring few is what it
-  // is for, so here a large share rebuilds (docs/design.md).
-  Decision decide(FrameStats& stats) {
-    if (!plan_.restructure || pending_.count == 0) return Decision::none;
-    const double share = double(pending_.leaves) / double(std::max<uint32_t>(bvh_.num_leaves, 1));
-    const Decision d = share < config_.threshold_refit   ? Decision::refit
-                       : share < config_.threshold_build ? Decision::restructure
-                                                         : Decision::rebuild;
-    stats.decision = d == Decision::refit ? "refit" : d == Decision::restructure ? "restructure" : "rebuild";
-    restructuring_ = pending_;
-    pending_ = {};
-    return d;
-  }
-
   // (5), first half: candidates described from the refitted T_D, its self fronts
   // classified against the old node ranges, then the candidate subtrees rebuilt. The front
   // pass that follows (run_ops) may be re-run on overflow; this part must not be.
-  void restructure_tree_and_classify_fronts() {
+  void restructure_tree_and_classify_fronts(Candidates restructuring) {
     timer_.start(Phase::restructure);
-    describe_candidates(exec_, bvh_, restructure_, restructuring_.count);
+    describe_candidates(exec_, bvh_, restructure_, restructuring.count);
     self_.classify(exec_, restructure_.view());
-    restructure_subtrees(exec_, bvh_, restructure_, restructuring_.count, restructuring_.leaves);
+    restructure_subtrees(exec_, bvh_, restructure_, restructuring.count, restructuring.leaves);
     timer_.stop(Phase::restructure);
   }
 
@@ -261,78 +220,61 @@ class FrontPipeline final : public Pipeline {
                                              bvh_.node_parent.data(),
                                              self_.front(kInternalFront).offset_log.data(),
                                              self_.front(kExternalFront).offset_log.data(),
-                                             float(config_.restructure_quality * q_ref_),
+                                             float(config_.restructure_quality * planner_.q_ref()),
                                              config_.restructure_min_leaves, max_leaves,
                                              restructure_.max_candidates, restructure_.node.data(),
-                                             pairs_.counter(4)});
+                                             pairs_.counter(kCandidatesCounter)});
     timer_.stop(Phase::inspect);
   }
 
-  // The self fronts of T_D follow the cycle, or restructure. The cross fronts name T_D's
-  // leaves, which a rebuild or a restructure renumbers: they regenerate then, and otherwise
-  // follow the cycle. T_R is only refitted after its build, so its self fronts follow the
-  // cycle (generating when T_D rebuilds, with everything else).
-  Ops choose_ops(bool rebuilt, bool restructure) const {
-    const Op cycle = choose_op(rebuilt);
-    return {restructure ? Op::restructure : cycle, restructure ? Op::generate : cycle, cycle};
-  }
+  bool histogram_sorted() const { return strategy().ordered && !strategy().radix_sort; }
 
-  Op choose_op(bool rebuilt) const {
-    if (rebuilt) return Op::generate;
-    const uint64_t since = frame_ - generated_at_;
-    if (since % config_.front_cycle != 0) return Op::preserve;
-    if (plan_.periodic && (since / config_.front_cycle) % 2 == 0) return Op::generate;
-    return Op::update;
-  }
-
-  bool histogram_sorted() const { return plan_.ordered && !plan_.radix_sort; }
-
-  static Phase phase_of(Op op) {
-    return op == Op::generate      ? Phase::generate
-           : op == Op::preserve    ? Phase::preserve
-           : op == Op::restructure ? Phase::restructure
-                                   : Phase::update;
+  static Phase phase_of(FrontOp op) {
+    return op == FrontOp::generate      ? Phase::generate
+           : op == FrontOp::preserve    ? Phase::preserve
+           : op == FrontOp::restructure ? Phase::restructure
+                                        : Phase::update;
   }
 
   // Every active query's operation, then the ordering of the fronts they produced.
-  void run_ops(const Ops& ops) {
+  void run_ops(const FramePlan& plan) {
     const bool histogram = histogram_sorted();
     bool produced = false;
     for (Query q : kQueries) {
       FrontQuery<Exec>& fq = query(q);
-      const Op op = ops.of(q);
+      const FrontOp op = op_of(plan, q);
       if (!fq.active()) continue;
       timer_.start(phase_of(op));
       switch (op) {
-        case Op::preserve:
+        case FrontOp::preserve:
           fq.preserve(exec_, pairs_, stage_preserve_, warp_preserve_);
           break;
-        case Op::generate:
+        case FrontOp::generate:
           fq.generate(exec_, pairs_, histogram);
           break;
-        case Op::update:
+        case FrontOp::update:
           fq.update(exec_, pairs_, histogram);
           break;
-        case Op::restructure:
+        case FrontOp::restructure:
           fq.restructure(exec_, pairs_, histogram, restructure_.view());
           break;
       }
       timer_.stop(phase_of(op));
-      produced = produced || op != Op::preserve;
+      produced = produced || op != FrontOp::preserve;
     }
-    if (!plan_.ordered || !produced) return;
-    if (plan_.radix_sort) {
+    if (!strategy().ordered || !produced) return;
+    if (strategy().radix_sort) {
       // The sort needs the produced sizes on the host: one more read-back on these frames.
       const auto c = pairs_.read_counters(exec_);
       timer_.start(Phase::front_order);
       for (Query q : kQueries)
-        if (ops.of(q) != Op::preserve) query(q).radix_order(exec_, radix_, c);
+        if (op_of(plan, q) != FrontOp::preserve) query(q).radix_order(exec_, radix_, c);
       timer_.stop(Phase::front_order);
       return;
     }
     timer_.start(Phase::front_order);
     for (Query q : kQueries)
-      if (ops.of(q) != Op::preserve) query(q).order(exec_, pairs_);
+      if (op_of(plan, q) != FrontOp::preserve) query(q).order(exec_, pairs_);
     timer_.stop(Phase::front_order);
   }
 
@@ -354,19 +296,19 @@ class FrontPipeline final : public Pipeline {
   }
 
   // (4) Balance, before each update: the fronts' content is unchanged.
-  void balance(const Ops& ops) {
+  void balance(const FramePlan& plan) {
     bool any = false;
-    for (Query q : kQueries) any = any || (ops.of(q) == Op::update && query(q).active());
+    for (Query q : kQueries) any = any || (op_of(plan, q) == FrontOp::update && query(q).active());
     if (!any) return;
     timer_.start(Phase::balance);
     for (Query q : kQueries)
-      if (ops.of(q) == Op::update)
-        query(q).balance(exec_, plan_.radix_sort ? &radix_ : nullptr);
+      if (op_of(plan, q) == FrontOp::update)
+        query(q).balance(exec_, strategy().radix_sort ? &radix_ : nullptr);
     timer_.stop(Phase::balance);
   }
 
   PipelineConfig config_;
-  FrontPlan plan_;
+  FramePlanner planner_;
   Exec exec_;
   Timer timer_;
   DeviceMesh<Exec> mesh_;
@@ -378,13 +320,6 @@ class FrontPipeline final : public Pipeline {
   FrontQuery<Exec> self_;        // T_D's leaves against T_D
   FrontQuery<Exec> inter_;       // T_D's leaves against T_R
   FrontQuery<Exec> rigid_self_;  // T_R's leaves against T_R
-  struct Candidates {
-    uint32_t count = 0, leaves = 0;
-  };
-  Candidates pending_;        // found by the last inspection, decided on next frame
-  Candidates restructuring_;  // being restructured this frame
-  double q_ref_ = 0.0;        // Q of the root after the last rebuild (pipeline c)
-  uint64_t frame_ = 0, generated_at_ = 0;
   typename Exec::FrameGraph graph_;  // the steady frame's recording (--cuda-graph)
   uint64_t graph_version_ = 0;       // changes whenever fronts or buffers may have
   bool stage_preserve_ = true;  // preserve's pairs staged per block (choose_preserve_launch)

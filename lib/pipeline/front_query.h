@@ -192,6 +192,7 @@ class FrontQuery {
         std::swap(f.node, f.raw_node);
       }
       f.size = size_t(c[counter_ + k]);
+      reserve_headroom(f);
       match_capacity(f);
     }
   }
@@ -215,6 +216,18 @@ class FrontQuery {
     }
     s.count = pairs.counter(counter_);
     return s;
+  }
+
+  // The next operation's output buffers hold the front just adopted with a quarter to
+  // spare: an update that sprouts a little more than it prunes then fits, instead of
+  // overflowing and running again (the dearest frame of a run was such a re-run). Growth
+  // is logged and counted as every growth is, and happens on a frame that already produced
+  // a front, not on a steady one.
+  static void reserve_headroom(FrontArrays<Exec>& f) {
+    const size_t want = f.size + f.size / 4;
+    if (f.raw_prim.capacity() >= want) return;
+    for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node}) a->reserve(want);
+    f.raw_mark.reserve(want);
   }
 
   // Scratch buffers swapped with the current front keep up with its capacity, so a front

@@ -46,9 +46,11 @@ struct PipelineConfig {
   double pairs_per_triangle = 8.0;
   // Initial front capacity per triangle and kind (internal, external); grows the same way.
   double front_per_triangle = 8.0;
-  // Front pipelines: frames per maintenance cycle; the last frame of a cycle updates the
-  // fronts (pipeline b also balances first), the others preserve them.
-  uint32_t front_cycle = 4;
+  // Front pipelines: when fronts are updated (pipelines b and c balance first) instead of
+  // preserved. 0 (--front-cycle auto): when the measured growth of the steady frames' cost
+  // since the last update has paid for one (pipeline/front_maintenance.h); K: every K-th
+  // frame since the fronts were generated, the paper's fixed cycle.
+  uint32_t front_cycle = 0;
   // Co-vertex filtering: pairs of triangles sharing a vertex are not reported.
   bool skip_adjacent = false;
   // Pipeline c / restructure (paper §4.1-4.2, docs/design.md "Quality and restructuring").

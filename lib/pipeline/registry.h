@@ -15,7 +15,7 @@ std::unique_ptr<Pipeline> make_pipeline_on(const PipelineConfig& c) {
   if (c.name == "grid") return std::make_unique<BroadPhase<Exec, Timer>>(c, BroadPhaseMethod::grid);
   if (c.name == "hash") return std::make_unique<BroadPhase<Exec, Timer>>(c, BroadPhaseMethod::hash);
   if (c.name == "brute") return std::make_unique<BroadPhase<Exec, Timer>>(c, BroadPhaseMethod::brute);
-  FrontPlan plan;
+  FrontStrategy plan;
   if (c.name == "unordered") {
     plan.ordered = false;
   } else if (c.name == "a") {

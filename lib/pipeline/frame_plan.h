@@ -1,0 +1,158 @@
+#pragma once
+// The front pipelines' per-frame decision (paper Fig. 4, §4.2, §5.2), apart from the kernels
+// that carry it out (pipeline/front_pipeline.h): build or refit the hierarchy, and which front
+// operation each query runs: (1) generate, (2) preserve, (3) update, with (4) balance before
+// it in pipelines b and c, or (5) restructure in c. Pure host logic over the frame counter,
+// the strategy, the measured frame costs (pipeline/front_maintenance.h) and, in c, what the
+// last quality inspection found.
+#include <algorithm>
+#include <cstdint>
+
+#include "pipeline/front_maintenance.h"
+#include "pipeline/pipeline.h"
+
+namespace cdb {
+
+// The paper's strategies (§5.2, Fig. 5) as choices of one front pipeline.
+struct FrontStrategy {
+  bool ordered = true;             // histogram-sort fronts after producing them
+  bool balance = false;            // (4) before every (3)
+  bool periodic = false;           // (1) instead of (3) every second maintenance
+  bool rebuild_every_frame = false;  // the reference strategy
+  bool radix_sort = false;  // order fronts and BVH with a radix sort instead of the histogram (Fig. 6 baseline)
+  bool restructure = false;  // pipeline c: inspect quality, Formula 2, (5) restructure
+};
+
+enum class FrontOp { generate, preserve, update, restructure };
+
+inline const char* front_op_name(FrontOp op) {
+  return op == FrontOp::generate   ? "generate"
+         : op == FrontOp::preserve ? "preserve"
+         : op == FrontOp::update   ? "update"
+                                   : "restructure";
+}
+
+// Formula 2 (paper §4.2) on the last inspection's candidates, as a share of the leaves.
+enum class Formula2 { none, refit, restructure, rebuild };
+
+inline const char* formula2_name(Formula2 d) {
+  return d == Formula2::refit ? "refit" : d == Formula2::restructure ? "restructure" : d == Formula2::rebuild ? "rebuild" : "";
+}
+
+// Degraded subtrees found by pipeline c's inspection: how many, and their leaves.
+struct Candidates {
+  uint32_t count = 0, leaves = 0;
+};
+
+// One frame of a front pipeline.
+struct FramePlan {
+  bool rebuild = false;  // build the trees (else refit them)
+  bool stale = false;    // --refit-every: keep the last boxes, refit nothing
+  // Each front query's operation: T_D's self fronts, T_D's leaves against T_R, T_R's self.
+  FrontOp self = FrontOp::preserve, inter = FrontOp::preserve, rigid_self = FrontOp::preserve;
+  bool balance = false;  // (4) before the updates
+  bool inspect = false;  // pipeline c: inspect T_D's quality after the update
+  Formula2 decision = Formula2::none;
+  Candidates restructuring;  // what (5) restructures this frame
+
+  bool steady() const {
+    return !rebuild && self == FrontOp::preserve && inter == FrontOp::preserve && rigid_self == FrontOp::preserve;
+  }
+};
+
+class FramePlanner {
+ public:
+  FramePlanner(FrontStrategy strategy, const PipelineConfig& config)
+      : strategy_(strategy), config_(config), maintenance_(config.front_cycle) {}
+
+  const FrontStrategy& strategy() const { return strategy_; }
+  const FrontMaintenance& maintenance() const { return maintenance_; }
+
+  // A new run over the frames: the first frame builds.
+  void reset() {
+    frame_ = generated_ = produced_ = 0;
+    pending_ = {};
+    q_ref_ = 0.0;
+    maintenance_.reset();
+  }
+
+  // The next frame's plan, for a tree T_D of `leaves` leaves.
+  FramePlan plan(uint32_t leaves) {
+    FramePlan p;
+    p.decision = formula2(leaves);
+    if (p.decision != Formula2::none) p.restructuring = pending_;
+    pending_ = {};
+    p.rebuild = frame_ == 0 || strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
+                (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
+    // --refit-every: between refits both trees keep their last boxes (not conservative).
+    p.stale = !p.rebuild && !(config_.refit_every <= 1 || frame_ % config_.refit_every == 0);
+    // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
+    // name T_D's leaves, which a rebuild or a restructure renumbers: they regenerate then.
+    // T_R is only refitted after its build, so its self fronts follow the rule.
+    const FrontOp cycle = maintenance_op(p.rebuild);
+    const bool restructure = !p.rebuild && p.decision == Formula2::restructure;
+    p.self = restructure ? FrontOp::restructure : cycle;
+    p.inter = restructure ? FrontOp::generate : cycle;
+    p.rigid_self = cycle;
+    p.balance = strategy_.balance && (p.self == FrontOp::update || p.inter == FrontOp::update ||
+                                      p.rigid_self == FrontOp::update);
+    // Inspected after an update (the paper's circle 3) only: right after a rebuild Q is the
+    // reference, and a restructure keeps the stale front for the next update to refresh.
+    p.inspect = strategy_.restructure && q_ref_ > 0.0 && p.self == FrontOp::update;
+    return p;
+  }
+
+  // After the frame ran: its cost without upload (ms), Q of the root (internal over external
+  // self-front nodes) and what its inspection found (capped at the candidates' buffer).
+  void finish(const FramePlan& p, double frame_ms, double q_root, Candidates found) {
+    const bool produced = p.self != FrontOp::preserve || p.inter != FrontOp::preserve ||
+                          p.rigid_self != FrontOp::preserve;
+    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild, frame_ms);
+    if (p.rebuild || p.self == FrontOp::generate) generated_ = frame_;
+    if (produced) {
+      produced_ = frame_;
+      maintenance_.produced();
+    }
+    if (strategy_.restructure && p.rebuild) q_ref_ = q_root;
+    if (p.inspect) pending_ = found;
+    ++frame_;
+  }
+
+  uint64_t frame() const { return frame_; }
+  // Q of the root after the last rebuild (pipeline c's reference quality; 0 before one).
+  double q_ref() const { return q_ref_; }
+
+ private:
+  // The paper prints the rebuild and restructure branches the other way round; restructuring
+  // many subtrees costs more than a rebuild and restructuring few is what it is for, so here
+  // a large share rebuilds (docs/design.md).
+  Formula2 formula2(uint32_t leaves) const {
+    if (!strategy_.restructure || pending_.count == 0) return Formula2::none;
+    const double share = double(pending_.leaves) / double(std::max<uint32_t>(leaves, 1));
+    return share < config_.threshold_refit   ? Formula2::refit
+           : share < config_.threshold_build ? Formula2::restructure
+                                             : Formula2::rebuild;
+  }
+
+  FrontOp maintenance_op(bool rebuilt) const {
+    if (rebuilt) return FrontOp::generate;
+    if (!maintenance_.update_due(frame_, generated_, produced_)) return FrontOp::preserve;
+    // periodic: every second maintenance generates. With a fixed cycle that is every second
+    // cycle since the last generate; adaptively, the maintenance after an update.
+    if (strategy_.periodic && (maintenance_.adaptive() ? produced_ > generated_
+                                                       : ((frame_ - generated_) / config_.front_cycle) % 2 == 0))
+      return FrontOp::generate;
+    return FrontOp::update;
+  }
+
+  FrontStrategy strategy_;
+  PipelineConfig config_;
+  FrontMaintenance maintenance_;
+  uint64_t frame_ = 0;
+  uint64_t generated_ = 0;  // the last frame that generated T_D's self fronts
+  uint64_t produced_ = 0;   // the last frame that produced any front
+  Candidates pending_;      // found by the last inspection, decided on the next frame
+  double q_ref_ = 0.0;      // Q of the root after the last rebuild (pipeline c)
+};
+
+}  // namespace cdb

@@ -1,0 +1,234 @@
+// The front pipelines' frame plan alone: the paper's fixed cycle, the adaptive (rent or buy)
+// maintenance on given frame costs, and pipeline c's Formula 2 decisions.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "pipeline/frame_plan.h"
+
+using namespace cdb;
+
+namespace {
+
+PipelineConfig cycle_config(uint32_t cycle) {
+  PipelineConfig c;
+  c.front_cycle = cycle;
+  return c;
+}
+
+// One letter per frame: b(uild+generate), p(reserve), u(pdate), g(enerate), r(estructure);
+// the self query's operation after a refit unless the frame rebuilt.
+char letter(const FramePlan& p) {
+  if (p.rebuild) return 'b';
+  switch (p.self) {
+    case FrontOp::preserve: return 'p';
+    case FrontOp::update: return 'u';
+    case FrontOp::generate: return 'g';
+    case FrontOp::restructure: return 'r';
+  }
+  return '?';
+}
+
+// Plans `frames` frames; cost(frame, plan) gives each frame's measured time.
+template <class Cost>
+std::string schedule(FramePlanner& planner, int frames, Cost cost) {
+  std::string s;
+  for (int f = 0; f < frames; ++f) {
+    const FramePlan p = planner.plan(1000);
+    s += letter(p);
+    planner.finish(p, cost(f, p), 1.0, {});
+  }
+  return s;
+}
+
+double flat(int, const FramePlan& p) { return p.steady() ? 1.0 : 3.0; }
+
+}  // namespace
+
+TEST(FramePlan, FixedCycleIsThePapersScheme) {
+  FramePlanner a(FrontStrategy{}, cycle_config(4));
+  EXPECT_EQ(schedule(a, 13, flat), "bpppupppupppu");
+  FrontStrategy periodic;
+  periodic.periodic = true;
+  FramePlanner p(periodic, cycle_config(4));
+  EXPECT_EQ(schedule(p, 17, flat), "bpppupppgpppupppg");
+  FramePlanner every(FrontStrategy{}, cycle_config(1));
+  EXPECT_EQ(schedule(every, 5, flat), "buuuu");
+}
+
+TEST(FramePlan, BalanceOnlyBeforeUpdatesOfPipelinesThatBalance) {
+  FrontStrategy b;
+  b.balance = true;
+  FramePlanner planner(b, cycle_config(2));
+  for (int f = 0; f < 6; ++f) {
+    const FramePlan p = planner.plan(100);
+    EXPECT_EQ(p.balance, p.self == FrontOp::update) << "frame " << f;
+    planner.finish(p, 1.0, 1.0, {});
+  }
+}
+
+TEST(FramePlan, RebuildAndStaleFrames) {
+  FrontStrategy reference;
+  reference.rebuild_every_frame = true;
+  FramePlanner r(reference, cycle_config(4));
+  EXPECT_EQ(schedule(r, 4, flat), "bbbb");
+
+  PipelineConfig c = cycle_config(4);
+  c.rebuild_every = 3;
+  FramePlanner every3(FrontStrategy{}, c);
+  EXPECT_EQ(schedule(every3, 8, flat), "bppbppbp");
+
+  c = cycle_config(4);
+  c.refit_every = 2;
+  FramePlanner stale(FrontStrategy{}, c);
+  std::vector<bool> stale_frames;
+  for (int f = 0; f < 5; ++f) {
+    const FramePlan p = stale.plan(100);
+    stale_frames.push_back(p.stale);
+    stale.finish(p, 1.0, 1.0, {});
+  }
+  EXPECT_EQ(stale_frames, (std::vector<bool>{false, true, false, true, false}));
+}
+
+// Fronts whose steady frames never get dearer are never updated: preserving them costs
+// nothing more.
+TEST(FramePlan, AdaptiveKeepsFrontsThatDoNotDegrade) {
+  FramePlanner planner(FrontStrategy{}, cycle_config(0));
+  const std::string s = schedule(planner, 60, flat);
+  EXPECT_EQ(s, "b" + std::string(59, 'p'));
+}
+
+// Steady frames dearer by `a` per frame since the fronts were produced: the rent after n
+// steady frames is a n (n - 1) / 2, and the update comes on the first frame after it
+// reaches an update's cost over a fresh steady frame: before any update, the build frame's
+// (9 here), after, the measured update's (`extra`).
+TEST(FramePlan, AdaptiveUpdatesWhenTheRentPaidReachesTheUpdatesCost) {
+  auto steady_frames = [](double a, double cost) {
+    int n = 1;
+    while (a * n * (n - 1) / 2 < cost - 1e-12) ++n;
+    return size_t(n);
+  };
+  for (const double a : {0.02, 0.1, 0.5}) {
+    const double extra = 2.0;
+    int since = 0;
+    auto cost = [&](int, const FramePlan& p) {
+      if (!p.steady()) {
+        since = 0;
+        return p.rebuild ? 10.0 : 1.0 + extra;
+      }
+      return 1.0 + a * since++;
+    };
+    FramePlanner planner(FrontStrategy{}, cycle_config(0));
+    const std::string s = schedule(planner, 300, cost);
+    const size_t first = 1 + steady_frames(a, 9.0);
+    EXPECT_EQ(s.find('u'), first) << "a = " << a << ": " << s;
+    const std::string cycle = std::string(steady_frames(a, extra), 'p') + "u";
+    EXPECT_EQ(s.substr(first + 1, 3 * cycle.size()), cycle + cycle + cycle) << "a = " << a << ": " << s;
+  }
+}
+
+// The faster the fronts degrade, the more often they are updated; the dearer the update,
+// the less often.
+TEST(FramePlan, AdaptiveFollowsTheScene) {
+  auto updates = [](double a, double extra) {
+    int since = 0;
+    FramePlanner planner(FrontStrategy{}, cycle_config(0));
+    const std::string s = schedule(planner, 120, [&](int, const FramePlan& p) {
+      if (!p.steady()) {
+        since = 0;
+        return 1.0 + extra;
+      }
+      return 1.0 + a * since++;
+    });
+    return std::count(s.begin(), s.end(), 'u');
+  };
+  EXPECT_GT(updates(1.0, 2.0), updates(0.05, 2.0));
+  EXPECT_GT(updates(0.2, 1.0), updates(0.2, 8.0));
+}
+
+// Timing noise alone lets the rent creep up: fronts that do not degrade still update now and
+// then, rarely.
+TEST(FramePlan, AdaptiveUnderNoiseUpdatesRarely) {
+  FramePlanner planner(FrontStrategy{}, cycle_config(0));
+  const std::string s = schedule(planner, 400, [](int f, const FramePlan& p) {
+    const double noise = 0.02 * std::sin(f * 12.9898);
+    return (p.steady() ? 1.0 : 2.0) + noise;
+  });
+  const auto n = std::count(s.begin(), s.end(), 'u');
+  EXPECT_GE(n, 2);
+  EXPECT_LE(n, 40);
+}
+
+TEST(FramePlan, AdaptivePeriodicAlternatesUpdateAndGenerate) {
+  FrontStrategy periodic;
+  periodic.periodic = true;
+  FramePlanner planner(periodic, cycle_config(0));
+  int since = 0;
+  const std::string s = schedule(planner, 80, [&](int, const FramePlan& p) {
+    if (!p.steady()) {
+      since = 0;
+      return 3.0;
+    }
+    return 1.0 + 0.5 * since++;
+  });
+  std::string maintenance;
+  for (char ch : s.substr(1))
+    if (ch != 'p') maintenance += ch;
+  ASSERT_GE(maintenance.size(), 4u) << s;
+  for (size_t k = 0; k < maintenance.size(); ++k) EXPECT_EQ(maintenance[k], k % 2 ? 'g' : 'u') << s;
+}
+
+// Pipeline c: inspection after updates once Q of the root is known; what it finds decides
+// the next frame by Formula 2 on the share of leaves in candidates.
+TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
+  FrontStrategy c;
+  c.balance = c.restructure = true;
+  PipelineConfig config = cycle_config(2);
+  config.threshold_refit = 0.05;
+  config.threshold_build = 0.5;
+  struct Case {
+    uint32_t leaves_in_candidates;
+    Formula2 decision;
+    char op;
+  };
+  for (const Case k : {Case{10, Formula2::refit, 'p'}, Case{200, Formula2::restructure, 'r'},
+                       Case{800, Formula2::rebuild, 'b'}}) {
+    FramePlanner planner(c, config);
+    FramePlan p = planner.plan(1000);  // frame 0 builds: Q(root) becomes the reference
+    EXPECT_FALSE(p.inspect);
+    planner.finish(p, 5.0, 2.0, {});
+    EXPECT_DOUBLE_EQ(planner.q_ref(), 2.0);
+    p = planner.plan(1000);  // frame 1 preserves
+    EXPECT_FALSE(p.inspect);
+    planner.finish(p, 1.0, 2.0, {3, 99});  // found nothing: not inspected
+    p = planner.plan(1000);  // frame 2 updates and inspects
+    ASSERT_EQ(p.self, FrontOp::update);
+    EXPECT_TRUE(p.inspect);
+    EXPECT_EQ(p.decision, Formula2::none);
+    planner.finish(p, 2.0, 2.5, {4, k.leaves_in_candidates});
+    p = planner.plan(1000);
+    EXPECT_EQ(p.decision, k.decision);
+    EXPECT_EQ(letter(p), k.op);
+    if (k.decision == Formula2::restructure) {
+      EXPECT_EQ(p.inter, FrontOp::generate);  // the cross fronts name T_D's renumbered leaves
+      EXPECT_EQ(p.restructuring.count, 4u);
+      EXPECT_EQ(p.restructuring.leaves, k.leaves_in_candidates);
+    }
+    planner.finish(p, 2.0, 2.0, {});
+    EXPECT_EQ(planner.plan(1000).decision, Formula2::none);  // each inspection decides once
+  }
+}
+
+TEST(FramePlan, ResetStartsOver) {
+  FramePlanner planner(FrontStrategy{}, cycle_config(0));
+  int since = 0;
+  schedule(planner, 30, [&](int, const FramePlan& p) { return p.steady() ? 1.0 + 0.5 * since++ : (since = 0, 3.0); });
+  ASSERT_GE(planner.maintenance().update_ms(), 0.0);
+  planner.reset();
+  EXPECT_EQ(planner.frame(), 0u);
+  EXPECT_LT(planner.maintenance().update_ms(), 0.0);
+  EXPECT_EQ(schedule(planner, 5, flat), "bpppp");
+}
