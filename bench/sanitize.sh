@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Runs on the GPU machine from a device bundle: compute-sanitizer's memcheck (with leak
+# check), synccheck, initcheck and racecheck over every pipeline on a small folding cloth,
+# one log per tool under $OUT/sanitize/, and a summary line per tool at the end.
+set -uo pipefail
+bundle=${BUNDLE:-$PWD/.devbundle}
+export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+export CDBENCH_SCENES=$PWD/scenes
+out=${OUT:-/tmp/out}/sanitize
+mkdir -p "$out"
+pipelines=${PIPELINES:-a,b,c,unordered,periodic,radix-order,reference,bvh,grid,hash,sweep}
+scene=(--scene cloth-ball --set res=40 --set frames=8)
+for tool in memcheck synccheck initcheck racecheck; do
+  extra=()
+  [[ $tool == memcheck ]] && extra=(--leak-check full)
+  compute-sanitizer --tool "$tool" "${extra[@]}" --error-exitcode 9 \
+    "$bundle/bin/cdbench" run --device cuda "${scene[@]}" --pipeline "$pipelines" --quiet \
+    >"$out/$tool.log" 2>&1
+  echo "$tool: exit $? $(grep -E 'ERROR SUMMARY|RACECHECK SUMMARY|LEAK SUMMARY' "$out/$tool.log" | tr '\n' ' ')"
+done | tee "$out/summary.txt"
