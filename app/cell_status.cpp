@@ -18,7 +18,8 @@ void write_cell_status(const std::filesystem::path& file, const CellStatus& s) {
   const nlohmann::json j = {{"cell", s.cell},         {"scene", s.scene},         {"pipeline", s.pipeline},
                             {"device", s.device},     {"state", s.state},         {"exit_code", s.exit_code},
                             {"signal", s.signal},     {"seconds", s.seconds},     {"command", s.command},
-                            {"log", s.log},           {"log_tail", s.log_tail}};
+                            {"log", s.log},           {"log_tail", s.log_tail},   {"job", s.job},
+                            {"host", s.host}};
   // Written whole to a temporary name and renamed, so a reader never sees half a file.
   const std::filesystem::path tmp = file.string() + ".tmp";
   {
@@ -46,6 +47,8 @@ std::optional<CellStatus> read_cell_status(const std::filesystem::path& file) {
   s.command = j.value("command", "");
   s.log = j.value("log", "");
   s.log_tail = j.value("log_tail", "");
+  s.job = j.value("job", "");
+  s.host = j.value("host", "");
   return s;
 }
 
@@ -60,6 +63,14 @@ std::string describe_exit(const CellStatus& s) {
   const std::string last = nl == std::string::npos ? tail : tail.substr(nl + 1);
   if (!last.empty()) d += ": " + last;
   return d;
+}
+
+bool cell_in_progress(const CellStatus& s) { return s.state == "pending" || s.state == "running"; }
+
+std::string describe_progress(const CellStatus& s) {
+  std::string where = s.job;
+  if (!s.host.empty()) where += (where.empty() ? "on " : " on ") + s.host;
+  return where.empty() ? s.state : s.state + " (" + where + ")";
 }
 
 }  // namespace cdb

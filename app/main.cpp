@@ -28,6 +28,7 @@
 #include "report.h"
 #include "results_table.h"
 #include "run_loop.h"
+#include "slurm_script.h"
 #include "sweep_plan.h"
 #include "sweep_runner.h"
 
@@ -518,7 +519,8 @@ int scenes_info(const CommonOptions& o, const std::string& scene, const std::vec
 }
 
 struct SweepOptions {
-  std::string file, out_dir, slurm, scenes_dir;
+  std::string file, out_dir, scenes_dir;
+  SlurmOptions slurm;
   int gpus = 0;  // 0: one per visible GPU, at least one cell at a time
   bool dry_run = false;
 };
@@ -535,12 +537,7 @@ int sweep_command(const SweepOptions& w, const CLI::App& run) {
     list_cells(plan, options);
     return 0;
   }
-  if (!w.slurm.empty()) {
-    const size_t n = write_slurm_script(plan, options, w.slurm);
-    std::printf("wrote %s: %zu array tasks (%zu cells already complete); submit with sbatch %s\n", w.slurm.c_str(), n,
-                plan.cells.size() - n, w.slurm.c_str());
-    return 0;
-  }
+  if (!w.slurm.script.empty()) return slurm_script_command(plan, options, w.slurm);
   const int gpus = w.gpus > 0 ? w.gpus : cuda_device_info().device_count;
   options.slots = unsigned(std::max(gpus, 1));
   options.one_gpu_each = gpus > 0;
@@ -629,7 +626,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--gpus", w.gpus,
                     "cells at a time, one GPU each (CUDA_VISIBLE_DEVICES); default: the GPUs visible, 1 without")
       ->check(CLI::PositiveNumber);
-  sweep->add_option("--slurm", w.slurm, "write a Slurm job-array script (one task per cell not complete) instead of running");
+  add_slurm_options(*sweep, w.slurm);
   sweep->add_flag("--dry-run", w.dry_run, "list the cells, their state and command lines; run nothing");
   sweep->add_option("--scenes-dir", w.scenes_dir, "where named scenes live, passed on to every cell");
 

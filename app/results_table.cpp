@@ -28,8 +28,8 @@ struct Inputs {
 };
 
 // A directory stands for every .h5 under it, and for every sweep cell recorded there
-// (<cell>.status.json) whose process left no results file, so results copied together
-// from many machines report as one table.
+// (<cell>.status.json) without a results file (pending, running, or failed before writing
+// one), so results copied together from many machines report as one table.
 Inputs expand_inputs(const std::vector<std::string>& args) {
   namespace fs = std::filesystem;
   Inputs in;
@@ -84,6 +84,14 @@ std::vector<std::string> phases_that_ran(const std::vector<Row>& rows) {
 }
 
 std::string status_text(const Row& row, bool csv) {
+  // A pending cell's results file is a stale one from an earlier attempt, and a running
+  // cell's is being written: the cell's own state says more.
+  if (row.process && cell_in_progress(*row.process)) {
+    const bool frames = row.process->state == "running" && row.unreadable.empty() && !row.r.status.empty() && !csv;
+    return describe_progress(*row.process) +
+           (frames ? ", " + std::to_string(row.r.frames_written) + "/" + std::to_string(row.r.frames_planned) + " frames"
+                   : "");
+  }
   if (row.process && row.unreadable.empty() && row.r.status.empty())
     return "failed, no results file: " + describe_exit(*row.process);
   // A process killed outright (out of memory, SIGKILL) leaves no error in its file, or a
@@ -131,8 +139,16 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     } catch (const std::exception& e) {
       row.r.path = f;
       row.unreadable = e.what();
-      std::fprintf(stderr, "cdbench: report: %s\n", e.what());
-      rc = 1;
+      // A running cell's file is open for writing; its state is the row, not an error.
+      if (!row.process || !cell_in_progress(*row.process)) {
+        std::fprintf(stderr, "cdbench: report: %s\n", e.what());
+        rc = 1;
+      }
+    }
+    if (row.process && cell_in_progress(*row.process)) {
+      row.r.scene = row.process->scene;
+      row.r.pipeline = row.process->pipeline;
+      row.r.backend = row.process->device;
     }
     rows.push_back(std::move(row));
   }

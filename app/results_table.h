@@ -7,7 +7,7 @@
 namespace cdb {
 
 // Arguments are files or directories (every .h5 under them, plus the sweep cells recorded
-// there that left no results file, as failed rows). Prints the table on stdout; returns 1
+// there without a results file: pending, running or failed rows). Prints the table on stdout; returns 1
 // when some file could not be read, else 0.
 int print_results_table(const std::vector<std::string>& files, bool csv);
 

@@ -60,6 +60,27 @@ std::string gpu_for_slot(unsigned slot) {
   return slot < ids.size() ? ids[slot] : std::to_string(slot);
 }
 
+std::string host_name() {
+  char name[256] = {};
+  return gethostname(name, sizeof name - 1) == 0 ? name : "";
+}
+
+}  // namespace
+
+CellStatus status_of(const SweepPlan& plan, const SweepCell& cell, const SweepRunOptions& options) {
+  const fs::path dir = fs::absolute(options.out_dir);
+  CellStatus s;
+  s.cell = cell.name;
+  s.scene = cell.scene_label;
+  s.pipeline = cell.pipeline;
+  s.device = cell.device;
+  s.command = "cdbench " + shell_line(cell_run_args(plan, cell, dir, options.scenes_dir));
+  s.log = (dir / "logs" / (cell.name + ".log")).string();
+  return s;
+}
+
+namespace {
+
 struct Running {
   size_t cell = 0;
   pid_t pid = 0;
@@ -114,7 +135,8 @@ void list_cells(const SweepPlan& plan, const SweepRunOptions& options) {
       state = "complete (skipped)";
       ++complete;
     } else if (const auto s = read_cell_status(cell_status_file(options.out_dir, c.name)); s && s->state != "complete") {
-      state = "to run again (failed: " + describe_exit(*s) + ")";
+      state = cell_in_progress(*s) ? "to run (" + describe_progress(*s) + ")"
+                                   : "to run again (failed: " + describe_exit(*s) + ")";
     }
     std::printf("%3zu  %s  %s\n     cdbench %s\n", i, c.name.c_str(), state.c_str(),
                 shell_line(cell_run_args(plan, c, options.out_dir, options.scenes_dir)).c_str());
@@ -138,6 +160,13 @@ int run_sweep(const SweepPlan& plan, const SweepRunOptions& options) {
     } else {
       todo.push_back(i);
     }
+  }
+  // Every cell to run is marked pending first, so `report DIR` shows the whole sweep while
+  // it runs, and what an interruption left unstarted.
+  for (size_t i : todo) {
+    CellStatus pending = status_of(plan, plan.cells[i], options);
+    pending.state = "pending";
+    write_cell_status(cell_status_file(dir, pending.cell), pending);
   }
   std::printf("sweep %s: %zu cells, %zu already complete, %zu to run, %u at a time\n", plan.file.c_str(),
               plan.cells.size(), plan.cells.size() - todo.size(), todo.size(), options.slots);
@@ -164,12 +193,16 @@ int run_sweep(const SweepPlan& plan, const SweepRunOptions& options) {
       if (!slots[k] && !stopped_by && next < todo.size()) {
         const SweepCell& c = plan.cells[todo[next]];
         const fs::path file = cell_results_file(dir, c);
-        // A stale incomplete file or status from an earlier attempt would be taken for this
-        // attempt's if the new process died before writing its own.
+        // A stale incomplete file from an earlier attempt would be taken for this attempt's
+        // if the new process died before writing its own.
         fs::remove(file);
-        fs::remove(cell_status_file(dir, c.name));
         const std::string gpu = options.one_gpu_each ? gpu_for_slot(k) : "";
         const pid_t pid = spawn_cell(cell_run_args(plan, c, dir, options.scenes_dir), dir / "logs" / (c.name + ".log"), gpu);
+        CellStatus running = status_of(plan, c, options);
+        running.state = "running";
+        running.job = "pid " + std::to_string(pid) + (gpu.empty() ? "" : ", gpu " + gpu);
+        running.host = host_name();
+        write_cell_status(cell_status_file(dir, c.name), running);
         slots[k] = Running{todo[next], pid, k, std::chrono::steady_clock::now()};
         sweep_log << utc_now() << " start " << c.name << " pid " << pid << (gpu.empty() ? "" : " gpu " + gpu) << std::endl;
         ++next;
@@ -189,16 +222,11 @@ int run_sweep(const SweepPlan& plan, const SweepRunOptions& options) {
     for (auto& r : slots) {
       if (!r || r->pid != pid) continue;
       const SweepCell& c = plan.cells[r->cell];
-      CellStatus s;
-      s.cell = c.name;
-      s.scene = c.scene_label;
-      s.pipeline = c.pipeline;
-      s.device = c.device;
+      CellStatus s = status_of(plan, c, options);
+      s.host = host_name();
       s.exit_code = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1;
       s.signal = WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : 0;
       s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - r->start).count();
-      s.command = "cdbench " + shell_line(cell_run_args(plan, c, dir, options.scenes_dir));
-      s.log = (dir / "logs" / (c.name + ".log")).string();
       s.log_tail = log_tail(s.log);
       s.state = s.exit_code == 0 && cell_complete(dir, c) ? "complete" : "failed";
       write_cell_status(cell_status_file(dir, c.name), s);
@@ -221,60 +249,6 @@ int run_sweep(const SweepPlan& plan, const SweepRunOptions& options) {
   sweep_log << utc_now() << " end: " << done << " run, " << failed << " failed" << std::endl;
   if (stopped_by) return 128 + stopped_by;
   return failed ? 1 : 0;
-}
-
-size_t write_slurm_script(const SweepPlan& plan, const SweepRunOptions& options, const fs::path& script) {
-  std::vector<const SweepCell*> cells;
-  for (const auto& c : plan.cells)
-    if (!cell_complete(options.out_dir, c)) cells.push_back(&c);
-  const fs::path dir = fs::absolute(options.out_dir);
-  const std::string exe = fs::read_symlink("/proc/self/exe").string();
-  bool gpu = false;
-  for (const SweepCell* c : cells) gpu = gpu || c->device == "cuda";
-
-  std::ostringstream s;
-  s << "#!/bin/bash\n"
-    << "# Written by cdbench sweep " << plan.file << ": one array task per cell whose results were not\n"
-    << "# complete then. Each task runs its cell's cdbench run line, its output in logs/<cell>.log,\n"
-    << "# and leaves <cell>.status.json with the exit code for cdbench report. sbatch options given\n"
-    << "# on the command line override the ones here, e.g. sbatch --partition=gpu --time=2:00:00 FILE.\n"
-    << "#SBATCH --job-name=cdbench-sweep\n";
-  if (!cells.empty()) s << "#SBATCH --array=0-" << cells.size() - 1 << "\n";
-  if (gpu) s << "#SBATCH --gres=gpu:1\n";
-  s << "#SBATCH --output=" << shell_quote((dir / "logs" / "slurm-%A_%a.out").string()) << "\n"
-    << "set -u\n"
-    << "dir=" << shell_quote(dir.string()) << "\n"
-    << "mkdir -p \"$dir/logs\"\n"
-    << "case ${SLURM_ARRAY_TASK_ID:?run this with sbatch} in\n";
-  for (size_t i = 0; i < cells.size(); ++i) {
-    const SweepCell& c = *cells[i];
-    s << "  " << i << ") cell=" << c.name << " scene=" << shell_quote(c.scene_label) << " pipeline=" << c.pipeline
-      << " device=" << c.device << "\n     cmd=(" << shell_quote(exe) << " "
-      << shell_line(cell_run_args(plan, c, dir, options.scenes_dir)) << ") ;;\n";
-  }
-  s << "  *) echo \"no cell for array task $SLURM_ARRAY_TASK_ID\" >&2; exit 2 ;;\n"
-    << "esac\n"
-    << "start=$SECONDS\n"
-    << "rm -f \"$dir/$cell.h5\" \"$dir/$cell.status.json\"\n"
-    << "\"${cmd[@]}\" >\"$dir/logs/$cell.log\" 2>&1\n"
-    << "rc=$?\n"
-    << "state=failed; [[ $rc -eq 0 ]] && state=complete\n"
-    << "sig=0; [[ $rc -gt 128 && $rc -ne 130 && $rc -ne 143 ]] && sig=$((rc - 128))\n"
-    << "tail=$(tail -n 1 \"$dir/logs/$cell.log\" | tr -d '\\\\\"' | tr -c '[:print:]' ' ')\n"
-    << "printf '{\"cell\": \"%s\", \"scene\": \"%s\", \"pipeline\": \"%s\", \"device\": \"%s\", \"state\": \"%s\", "
-       "\"exit_code\": %d, \"signal\": %d, \"seconds\": %d, \"log\": \"%s\", \"log_tail\": \"%s\"}\\n' \\\n"
-    << "  \"$cell\" \"$scene\" \"$pipeline\" \"$device\" \"$state\" $((sig ? -1 : rc)) $sig $((SECONDS - start)) "
-       "\"$dir/logs/$cell.log\" \"$tail\" >\"$dir/$cell.status.json\"\n"
-    << "exit $rc\n";
-
-  if (script.has_parent_path()) fs::create_directories(script.parent_path());
-  std::ofstream out(script);
-  out << s.str();
-  if (!out) fail(script.string() + ": cannot write the Slurm script");
-  out.close();
-  fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
-                  fs::perm_options::add);
-  return cells.size();
 }
 
 }  // namespace cdb

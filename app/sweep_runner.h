@@ -1,10 +1,11 @@
 #pragma once
 // Runs a sweep's cells, each as its own `cdbench run` process, so a crash, an out-of-memory
-// kill or an error in one cell is recorded and the others go on; or lists them, or writes
-// them as a Slurm job array.
+// kill or an error in one cell is recorded and the others go on; or lists them. (A Slurm job
+// array of them: slurm_script.h.)
 #include <filesystem>
 #include <string>
 
+#include "cell_status.h"
 #include "sweep_plan.h"
 
 namespace cdb {
@@ -19,6 +20,10 @@ struct SweepRunOptions {
 // True when the cell's results file exists and says `complete`.
 bool cell_complete(const std::filesystem::path& out_dir, const SweepCell& cell);
 
+// A status naming the cell (cell, scene, pipeline, device, command line, log), its state
+// still to be set.
+CellStatus status_of(const SweepPlan& plan, const SweepCell& cell, const SweepRunOptions& options);
+
 // --dry-run: every cell with its state and command line.
 void list_cells(const SweepPlan& plan, const SweepRunOptions& options);
 
@@ -26,9 +31,5 @@ void list_cells(const SweepPlan& plan, const SweepRunOptions& options);
 // failed, 128 + signal when SIGINT/SIGTERM stopped the sweep (running cells are passed the
 // signal and end as incomplete files).
 int run_sweep(const SweepPlan& plan, const SweepRunOptions& options);
-
-// --slurm: a job-array script, one task per cell not yet complete; returns how many.
-size_t write_slurm_script(const SweepPlan& plan, const SweepRunOptions& options,
-                          const std::filesystem::path& script);
 
 }  // namespace cdb

@@ -6,6 +6,9 @@
 # for bunny-drop, and libcgal-demo (CGAL's data.tar.gz with refined_elephant.off and
 # armadillo.off, CC0; 24 MB download, pulls in libcgal-dev and a few Boost libraries: about
 # 100 MB installed in all) for elephant-armadillo.
+# --slurm installs slurmctld, slurmd, slurm-client and munge (Debian's slurm-wlm without its
+# accounting daemon) for the `slurm` tests, which start their own one-node cluster; their
+# services are not started by the install (see policy-rc.d below).
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
@@ -17,7 +20,8 @@ for arg in "$@"; do
   case $arg in
     --scenes) packages+=(assimp-testmodels) ;;
     --scenes-extra) packages+=(glmark2-data libcgal-demo) ;;
-    *) echo "install-deps: unknown option $arg (known: --scenes, --scenes-extra)" >&2; exit 2 ;;
+    --slurm) packages+=(slurmctld slurmd slurm-client munge) ;;
+    *) echo "install-deps: unknown option $arg (known: --scenes, --scenes-extra, --slurm)" >&2; exit 2 ;;
   esac
 done
 missing=()
@@ -32,5 +36,15 @@ if [[ $(id -u) -ne 0 ]]; then
   as_root=(sudo)
 fi
 export DEBIAN_FRONTEND=noninteractive
+# Without systemd (a container), the packages' postinst scripts start their services through
+# their init scripts (munge's would leave a system munged running, and the install fails when a
+# start fails). A policy-rc.d that denies every start, as Docker's Debian images ship, stops
+# that; one made here is removed again when the install ends.
+policy=/usr/sbin/policy-rc.d
+if [[ ! -e $policy && ! -d /run/systemd/system ]]; then
+  printf '#!/bin/sh\nexit 101\n' | "${as_root[@]}" tee "$policy" >/dev/null
+  "${as_root[@]}" chmod 755 "$policy"
+  trap '"${as_root[@]}" rm -f "$policy"' EXIT
+fi
 "${as_root[@]}" apt-get update -q >&2
 "${as_root[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}" >&2

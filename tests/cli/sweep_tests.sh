@@ -57,6 +57,39 @@ check "slurm script is valid bash" 0 "^ran$" -- bash -c 'bash -n "$1" && echo ra
 check "slurm task runs its cell" 0 "^ran$" -- bash -c 'SLURM_ARRAY_TASK_ID=4 bash "$1" && echo ran' _ "$tmp/job.sh"
 check "slurm task leaves its status" 0 '"state": "complete", "exit_code": 0' -- cat "$tmp/slurm/cloth-wave.frames=3.res=12_b_cpu.status.json"
 check "slurm script leaves out complete cells" 0 "5 array tasks \(1 cells already complete\)" -- "$cdbench" sweep "$sweep" --out "$tmp/slurm" --slurm "$tmp/job2.sh"
+check "slurm script's defaults" 0 "^#SBATCH --time=1:00:00$" -- cat "$tmp/job.sh"
+has "slurm script asks for 4 CPUs" "$tmp/job.sh" "^#SBATCH --cpus-per-task=4$"
+has "slurm script runs in the output directory" "$tmp/job.sh" "^#SBATCH --chdir=$tmp/slurm$"
+grep -q -- "--gres" "$tmp/job.sh" && fail "slurm script of CPU cells asks for a GPU" || echo "ok   no GPU for CPU cells"
+[[ -d $tmp/slurm/logs ]] && echo "ok   slurm log directory exists before sbatch" || fail "no $tmp/slurm/logs"
+check "report shows cells pending under the script" 0 "cloth-wave\.frames=3\.res=12_sweep_cpu\.h5 \| .* \| pending \(task 4 of $tmp/job2\.sh\) \|$" -- "$cdbench" report "$tmp/slurm"
+check "a second script notes the pending cells" 0 "note: 5 of these cells were pending" -- "$cdbench" sweep "$sweep" --out "$tmp/slurm" --slurm "$tmp/job3.sh"
+check "slurm options reach the script" 0 "55 array tasks" -- "$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" \
+  --slurm "$tmp/fig9.sh" --time 2-0 --cpus-per-task 8 --partition gpu --account lab --gres gpu:h100:1 --throttle 3
+has "slurm array throttle" "$tmp/fig9.sh" "^#SBATCH --array=0-54%3$"
+has "slurm time limit" "$tmp/fig9.sh" "^#SBATCH --time=2-0$"
+has "slurm CPUs" "$tmp/fig9.sh" "^#SBATCH --cpus-per-task=8$"
+has "slurm partition" "$tmp/fig9.sh" "^#SBATCH --partition=gpu$"
+has "slurm account" "$tmp/fig9.sh" "^#SBATCH --account=lab$"
+has "slurm gres for CUDA cells" "$tmp/fig9.sh" "^#SBATCH --gres=gpu:h100:1$"
+has "cells use the CPUs they asked for" "$tmp/fig9.sh" '^export OMP_NUM_THREADS=\$\{SLURM_CPUS_PER_TASK:-8\}$'
+"$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" --slurm "$tmp/fig9.sh" --gres none >/dev/null
+grep -q -- "--gres" "$tmp/fig9.sh" && fail "--gres none still asks for a GPU" || echo "ok   --gres none"
+usage_error() {  # usage_error NAME PATTERN -- CMD...: a non-zero exit naming the problem
+  local name=$1 pattern=$2; shift 3
+  if "$@" >"$tmp/out" 2>&1 || ! grep -qE -- "$pattern" "$tmp/out"; then
+    fail "$name: want an error matching '$pattern'"; sed 's/^/    /' "$tmp/out" | tail -5
+  else
+    echo "ok   $name"
+  fi
+}
+usage_error "bad time limit refused" "not a Slurm time limit .*: 1h" -- "$cdbench" sweep "$sweep" --out "$tmp/x" --slurm "$tmp/x.sh" --time 1h
+usage_error "slurm option without --slurm refused" "--time requires --slurm" -- "$cdbench" sweep "$sweep" --out "$tmp/x" --time 10
+usage_error "partition with a space refused" "only letters" -- "$cdbench" sweep "$sweep" --out "$tmp/x" --slurm "$tmp/x.sh" --partition "a b"
+[[ -e $tmp/x.sh ]] && fail "a refused option still wrote the script"
+for i in 0 1 2 3 4; do SLURM_ARRAY_TASK_ID=$i bash "$tmp/job3.sh" >/dev/null 2>&1; done
+check "no script tasks once every cell is complete" 0 "every cell of .* is complete in .*; nothing to submit" -- "$cdbench" sweep "$sweep" --out "$tmp/slurm" --slurm "$tmp/job4.sh"
+check "the empty script says so when run" 0 "every cell complete" -- bash "$tmp/job4.sh"
 
 # Option axes and the errors of a sweep file.
 printf '{"scenes": ["funnel"], "pipelines": ["a"], "devices": ["cpu"], "options": {"front-cycle": [1, 8], "skip-adjacent": [false, true]}, "repeat": 2}' >"$tmp/axes.json"
