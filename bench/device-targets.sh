@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Runs on the GPU machine from a device bundle: the runs behind the GPU performance targets
 # (docs/results.md, "Performance targets"), one HDF5 file per scene and pipeline under
-# $OUT/targets, each run's summary in $OUT/targets.log; scripts/perf_targets.py turns the
+# $OUT/targets, each run's summary in $OUT/targets.log; bench/perf_targets.py turns the
 # files into the targets table. With BASE_BIN="NAME=PATH ..." (other cdbench binaries) every
-# cell also runs with each of them, right after the first, into $OUT/NAME (A/B in one call,
-# same GPU).
+# cell also runs with each of them, right after the first, into $OUT/NAME (A/B back to back
+# on the same GPU).
 #
 #   TARGET_GROUPS  which groups run (default: all): steady cloth coherent nbody scaling
 #   NCU=1          also profile the kernels behind each bottleneck into $OUT/ncu-*.csv
@@ -74,7 +74,7 @@ groups=${TARGET_GROUPS:-steady cloth coherent nbody scaling}
 
 if [[ "${NCU:-0}" == 1 ]]; then
   # The kernels behind each bottleneck: their speed of light, occupancy, divergence and
-  # why warps stall (scripts/ncu_summary.py makes the tables).
+  # why warps stall (bench/ncu_summary.py makes the tables).
   ncu_metrics="smsp__thread_inst_executed_per_inst_executed.ratio,regex:smsp__average_warps_issue_stalled_.*_per_issue_active\.ratio"
   profile() {
     local name=$1
