@@ -1,6 +1,7 @@
 #pragma once
 // The options a command ran with, as JSON for the results file: every option of the
-// command, the value given or else its default, so a new option is recorded without code.
+// command, the value given or else its default (numbers as numbers), so a new option is
+// recorded without code.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 

@@ -21,6 +21,7 @@
 #include "io/obj_writer.h"
 #include "io/results_file.h"
 #include "io/scene.h"
+#include "io/scene_label.h"
 #include "pipeline/config_json.h"
 #include "pipeline/device_probe.h"
 #include "pipeline/pipeline.h"
@@ -198,16 +199,7 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
 
 // key=value pairs from --set: values parsed as JSON where they are (numbers, true, ...),
 // else taken as strings.
-nlohmann::json parse_overrides(const std::vector<std::string>& sets) {
-  nlohmann::json j = nlohmann::json::object();
-  for (const auto& kv : sets) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) fail("--set " + kv + ": expected key=value");
-    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
-    j[key] = nlohmann::json::accept(value) ? nlohmann::json::parse(value) : nlohmann::json(value);
-  }
-  return j;
-}
+nlohmann::json parse_overrides(const std::vector<std::string>& sets) { return parse_set_overrides(sets); }
 
 Scene load_scene(const CommonOptions& o) {
   return open_scene(o.scene, o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir),
@@ -285,6 +277,7 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   RunInfo run;
   run.scene = scene.name;
   run.scene_description = scene.description;
+  run.scene_overrides = scene.overrides;
   run.pipeline = r.pipeline;
   run.backend = config.device;
   run.device_name = gpu ? info.name : cpu_model() + " (" + std::to_string(omp_threads()) + " OpenMP threads)";

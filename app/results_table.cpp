@@ -5,7 +5,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "cell_status.h"
 
@@ -81,6 +84,49 @@ std::vector<std::string> phases_that_ran(const std::vector<Row>& rows) {
     return ra != rb ? ra < rb : a < b;
   });
   return phases;
+}
+
+// Options shown by their own columns already (scene and --set make the scene label), or
+// different in every file by construction (--out).
+bool shown_elsewhere(const std::string& option) {
+  for (const char* name : {"out", "scene", "set", "pipeline", "device"})
+    if (option == name) return true;
+  return false;
+}
+
+std::string option_text(const nlohmann::json& options, const std::string& name) {
+  if (!options.contains(name)) return "";
+  const nlohmann::json& v = options[name];
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
+  if (v.is_array()) {
+    std::string joined;
+    for (const auto& e : v) joined += (joined.empty() ? "" : " ") + (e.is_string() ? e.get<std::string>() : e.dump());
+    return joined;
+  }
+  return v.dump();
+}
+
+// The options whose values are not the same in every readable file, in name order: what
+// sets the rows apart besides scene, pipeline and device.
+std::vector<std::string> options_that_differ(const std::vector<Row>& rows) {
+  std::vector<const nlohmann::json*> recorded;
+  for (const Row& row : rows)
+    if (row.unreadable.empty() && !row.r.options.empty()) recorded.push_back(&row.r.options);
+  std::vector<std::string> names;
+  for (const nlohmann::json* options : recorded)
+    for (auto it = options->begin(); it != options->end(); ++it)
+      if (!shown_elsewhere(it.key()) && std::find(names.begin(), names.end(), it.key()) == names.end())
+        names.push_back(it.key());
+  std::sort(names.begin(), names.end());
+  std::vector<std::string> differ;
+  for (const auto& name : names) {
+    std::set<std::string> values;  // "absent" apart from any recorded value
+    for (const nlohmann::json* options : recorded)
+      values.insert(options->contains(name) ? "=" + option_text(*options, name) : "absent");
+    if (values.size() > 1) differ.push_back(name);
+  }
+  return differ;
 }
 
 std::string status_text(const Row& row, bool csv) {
@@ -162,17 +208,29 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     rows.push_back(std::move(row));
   }
   const std::vector<std::string> phases = phases_that_ran(rows);
+  const std::vector<std::string> options = options_that_differ(rows);
+  const bool checked = std::any_of(rows.begin(), rows.end(), [](const Row& row) {
+    return row.unreadable.empty() && row.r.checked_frames > 0;
+  });
 
-  std::vector<std::string> header = {"file", "scene", "pipeline", "device", "frames", "mean_ms", "noise_%", "median_ms", "p95_ms"};
+  std::vector<std::string> header = {"file", "scene", "pipeline", "device", "triangles"};
+  for (const auto& o : options) header.push_back("--" + o);
+  header.insert(header.end(), {"frames", "mean_ms", "noise_%", "median_ms", "p95_ms"});
   for (const auto& p : phases) header.push_back(p + "_ms");
-  header.insert(header.end(), {"pairs", "syncs", csv ? "peak_bytes" : "peak_MiB", "status"});
+  header.push_back("pairs");
+  if (checked) header.insert(header.end(), {"recall_min", "precision_min", "contacts", "contact_precision"});
+  header.insert(header.end(), {"syncs", csv ? "peak_bytes" : "peak_MiB", "status"});
+  const size_t text_columns = 5 + options.size();  // left-aligned in Markdown
 
   std::vector<std::vector<std::string>> table;
   for (const Row& row : rows) {
     const ResultsOverview& r = row.r;
-    std::vector<std::string> cells = {r.path, r.scene, r.pipeline,
+    const bool read = row.unreadable.empty() && !r.status.empty();
+    std::vector<std::string> cells = {r.path, r.scene_label.empty() ? r.scene : r.scene_label, r.pipeline,
                                       r.device_name.empty() ? r.backend : r.backend + ": " + r.device_name,
-                                      row.unreadable.empty() && !r.status.empty() ? std::to_string(r.frames_written) : ""};
+                                      read ? std::to_string(r.triangles) : ""};
+    for (const auto& o : options) cells.push_back(read ? option_text(r.options, o) : "");
+    cells.push_back(read ? std::to_string(r.frames_written) : "");
     const bool stats = row.unreadable.empty() && r.has_summary && r.measured_frames > 0;
     const double none = std::nan("");
     cells.push_back(number(stats ? r.mean_ms : none));
@@ -187,6 +245,13 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
       cells.push_back(number(mean));
     }
     cells.push_back(number(stats ? r.pairs_mean : none, "%.0f"));
+    if (checked) {
+      const bool has_check = stats && r.checked_frames > 0;
+      cells.push_back(number(has_check ? r.recall_min : none, "%.6f"));
+      cells.push_back(number(has_check ? r.precision_min : none, "%.6f"));
+      cells.push_back(has_check ? std::to_string(r.contacts) : "");
+      cells.push_back(number(has_check ? r.contact_precision : none, "%.6f"));
+    }
     cells.push_back(number(stats ? r.host_syncs_mean : none, "%.2f"));
     cells.push_back(!r.has_summary ? "" : csv ? std::to_string(r.peak_bytes) : number(double(r.peak_bytes) / (1 << 20), "%.2f"));
     cells.push_back(status_text(row, csv));
@@ -217,7 +282,8 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   };
   line(header);
   std::string rule = "|";
-  for (size_t i = 0; i < header.size(); ++i) rule += i < 4 || i + 1 == header.size() ? " --- |" : " ---: |";
+  for (size_t i = 0; i < header.size(); ++i)
+    rule += (i < text_columns && i != 4) || i + 1 == header.size() ? " --- |" : " ---: |";
   std::printf("%s\n", rule.c_str());
   for (const auto& cells : table) line(cells);
   return rc;

@@ -4,12 +4,13 @@
 docs/results-format.md is the contract: root attributes, the /frames columns (looked up by
 name, new ones tolerated) and the /summary attributes. Nothing here knows how a file was
 written. Run directly, it prints the inventory of a set of files (one Markdown row each),
-or with --provenance / --scenes-with what scripts/make_report.sh needs.
+or with --provenance / --scenes-with / --scenes-checked what scripts/make_report.sh needs.
 
   scripts/cdb_results.py results/ [more.h5 ...]
 """
 import argparse
 import glob
+import json
 import math
 import os
 import sys
@@ -17,8 +18,8 @@ import sys
 import h5py
 import numpy as np
 
-SUPPORTED_SCHEMA = 1
-# Root attributes every schema-1 file has from its creation; a file without them is not ours.
+SUPPORTED_SCHEMA = 2
+# Root attributes every file has from its creation (schema 1 on); a file without them is not ours.
 REQUIRED_ATTRS = ["status", "schema_version", "scene", "pipeline", "device_name", "git_sha",
                   "triangles", "frame_first", "frame_last", "warmup"]
 
@@ -42,6 +43,43 @@ def plain(value):
     if isinstance(value, np.generic):
         return value.item()
     return value
+
+
+def set_value(text):
+    """A `--set` value as cdbench reads it: JSON where it parses (numbers, booleans), else the text."""
+    try:
+        return json.loads(text)
+    except ValueError:
+        return text
+
+
+def label_of(scene, overrides):
+    """`scene` alone, or `scene[k=v,...]` with the keys sorted: the scene label cdbench writes."""
+    if not overrides:
+        return scene
+    parts = []
+    for key in sorted(overrides):
+        value = overrides[key]
+        parts.append(f"{key}={value if isinstance(value, str) else json.dumps(value)}")
+    return f"{scene}[{','.join(parts)}]"
+
+
+def scene_label(attrs):
+    """The run's scene identity: the file's scene_label (schema 2), or for older files the
+    label made from the `--set` options recorded in params_json."""
+    if "scene_label" in attrs:
+        return attrs["scene_label"]
+    try:
+        options = json.loads(attrs.get("params_json", "{}") or "{}").get("options", {})
+    except ValueError:
+        options = {}
+    given = options.get("set", [])
+    overrides = {}
+    for kv in given if isinstance(given, list) else [given]:
+        key, eq, value = str(kv).partition("=")
+        if eq and key:
+            overrides[key] = set_value(value)
+    return label_of(attrs["scene"], overrides)
 
 
 class Run:
@@ -73,7 +111,10 @@ class Run:
             self.summary = ({k: plain(v) for k, v in f["summary"].attrs.items()}
                             if "summary" in f else None)
         self.attrs = attrs
-        self.scene = attrs["scene"]
+        # Runs group by the scene with its --set overrides (funnel[res=24]), never by the
+        # descriptor's name alone; scene_name is the bare name.
+        self.scene_name = attrs["scene"]
+        self.scene = scene_label(attrs)
         self.pipeline = attrs["pipeline"]
         self.device = attrs["device_name"]
         self.git_sha = attrs["git_sha"]
@@ -235,6 +276,8 @@ def main():
                         help="print only the git shas and devices of the files, on one line")
     parser.add_argument("--scenes-with", metavar="PIPELINES",
                         help="print only the scenes with a complete run of one of these pipelines (comma-separated)")
+    parser.add_argument("--scenes-checked", action="store_true",
+                        help="print only the scenes with a complete run checked against the oracle (run --check)")
     args = parser.parse_args()
 
     def body():
@@ -245,6 +288,11 @@ def main():
         if args.scenes_with is not None:
             wanted = set(args.scenes_with.split(","))
             for scene in sorted({r.scene for r in complete if r.pipeline in wanted}):
+                print(scene)
+            return 0
+        if args.scenes_checked:
+            checked = {r.scene for r in complete if "checked" in r.frames and r.frames["checked"].any()}
+            for scene in sorted(checked):
                 print(scene)
             return 0
         rows = []

@@ -7,7 +7,9 @@
 #
 # DIR/*.h5: per-scene runs (curves, sort, pipelines, memory). DIR/scaling/*.h5, when present:
 # runs of one scene family at several sizes (scaling plot and exponents). DIR/ops/*.h5, when
-# present: the operation sweep (sweeps/h200-ops.json), one table of phases per pipeline.
+# present: the operation sweep (sweeps/gpu-ops.json), one table of phases per pipeline.
+# DIR/pareto/*.h5, when present, else the runs in DIR checked against the oracle (run
+# --check): the speed/accuracy knobs, one Pareto plot and table per scene.
 set -euo pipefail
 if [[ $# -ne 2 || ! -d $1 ]]; then
   echo "usage: scripts/make_report.sh DIR OUTDIR  (DIR: a directory of cdbench *.h5 results)" >&2
@@ -27,6 +29,8 @@ trap 'rm -f "$report.part"' EXIT
 inputs=("$dir")
 [[ -d $dir/scaling ]] && inputs+=("$dir/scaling")
 [[ -d $dir/ops ]] && inputs+=("$dir/ops")
+pareto=$dir
+[[ -d $dir/pareto ]] && pareto=$dir/pareto && inputs+=("$dir/pareto")
 files=$(for d in "${inputs[@]}"; do ls "$d"/*.h5 2>/dev/null || true; done | wc -l)
 strategies=unordered,static,b,periodic,restructure,c,reference
 
@@ -79,6 +83,23 @@ strategies=unordered,static,b,periodic,restructure,c,reference
   else
     echo "No $dir/ops/ directory: no operation sweep."
   fi
+  echo
+  echo "## Speed against accuracy (Pareto)"
+  echo
+  checked=$(py cdb_results.py --scenes-checked "$pareto")
+  if [[ -z $checked ]]; then
+    echo "No complete run in $pareto checked against the oracle (run --check): no Pareto plot."
+  fi
+  while IFS= read -r scene; do
+    [[ -n $scene ]] || continue
+    png="pareto-$(printf '%s' "$scene" | tr -c 'A-Za-z0-9._-' '_').png"
+    echo "### $scene"
+    echo
+    echo "![$scene speed against accuracy]($png)"
+    echo
+    py plot_pareto.py "$pareto" --scene "$scene" --out "$outdir/$png" --table
+    echo
+  done <<<"$checked"
   echo
   echo "## Memory"
   echo

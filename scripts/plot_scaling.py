@@ -31,14 +31,14 @@ def fit_exponent(x, y):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("paths", nargs="+", help="results files or directories of *.h5")
-    parser.add_argument("--scene", default=".*", help="only scenes whose name matches this regex (default: all)")
+    parser.add_argument("--scene", default=".*", help="only scenes whose name (without its --set overrides) matches this regex (default: all)")
     parser.add_argument("--out", required=True, help="PNG to write")
     args = parser.parse_args()
 
     def body():
         complete, incomplete = cdb_results.load(args.paths)
         pattern = re.compile(args.scene)
-        runs = [r for r in complete if pattern.fullmatch(r.scene)]
+        runs = [r for r in complete if pattern.fullmatch(r.scene_name)]
         series = {}
         for r in runs:
             if not math.isfinite(r.stat("t_total_ms_mean")):

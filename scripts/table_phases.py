@@ -3,7 +3,7 @@
 
 Each front-pipeline operation (build, order, refit, generate, preserve, update, balance,
 front_order, restructure, inspect) is a timed phase of every frame, so a sweep of one scene
-family over sizes (sweeps/h200-ops.json, --warmup 0 so the building first frame counts too)
+family over sizes (sweeps/gpu-ops.json, --warmup 0 so the building first frame counts too)
 measures every operation at every size with the run's own method: CUDA events, --repeat
 passes, noise. For each pipeline, a table: rows are phases, columns are sizes; a cell is the
 mean ms over the frames where the phase ran, and its cost per triangle in ns. The histogram

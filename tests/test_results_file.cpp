@@ -12,10 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "generators.h"
 #include "io/frame_columns.h"
 #include "io/results_file.h"
 #include "io/results_reader.h"
+#include "io/scene_label.h"
 #include "pipeline/run_summary.h"
 
 namespace cdb::test {
@@ -199,6 +201,46 @@ TEST(ResultsFile, CheckedFramesRecordContacts) {
   EXPECT_EQ(number_attr(f.id, "summary", "discrete_missed_contacts"), 3);
   EXPECT_EQ(number_attr(f.id, ".", "contact_distance"), 0.25);
   EXPECT_EQ(number_attr(f.id, ".", "contact_substeps"), 4);
+  const ResultsOverview o = read_results_overview(path);
+  EXPECT_EQ(o.checked_frames, 2u);
+  EXPECT_EQ(o.contacts, 4u);
+  EXPECT_DOUBLE_EQ(o.contact_precision, 0.4);
+}
+
+// A run with --set overrides: the label and the overrides are root attributes, and the
+// reader gives the label; runs of one descriptor at other sizes never share it.
+TEST(ResultsFile, SetOverridesMakeTheSceneLabel) {
+  TempDir dir;
+  const fs::path path = dir / "overridden.h5";
+  {
+    RunInfo info = info_for("b", 1);
+    info.scene = "funnel";
+    info.scene_overrides = {{"res", 24}, {"frames", 3}, {"shape", "cone"}};
+    ResultsFile out(path, info);
+    out.finish(summarize_run({}, 0), MemoryStats{});
+  }
+  File f(path);
+  ASSERT_GE(f.id, 0) << path;
+  EXPECT_EQ(string_attr(f.id, "/", "scene"), "funnel");
+  EXPECT_EQ(string_attr(f.id, "/", "scene_label"), "funnel[frames=3,res=24,shape=cone]");
+  EXPECT_EQ(nlohmann::json::parse(string_attr(f.id, "/", "scene_overrides")),
+            (nlohmann::json{{"res", 24}, {"frames", 3}, {"shape", "cone"}}));
+  EXPECT_EQ(read_results_overview(path).scene_label, "funnel[frames=3,res=24,shape=cone]");
+
+  RunInfo bad = info_for("b", 1);
+  bad.scene_overrides = nlohmann::json::array({1});
+  EXPECT_THROW(ResultsFile(dir / "bad.h5", bad), Error);
+  EXPECT_FALSE(fs::exists(dir / "bad.h5")) << "a bad RunInfo leaves no file";
+}
+
+TEST(SceneLabel, SortsKeysAndTypesValuesAsSetReadsThem) {
+  EXPECT_EQ(scene_label("funnel", nlohmann::json::object()), "funnel");
+  EXPECT_EQ(scene_label("funnel", parse_set_overrides({"res=24"})), "funnel[res=24]");
+  EXPECT_EQ(scene_label("crowd", parse_set_overrides({"frames=2", "count=4"})), "crowd[count=4,frames=2]");
+  EXPECT_EQ(parse_set_overrides({"res=24", "name=big", "on=true"}),
+            (nlohmann::json{{"res", 24}, {"name", "big"}, {"on", true}}));
+  EXPECT_THROW(parse_set_overrides({"res"}), Error);
+  EXPECT_THROW(parse_set_overrides({"=3"}), Error);
 }
 
 TEST(ResultsFile, CompleteRunMatchesFrameStats) {
@@ -215,6 +257,7 @@ TEST(ResultsFile, CompleteRunMatchesFrameStats) {
   ASSERT_GE(f.id, 0) << path;
   EXPECT_EQ(string_attr(f.id, "/", "status"), "complete");
   EXPECT_EQ(number_attr(f.id, "/", "schema_version"), double(kResultsSchemaVersion));
+  EXPECT_EQ(kResultsSchemaVersion, 2);
   EXPECT_EQ(string_attr(f.id, "/", "scene"), "funnel-test");
   EXPECT_EQ(string_attr(f.id, "/", "pipeline"), "b");
   EXPECT_EQ(string_attr(f.id, "/", "backend"), "cpu");
@@ -228,7 +271,9 @@ TEST(ResultsFile, CompleteRunMatchesFrameStats) {
   EXPECT_EQ(string_attr(f.id, "/", "error"), "<missing>");
   const auto params = nlohmann::json::parse(string_attr(f.id, "/", "params_json"));
   EXPECT_EQ(params["pipeline"]["name"], "b");
-  EXPECT_GT(H5Lexists(f.id, "quality", H5P_DEFAULT), 0);
+  EXPECT_EQ(H5Lexists(f.id, "quality", H5P_DEFAULT), 0) << "schema 2 has no /quality group";
+  EXPECT_EQ(string_attr(f.id, "/", "scene_label"), "funnel-test");
+  EXPECT_EQ(string_attr(f.id, "/", "scene_overrides"), "{}");
 
   for (const FrameColumn& c : frame_columns())
     EXPECT_EQ(rows_of(f.id, "frames/" + c.name), n) << c.name;
@@ -287,6 +332,9 @@ TEST(ResultsFile, CompleteRunMatchesFrameStats) {
 
   const ResultsOverview o = read_results_overview(path);
   EXPECT_EQ(o.status, "complete");
+  EXPECT_EQ(o.scene_label, "funnel-test");
+  EXPECT_EQ(o.triangles, 123u);
+  EXPECT_EQ(o.checked_frames, 0u);
   EXPECT_EQ(o.frames_written, n);
   EXPECT_EQ(o.frames_planned, n);
   EXPECT_EQ(o.mean_ms, expected.total.mean);

@@ -1,7 +1,7 @@
 #pragma once
 // Preserve's traversals shared out within a warp. A front node that starts to overlap
 // descends its subtree alone, one dependent load a step, and the warp waits for its longest
-// lane: the preserve kernels ran at 12 to 22 of 32 lanes active (results/gpu-targets/ncu-*.md).
+// lane: the preserve kernels ran at 12 to 22 of 32 lanes active (results/2026-11-25-h100/ncu-*.md).
 // Here a lane with nothing left takes over part of a busy lane's traversal, and the warp's
 // steps approach its lanes' total over 32 instead of its longest lane's.
 //

@@ -12,6 +12,7 @@
 #include "core/phase.h"
 #include "core/utc_time.h"
 #include "io/frame_columns.h"
+#include "io/scene_label.h"
 
 namespace cdb {
 namespace {
@@ -77,6 +78,9 @@ h5::Handle create_group(hid_t loc, const char* name, const std::string& where) {
 ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
     : path_(path), where_(path.string()) {
   h5::silence_library_errors();
+  // Checked before the file exists, so a bad value leaves no file behind.
+  if (!info.scene_overrides.is_object())
+    fail(where_ + ": scene_overrides: expected a JSON object, got " + info.scene_overrides.dump());
   if (path.has_parent_path()) {
     std::error_code ec;
     std::filesystem::create_directories(path.parent_path(), ec);
@@ -100,6 +104,8 @@ ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
   write_attr(root, "cuda_compiler", b.cuda_compiler, at);
   write_attr(root, "scene", info.scene, at);
   write_attr(root, "scene_description", info.scene_description, at);
+  write_attr(root, "scene_overrides", info.scene_overrides.dump(), at);
+  write_attr(root, "scene_label", scene_label(info.scene, info.scene_overrides), at);
   write_attr(root, "pipeline", info.pipeline, at);
   write_attr(root, "backend", info.backend, at);
   write_attr(root, "device_name", info.device_name, at);
@@ -134,7 +140,6 @@ ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
                            H5Dclose, ds, "create dataset"));
     write_attr(columns_.back().get(), "description", c.description, ds);
   }
-  create_group(root, "quality", where_);
   check(H5Fflush(root, H5F_SCOPE_GLOBAL), where_, "flush");
   last_flush_ = std::chrono::steady_clock::now();
 }

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/pair.h"
 #include "exec/memory.h"
 #include "io/hdf5_handle.h"
@@ -17,12 +19,17 @@
 
 namespace cdb {
 
-inline constexpr int64_t kResultsSchemaVersion = 1;
+// 2: scene_label and scene_overrides added, /quality (always empty) dropped, numeric
+// options in params_json stored as numbers.
+inline constexpr int64_t kResultsSchemaVersion = 2;
 
 // What the caller knows about the run; the writer adds the build (version, commit,
 // compilers), the host and the time.
 struct RunInfo {
   std::string scene, scene_description;
+  // The generator parameters `--set` overrode (an object, empty when none); with the
+  // scene's name they make its label (io/scene_label.h).
+  nlohmann::json scene_overrides = nlohmann::json::object();
   std::string pipeline;
   std::string backend;      // cuda | cpu
   std::string device_name;  // the GPU's name, or the CPU model

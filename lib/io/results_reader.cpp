@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "io/hdf5_handle.h"
+#include "io/scene_label.h"
 
 namespace cdb {
 
@@ -27,6 +28,22 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   r.backend = h5::read_string_attr(root, "backend", at);
   r.device_name = h5::read_string_attr(root, "device_name", at);
   r.frames_planned = uint64_t(h5::read_int_attr(root, "frame_last", at) - h5::read_int_attr(root, "frame_first", at));
+  r.triangles = uint64_t(h5::read_int_attr(root, "triangles", at));
+  if (h5::has_attr(root, "params_json")) {
+    const std::string text = h5::read_string_attr(root, "params_json", at);
+    const nlohmann::json params = nlohmann::json::parse(text, nullptr, false);
+    if (params.is_discarded() || !params.is_object()) fail(at + "params_json: not a JSON object");
+    if (params.contains("options") && params["options"].is_object()) r.options = params["options"];
+  }
+  if (h5::has_attr(root, "scene_label")) {
+    r.scene_label = h5::read_string_attr(root, "scene_label", at);
+  } else {
+    std::vector<std::string> sets;
+    const nlohmann::json given = r.options.value("set", nlohmann::json::array());
+    for (const auto& kv : given.is_array() ? given : nlohmann::json::array({given}))
+      if (kv.is_string()) sets.push_back(kv.get<std::string>());
+    r.scene_label = scene_label(r.scene, parse_set_overrides(sets));
+  }
 
   {
     const std::string ds = where + ": /frames/frame";
@@ -55,6 +72,14 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   r.repeats = h5::has_attr(s, "repeats") ? double(h5::read_int_attr(s, "repeats", st)) : std::nan("");
   r.noise_median = optional_double("noise_median");
   r.host_syncs_mean = optional_double("host_syncs_mean");
+  if (h5::has_attr(s, "checked_frames")) r.checked_frames = uint64_t(h5::read_int_attr(s, "checked_frames", st));
+  if (r.checked_frames) {
+    r.recall_min = h5::read_double_attr(s, "recall_min", st);
+    r.precision_min = h5::read_double_attr(s, "precision_min", st);
+    // Files written before the contact count have none.
+    r.contacts = h5::has_attr(s, "contacts") ? uint64_t(h5::read_int_attr(s, "contacts", st)) : 0;
+    r.contact_precision = optional_double("contact_precision");
+  }
   // Phases are whatever t_<phase>_ms_mean attributes the file has, so files written before
   // or after a phase was added read the same way.
   const std::string prefix = "t_", suffix = "_ms_mean";

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace cdb {
 
 struct ResultsOverview {
@@ -16,6 +18,12 @@ struct ResultsOverview {
   std::string status;  // complete | incomplete
   std::string error;   // why an incomplete run stopped, when it said
   std::string scene, pipeline, backend, device_name;
+  // The scene with its --set overrides, e.g. funnel[res=24]; files of schema 1 have no
+  // scene_label attribute and get it from params_json's recorded --set options.
+  std::string scene_label;
+  uint64_t triangles = 0;
+  // params_json's "options": every option of the run, the value given or its default.
+  nlohmann::json options = nlohmann::json::object();
   uint64_t frames_planned = 0;  // frame_last - frame_first
   uint64_t frames_written = 0;  // rows in /frames
   bool has_summary = false;
@@ -25,6 +33,10 @@ struct ResultsOverview {
   // Written by newer files only (NaN when absent): --repeat passes and the median noise
   // (relative std. dev.), host-device synchronizations per frame.
   double repeats = 0, noise_median = 0, host_syncs_mean = 0;
+  // --check: frames compared with the oracle (0: unchecked, the rest NaN), the lowest
+  // recall and precision over them, true contacts and contacts / reported pairs.
+  uint64_t checked_frames = 0, contacts = 0;
+  double recall_min = 0, precision_min = 0, contact_precision = 0;
   // Mean time of each phase that ran, by phase name, without "total".
   std::vector<std::pair<std::string, double>> phase_means;
 };

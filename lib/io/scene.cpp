@@ -17,6 +17,7 @@
 #include "io/keyframe_mesh.h"
 #include "io/obj_sequence.h"
 #include "io/rigid_mesh.h"
+#include "io/scene_label.h"
 
 namespace cdb {
 namespace {
@@ -375,7 +376,13 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   }
   if (j.contains("objects") || j.contains("queries"))
     s.source = declare_queries(std::move(s.source), j, file.string());
-  if (s.description.empty()) s.description = s.source->describe();
+  // The descriptor's own description states its default sizes; with overrides the
+  // generated source describes what actually runs.
+  if (s.description.empty() || !overrides.empty()) s.description = s.source->describe();
+  if (!overrides.empty()) {
+    s.overrides = overrides;
+    s.description += " (" + scene_label(s.name, overrides) + ")";
+  }
   return s;
 }
 

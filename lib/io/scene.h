@@ -15,6 +15,9 @@ namespace cdb {
 struct Scene {
   std::string name;
   std::string description;
+  // The generator parameters `--set` overrode (an object, empty when none): part of the
+  // scene's identity in results (io/scene_label.h).
+  nlohmann::json overrides = nlohmann::json::object();
   std::unique_ptr<FrameSource> source;
 };
 

@@ -139,6 +139,37 @@ check "report shows the interrupted run as incomplete" 0 "\| endless \| bvh \|.*
   "$cdbench" report "$out/funnel.h5" "$out/midway.h5" "$out/endless.h5"
 check "report as CSV" 0 "midway\.h5,midway,bvh,.*,\"incomplete: frame 2: " -- \
   "$cdbench" report --csv "$out/funnel.h5" "$out/midway.h5"
+# Scene identity and options: a --set run carries its label, the report shows it, the
+# options that differ between files, and the check columns when a file was checked.
+check "run with --set writes a results file" 0 "results: " -- \
+  "$cdbench" run --device cpu --quiet --scene funnel --set res=24 --frames 0:3 --front-cycle 2 --box-margin 0.5 --out "$out/funnel-res24.h5"
+attrs() { "$python" -c "import h5py, json, sys; f = h5py.File(sys.argv[1]); print(json.dumps({k: (v.decode() if isinstance(v, bytes) else v.item() if hasattr(v, 'item') else v) for k, v in f.attrs.items()}, sort_keys=True)); print('groups', sorted(f.keys()))" "$1"; }
+check "scene label attribute" 0 '"scene_label": "funnel\[res=24\]"' -- attrs "$out/funnel-res24.h5"
+check "scene overrides attribute" 0 '"scene_overrides": "\{\\"res\\":24\}"' -- attrs "$out/funnel-res24.h5"
+check "schema version 2" 0 '"schema_version": 2' -- attrs "$out/funnel-res24.h5"
+check "no /quality group" 0 "^groups \['frames', 'summary'\]$" -- attrs "$out/funnel-res24.h5"
+check "description of what ran" 0 '"scene_description": "funnel: .*\(funnel\[res=24\]\)"' -- attrs "$out/funnel-res24.h5"
+check "numbers in params_json are numbers" 0 "^int int float str list \['res=24'\]$" -- "$python" -c "
+import h5py, json, sys
+o = json.loads(h5py.File(sys.argv[1]).attrs['params_json'])['options']
+print(*(type(o[k]).__name__ for k in ('front-cycle', 'morton-bits', 'box-margin', 'frames', 'set')), o['set'])" "$out/funnel-res24.h5"
+check "report shows the scene label" 0 "\| funnel\[res=24\] \| bvh \| cpu: [^|]* \| [0-9]+ \|" -- \
+  "$cdbench" report "$out/funnel.h5" "$out/funnel-res24.h5"
+check "report adds the options that differ" 0 "^\| file \| scene \| pipeline \| device \| triangles \| --box-margin \| --frames \| --front-cycle \| --save-pairs \| frames \|" -- \
+  "$cdbench" report "$out/funnel.h5" "$out/funnel-res24.h5"
+has "report's option values" "$tmp/out" "\| funnel\[res=24\] \| bvh \| [^|]* \| 3682 \| 0\.5 \| 0:3 \| 2 \| no \| 3 \|"
+has "report's default option values" "$tmp/out" "funnel\.h5 \| funnel \| bvh \| [^|]* \| 8674 \| 0 \|  \| 4 \| yes \| 20 \|"
+check "report without differing options" 0 "^\| file \| scene \| pipeline \| device \| triangles \| frames \| mean_ms \|" -- \
+  "$cdbench" report "$out/funnel.h5"
+check "report shows check columns" 0 "\| recall_min \| precision_min \| contacts \| contact_precision \|" -- \
+  "$cdbench" report "$tmp/contacts.h5" "$out/funnel.h5"
+has "report's check values" "$tmp/out" "contacts\.h5 \|.*\| 1\.000000 \| 1\.000000 \| [0-9]+ \| 0\.[0-9]+ \|"
+check "report without checked files has no check columns" 0 "^\| file \| scene \| pipeline \| device \| triangles \| frames \| mean_ms \| noise_% \| median_ms \| p95_ms \|" -- \
+  "$cdbench" report "$out/funnel.h5"
+# docs/results-format.md names exactly what a file holds.
+"$cdbench" run --device cpu --quiet --frames 0:3 --check every --save-pairs --out "$out/documented.h5" >/dev/null 2>&1
+check "results format documented exactly" 0 "^0 differences" -- \
+  "$python" "$root/tests/cli/results_format_check.py" "$root/docs/results-format.md" "$out/documented.h5"
 check "report names an unreadable file" 1 "unreadable: .*seq/frame_0000.obj" -- \
   "$cdbench" report "$out/funnel.h5" "$tmp/seq/frame_0000.obj"
 

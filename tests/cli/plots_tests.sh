@@ -32,6 +32,12 @@ for res_ops in 12 24; do
     --out "$res/ops/ops-$res_ops-{pipeline}.h5"
 done
 
+# A smaller funnel by --set: its own scene label, never under funnel's heading.
+run --scene funnel --set res=24 --frames 0:6 --pipeline static,bvh --out "$res/funnel-res24-{pipeline}.h5"
+# Runs checked against the oracle: the report's Pareto section.
+run --scene funnel --frames 0:4 --pipeline bvh --check every --out "$res/pareto/funnel-bvh.h5"
+run --scene funnel --frames 0:4 --pipeline bvh --check every --box-margin 0.01 --out "$res/pareto/funnel-bvh-margin.h5"
+
 # An incomplete file: frame 1 has a NaN vertex, so the run stops after 1 of 2 frames.
 mkdir -p "$tmp/midway"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n' >"$tmp/midway/frame_0000.obj"
@@ -74,8 +80,34 @@ for p in static radix-order; do
     has "operations row $p/$phase" "$report" "^\| $phase \| [0-9.]+ ms \([0-9.e+]+ ns/tri\) \| [0-9.]+ ms \([0-9.e+]+ ns/tri\) \|$"
   done
 done
+has "--set run under its own label" "$report" "^### funnel\[res=24\] \([0-9,]+ triangles\)"
+has "--set run's rows" "$report" "^\| (\*\*)?static(\*\*)? \| 5 \| .*\| [0-9.]+x \|"
+for heading in "funnel" "funnel\[res=24\]"; do
+  n=$(grep -cE "^### $heading \([0-9,]+ triangles\)" "$report")
+  [[ $n -eq 2 ]] && echo "ok   one pipelines and one memory heading for $heading" || fail "$heading: $n headings, want 2"
+done
+small=$(grep -oE "^### funnel\[res=24\] \([0-9,]+" "$report" | head -1 | grep -oE "[0-9,]+$")
+full=$(grep -oE "^### funnel \([0-9,]+" "$report" | head -1 | grep -oE "[0-9,]+$")
+[[ -n $small && $small != "$full" ]] && echo "ok   the labels carry their own triangle counts ($small, $full)" ||
+  fail "triangle counts of funnel[res=24] ($small) and funnel ($full)"
+has "curves of the --set run" "$report" "\]\(curves-funnel_res_24_.png\)"
+has "Pareto section" "$report" "^## Speed against accuracy \(Pareto\)"
+has "Pareto plot linked" "$report" "^!\[funnel speed against accuracy\]\(pareto-funnel.png\)"
+has "Pareto table row" "$report" "^\| bvh \| 0\.01 \| discrete \| fp32 \| 1 \| yes \| [0-9.]+ \| 1\.000000 \|"
+if [[ "$(head -c 8 "$tmp/out1/pareto-funnel.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" == 89504e470d0a1a0a ]]; then
+  echo "ok   pareto-funnel.png is a PNG"
+else
+  fail "pareto-funnel.png missing or not a PNG"
+fi
 has "incomplete file listed" "$report" "midway-bvh.h5\`: midway / bvh: incomplete \(1/2 frames\): frame 1: .*non-finite"
 has "inventory shows it incomplete" "$report" "^\| \`$res/midway-bvh.h5\` \| midway \| bvh \|.*incomplete \(1/2 frames\)"
+
+# Schema 1 files (the committed H200 archive) have no scene_label: the label comes from the
+# --set values recorded in params_json.
+mkdir -p "$tmp/h200"
+tar -xJf "$root/results/2026-11-24-h200/h5.tar.xz" -C "$tmp/h200" runs/scaling
+check "schema 1 labels from recorded --set" 0 "\| cloth-wave\[frames=10,res=32\] \| bvh \|" -- \
+  "$python" "$root/scripts/cdb_results.py" "$tmp/h200/runs/scaling"
 
 check "LaTeX table" 0 '^\\textbf\{[a-z-]+\} & 5 & \\textbf\{[0-9.]+\}' -- "$python" "$root/scripts/table_pipelines.py" --latex "$res"
 check "other baseline" 0 "speed-up vs static" -- "$python" "$root/scripts/table_pipelines.py" --baseline static "$res"
@@ -111,65 +143,5 @@ check "plot_scaling names a non-results file" 1 "notes.h5: not a cdbench results
 check "make_report stops on a non-results file" 1 "notes.h5: not a cdbench results file" -- \
   bash "$root/scripts/make_report.sh" "$tmp/bad" "$tmp/out3"
 check "missing file" 1 "nowhere.h5: no such file" -- "$python" "$root/scripts/table_memory.py" "$tmp/nowhere.h5"
-
-# The targets report's A/B table against itself: every speed-up is 1.00x, so the control
-# range is 1.00x-1.00x, the control cell says so and the other cell lies inside it.
-mkdir -p "$tmp/targets"
-cp "$res/funnel-bvh.h5" "$tmp/targets/steady-funnel-bvh.h5"
-cp "$res/funnel-static.h5" "$tmp/targets/steady-funnel-static.h5"
-check "perf_targets control range" 0 "^Controls \(bvh: code shared by both binaries\): speed-ups 1\.00x–1\.00x over 1 cells" -- \
-  "$python" "$root/scripts/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls bvh
-has "perf_targets control cell" "$tmp/out" "^\| steady/funnel \| bvh \|.* \| control \|$"
-has "perf_targets cell inside the control range" "$tmp/out" "^\| steady/funnel \| static \| .* \| 1\.00x \|.* \| no \|$"
-# ... and per phase: the static pipeline's preserve against itself, and bvh's query as the control.
-has "perf_targets phase control range" "$tmp/out" "Controls' phases \(bvh\): 1\.00x–1\.00x over [0-9]+ phases"
-has "perf_targets phase row" "$tmp/out" "^\| steady/funnel \| static \| preserve \| [0-9.]+ \| [0-9.]+ \| 1\.00x \| no \|$"
-has "perf_targets phase control row" "$tmp/out" "^\| steady/funnel \| bvh \| query \| [0-9.]+ \| [0-9.]+ \| 1\.00x \| control \|$"
-# ab_phases.py on a log in device-targets.sh's printed format: one cell, two binaries.
-cat >"$tmp/ab.log" <<'LOG'
-=== cloth cloth-ball b --repeat 3 (/x/bin/cdbench)
-pipeline: b on cuda
-  per frame   mean 0.300  median 0.200  p95 0.500  min 0.100 ms (upload excluded)
-  preserve    mean 0.120  median 0.100  p95 0.200 ms  (45 frames)
-=== cloth cloth-ball b --repeat 3 (/x/base/cdbench-base)
-pipeline: b on cuda
-  per frame   mean 0.330  median 0.220  p95 0.500  min 0.100 ms (upload excluded)
-  preserve    mean 0.150  median 0.110  p95 0.200 ms  (45 frames)
-LOG
-check "ab_phases phase speed-up" 0 "^cloth/cloth-ball +b +preserve +cdbench-base 0\.150/0\.110 \| cdbench 0\.120/0\.100 1\.25x$" -- \
-  "$python" "$root/scripts/ab_phases.py" "$tmp/ab.log" cdbench-base cdbench
-has "ab_phases frame row" "$tmp/out" "^cloth/cloth-ball +b +per frame +cdbench-base 0\.330/0\.220 \| cdbench 0\.300/0\.200 1\.10x$"
-# Cells of one scene with other generator settings stay apart (the scaling group's sizes).
-cat >"$tmp/ab-sizes.log" <<'LOG'
-=== scaling cloth-wave b --set res=72 --set frames=8 --repeat 2 (/x/bin/cdbench)
-pipeline: b on cuda
-  per frame   mean 0.100  median 0.100  p95 0.100  min 0.100 ms (upload excluded)
-=== scaling cloth-wave b --set res=224 --set frames=8 --repeat 2 (/x/bin/cdbench)
-pipeline: b on cuda
-  per frame   mean 0.200  median 0.200  p95 0.200  min 0.200 ms (upload excluded)
-LOG
-check "ab_phases keeps sizes apart" 0 "^scaling/cloth-wave res=72 +b +per frame +cdbench 0\.100/0\.100$" -- \
-  "$python" "$root/scripts/ab_phases.py" "$tmp/ab-sizes.log" cdbench
-has "ab_phases second size" "$tmp/out" "^scaling/cloth-wave res=224 +b +per frame +cdbench 0\.200/0\.200$"
-check "ab_phases unknown binary" 1 "no cell run by cdbench-other" -- \
-  "$python" "$root/scripts/ab_phases.py" "$tmp/ab.log" cdbench-other cdbench
-check "ab_phases missing log" 1 "nowhere.log: No such file or directory" -- \
-  "$python" "$root/scripts/ab_phases.py" "$tmp/nowhere.log" cdbench-base cdbench
-# steady_breakdown.py: the committed GPU results have graph-replayed steady frames, one row
-# a pipeline; CPU results record no graph, and the script says so.
-mkdir -p "$tmp/gpu"
-tar -xJf "$root/results/gpu-targets/h5-now.tar.xz" -C "$tmp/gpu"
-check "steady_breakdown on GPU results" 0 "^\| targets \| steady-funnel-b \| [0-9]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|$" -- \
-  "$python" "$root/scripts/steady_breakdown.py" "$tmp/gpu/targets"
-# Runs made with --phase-timing off have a total and an upload, no phases.
-has "steady_breakdown untimed run" "$tmp/out" "^\| targets \| untimed-funnel-b \| [0-9]+ \| [0-9.]+ \| — \| — \| — \| [0-9.]+ \|$"
-# The funnel-size target is judged on the untimed runs, with four digits.
-check "perf_targets judges the steady frame untimed" 0 \
-  "^\| steady frame of a/b/c at funnel size ≤ 0\.050 \| 0\.[0-9]{4}–0\.[0-9]{4} \(median of the graph-replayed refit\+preserve frames, phases untimed\) \| (met|\*\*not met\*\*) \|$" -- \
-  "$python" "$root/scripts/perf_targets.py" "$tmp/gpu/targets"
-check "steady_breakdown without replayed frames" 1 "no graph-replayed refit\+preserve frames" -- \
-  "$python" "$root/scripts/steady_breakdown.py" "$tmp/targets"
-check "perf_targets unknown control" 1 "--controls: unknown pipeline\(s\) gird" -- \
-  "$python" "$root/scripts/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls gird
 
 finish plots

@@ -24,7 +24,7 @@ count "dry run shows the run lines" 6 "^ +cdbench run --scene .* --out $out/.*\.
 check "sweep runs every cell" 0 "6 run, 6 complete, 0 failed" -- "$cdbench" sweep "$sweep" --out "$out"
 n=$(ls "$out"/*.h5 | wc -l)
 [[ $n -eq 6 ]] && echo "ok   six results files" || fail "$n results files (want 6)"
-check "report over the directory" 0 "funnel \| sweep \| cpu" -- "$cdbench" report "$out"
+check "report over the directory, scenes by their labels" 0 "\| funnel\\[frames=3,res=24\\] \\| sweep \\| cpu" -- "$cdbench" report "$out"
 count "report has six complete rows" 6 "\.h5 \| .* \| complete \|$"
 check "second sweep skips complete cells" 0 "6 already complete, 0 to run" -- "$cdbench" sweep "$sweep" --out "$out"
 count "each skip is said" 6 "^skip .*: results complete"

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# The GPU machine's scripts (bench/) on small CPU results and on the committed H100 results:
+# perf_targets.py's A/B tables, ab_phases.py on a printed log, steady_breakdown.py.
+set -u
+cdbench=$1
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+python=/usr/bin/python3
+[[ -x $python ]] || python=python3
+source "$root/tests/cli/harness.sh"
+
+export OMP_NUM_THREADS=1
+res=$tmp/results
+"$cdbench" run --device cpu --quiet --scene funnel --frames 0:6 --pipeline static,bvh --out "$res/funnel-{pipeline}.h5" \
+  >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; fail "cdbench run"; }
+
+# The targets report's A/B table against itself: every speed-up is 1.00x, so the control
+# range is 1.00x-1.00x, the control cell says so and the other cell lies inside it.
+mkdir -p "$tmp/targets"
+cp "$res/funnel-bvh.h5" "$tmp/targets/steady-funnel-bvh.h5"
+cp "$res/funnel-static.h5" "$tmp/targets/steady-funnel-static.h5"
+check "perf_targets control range" 0 "^Controls \(bvh: code shared by both binaries\): speed-ups 1\.00x–1\.00x over 1 cells" -- \
+  "$python" "$root/bench/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls bvh
+has "perf_targets control cell" "$tmp/out" "^\| steady/funnel \| bvh \|.* \| control \|$"
+has "perf_targets cell inside the control range" "$tmp/out" "^\| steady/funnel \| static \| .* \| 1\.00x \|.* \| no \|$"
+# ... and per phase: the static pipeline's preserve against itself, and bvh's query as the control.
+has "perf_targets phase control range" "$tmp/out" "Controls' phases \(bvh\): 1\.00x–1\.00x over [0-9]+ phases"
+has "perf_targets phase row" "$tmp/out" "^\| steady/funnel \| static \| preserve \| [0-9.]+ \| [0-9.]+ \| 1\.00x \| no \|$"
+has "perf_targets phase control row" "$tmp/out" "^\| steady/funnel \| bvh \| query \| [0-9.]+ \| [0-9.]+ \| 1\.00x \| control \|$"
+# ab_phases.py on a log in device-targets.sh's printed format: one cell, two binaries.
+cat >"$tmp/ab.log" <<'LOG'
+=== cloth cloth-ball b --repeat 3 (/x/bin/cdbench)
+pipeline: b on cuda
+  per frame   mean 0.300  median 0.200  p95 0.500  min 0.100 ms (upload excluded)
+  preserve    mean 0.120  median 0.100  p95 0.200 ms  (45 frames)
+=== cloth cloth-ball b --repeat 3 (/x/base/cdbench-base)
+pipeline: b on cuda
+  per frame   mean 0.330  median 0.220  p95 0.500  min 0.100 ms (upload excluded)
+  preserve    mean 0.150  median 0.110  p95 0.200 ms  (45 frames)
+LOG
+check "ab_phases phase speed-up" 0 "^cloth/cloth-ball +b +preserve +cdbench-base 0\.150/0\.110 \| cdbench 0\.120/0\.100 1\.25x$" -- \
+  "$python" "$root/bench/ab_phases.py" "$tmp/ab.log" cdbench-base cdbench
+has "ab_phases frame row" "$tmp/out" "^cloth/cloth-ball +b +per frame +cdbench-base 0\.330/0\.220 \| cdbench 0\.300/0\.200 1\.10x$"
+# Cells of one scene with other generator settings stay apart (the scaling group's sizes).
+cat >"$tmp/ab-sizes.log" <<'LOG'
+=== scaling cloth-wave b --set res=72 --set frames=8 --repeat 2 (/x/bin/cdbench)
+pipeline: b on cuda
+  per frame   mean 0.100  median 0.100  p95 0.100  min 0.100 ms (upload excluded)
+=== scaling cloth-wave b --set res=224 --set frames=8 --repeat 2 (/x/bin/cdbench)
+pipeline: b on cuda
+  per frame   mean 0.200  median 0.200  p95 0.200  min 0.200 ms (upload excluded)
+LOG
+check "ab_phases keeps sizes apart" 0 "^scaling/cloth-wave res=72 +b +per frame +cdbench 0\.100/0\.100$" -- \
+  "$python" "$root/bench/ab_phases.py" "$tmp/ab-sizes.log" cdbench
+has "ab_phases second size" "$tmp/out" "^scaling/cloth-wave res=224 +b +per frame +cdbench 0\.200/0\.200$"
+check "ab_phases unknown binary" 1 "no cell run by cdbench-other" -- \
+  "$python" "$root/bench/ab_phases.py" "$tmp/ab.log" cdbench-other cdbench
+check "ab_phases missing log" 1 "nowhere.log: No such file or directory" -- \
+  "$python" "$root/bench/ab_phases.py" "$tmp/nowhere.log" cdbench-base cdbench
+# steady_breakdown.py: the committed H100 results have graph-replayed steady frames, one row
+# a pipeline; CPU results record no graph, and the script says so.
+mkdir -p "$tmp/gpu"
+tar -xJf "$root/results/2026-11-25-h100/h5.tar.xz" -C "$tmp/gpu"
+check "steady_breakdown on GPU results" 0 "^\| targets \| steady-funnel-b \| [0-9]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|$" -- \
+  "$python" "$root/bench/steady_breakdown.py" "$tmp/gpu/targets"
+# Runs made with --phase-timing off have a total and an upload, no phases.
+has "steady_breakdown untimed run" "$tmp/out" "^\| targets \| untimed-funnel-b \| [0-9]+ \| [0-9.]+ \| — \| — \| — \| [0-9.]+ \|$"
+# The funnel-size target is judged on the untimed runs, with four digits.
+check "perf_targets judges the steady frame untimed" 0 \
+  "^\| steady frame of a/b/c at funnel size ≤ 0\.050 \| 0\.[0-9]{4}–0\.[0-9]{4} \(median of the graph-replayed refit\+preserve frames, phases untimed\) \| (met|\*\*not met\*\*) \|$" -- \
+  "$python" "$root/bench/perf_targets.py" "$tmp/gpu/targets"
+check "steady_breakdown without replayed frames" 1 "no graph-replayed refit\+preserve frames" -- \
+  "$python" "$root/bench/steady_breakdown.py" "$tmp/targets"
+check "perf_targets unknown control" 1 "--controls: unknown pipeline\(s\) gird" -- \
+  "$python" "$root/bench/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls gird
+
+finish bench
