@@ -4,7 +4,8 @@
 # baselines, every frame's timings into one HDF5 file per scene and pipeline under
 # $OUT/maintenance/NAME/, the printed summaries into $OUT/maintenance.log.
 # BASE_BIN="NAME=PATH ..." runs other cdbench binaries on the same cells right after
-# (before/after in one call, same GPU). scripts/maintenance_report.py makes the tables.
+# (before/after in one call, same GPU); CONTROL=1 also the head binary with --front-cycle 4.
+# bench/maintenance_report.py makes the tables.
 #
 #   CELLS  which cells run (default: all): wave128 wave512 wave708 spheres sphere cloth-ball funnel
 set -uo pipefail
@@ -15,21 +16,31 @@ out=${OUT:-/tmp/out}
 mkdir -p "$out/maintenance"
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$out/maintenance/gpu.txt"
 
-# cell NAME SCENE PIPELINES ARGS...: the same frames with every binary, untimed phases.
+# One run: TAG BIN PIPELINES NAME SCENE ARGS...
+one() {
+  local tag=$1 bin=$2 p=$3 name=$4 scene=$5
+  shift 5
+  local dir=$out/maintenance/$tag
+  mkdir -p "$dir"
+  echo "=== $tag $name $p $*"
+  "$bin" run --device cuda --scene "$scene" --pipeline "$p" --quiet --phase-timing off \
+    --out "$dir/$name-{pipeline}.h5" "$@" 2>&1 |
+    grep -E "^commit|^device|^scene|^pipeline:|per frame|error|Error"
+}
+
+# cell NAME SCENE PIPELINES ARGS...: the same frames with every binary, untimed phases,
+# one pass (--repeat would average each frame over passes whose schedules differ under
+# --front-cycle auto, hiding the update frames). CONTROL=1 adds the head binary with the
+# fixed cycle of the base (--front-cycle 4) on a, b and c.
 cell() {
   local name=$1 scene=$2 pipelines=$3
   shift 3
-  for entry in "head=$bundle/bin/cdbench" ${BASE_BIN:-}; do
-    local tag=${entry%%=*} bin=${entry#*=}
-    local dir=$out/maintenance/$tag
-    mkdir -p "$dir"
-    local p=$pipelines
-    [[ $tag != head ]] && p=${BASE_PIPELINES:-$pipelines}
-    echo "=== $tag $name $p $*"
-    "$bin" run --device cuda --scene "$scene" --pipeline "$p" --quiet --phase-timing off --repeat 2 \
-      --out "$dir/$name-{pipeline}.h5" "$@" 2>&1 |
-      grep -E "^commit|^device|^scene|^pipeline:|per frame|mean|median|p95|error|Error"
+  one head "$bundle/bin/cdbench" "$pipelines" "$name" "$scene" "$@"
+  for entry in ${BASE_BIN:-}; do
+    one "${entry%%=*}" "${entry#*=}" "${BASE_PIPELINES:-$pipelines}" "$name" "$scene" "$@"
   done
+  [[ ${CONTROL:-0} == 1 ]] && one head-cycle4 "$bundle/bin/cdbench" a,b,c "$name" "$scene" --front-cycle 4 "$@"
+  return 0
 }
 
 cells=${CELLS:-wave128 wave512 wave708 spheres sphere cloth-ball funnel}

@@ -32,8 +32,8 @@ namespace cdb {
 template <class Exec, class Timer>
 class FrontPipeline final : public Pipeline {
  public:
-  FrontPipeline(const PipelineConfig& config, FrontStrategy strategy)
-      : config_(config), planner_(strategy, config), exec_(ExecOptions{config.dependent_launch}),
+  FrontPipeline(const PipelineConfig& config, FrontStrategy chosen)
+      : config_(config), planner_(chosen, config), exec_(ExecOptions{config.dependent_launch}),
         timer_(exec_, config.phase_timing), mesh_(exec_), bvh_(exec_),
         rigid_bvh_(exec_, "rigid_bvh"), pairs_(exec_), restructure_(exec_),
         self_(exec_, "front", kSelfCounters), inter_(exec_, "inter_front", kInterCounters),

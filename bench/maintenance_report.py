@@ -3,7 +3,7 @@
 (frames after the first), their ratios to the median, the front updates a run made and the
 frames they cost, for every binary of a run of bench/maintenance.sh.
 
-  scripts/maintenance_report.py DIR [DIR ...]   (each DIR: one binary's HDF5 files)
+  bench/maintenance_report.py DIR [DIR ...]   (each DIR: one binary's HDF5 files)
 
 The binary is named by its directory; rows of the same scene and pipeline come together so
 before and after read side by side. Frame times are the files' own (`t_total_ms`).
@@ -13,7 +13,7 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
 import cdb_results  # noqa: E402
 
 
