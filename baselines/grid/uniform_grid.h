@@ -17,7 +17,6 @@
 #include <cstdint>
 #include <string>
 
-#include "bvh/build.h"
 #include "core/error.h"
 #include "core/pair_sink.h"
 #include "exec/balance.h"

@@ -22,7 +22,6 @@
 #include <cstdint>
 #include <limits>
 
-#include "bvh/build.h"
 #include "core/aabb.h"
 #include "core/atomics.h"
 #include "core/error.h"
