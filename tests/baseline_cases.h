@@ -365,7 +365,7 @@ GridPlacement grid_placement(const SceneFrames& scene) {
   faces.reserve(n);
   exec.copy_from_host(faces.data(), topo.faces.data(), n);
   exec.copy_from_host(vertices.data(), scene.frames[0].data(), topo.num_vertices);
-  grid_boxes(exec, grid, MeshView{vertices.data(), faces.data(), n});
+  face_boxes(exec, grid, MeshView{vertices.data(), faces.data(), n});
   grid_build(exec, grid, n);
   GridPlacement p{std::vector<uint32_t>(n), std::vector<uint32_t>(n)};
   exec.copy_to_host(p.level.data(), grid.level.data(), n);
@@ -409,13 +409,13 @@ BaselineReruns check_baselines(const SceneFrames& scene, bool tiny_grid_plan = f
     sweep_pairs(exec, sweep, n, sink);
     expect_pairs(exec, expected, pairs, count, "sweep frame " + std::to_string(f));
 
-    hash_boxes(exec, hash, mesh);
+    face_boxes(exec, hash, mesh);
     reruns.hash_regrids += hash_build(exec, hash, n);
     exec.fill(count.data(), 1, 0ull);
     hash_pairs(exec, hash, n, sink);
     expect_pairs(exec, expected, pairs, count, "hash frame " + std::to_string(f));
 
-    grid_boxes(exec, grid, mesh);
+    face_boxes(exec, grid, mesh);
     if (tiny_grid_plan) {
       grid.planned_entries = 1024;
       grid.key_bits = 1;

@@ -2,6 +2,7 @@
 // test is reported as skipped, with the reason, never as passed.
 #include "baseline_cases.h"
 #include "bvh_cases.h"
+#include "cell_cases.h"
 #include "inter_cases.h"
 #include "knob_cases.h"
 #include "precision_cases.h"
@@ -42,6 +43,23 @@ TEST_P(CudaBaselines, SweepHashAndGridExact) { check_baselines<CudaExec>(GetPara
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaBaselines, testing::ValuesIn(baseline_cases()),
                          baseline_case_name);
+
+class CudaCells : public testing::Test {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_F(CudaCells, CoordinateMonotoneAtExtremes) { check_cell_coord_monotone_at_extremes<CudaExec>(); }
+
+TEST_F(CudaCells, BoxRangesHoldTheirPointsAndHomeCells) {
+  check_box_ranges_hold_their_points_and_homes<CudaExec>();
+}
+
+TEST_F(CudaCells, OnePointSceneIsOneCell) { check_one_point_scene_is_one_cell<CudaExec>(); }
+
+TEST_F(CudaCells, SceneStatsReduction) { check_scene_stats_reduction<CudaExec>(); }
 
 TEST(CudaHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;

@@ -1,5 +1,6 @@
 #include "baseline_cases.h"
 #include "bvh_cases.h"
+#include "cell_cases.h"
 #include "io/scene.h"
 #include "core/error.h"
 #include "exec/host_exec.h"
@@ -20,6 +21,16 @@ TEST_P(HostBaselines, SweepHashAndGridExact) { check_baselines<HostExec>(GetPara
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HostBaselines, testing::ValuesIn(baseline_cases()),
                          baseline_case_name);
+
+TEST(HostCells, CoordinateMonotoneAtExtremes) { check_cell_coord_monotone_at_extremes<HostExec>(); }
+
+TEST(HostCells, BoxRangesHoldTheirPointsAndHomeCells) {
+  check_box_ranges_hold_their_points_and_homes<HostExec>();
+}
+
+TEST(HostCells, OnePointSceneIsOneCell) { check_one_point_scene_is_one_cell<HostExec>(); }
+
+TEST(HostCells, SceneStatsReduction) { check_scene_stats_reduction<HostExec>(); }
 
 TEST(HostHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
   EXPECT_EQ(check_baselines<HostExec>(soup_with_giants(3000, 10, false)).hash_regrids, 0u);

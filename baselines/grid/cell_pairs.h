@@ -1,20 +1,19 @@
 #pragma once
 // Pair tests of the uniform grid, each overlapping pair reported exactly once.
 //
-// The rule (the standard one for grids, as in OTG and kDet): a pair is reported only from
-// the cell holding m, the minimum corner of the intersection of the two closed boxes.
-// Since m lies in both boxes and grid_coord is monotone, every box is registered in the
-// cell of m on its own level. So:
+// The rule is the cell baselines' ownership rule (common/home_cell.h): a pair is reported
+// only from its home cell, the one holding m, the minimum corner of the intersection of
+// the two closed boxes. Every box is registered in the cell of m on its own level. So:
 // - two boxes of one level meet in exactly one cell that passes the rule, where the
 //   thread of the earlier sorted entry tests the later one (SameLevelPairsFn);
 // - a box a on a finer level than b is tested by a's thread against the cells a's box
 //   covers on b's level (at most 3 per axis: a is narrower than that level's cell); a
 //   covers the cell of m there, b is registered in it, and the rule keeps the one test
 //   that reports it (CoarserLevelPairsFn). b never looks at finer levels.
-// Touching boxes (m on a cell face) and float rounding need no special case: the cell of
-// m is computed by the same function that registered both boxes.
 #include <cstdint>
 
+#include "common/home_cell.h"
+#include "core/aabb.h"
 #include "core/pair_sink.h"
 #include "grid/grid_geometry.h"
 
@@ -44,8 +43,7 @@ struct SameLevelPairsFn {
       const uint32_t b = boxes[t];
       const vec4f blo = lo[b], bhi = hi[b];
       if (!overlaps(alo, ahi, blo, bhi)) continue;
-      if (grid_key_of_point(*params, l, max_of(alo.x, blo.x), max_of(alo.y, blo.y),
-                            max_of(alo.z, blo.z)) == key)
+      if (grid_key(*params, l, home_cell(level_lattice(*params, l), alo, blo)) == key)
         out.emit(a, b);
     }
   }
@@ -73,19 +71,18 @@ struct CoarserLevelPairsFn {
     for (uint32_t l = level[a] + 1; l < p.levels; ++l) {
       const uint32_t begin = level_begin[l], end = level_begin[l + 1];
       if (begin == end) continue;
-      const GridRange r = grid_range(p, l, alo, ahi);
-      for (uint32_t z = r.lo[2]; z <= r.hi[2]; ++z)
-        for (uint32_t y = r.lo[1]; y <= r.hi[1]; ++y)
-          for (uint32_t x = r.lo[0]; x <= r.hi[0]; ++x) {
-            const uint64_t key = grid_key(p, l, x, y, z);
+      const CellLattice<float> lattice = level_lattice(p, l);
+      const CellRange r = cell_range(lattice, alo, ahi);
+      for (uint32_t z = r.lo.z; z <= r.hi.z; ++z)
+        for (uint32_t y = r.lo.y; y <= r.hi.y; ++y)
+          for (uint32_t x = r.lo.x; x <= r.hi.x; ++x) {
+            const uint64_t key = grid_key(p, l, {x, y, z});
             for (uint32_t t = lower_bound_key(keys, begin, end, key); t < end && keys[t] == key;
                  ++t) {
               const uint32_t b = boxes[t];
               const vec4f blo = lo[b], bhi = hi[b];
               if (!overlaps(alo, ahi, blo, bhi)) continue;
-              if (grid_key_of_point(p, l, max_of(alo.x, blo.x), max_of(alo.y, blo.y),
-                                    max_of(alo.z, blo.z)) == key)
-                out.emit(a, b);
+              if (grid_key(p, l, home_cell(lattice, alo, blo)) == key) out.emit(a, b);
             }
           }
     }

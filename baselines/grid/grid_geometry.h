@@ -8,8 +8,8 @@
 // inequality that keeps at least 3/4 of the boxes, and it drops the few scene-spanning
 // triangles that would otherwise inflate a plain mean (kDet's rule) and with it every
 // cell. A power of two makes x / cell a product by an exact power of two: only the
-// subtraction of the origin rounds. c0 is also at least 2^-(kGridAxisBits-1) of the
-// scene's largest extent, so no axis needs more than 2^kGridAxisBits cells.
+// subtraction of the origin rounds. c0 is also at least 2^-(kCellAxisBits-1) of the
+// scene's largest extent, so no axis needs more than 2^kCellAxisBits cells.
 //
 // Levels, the adaptive part. OTG (Wang, Lin, Zhang, Tang 2014) subdivides space in two
 // levels so that a non-uniform scene does not force one cell size on every primitive; for
@@ -21,40 +21,33 @@
 // level, and no box is ever left out or given an unbounded number of cells. A scene of
 // equal triangles uses level 0 only.
 //
-// Every cell coordinate comes from one monotone function, grid_coord(), which is all the
-// exactness argument of the pair rule (cell_pairs.h) needs.
+// Every level is a lattice of the cell baselines' common pieces (baselines/common): its
+// cell coordinates come from the one monotone cell_coord(), which is all the exactness
+// argument of the pair rule (cell_pairs.h) needs.
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
-#include "core/aabb.h"
+#include "common/cell_coord.h"
+#include "common/cell_range.h"
+#include "common/scene_stats.h"
 #include "core/hd.h"
 #include "core/vec.h"
 
 namespace cdb {
 
-inline constexpr uint32_t kGridAxisBits = 20;
-inline constexpr float kGridMaxCoord = float((1u << kGridAxisBits) - 1);
 inline constexpr double kGridTrim = 4.0;
 // 2^-126 is the smallest normal float and 2^130 exceeds any finite scene's extent; within
 // these the inverse cell 2^-e is an exact float (normal or subnormal, never zero).
 inline constexpr int kGridMinCellExp = -126;
 inline constexpr int kGridMaxCellExp = 130;
-// Levels span 2^(kGridAxisBits-1) (level 0 at least that fraction of the scene, the top at
-// least half of it): kGridAxisBits - 1 of them at most.
-inline constexpr uint32_t kGridMaxLevels = kGridAxisBits - 1;
+// Levels span 2^(kCellAxisBits-1) (level 0 at least that fraction of the scene, the top at
+// least half of it): kCellAxisBits - 1 of them at most.
+inline constexpr uint32_t kGridMaxLevels = kCellAxisBits - 1;
 // A box on its level covers at most 3 cells per axis; the level choice still checks the
 // product against this bound and moves a box up while it is exceeded (rounding). The top
 // level holds every box: its cell is at least half the scene, so the whole scene spans at
 // most 3 cells per axis there.
 inline constexpr uint32_t kGridMaxCellsPerBox = 27;
-
-// Largest extent, in double: extents of 1e38-scale boxes overflow float.
-CDB_HD_INLINE double box_width(const vec4f& lo, const vec4f& hi) {
-  const double ex = double(hi.x) - double(lo.x), ey = double(hi.y) - double(lo.y),
-               ez = double(hi.z) - double(lo.z);
-  return max_of(ex, max_of(ey, ez));
-}
 
 // ceil(log2 x) for finite x > 0, exact (frexp, no rounding).
 CDB_HD_INLINE int ceil_log2(double x) {
@@ -63,39 +56,8 @@ CDB_HD_INLINE int ceil_log2(double x) {
   return f == 0.5 ? e - 1 : e;
 }
 
-// Scene bounds and the sum of the box widths (the first reduction).
-struct GridScene {
-  double width_sum;
-  float lo[3], hi[3];
-};
-
-struct GridSceneOp {
-  CDB_HD GridScene operator()(const GridScene& a, const GridScene& b) const {
-    GridScene r;
-    r.width_sum = a.width_sum + b.width_sum;
-    for (int k = 0; k < 3; ++k) {
-      r.lo[k] = min_of(a.lo[k], b.lo[k]);
-      r.hi[k] = max_of(a.hi[k], b.hi[k]);
-    }
-    return r;
-  }
-  static GridScene identity() {
-    const float inf = std::numeric_limits<float>::infinity();
-    return {0.0, {inf, inf, inf}, {-inf, -inf, -inf}};
-  }
-};
-
-struct GridSceneFn {
-  const vec4f* lo;
-  const vec4f* hi;
-  CDB_HD GridScene operator()(uint32_t i) const {
-    const vec4f a = lo[i], b = hi[i];
-    return {box_width(a, b), {a.x, a.y, a.z}, {b.x, b.y, b.z}};
-  }
-};
-
 // Sum and count of the widths of the boxes at most kGridTrim mean widths wide (the second
-// reduction; it needs the first's mean).
+// reduction; it needs the first's, SceneStats, for the mean).
 struct TrimmedWidths {
   double sum;
   unsigned long long count;
@@ -110,7 +72,7 @@ struct TrimmedWidthsOp {
 struct TrimmedWidthsFn {
   const vec4f* lo;
   const vec4f* hi;
-  const GridScene* scene;
+  const SceneStats* scene;
   uint32_t n;
   CDB_HD TrimmedWidths operator()(uint32_t i) const {
     const double w = box_width(lo[i], hi[i]);
@@ -133,46 +95,19 @@ struct GridLayout {
   uint64_t key_space;  // every key is below it
 };
 
-// The grid coordinate of x along one axis: monotone non-decreasing in x (a product by a
-// positive power of two, the subtraction of a constant, a clamp, a truncation). Scaling
-// before subtracting keeps it finite where x - origin would overflow (boxes reaching
-// +-3e38); both products are exact short of the subnormal range, where they still round
-// monotonically. The products overflow together only when the scene has zero extent (cell
-// 2^-126, coordinates past 4), where inf - inf is NaN and every x maps to 0.
-CDB_HD_INLINE uint32_t grid_coord(float x, float origin, float inv_cell) {
-  const float t = x * inv_cell - origin * inv_cell;
-  return t > 0.0f ? static_cast<uint32_t>(min_of(t, kGridMaxCoord)) : 0u;
+// Level l as a lattice: the scene's origin, the level's cell.
+CDB_HD_INLINE CellLattice<float> level_lattice(const GridLayout& p, uint32_t l) {
+  return {{p.origin[0], p.origin[1], p.origin[2]}, p.level[l].inv_cell};
 }
 
-struct GridRange {
-  uint32_t lo[3], hi[3];
-  CDB_HD_INLINE uint64_t cells() const {
-    return (uint64_t(hi[0] - lo[0]) + 1) * (uint64_t(hi[1] - lo[1]) + 1) *
-           (uint64_t(hi[2] - lo[2]) + 1);
-  }
-};
-
-CDB_HD_INLINE GridRange grid_range(const GridLayout& p, uint32_t l, const vec4f& lo,
+CDB_HD_INLINE CellRange grid_range(const GridLayout& p, uint32_t l, const vec4f& lo,
                                    const vec4f& hi) {
-  const float s = p.level[l].inv_cell;
-  return {{grid_coord(lo.x, p.origin[0], s), grid_coord(lo.y, p.origin[1], s),
-           grid_coord(lo.z, p.origin[2], s)},
-          {grid_coord(hi.x, p.origin[0], s), grid_coord(hi.y, p.origin[1], s),
-           grid_coord(hi.z, p.origin[2], s)}};
+  return cell_range(level_lattice(p, l), lo, hi);
 }
 
-CDB_HD_INLINE uint64_t grid_key(const GridLayout& p, uint32_t l, uint32_t x,
-                                          uint32_t y, uint32_t z) {
+CDB_HD_INLINE uint64_t grid_key(const GridLayout& p, uint32_t l, const CellCoords& c) {
   const GridLevel& g = p.level[l];
-  return g.base + x + uint64_t(g.dims[0]) * (y + uint64_t(g.dims[1]) * z);
-}
-
-// The key of the cell holding point (x, y, z) on level l.
-CDB_HD_INLINE uint64_t grid_key_of_point(const GridLayout& p, uint32_t l, float x,
-                                                   float y, float z) {
-  const float s = p.level[l].inv_cell;
-  return grid_key(p, l, grid_coord(x, p.origin[0], s), grid_coord(y, p.origin[1], s),
-                  grid_coord(z, p.origin[2], s));
+  return g.base + c.x + uint64_t(g.dims[0]) * (c.y + uint64_t(g.dims[1]) * c.z);
 }
 
 // The level a box of width w starts from: the finest whose cell is at least w / 2.
@@ -207,19 +142,18 @@ CDB_HD_INLINE uint32_t bit_width(uint64_t v) {
 // One thread: the rule above, the levels' dimensions and key ranges, and the key bits the
 // sort needs (written for the host's one read-back).
 struct GridLayoutFn {
-  const GridScene* scene;
+  const SceneStats* scene;
   const TrimmedWidths* trimmed;
   GridLayout* params;
   unsigned long long* key_bits;
   CDB_HD void operator()(uint32_t) const {
-    const GridScene s = *scene;
+    const SceneStats s = *scene;
     const TrimmedWidths t = *trimmed;
-    double extent = 0.0;
-    for (int k = 0; k < 3; ++k) extent = max_of(extent, double(s.hi[k]) - double(s.lo[k]));
+    const double extent = scene_extent(s);
     const int scene_exp = extent > 0.0 ? ceil_log2(extent) : kGridMinCellExp;
     const double mean = t.count > 0 ? t.sum / double(t.count) : 0.0;
     int e0 = mean > 0.0 ? ceil_log2(mean) : kGridMinCellExp;
-    e0 = max_of(e0, scene_exp - int(kGridAxisBits - 1));
+    e0 = max_of(e0, scene_exp - int(kCellAxisBits - 1));
     e0 = min_of(max_of(e0, kGridMinCellExp), kGridMaxCellExp);
     const int top = min_of(max_of(scene_exp - 1, e0), kGridMaxCellExp);
     GridLayout* p = params;
@@ -230,7 +164,7 @@ struct GridLayoutFn {
     for (uint32_t l = 0; l < p->levels; ++l) {
       GridLevel& g = p->level[l];
       g.inv_cell = ldexpf(1.0f, -(e0 + int(l)));
-      for (int k = 0; k < 3; ++k) g.dims[k] = grid_coord(s.hi[k], s.lo[k], g.inv_cell) + 1;
+      for (int k = 0; k < 3; ++k) g.dims[k] = cell_coord(s.hi[k], s.lo[k], g.inv_cell) + 1;
       g.base = base;
       base += uint64_t(g.dims[0]) * g.dims[1] * g.dims[2];
     }

@@ -56,13 +56,13 @@ struct GridFillFn {
   CDB_HD void operator()(uint32_t i) const {
     const GridLayout& p = *params;
     const uint32_t l = level[i];
-    const GridRange r = grid_range(p, l, lo[i], hi[i]);
+    const CellRange r = grid_range(p, l, lo[i], hi[i]);
     uint32_t e = offsets[i];
-    for (uint32_t z = r.lo[2]; z <= r.hi[2]; ++z)
-      for (uint32_t y = r.lo[1]; y <= r.hi[1]; ++y)
-        for (uint32_t x = r.lo[0]; x <= r.hi[0]; ++x, ++e) {
+    for (uint32_t z = r.lo.z; z <= r.hi.z; ++z)
+      for (uint32_t y = r.lo.y; y <= r.hi.y; ++y)
+        for (uint32_t x = r.lo.x; x <= r.hi.x; ++x, ++e) {
           if (e >= planned) return;
-          keys[e] = grid_key(p, l, x, y, z);
+          keys[e] = grid_key(p, l, {x, y, z});
           boxes[e] = i;
         }
   }

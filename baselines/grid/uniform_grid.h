@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <string>
 
-#include "bvh/build.h"
+#include "common/cell_boxes.h"
 #include "core/error.h"
 #include "core/pair_sink.h"
 #include "exec/balance.h"
@@ -33,22 +33,17 @@ namespace cdb {
 inline constexpr size_t kGridTotals = 2;
 
 template <class Exec>
-struct UniformGrid {
+struct UniformGrid : CellBoxes<Exec> {
   // Before the first frame's count: cells per box, a generous guess (a box covers 1 to 8
   // cells on level 0 for typical meshes); frame 0 re-runs if it is short.
   static constexpr size_t kEntriesPerBoxEstimate = 8;
   // Entries are indexed with 32 bits.
   static constexpr size_t kMaxPlan = 0xffffffffull;
 
-  explicit UniformGrid(Exec& exec) {
+  explicit UniformGrid(Exec& exec) : CellBoxes<Exec>(exec, "grid") {
     MemoryResource& mr = exec.memory();
-    lo.bind(mr, "grid.lo");
-    hi.bind(mr, "grid.hi");
-    counts.bind(mr, "grid.counts");
-    offsets.bind(mr, "grid.offsets");
     level.bind(mr, "grid.level");
     level_begin.bind(mr, "grid.level_begin");
-    scene.bind(mr, "grid.scene");
     trimmed.bind(mr, "grid.trimmed");
     params.bind(mr, "grid.params");
     totals.bind(mr, "grid.totals");
@@ -56,32 +51,28 @@ struct UniformGrid {
     sorted_keys.bind(mr, "grid.sorted_keys");
     boxes.bind(mr, "grid.boxes");
     sorted_boxes.bind(mr, "grid.sorted_boxes");
-    temp.bind(mr, "grid.temp");
   }
 
   void reserve(Exec& exec, uint32_t n) {
-    for (auto* a : {&lo, &hi}) a->reserve(n);
-    for (auto* a : {&counts, &offsets, &level}) a->reserve(n);
+    this->reserve_boxes(n);
+    level.reserve(n);
     level_begin.reserve(kGridMaxLevels + 1);
-    scene.reserve(1);
     trimmed.reserve(1);
     params.reserve(1);
     totals.reserve(kGridTotals);
     num_boxes = n;
     planned_entries = std::clamp<size_t>(kEntriesPerBoxEstimate * size_t(n), 1024, kMaxPlan);
-    key_bits = 3 * kGridAxisBits + 1;
+    key_bits = 3 * kCellAxisBits + 1;
     reserve_entries(exec, planned_entries);
   }
 
   void reserve_entries(Exec& exec, size_t entries) {
     for (auto* a : {&keys, &sorted_keys}) a->reserve(entries);
     for (auto* a : {&boxes, &sorted_boxes}) a->reserve(entries);
-    size_t t = exec.sort_temp_bytes(entries);
-    t = std::max(t, exec.scan_temp_bytes(num_boxes));
-    t = std::max(t, exec.template reduce_temp_bytes_of<GridScene>(num_boxes));
+    size_t t = std::max(exec.sort_temp_bytes(entries), this->box_temp_bytes(exec, num_boxes));
     t = std::max(t, exec.template reduce_temp_bytes_of<TrimmedWidths>(num_boxes));
     t = std::max(t, exec.template reduce_temp_bytes_of<unsigned long long>(num_boxes));
-    temp.reserve(t);
+    this->temp.reserve(t);
   }
 
   // After the frame's read-back of the device totals: whether the last build's plan held
@@ -95,15 +86,12 @@ struct UniformGrid {
     return entries <= built_entries && bits <= uint64_t(built_key_bits);
   }
 
-  Array<vec4f> lo, hi;
-  Array<uint32_t> counts, offsets, level, level_begin;
-  Array<GridScene> scene;
+  Array<uint32_t> level, level_begin;
   Array<TrimmedWidths> trimmed;
   Array<GridLayout> params;
   Array<unsigned long long> totals;
   Array<uint64_t> keys, sorted_keys;
   Array<uint32_t> boxes, sorted_boxes;
-  Array<std::byte> temp;
   uint32_t num_boxes = 0;
   // The host's plan for the next build's sort (its length and key bits), and the plan the
   // last build ran with, which its pair tests use.
@@ -112,11 +100,6 @@ struct UniformGrid {
   size_t built_entries = 0;
   int built_key_bits = 64;
 };
-
-template <class Exec>
-void grid_boxes(Exec& exec, UniformGrid<Exec>& g, const MeshView& mesh) {
-  exec.for_each_n(mesh.num_faces, FaceBoxFn{mesh, g.lo.data(), g.hi.data()});
-}
 
 // Cell size and levels, registration, sort: no host synchronization.
 template <class Exec>
@@ -129,8 +112,7 @@ void grid_build(Exec& exec, UniformGrid<Exec>& g, uint32_t n) {
   g.built_entries = g.planned_entries;
   g.built_key_bits = g.key_bits;
   const uint32_t planned = static_cast<uint32_t>(g.built_entries);
-  exec.reduce(n, GridSceneFn{g.lo.data(), g.hi.data()}, GridSceneOp{}, GridSceneOp::identity(),
-              g.scene.data(), g.temp.data(), g.temp.size());
+  reduce_scene_stats(exec, g, n);
   exec.reduce(n, TrimmedWidthsFn{g.lo.data(), g.hi.data(), g.scene.data(), n}, TrimmedWidthsOp{},
               TrimmedWidths{0.0, 0ull}, g.trimmed.data(), g.temp.data(), g.temp.size());
   exec.for_each_n(1, GridLayoutFn{g.scene.data(), g.trimmed.data(), g.params.data(),

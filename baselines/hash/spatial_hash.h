@@ -4,14 +4,12 @@
 // registered in each cell it overlaps (count, exclusive scan, fill); entries sorted by the
 // hash bucket of their cell; all pairs of boxes within a bucket tested.
 //
-// Exactness rests on one monotone function, cell_coord(), used for registration and for
-// the report rule. For an overlapping pair, the minimum corner m of the intersection lies
-// inside both boxes, so, cell_coord being monotone, both boxes are registered in cell(m).
-// The pair is reported only there: from the two entries whose real cell (stored with the
-// entry, not just its bucket) equals cell(m). Buckets shared by different cells (hash
-// collisions) therefore cost work, never duplicates; touching boxes (m on a cell face)
-// are found in the one cell m falls into. Coordinates are clamped to the grid, which
-// keeps cell_coord monotone (cells at the border merge; nothing is lost).
+// Exactness rests on the cell baselines' one monotone cell coordinate (common/cell_coord.h),
+// used for registration and for the ownership rule (common/home_cell.h): a pair is
+// reported only in its home cell, from the two entries whose real cell (stored with the
+// entry, not just its bucket) is that cell. Buckets shared by different cells (hash
+// collisions) therefore cost work, never duplicates. Coordinates are clamped to the grid,
+// which keeps the coordinate monotone (cells at the border merge; nothing is lost).
 //
 // A box covering more than kMaxCellsPerBox cells is not registered; it is "large" and is
 // tested against every box directly. When more than kMaxLargeBoxes are large (or the
@@ -22,7 +20,10 @@
 #include <cstdint>
 #include <limits>
 
-#include "bvh/build.h"
+#include "common/cell_boxes.h"
+#include "common/cell_coord.h"
+#include "common/cell_range.h"
+#include "common/home_cell.h"
 #include "core/aabb.h"
 #include "core/atomics.h"
 #include "core/error.h"
@@ -33,93 +34,30 @@
 
 namespace cdb {
 
-inline constexpr uint32_t kCellBits = 20;  // per axis: three coordinates pack into 60 bits
-inline constexpr float kMaxCellCoord = float((1u << kCellBits) - 1);
 inline constexpr uint64_t kMaxCellsPerBox = 64;
 inline constexpr uint32_t kMaxLargeBoxes = 32;
 
-// Scene bounds and the sum over boxes of their largest extent (in double: extents of
-// 1e38-scale boxes overflow float).
-struct GridStats {
-  double extent_sum;
-  float lo[3], hi[3];
-};
-
-struct GridStatsOp {
-  CDB_HD GridStats operator()(const GridStats& a, const GridStats& b) const {
-    GridStats r;
-    r.extent_sum = a.extent_sum + b.extent_sum;
-    for (int k = 0; k < 3; ++k) {
-      r.lo[k] = min_of(a.lo[k], b.lo[k]);
-      r.hi[k] = max_of(a.hi[k], b.hi[k]);
-    }
-    return r;
-  }
-  static GridStats identity() {
-    const float inf = std::numeric_limits<float>::infinity();
-    return {0.0, {inf, inf, inf}, {-inf, -inf, -inf}};
-  }
-};
-
-struct GridStatsFn {
-  const vec4f* lo;
-  const vec4f* hi;
-  CDB_HD GridStats operator()(uint32_t i) const {
-    const vec4f a = lo[i], b = hi[i];
-    const double ex = double(b.x) - double(a.x), ey = double(b.y) - double(a.y),
-                 ez = double(b.z) - double(a.z);
-    return {max_of(ex, max_of(ey, ez)), {a.x, a.y, a.z}, {b.x, b.y, b.z}};
-  }
-};
-
-struct GridParams {
-  float origin[3];
-  float inv_cell;
-};
-
-// One thread: cell size = mean largest box extent times `scale`, but at least 2^-20 of the
-// scene's largest extent (so the grid fits the packed coordinates) and positive.
-struct GridParamsFn {
-  const GridStats* stats;
+// One thread: cell size = mean box width times `scale`, but at least 2^-20 of the scene's
+// largest extent (so the grid fits the packed coordinates) and positive.
+struct HashLatticeFn {
+  const SceneStats* scene;
   uint32_t n;
   double scale;
-  GridParams* params;
+  CellLattice<float>* lattice;
   CDB_HD void operator()(uint32_t) const {
-    const GridStats s = *stats;
-    double scene = 0.0;
-    for (int k = 0; k < 3; ++k) scene = max_of(scene, double(s.hi[k]) - double(s.lo[k]));
-    double cell = max_of(s.extent_sum / n, scene / double(1u << kCellBits)) * scale;
+    const SceneStats s = *scene;
+    double cell = max_of(s.width_sum / n, scene_extent(s) / double(1u << kCellAxisBits)) * scale;
     if (!(cell > 0.0)) cell = 1.0;
     const double inv = 1.0 / cell;
-    GridParams p;
-    for (int k = 0; k < 3; ++k) p.origin[k] = s.lo[k];
-    p.inv_cell = float(min_of(inv, double(std::numeric_limits<float>::max())));
-    *params = p;
+    CellLattice<float> g;
+    for (int k = 0; k < 3; ++k) g.origin[k] = s.lo[k];
+    g.inv_cell = float(min_of(inv, double(std::numeric_limits<float>::max())));
+    *lattice = g;
   }
 };
 
-// The grid coordinate of x along one axis. Monotone non-decreasing in x (a rounded
-// subtraction, a rounded product by a non-negative factor, a clamp, a truncation), which
-// is all exactness needs. An overflow to infinity is clamped; infinity times a zero
-// factor (a cell grown past float range) is NaN and maps to 0 like every other x then.
-CDB_HD_INLINE uint32_t cell_coord(float x, float origin, float inv_cell) {
-  const float t = (x - origin) * inv_cell;
-  return t > 0.0f ? static_cast<uint32_t>(min_of(t, kMaxCellCoord)) : 0u;
-}
-
-struct CellRange {
-  uint32_t lo[3], hi[3];
-};
-
-CDB_HD_INLINE CellRange cell_range(const GridParams& p, const vec4f& lo, const vec4f& hi) {
-  return {{cell_coord(lo.x, p.origin[0], p.inv_cell), cell_coord(lo.y, p.origin[1], p.inv_cell),
-           cell_coord(lo.z, p.origin[2], p.inv_cell)},
-          {cell_coord(hi.x, p.origin[0], p.inv_cell), cell_coord(hi.y, p.origin[1], p.inv_cell),
-           cell_coord(hi.z, p.origin[2], p.inv_cell)}};
-}
-
-CDB_HD_INLINE uint64_t pack_cell(uint32_t x, uint32_t y, uint32_t z) {
-  return uint64_t(x) | (uint64_t(y) << kCellBits) | (uint64_t(z) << (2 * kCellBits));
+CDB_HD_INLINE uint64_t pack_cell(const CellCoords& c) {
+  return uint64_t(c.x) | (uint64_t(c.y) << kCellAxisBits) | (uint64_t(c.z) << (2 * kCellAxisBits));
 }
 
 // Bucket of a cell: the top `bits` bits of a 64-bit mix (MurmurHash3's finalizer).
@@ -137,14 +75,12 @@ CDB_HD_INLINE uint64_t cell_bucket(uint64_t cell, uint32_t bits) {
 struct CountCellsFn {
   const vec4f* lo;
   const vec4f* hi;
-  const GridParams* params;
+  const CellLattice<float>* lattice;
   uint32_t* counts;
   uint32_t* large;
   uint32_t* large_count;
   CDB_HD void operator()(uint32_t i) const {
-    const CellRange r = cell_range(*params, lo[i], hi[i]);
-    uint64_t cells = 1;
-    for (int k = 0; k < 3; ++k) cells *= uint64_t(r.hi[k] - r.lo[k]) + 1;
+    const uint64_t cells = cell_range(*lattice, lo[i], hi[i]).cells();
     if (cells > kMaxCellsPerBox) {
       counts[i] = 0;
       large[atomic_add_relaxed(large_count, 1u)] = i;
@@ -177,7 +113,7 @@ struct EntryTotalsFn {
 struct FillCellsFn {
   const vec4f* lo;
   const vec4f* hi;
-  const GridParams* params;
+  const CellLattice<float>* lattice;
   const uint32_t* counts;
   const uint32_t* offsets;
   uint32_t bucket_bits;
@@ -187,12 +123,12 @@ struct FillCellsFn {
   uint64_t* entry_cell;
   CDB_HD void operator()(uint32_t i) const {
     if (counts[i] == 0) return;
-    const CellRange r = cell_range(*params, lo[i], hi[i]);
+    const CellRange r = cell_range(*lattice, lo[i], hi[i]);
     uint32_t e = offsets[i];
-    for (uint32_t z = r.lo[2]; z <= r.hi[2]; ++z)
-      for (uint32_t y = r.lo[1]; y <= r.hi[1]; ++y)
-        for (uint32_t x = r.lo[0]; x <= r.hi[0]; ++x, ++e) {
-          const uint64_t cell = pack_cell(x, y, z);
+    for (uint32_t z = r.lo.z; z <= r.hi.z; ++z)
+      for (uint32_t y = r.lo.y; y <= r.hi.y; ++y)
+        for (uint32_t x = r.lo.x; x <= r.hi.x; ++x, ++e) {
+          const uint64_t cell = pack_cell({x, y, z});
           keys[e] = cell_bucket(cell, bucket_bits);
           entry_ids[e] = e;
           entry_box[e] = i;
@@ -215,7 +151,7 @@ struct GatherEntriesFn {
 };
 
 // One thread per sorted entry: the later entries of its bucket that lie in the same real
-// cell; a pair is reported only in the cell of its intersection's minimum corner.
+// cell; a pair is reported only in its home cell.
 struct PairsInCellsFn {
   uint32_t entries;
   const uint64_t* buckets;
@@ -223,7 +159,7 @@ struct PairsInCellsFn {
   const uint64_t* cell;
   const vec4f* lo;
   const vec4f* hi;
-  const GridParams* params;
+  const CellLattice<float>* lattice;
   PairSink sink;
   using Stage = PairStage;
   CDB_HD void operator()(uint32_t k, Stage* stage = nullptr) const {
@@ -231,16 +167,13 @@ struct PairsInCellsFn {
     const uint64_t bucket = buckets[k], c = cell[k];
     const uint32_t a = box[k];
     const vec4f alo = lo[a], ahi = hi[a];
-    const GridParams p = *params;
+    const CellLattice<float> g = *lattice;
     for (uint32_t t = k + 1; t < entries && buckets[t] == bucket; ++t) {
       if (cell[t] != c) continue;
       const uint32_t b = box[t];
       const vec4f blo = lo[b], bhi = hi[b];
       if (!overlaps(alo, ahi, blo, bhi)) continue;
-      const uint64_t home = pack_cell(cell_coord(max_of(alo.x, blo.x), p.origin[0], p.inv_cell),
-                                      cell_coord(max_of(alo.y, blo.y), p.origin[1], p.inv_cell),
-                                      cell_coord(max_of(alo.z, blo.z), p.origin[2], p.inv_cell));
-      if (home == c) out.emit(a, b);
+      if (pack_cell(home_cell(g, alo, blo)) == c) out.emit(a, b);
     }
   }
 #if defined(__CUDACC__)
@@ -277,19 +210,14 @@ struct LargePairsFn {
 // Workspace of the hash: per-box arrays sized from the triangle count, per-entry arrays
 // from an estimate of entries per box; growth beyond either is logged and counted.
 template <class Exec>
-struct SpatialHash {
+struct SpatialHash : CellBoxes<Exec> {
   static constexpr size_t kEntriesPerBoxEstimate = 8;
 
-  explicit SpatialHash(Exec& exec) {
+  explicit SpatialHash(Exec& exec) : CellBoxes<Exec>(exec, "hash") {
     MemoryResource& mr = exec.memory();
-    lo.bind(mr, "hash.lo");
-    hi.bind(mr, "hash.hi");
-    counts.bind(mr, "hash.counts");
-    offsets.bind(mr, "hash.offsets");
     large.bind(mr, "hash.large");
     large_count.bind(mr, "hash.large_count");
-    stats.bind(mr, "hash.stats");
-    params.bind(mr, "hash.params");
+    lattice.bind(mr, "hash.lattice");
     totals.bind(mr, "hash.totals");
     keys.bind(mr, "hash.keys");
     sorted_keys.bind(mr, "hash.sorted_keys");
@@ -299,15 +227,13 @@ struct SpatialHash {
     sorted_box.bind(mr, "hash.sorted_box");
     entry_cell.bind(mr, "hash.entry_cell");
     sorted_cell.bind(mr, "hash.sorted_cell");
-    temp.bind(mr, "hash.temp");
   }
 
   void reserve(Exec& exec, uint32_t n) {
-    for (auto* a : {&lo, &hi}) a->reserve(n);
-    for (auto* a : {&counts, &offsets, &large}) a->reserve(n);
+    this->reserve_boxes(n);
+    large.reserve(n);
     large_count.reserve(1);
-    stats.reserve(1);
-    params.reserve(1);
+    lattice.reserve(1);
     totals.reserve(1);
     reserve_entries(exec, n, std::max<size_t>(1024, kEntriesPerBoxEstimate * n));
   }
@@ -315,30 +241,20 @@ struct SpatialHash {
   void reserve_entries(Exec& exec, uint32_t n, size_t entries) {
     for (auto* a : {&keys, &sorted_keys, &entry_cell, &sorted_cell}) a->reserve(entries);
     for (auto* a : {&entry_ids, &sorted_ids, &entry_box, &sorted_box}) a->reserve(entries);
-    size_t t = exec.sort_temp_bytes(entries);
-    t = std::max(t, exec.scan_temp_bytes(n));
-    t = std::max(t, exec.template reduce_temp_bytes_of<GridStats>(n));
+    size_t t = std::max(exec.sort_temp_bytes(entries), this->box_temp_bytes(exec, n));
     t = std::max(t, exec.template reduce_temp_bytes_of<EntryTotals>(n));
-    temp.reserve(t);
+    this->temp.reserve(t);
   }
 
-  Array<vec4f> lo, hi;
-  Array<uint32_t> counts, offsets, large, large_count;
-  Array<GridStats> stats;
-  Array<GridParams> params;
+  Array<uint32_t> large, large_count;
+  Array<CellLattice<float>> lattice;
   Array<EntryTotals> totals;
   Array<uint64_t> keys, sorted_keys;
   Array<uint32_t> entry_ids, sorted_ids, entry_box, sorted_box;
   Array<uint64_t> entry_cell, sorted_cell;
-  Array<std::byte> temp;
   // Set by hash_build for hash_pairs.
   uint32_t num_entries = 0, num_large = 0;
 };
-
-template <class Exec>
-void hash_boxes(Exec& exec, SpatialHash<Exec>& h, const MeshView& mesh) {
-  exec.for_each_n(mesh.num_faces, FaceBoxFn{mesh, h.lo.data(), h.hi.data()});
-}
 
 // Grid, registration, sort. Reads the entry totals back once per grid tried; returns how
 // many times the cell size had to grow.
@@ -346,15 +262,14 @@ template <class Exec>
 uint32_t hash_build(Exec& exec, SpatialHash<Exec>& h, uint32_t n) {
   h.num_entries = h.num_large = 0;
   if (n == 0) return 0;
-  exec.reduce(n, GridStatsFn{h.lo.data(), h.hi.data()}, GridStatsOp{}, GridStatsOp::identity(),
-              h.stats.data(), h.temp.data(), h.temp.size());
+  reduce_scene_stats(exec, h, n);
   uint32_t regrids = 0;
   double scale = 1.0;
   EntryTotals totals{};
   for (;;) {
-    exec.for_each_n(1, GridParamsFn{h.stats.data(), n, scale, h.params.data()});
+    exec.for_each_n(1, HashLatticeFn{h.scene.data(), n, scale, h.lattice.data()});
     exec.fill(h.large_count.data(), 1, 0u);
-    exec.for_each_n(n, CountCellsFn{h.lo.data(), h.hi.data(), h.params.data(), h.counts.data(),
+    exec.for_each_n(n, CountCellsFn{h.lo.data(), h.hi.data(), h.lattice.data(), h.counts.data(),
                                     h.large.data(), h.large_count.data()});
     exec.reduce(n, EntryTotalsFn{h.counts.data()}, EntryTotalsOp{}, EntryTotals{},
                 h.totals.data(), h.temp.data(), h.temp.size());
@@ -373,7 +288,7 @@ uint32_t hash_build(Exec& exec, SpatialHash<Exec>& h, uint32_t n) {
   exec.exclusive_scan(h.counts.data(), h.offsets.data(), n, h.temp.data(), h.temp.size());
   uint32_t bits = 1;
   while (bits < 32 && (uint64_t(1) << bits) < 2 * uint64_t(entries)) ++bits;
-  exec.for_each_n(n, FillCellsFn{h.lo.data(), h.hi.data(), h.params.data(), h.counts.data(),
+  exec.for_each_n(n, FillCellsFn{h.lo.data(), h.hi.data(), h.lattice.data(), h.counts.data(),
                                  h.offsets.data(), bits, h.keys.data(), h.entry_ids.data(),
                                  h.entry_box.data(), h.entry_cell.data()});
   exec.sort_pairs(h.keys.data(), h.sorted_keys.data(), h.entry_ids.data(), h.sorted_ids.data(),
@@ -388,7 +303,7 @@ template <class Exec>
 void hash_pairs(Exec& exec, const SpatialHash<Exec>& h, uint32_t n, const PairSink& sink) {
   exec.for_each_staged(h.num_entries,
                   PairsInCellsFn{h.num_entries, h.sorted_keys.data(), h.sorted_box.data(),
-                                 h.sorted_cell.data(), h.lo.data(), h.hi.data(), h.params.data(),
+                                 h.sorted_cell.data(), h.lo.data(), h.hi.data(), h.lattice.data(),
                                  sink},
                   Balance::uneven);
   if (h.num_large > 0)

@@ -11,7 +11,6 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "bvh/build.h"
 #include "core/aabb.h"
 #include "core/float_bits.h"
 #include "core/pair_sink.h"

@@ -19,13 +19,6 @@
 
 namespace cdb {
 
-struct FaceBoxFn {
-  MeshView mesh;
-  vec4f* lo;
-  vec4f* hi;
-  CDB_HD void operator()(uint32_t f) const { face_box(mesh, f, lo[f], hi[f]); }
-};
-
 // Boxes of a subset's faces, in subset order.
 struct SubsetFaceBoxFn {
   MeshView mesh;

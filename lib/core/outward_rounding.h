@@ -55,5 +55,12 @@ CDB_HD_INLINE double mul_unfused(double a, double b) {
   return a * b;
 #endif
 }
+CDB_HD_INLINE float mul_unfused(float a, float b) {
+#if defined(__CUDA_ARCH__)
+  return __fmul_rn(a, b);
+#else
+  return a * b;
+#endif
+}
 
 }  // namespace cdb

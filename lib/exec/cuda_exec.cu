@@ -28,22 +28,6 @@ void* CudaMemory::do_allocate(size_t bytes) {
 
 void CudaMemory::do_deallocate(void* p, size_t) { cudaFree(p); }
 
-__global__ void reduce_box_final_kernel(const Aabb<float>* partials, uint32_t count,
-                                        Aabb<float>* out) {
-  dependent_launch_entry();
-  using Reduce = cub::BlockReduce<Aabb<float>, kReduceThreads>;
-  __shared__ typename Reduce::TempStorage storage;
-  Aabb<float> acc = Aabb<float>::empty();
-  for (uint32_t i = threadIdx.x; i < count; i += kReduceThreads) acc.grow(partials[i]);
-  const Aabb<float> total = Reduce(storage).Reduce(acc, BoxUnion{});
-  if (threadIdx.x == 0) *out = total;
-}
-
-void launch_reduce_box_final(const Aabb<float>* partials, uint32_t count, Aabb<float>* out,
-                             cudaStream_t stream, bool dependent_launch) {
-  launch_kernel(stream, dependent_launch, reduce_box_final_kernel, 1, kReduceThreads, 0, partials, count, out);
-}
-
 CudaExec::CudaExec(const ExecOptions& options) : options_(options) {
   int device = 0, sms = 0, per_sm = 0;
   cuda_check(cudaGetDevice(&device), "device query");

@@ -116,22 +116,8 @@ struct BoxUnion {
 inline constexpr uint32_t kReduceThreads = 256;
 inline constexpr uint32_t kReduceBlocks = 512;
 
-template <class F>
-__global__ void __launch_bounds__(kReduceThreads)
-    reduce_box_partials_kernel(uint32_t n, F box_of, Aabb<float>* partials) {
-  dependent_launch_entry();
-  using Reduce = cub::BlockReduce<Aabb<float>, kReduceThreads>;
-  __shared__ typename Reduce::TempStorage storage;
-  Aabb<float> acc = Aabb<float>::empty();
-  for (uint32_t i = blockIdx.x * kReduceThreads + threadIdx.x; i < n;
-       i += gridDim.x * kReduceThreads)
-    acc.grow(box_of(i));
-  const Aabb<float> block = Reduce(storage).Reduce(acc, BoxUnion{});
-  if (threadIdx.x == 0) partials[blockIdx.x] = block;
-}
-
-// Generic reduction (CudaExec::reduce): per-block partials, then one block combines them;
-// both in a fixed order, so results are reproducible run to run.
+// The one reduction (CudaExec::reduce, and reduce_box through it): per-block partials, then
+// one block combines them; both in a fixed order, so results are reproducible run to run.
 template <class T, class F, class Op>
 __global__ void __launch_bounds__(kReduceThreads)
     reduce_partials_kernel(uint32_t n, F map, Op op, T identity, T* partials) {
@@ -174,9 +160,6 @@ void launch_kernel(cudaStream_t stream, bool dependent_launch, void (*kernel)(Pa
   config.numAttrs = dependent_launch ? 1 : 0;
   cuda_check(cudaLaunchKernelEx(&config, kernel, args...), "kernel launch");
 }
-
-void launch_reduce_box_final(const Aabb<float>* partials, uint32_t count, Aabb<float>* out,
-                             cudaStream_t stream, bool dependent_launch);
 
 template <class T>
 struct FillFn {
@@ -249,14 +232,10 @@ class CudaExec {
                   uint32_t* values_out, size_t n, int end_bit, void* temp,
                   size_t temp_bytes) const;
 
-  size_t reduce_temp_bytes(size_t) const { return kReduceBlocks * sizeof(Aabb<float>); }
+  size_t reduce_temp_bytes(size_t n) const { return reduce_temp_bytes_of<Aabb<float>>(n); }
   template <class F>
-  void reduce_box(size_t n, const F& box_of, Aabb<float>* out, void* temp, size_t) const {
-    auto* partials = static_cast<Aabb<float>*>(temp);
-    const uint32_t blocks = static_cast<uint32_t>(
-        n == 0 ? 1 : std::min<size_t>(kReduceBlocks, (n + kReduceThreads - 1) / kReduceThreads));
-    launch(reduce_box_partials_kernel<F>, blocks, kReduceThreads, 0, uint32_t(n), box_of, partials);
-    launch_reduce_box_final(partials, blocks, out, stream_, options_.dependent_launch);
+  void reduce_box(size_t n, const F& box_of, Aabb<float>* out, void* temp, size_t bytes) const {
+    reduce(n, box_of, BoxUnion{}, Aabb<float>::empty(), out, temp, bytes);
   }
 
   // Generic reduction of map(i) under an associative, commutative op.

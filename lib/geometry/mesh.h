@@ -61,4 +61,12 @@ CDB_HD_INLINE void face_box(const MeshView& m, uint32_t f, vec4f& lo, vec4f& hi)
   }
 }
 
+// face_box of every face, one index each.
+struct FaceBoxFn {
+  MeshView mesh;
+  vec4f* lo;
+  vec4f* hi;
+  CDB_HD void operator()(uint32_t f) const { face_box(mesh, f, lo[f], hi[f]); }
+};
+
 }  // namespace cdb

@@ -155,12 +155,12 @@ class BroadPhase final : public Pipeline {
       case BroadPhaseMethod::grid:
         // The build runs in the frame loop: it is re-run when its entries outgrow the plan.
         timer_.start(Phase::boxes);
-        grid_boxes(exec_, grid_, mesh);
+        face_boxes(exec_, grid_, mesh);
         timer_.stop(Phase::boxes);
         return "grid";
       case BroadPhaseMethod::hash: {
         timer_.start(Phase::boxes);
-        hash_boxes(exec_, hash_, mesh);
+        face_boxes(exec_, hash_, mesh);
         timer_.stop(Phase::boxes);
         timer_.start(Phase::build);
         const uint32_t regrids = hash_build(exec_, hash_, mesh.num_faces);

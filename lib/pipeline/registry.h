@@ -1,6 +1,7 @@
 #pragma once
 // Name -> pipeline on one executor. Each backend (host_backend.cpp, cuda_backend.cu)
-// instantiates this once.
+// instantiates this once. The library's one way into baselines/ (broad_phase.h, which only
+// this file includes).
 #include <memory>
 
 #include "pipeline/broad_phase.h"
