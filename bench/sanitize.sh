@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Runs on the GPU machine from a device bundle: compute-sanitizer's memcheck (with leak
 # check), synccheck, initcheck and racecheck over every pipeline on a small folding cloth,
-# one log per tool under $OUT/sanitize/, and a summary line per tool at the end.
+# one log per tool, archived as $OUT/sanitize.tar.xz, and a summary line per tool in
+# $OUT/sanitize-summary.txt.
 set -uo pipefail
 bundle=${BUNDLE:-$PWD/.devbundle}
 export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 export CDBENCH_SCENES=$PWD/scenes
-out=${OUT:-/tmp/out}/sanitize
+top=${OUT:-/tmp/out}
+out=$top/sanitize
 mkdir -p "$out"
 pipelines=${PIPELINES:-a,b,c,unordered,periodic,radix-order,reference,bvh,grid,hash,sweep}
 scene=(--scene cloth-ball --set res=40 --set frames=8)
@@ -17,4 +19,5 @@ for tool in memcheck synccheck initcheck racecheck; do
     "$bundle/bin/cdbench" run --device cuda "${scene[@]}" --pipeline "$pipelines" --quiet \
     >"$out/$tool.log" 2>&1
   echo "$tool: exit $? $(grep -E 'ERROR SUMMARY|RACECHECK SUMMARY|LEAK SUMMARY' "$out/$tool.log" | tr '\n' ' ')"
-done | tee "$out/summary.txt"
+done | tee "$top/sanitize-summary.txt"
+tar -C "$out" -cJf "$top/sanitize.tar.xz" . && rm -rf "$out"
