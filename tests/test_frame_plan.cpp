@@ -37,9 +37,9 @@ template <class Cost>
 std::string schedule(FramePlanner& planner, int frames, Cost cost) {
   std::string s;
   for (int f = 0; f < frames; ++f) {
-    const FramePlan p = planner.plan(1000);
+    const FramePlan p = planner.plan(1000, 100);
     s += letter(p);
-    planner.finish(p, cost(f, p), 1.0, {});
+    planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
   }
   return s;
 }
@@ -64,9 +64,9 @@ TEST(FramePlan, BalanceOnlyBeforeUpdatesOfPipelinesThatBalance) {
   b.balance = true;
   FramePlanner planner(b, cycle_config(2));
   for (int f = 0; f < 6; ++f) {
-    const FramePlan p = planner.plan(100);
+    const FramePlan p = planner.plan(100, 100);
     EXPECT_EQ(p.balance, p.self == FrontOp::update) << "frame " << f;
-    planner.finish(p, 1.0, 1.0, {});
+    planner.finish(p, {1.0, true, 100, 1.0, {}});
   }
 }
 
@@ -86,31 +86,26 @@ TEST(FramePlan, RebuildAndStaleFrames) {
   FramePlanner stale(FrontStrategy{}, c);
   std::vector<bool> stale_frames;
   for (int f = 0; f < 5; ++f) {
-    const FramePlan p = stale.plan(100);
+    const FramePlan p = stale.plan(100, 100);
     stale_frames.push_back(p.stale);
-    stale.finish(p, 1.0, 1.0, {});
+    stale.finish(p, {1.0, true, 100, 1.0, {}});
   }
   EXPECT_EQ(stale_frames, (std::vector<bool>{false, true, false, true, false}));
 }
 
-// Fronts whose steady frames never get dearer are never updated: preserving them costs
-// nothing more.
+// Fronts whose steady frames never get dearer are updated once, to take the price of an
+// update (kProbeCycle frames after they were generated), and never again: preserving them
+// costs nothing more.
 TEST(FramePlan, AdaptiveKeepsFrontsThatDoNotDegrade) {
   FramePlanner planner(FrontStrategy{}, cycle_config(0));
   const std::string s = schedule(planner, 60, flat);
-  EXPECT_EQ(s, "b" + std::string(59, 'p'));
+  EXPECT_EQ(s, "bpppu" + std::string(55, 'p'));
 }
 
 // Steady frames dearer by `a` per frame since the fronts were produced: the rent after n
 // steady frames is a n (n - 1) / 2, and the update comes on the first frame after it
-// reaches an update's cost over a fresh steady frame: before any update, the build frame's
-// (9 here), after, the measured update's (`extra`).
-TEST(FramePlan, AdaptiveUpdatesWhenTheRentPaidReachesTheUpdatesCost) {
-  auto steady_frames = [](double a, double cost) {
-    int n = 1;
-    while (a * n * (n - 1) / 2 < cost - 1e-12) ++n;
-    return size_t(n);
-  };
+// reaches the price of an update, its cost over a fresh steady frame (`extra`).
+TEST(FramePlan, AdaptiveUpdatesWhenTheRentPaidReachesTheUpdatesPrice) {
   for (const double a : {0.02, 0.1, 0.5}) {
     const double extra = 2.0;
     int since = 0;
@@ -123,11 +118,68 @@ TEST(FramePlan, AdaptiveUpdatesWhenTheRentPaidReachesTheUpdatesCost) {
     };
     FramePlanner planner(FrontStrategy{}, cycle_config(0));
     const std::string s = schedule(planner, 300, cost);
-    const size_t first = 1 + steady_frames(a, 9.0);
-    EXPECT_EQ(s.find('u'), first) << "a = " << a << ": " << s;
-    const std::string cycle = std::string(steady_frames(a, extra), 'p') + "u";
-    EXPECT_EQ(s.substr(first + 1, 3 * cycle.size()), cycle + cycle + cycle) << "a = " << a << ": " << s;
+    size_t n = 1;
+    while (a * double(n * (n - 1)) / 2 < extra - 1e-12) ++n;
+    const std::string cycle = std::string(n, 'p') + "u";
+    EXPECT_EQ(s.substr(0, 5 + 3 * cycle.size()), "bpppu" + cycle + cycle + cycle) << "a = " << a << ": " << s;
   }
+}
+
+// An update of stale fronts costs more (here `b` per frame of staleness) than one of fresh
+// fronts. The price is the cheapest recent update's, so a late, dear update does not push
+// the next one later still: the cycle stays as long as the fresh price makes it.
+TEST(FramePlan, AdaptiveDoesNotFeedOnDearLateUpdates) {
+  const double a = 0.1, fresh = 2.0, b = 1.0;
+  int since = 0;
+  auto cost = [&](int, const FramePlan& p) {
+    if (p.rebuild) return 10.0;
+    if (!p.steady()) {
+      const double update = 1.0 + fresh + b * since;
+      since = 0;
+      return update;
+    }
+    return 1.0 + a * since++;
+  };
+  FramePlanner planner(FrontStrategy{}, cycle_config(0));
+  const std::string s = schedule(planner, 400, cost);
+  // The probe's update (3 frames stale) prices fresh + 3b; the next ones price lower as
+  // their cycles shorten, never higher.
+  std::vector<size_t> gaps;
+  for (size_t at = s.find('u'), next; (next = s.find('u', at + 1)) != std::string::npos; at = next)
+    gaps.push_back(next - at);
+  ASSERT_GE(gaps.size(), 10u) << s;
+  EXPECT_LE(gaps.back(), gaps.front()) << s;
+  EXPECT_EQ(gaps[gaps.size() - 1], gaps[gaps.size() - 2]) << s;  // settled
+}
+
+// An update that outgrew its buffers ran twice: it does not set the price once an update
+// that ran once has.
+TEST(FramePlan, UpdatesThatRanTwiceDoNotSetThePrice) {
+  FrontMaintenance m(FrontMaintenance::kAuto);
+  m.observe(true, false, true, 1.0, 10);
+  m.observe(false, true, false, 9.0, 10);  // ran twice, the only price so far
+  EXPECT_DOUBLE_EQ(m.price_ms(10), 8.0);
+  m.produced();
+  m.observe(true, false, true, 1.0, 10);
+  m.observe(false, true, true, 3.0, 10);  // ran once: replaces the twice-run price
+  EXPECT_DOUBLE_EQ(m.price_ms(10), 2.0);
+  m.produced();
+  m.observe(true, false, true, 1.0, 10);
+  m.observe(false, true, false, 1.5, 10);  // ran twice: ignored, however cheap
+  EXPECT_DOUBLE_EQ(m.price_ms(10), 2.0);
+}
+
+// The price follows the front's size: per node, the cheapest update so far.
+TEST(FramePlan, ThePriceScalesWithTheFront) {
+  FrontMaintenance m(FrontMaintenance::kAuto);
+  EXPECT_FALSE(m.priced());
+  m.observe(true, false, true, 1.0, 100);
+  m.observe(false, true, true, 3.0, 100);  // 2 ms over a steady frame for 100 nodes
+  EXPECT_DOUBLE_EQ(m.price_ms(300), 6.0);
+  m.produced();
+  m.observe(true, false, true, 1.0, 100);
+  m.observe(false, true, true, 6.0, 100);  // a dearer (staler) update leaves the price
+  EXPECT_DOUBLE_EQ(m.price_ms(100), 2.0);
 }
 
 // The faster the fronts degrade, the more often they are updated; the dearer the update,
@@ -197,19 +249,19 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
   for (const Case k : {Case{10, Formula2::refit, 'p'}, Case{200, Formula2::restructure, 'r'},
                        Case{800, Formula2::rebuild, 'b'}}) {
     FramePlanner planner(c, config);
-    FramePlan p = planner.plan(1000);  // frame 0 builds: Q(root) becomes the reference
+    FramePlan p = planner.plan(1000, 100);  // frame 0 builds: Q(root) becomes the reference
     EXPECT_FALSE(p.inspect);
-    planner.finish(p, 5.0, 2.0, {});
+    planner.finish(p, {5.0, true, 100, 2.0, {}});
     EXPECT_DOUBLE_EQ(planner.q_ref(), 2.0);
-    p = planner.plan(1000);  // frame 1 preserves
+    p = planner.plan(1000, 100);  // frame 1 preserves
     EXPECT_FALSE(p.inspect);
-    planner.finish(p, 1.0, 2.0, {3, 99});  // found nothing: not inspected
-    p = planner.plan(1000);  // frame 2 updates and inspects
+    planner.finish(p, {1.0, true, 100, 2.0, {3, 99}});  // found nothing: not inspected
+    p = planner.plan(1000, 100);  // frame 2 updates and inspects
     ASSERT_EQ(p.self, FrontOp::update);
     EXPECT_TRUE(p.inspect);
     EXPECT_EQ(p.decision, Formula2::none);
-    planner.finish(p, 2.0, 2.5, {4, k.leaves_in_candidates});
-    p = planner.plan(1000);
+    planner.finish(p, {2.0, true, 100, 2.5, {4, k.leaves_in_candidates}});
+    p = planner.plan(1000, 100);
     EXPECT_EQ(p.decision, k.decision);
     EXPECT_EQ(letter(p), k.op);
     if (k.decision == Formula2::restructure) {
@@ -217,8 +269,8 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
       EXPECT_EQ(p.restructuring.count, 4u);
       EXPECT_EQ(p.restructuring.leaves, k.leaves_in_candidates);
     }
-    planner.finish(p, 2.0, 2.0, {});
-    EXPECT_EQ(planner.plan(1000).decision, Formula2::none);  // each inspection decides once
+    planner.finish(p, {2.0, true, 100, 2.0, {}});
+    EXPECT_EQ(planner.plan(1000, 100).decision, Formula2::none);  // each inspection decides once
   }
 }
 
@@ -226,9 +278,9 @@ TEST(FramePlan, ResetStartsOver) {
   FramePlanner planner(FrontStrategy{}, cycle_config(0));
   int since = 0;
   schedule(planner, 30, [&](int, const FramePlan& p) { return p.steady() ? 1.0 + 0.5 * since++ : (since = 0, 3.0); });
-  ASSERT_GE(planner.maintenance().update_ms(), 0.0);
+  ASSERT_GE(planner.maintenance().price_ms(100), 0.0);
   planner.reset();
   EXPECT_EQ(planner.frame(), 0u);
-  EXPECT_LT(planner.maintenance().update_ms(), 0.0);
-  EXPECT_EQ(schedule(planner, 5, flat), "bpppp");
+  EXPECT_LT(planner.maintenance().price_ms(100), 0.0);
+  EXPECT_EQ(schedule(planner, 5, flat), "bpppu");
 }

@@ -76,8 +76,9 @@ class FramePlanner {
     maintenance_.reset();
   }
 
-  // The next frame's plan, for a tree T_D of `leaves` leaves.
-  FramePlan plan(uint32_t leaves) {
+  // The next frame's plan, for a tree T_D of `leaves` leaves and fronts of `front_nodes`
+  // nodes in all.
+  FramePlan plan(uint32_t leaves, uint64_t front_nodes) {
     FramePlan p;
     p.decision = formula2(leaves);
     if (p.decision != Formula2::none) p.restructuring = pending_;
@@ -89,7 +90,7 @@ class FramePlanner {
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
     // name T_D's leaves, which a rebuild or a restructure renumbers: they regenerate then.
     // T_R is only refitted after its build, so its self fronts follow the rule.
-    const FrontOp cycle = maintenance_op(p.rebuild);
+    const FrontOp cycle = maintenance_op(p.rebuild, front_nodes);
     const bool restructure = !p.rebuild && p.decision == Formula2::restructure;
     p.self = restructure ? FrontOp::restructure : cycle;
     p.inter = restructure ? FrontOp::generate : cycle;
@@ -102,19 +103,26 @@ class FramePlanner {
     return p;
   }
 
-  // After the frame ran: its cost without upload (ms), Q of the root (internal over external
-  // self-front nodes) and what its inspection found (capped at the candidates' buffer).
-  void finish(const FramePlan& p, double frame_ms, double q_root, Candidates found) {
+  // After the frame ran, what it measured.
+  struct Outcome {
+    double ms = 0.0;          // its cost without upload
+    bool ran_once = true;     // no buffer grew, so its operations ran once
+    uint64_t front_nodes = 0; // the fronts it started from, all queries, all kinds
+    double q_root = 0.0;      // internal over external self-front nodes after it
+    Candidates found;         // what its inspection found (capped at the candidates' buffer)
+  };
+  void finish(const FramePlan& p, const Outcome& o) {
     const bool produced = p.self != FrontOp::preserve || p.inter != FrontOp::preserve ||
                           p.rigid_self != FrontOp::preserve;
-    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild, frame_ms);
+    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, o.ran_once, o.ms,
+                         o.front_nodes);
     if (p.rebuild || p.self == FrontOp::generate) generated_ = frame_;
     if (produced) {
       produced_ = frame_;
       maintenance_.produced();
     }
-    if (strategy_.restructure && p.rebuild) q_ref_ = q_root;
-    if (p.inspect) pending_ = found;
+    if (strategy_.restructure && p.rebuild) q_ref_ = o.q_root;
+    if (p.inspect) pending_ = o.found;
     ++frame_;
   }
 
@@ -134,9 +142,9 @@ class FramePlanner {
                                              : Formula2::rebuild;
   }
 
-  FrontOp maintenance_op(bool rebuilt) const {
+  FrontOp maintenance_op(bool rebuilt, uint64_t front_nodes) const {
     if (rebuilt) return FrontOp::generate;
-    if (!maintenance_.update_due(frame_, generated_, produced_)) return FrontOp::preserve;
+    if (!maintenance_.update_due(frame_, generated_, produced_, front_nodes)) return FrontOp::preserve;
     // periodic: every second maintenance generates. With a fixed cycle that is every second
     // cycle since the last generate; adaptively, the maintenance after an update.
     if (strategy_.periodic && (maintenance_.adaptive() ? produced_ > generated_

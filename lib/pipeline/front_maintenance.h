@@ -10,16 +10,23 @@
 // Adaptive (--front-cycle auto): rent or buy, on measured frame times. Each steady frame
 // (refit + preserve) since the fronts were last produced pays rent: its cost over the
 // cheapest steady frame of the same stretch, i.e. what the fronts' staleness costs. The
-// fronts update once the rent paid reaches what an update costs over a steady frame, as last
-// measured. For rent that grows linearly with time (a per frame) this updates every
+// fronts update once the rent paid reaches what an update of fresh fronts costs over a
+// steady frame. For rent that grows linearly with time (a per frame) this updates every
 // sqrt(2U/a) frames, the best fixed cycle's length; whatever the growth, the total stays
 // within twice that of the best schedule in hindsight (the ski-rental bound). Scenes whose
 // fronts barely degrade update rarely, scenes whose fronts degrade fast often, and timing
 // noise alone only lets the rent creep up, so an update still comes now and then.
-// Until an update has been measured, the frame that built the tree and generated the fronts
-// stands for one: its cost over a steady frame overestimates an update's (a build and a
-// traversal from every leaf's start, against sprouting and pruning from the front), so the
-// first update comes late rather than early; every later one is judged on measured updates.
+//
+// The price U of an update is per front node: the cheapest measured so far, per node of the
+// front it updated, times the nodes of the front now. An update's work follows the front's
+// size, which changes as a scene folds or spreads, and its staleness: an update of stale
+// fronts costs more than one of fresh fronts, by about a constant per frame of staleness,
+// which is rent too. That moves the best cycle's cost, not its length, so the price that sets
+// the length is the fresh update's, the cheapest. Pricing by the last update instead feeds on
+// itself: a late update is dear, which makes the next one later still (measured: the sphere
+// scene's steady frame doubled between updates). Updates that outgrew their buffers ran
+// twice and price only until one runs once. The first update comes kProbeCycle frames after
+// the fronts were generated (the paper's cycle), to take a first price.
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -29,6 +36,7 @@ namespace cdb {
 class FrontMaintenance {
  public:
   static constexpr uint32_t kAuto = 0;
+  static constexpr uint32_t kProbeCycle = 4;
 
   // cycle: frames per fixed cycle, or kAuto.
   explicit FrontMaintenance(uint32_t cycle = kAuto) : cycle_(cycle) {}
@@ -38,41 +46,41 @@ class FrontMaintenance {
   // Forget every measurement (a new run over the frames).
   void reset() { *this = FrontMaintenance(cycle_); }
 
-  // Whether the frame `frame` should update fronts generated at `generated` and last
-  // produced (generated, updated or restructured) at `produced`.
-  bool update_due(uint64_t frame, uint64_t generated, uint64_t produced) const {
+  // Whether the frame `frame` should update fronts of `front_nodes` nodes generated at
+  // `generated` and last produced (generated, updated or restructured) at `produced`.
+  bool update_due(uint64_t frame, uint64_t generated, uint64_t produced, uint64_t front_nodes) const {
     if (!adaptive()) return frame > generated && (frame - generated) % cycle_ == 0;
-    return frame > produced && steady_ > 0 && rent_ms() >= update_cost_ms();
-  }
-
-  // What an update is taken to cost over a steady frame, in ms: the last measured updates,
-  // or before any, the build frame's cost over the cheapest steady frame since.
-  double update_cost_ms() const {
-    if (update_ms_ >= 0.0) return update_ms_;
-    return steady_ > 0 ? std::max(0.0, build_ms_ - steady_min_) : 0.0;
+    if (frame <= produced) return false;
+    if (!priced()) return frame - generated >= kProbeCycle;
+    return steady_ > 0 && rent_ms() >= price_ms(front_nodes);
   }
 
   // The rent paid since the fronts were last produced, in ms.
   double rent_ms() const { return steady_ > 0 ? steady_sum_ - double(steady_) * steady_min_ : 0.0; }
-  // What the last measured updates cost over a steady frame, in ms (negative: none yet).
-  double update_ms() const { return update_ms_; }
+
+  bool priced() const { return price_per_node_ms_ >= 0.0; }
+
+  // What an update of fresh fronts of `front_nodes` nodes costs over a steady frame, in ms
+  // (negative: none measured yet).
+  double price_ms(uint64_t front_nodes) const {
+    return priced() ? price_per_node_ms_ * double(std::max<uint64_t>(front_nodes, 1)) : -1.0;
+  }
 
   // A frame's measured cost: `steady` for refit + preserve frames, `updated` for frames
-  // whose fronts were updated (and nothing heavier ran with it), `built` for frames that
-  // built the tree and generated the fronts.
-  void observe(bool steady, bool updated, bool built, double ms) {
-    if (built) build_ms_ = ms;
+  // whose fronts were updated (and nothing heavier ran with it), `once` when it ran its
+  // operations once (no buffer grew); `front_nodes`: the fronts it updated.
+  void observe(bool steady, bool updated, bool once, double ms, uint64_t front_nodes) {
     if (steady) {
       steady_sum_ += ms;
       steady_min_ = std::min(steady_min_, ms);
       ++steady_;
       return;
     }
-    if (updated && steady_ > 0) {
-      // Over the cheapest steady frame before it: the cost of a steady frame on fresh fronts.
-      const double extra = std::max(0.0, ms - steady_min_);
-      update_ms_ = update_ms_ < 0.0 ? extra : 0.5 * (update_ms_ + extra);
-    }
+    if (!updated || steady_ == 0 || (!once && clean_)) return;
+    // Over the cheapest steady frame before it: the cost of a steady frame on fresh fronts.
+    const double per_node = std::max(0.0, ms - steady_min_) / double(std::max<uint64_t>(front_nodes, 1));
+    price_per_node_ms_ = priced() && (clean_ || !once) ? std::min(price_per_node_ms_, per_node) : per_node;
+    clean_ = clean_ || once;
   }
 
   // The fronts were produced this frame: the rent starts over.
@@ -84,8 +92,8 @@ class FrontMaintenance {
 
  private:
   uint32_t cycle_;
-  double update_ms_ = -1.0;
-  double build_ms_ = 0.0;
+  double price_per_node_ms_ = -1.0;  // the cheapest measured update per front node
+  bool clean_ = false;               // that price comes from updates that ran once
   double steady_sum_ = 0.0;
   double steady_min_ = std::numeric_limits<double>::infinity();
   uint64_t steady_ = 0;

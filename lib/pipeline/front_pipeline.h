@@ -69,7 +69,8 @@ class FrontPipeline final : public Pipeline {
   FrameStats run_frame(const std::vector<vec3f>& vertices) override {
     FrameStats stats;
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
-    const FramePlan plan = planner_.plan(bvh_.num_leaves);
+    const uint64_t fronts = self_.total() + inter_.total() + rigid_self_.total();
+    const FramePlan plan = planner_.plan(bvh_.num_leaves, fronts);
     stats.decision = formula2_name(plan.decision);
     // The steady state launches what the last steady frame launched, unless a buffer or a
     // front changed since (graph_version_).
@@ -123,7 +124,7 @@ class FrontPipeline final : public Pipeline {
           c[kCandidatesCounter] ? double(c[kCandidateQCounter]) / 1000.0 / double(c[kCandidatesCounter]) : 0.0;
     }
     record_timings(timer_, stats);
-    planner_.finish(plan, stats.total_ms, stats.q_root, found);
+    planner_.finish(plan, {stats.total_ms, stats.query_reruns == 0, fronts, stats.q_root, found});
     choose_preserve_launch(stats.pairs);
     return stats;
   }
