@@ -16,12 +16,14 @@
 #include "core/build_info.h"
 #include "core/error.h"
 #include "cli_params.h"
+#include "exit_codes.h"
 #include "frame_range.h"
 #include "geometry/cached_frames.h"
 #include "io/obj_writer.h"
 #include "io/results_file.h"
 #include "io/scene.h"
 #include "io/scene_label.h"
+#include "output_path.h"
 #include "pipeline/config_json.h"
 #include "pipeline/device_probe.h"
 #include "pipeline/pipeline.h"
@@ -32,6 +34,7 @@
 #include "slurm_script.h"
 #include "sweep_plan.h"
 #include "sweep_runner.h"
+#include "version_text.h"
 
 using namespace cdb;
 
@@ -59,20 +62,32 @@ struct CommonOptions {
   std::vector<std::string> sets;  // generator overrides, key=value
 };
 
+// The headings of `run --help` and `verify --help`. CLI11 lists them in the order their
+// first option was added, so commands add --pipeline(s) first, then add_common,
+// add_restructure, their own options, and add_tuning last.
+constexpr const char* kSceneGroup = "Scene";
+constexpr const char* kPipelineGroup = "Pipeline";
+constexpr const char* kAccuracyGroup = "Accuracy";
+constexpr const char* kMeasurementGroup = "Measurement";
+constexpr const char* kOutputGroup = "Output";
+constexpr const char* kTuningGroup = "GPU tuning";
+
+// Scene, pipeline and accuracy options every command that runs pipelines shares.
 void add_common(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--scene", o.scene, "scene name, .json descriptor, or directory of mesh frames")
+      ->group(kSceneGroup)
       ->capture_default_str();
   cmd->add_option("--device", o.device, "cuda, cpu, or auto (cuda when a GPU is present)")
+      ->group(kPipelineGroup)
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
-  cmd->add_option("--set", o.sets, "override a generator parameter of a procedural scene: key=value (repeatable)");
-  cmd->add_option("--frames", o.frames, "frame range A:B (half-open), A: or A; default all");
-  cmd->add_option("--scenes-dir", o.scenes_dir, "where named scenes live");
-  cmd->add_option("--morton-bits", o.morton_bits, "Morton code width")
-      ->check(CLI::IsMember({30, 63}))
-      ->capture_default_str();
+  cmd->add_option("--set", o.sets, "override a generator parameter of a procedural scene: key=value (repeatable)")
+      ->group(kSceneGroup);
+  cmd->add_option("--frames", o.frames, "frame range A:B (half-open), A: or A; default all")->group(kSceneGroup);
+  cmd->add_option("--scenes-dir", o.scenes_dir, "where named scenes live")->group(kSceneGroup);
   cmd->add_option("--rebuild-every", o.rebuild_every,
                   "bvh pipeline: rebuild every K frames (0: build on the first frame only)")
+      ->group(kPipelineGroup)
       ->capture_default_str();
   cmd->add_option("--front-cycle", o.front_cycle,
                   "front pipelines: when fronts are updated instead of preserved; auto: once the measured growth of "
@@ -87,75 +102,108 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
           "auto|K"))
       ->capture_default_str();
   cmd->add_flag("--skip-adjacent", o.skip_adjacent,
-                "co-vertex filtering: do not report pairs of triangles that share a vertex (oracle too)");
+                "co-vertex filtering: do not report pairs of triangles that share a vertex (oracle too)")
+      ->group(kAccuracyGroup);
   cmd->add_option("--box-margin", o.box_margin,
                   "fat boxes: inflate every triangle box by this much (scene units) on each side; conservative "
                   "(recall stays 1 against the exact oracle, precision drops); all pipelines")
+      ->group(kAccuracyGroup)
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--boxes", o.boxes,
                   "discrete: each triangle's box at the frame; swept: its box over the frame interval (previous and "
                   "current positions); swept is conservative with respect to the discrete oracle; all pipelines")
+      ->group(kAccuracyGroup)
       ->check(CLI::IsMember({"discrete", "swept"}))
       ->capture_default_str();
   cmd->add_option("--box-precision", o.box_precision,
                   "fp32: exact float triangle boxes; q16: boxes snapped outward onto a 16-bit grid per axis over "
                   "the frame's vertex bounds, as a 16-bit box format stores them; conservative (recall stays 1, "
                   "precision drops); all pipelines")
+      ->group(kAccuracyGroup)
       ->check(CLI::IsMember({"fp32", "q16"}))
       ->capture_default_str();
   cmd->add_option("--refit-every", o.refit_every,
                   "NOT CONSERVATIVE: front pipelines and bvh refit the hierarchy only every K frames and keep stale "
                   "boxes in between, so pairs can be missed (recall < 1 under --check); sweep, hash, grid and brute "
                   "ignore it; 1: every frame")
+      ->group(kAccuracyGroup)
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  // --front-cycle is declared above with the other pipeline options; its heading:
+  cmd->get_option("--front-cycle")->group(kPipelineGroup);
+}
+
+// Speed knobs that change no result (and --phase-timing, a measurement choice). Their
+// defaults were tuned on the H100 (sm_90); where a default depends on the GPU the help says so.
+void add_tuning(CLI::App* cmd, CommonOptions& o) {
+  cmd->add_option("--morton-bits", o.morton_bits, "Morton code width (all devices)")
+      ->group(kTuningGroup)
+      ->check(CLI::IsMember({30, 63}))
       ->capture_default_str();
   cmd->add_option("--cuda-graph", o.cuda_graph,
                   "front pipelines on cuda: capture the steady-state frame (refit + preserve) in a CUDA graph once "
                   "and replay it while its launches stay the same; off: plain launches every frame")
+      ->group(kTuningGroup)
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--dependent-launch", o.dependent_launch,
-                  "cuda: launch every kernel with programmatic stream serialization (sm_90 and later), so it is "
-                  "scheduled while the kernel before it runs and waits for it on the device; off: plain launches")
+                  "cuda: launch every kernel with programmatic stream serialization, so it is scheduled while the "
+                  "kernel before it runs and waits for it on the device; off: plain launches. Per architecture: "
+                  "a Hopper (sm_90) feature, the kernels' wait is compiled for sm_90 and later only; its effect "
+                  "on earlier GPUs is not measured")
+      ->group(kTuningGroup)
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--phase-timing", o.phase_timing,
                   "time each phase of a frame with events; off: only the frame and its upload (no event between "
                   "kernels, which in a CUDA graph costs a node and keeps the next kernel from launching early)")
+      ->group(kMeasurementGroup)
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--preserve-warp", o.preserve_warp,
                   "front pipelines on cuda: preserve shares each front node's traversal with the idle lanes of its "
                   "warp; auto: while the fronts fit in " + std::to_string(kPreserveWarpWaves) +
-                      " waves of the GPU's resident threads")
+                      " waves of the GPU's resident threads (per architecture: SMs x threads per SM, read from "
+                      "the GPU at run time)")
+      ->group(kTuningGroup)
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   cmd->add_option("--refit-top-leaves", o.refit_top_leaves,
                   "front pipelines and bvh: trees of up to this many leaves refit their top (the nodes whose leaves "
                   "span refit tiles) in one block of threads, larger trees hand it over between blocks; 0: always "
-                  "hand over")
+                  "hand over. The default was measured on the H100; other GPUs may want another")
+      ->group(kTuningGroup)
       ->check(CLI::Range(0u, kRefitTopLeavesLimit))
       ->capture_default_str();
+}
+
+// Pipeline c's restructuring (paper section 4, Formulas 1 and 2).
+void add_restructure(CLI::App* cmd, CommonOptions& o) {
   PipelineConfig& r = o.restructure;
   cmd->add_option("--restructure-quality", r.restructure_quality,
                   "pipeline c: a subtree is degraded when its Q exceeds this times Q(root) after the last rebuild")
+      ->group(kPipelineGroup)
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--restructure-min-leaves", r.restructure_min_leaves,
                   "pipeline c: smallest candidate subtree, in leaves")
+      ->group(kPipelineGroup)
       ->check(CLI::Range(2u, 0x7FFFFFFFu))
       ->capture_default_str();
   cmd->add_option("--restructure-max-fraction", r.restructure_max_fraction,
                   "pipeline c: largest candidate subtree, as a share of all leaves")
+      ->group(kPipelineGroup)
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--threshold-refit", r.threshold_refit,
                   "pipeline c, Formula 2: below this share of leaves in candidates, only refit")
+      ->group(kPipelineGroup)
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--threshold-build", r.threshold_build,
                   "pipeline c, Formula 2: from this share of leaves in candidates on, rebuild instead of restructuring")
+      ->group(kPipelineGroup)
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
 }
@@ -228,7 +276,7 @@ std::string cpu_model() {
 }
 
 struct RunOptions {
-  std::string pipeline = "bvh";
+  std::string pipeline = "c";  // the paper's scheme
   uint32_t warmup = 1;
   bool quiet = false;
   std::string out;
@@ -250,11 +298,11 @@ ContactCheck contact_check(const RunOptions& r, uint32_t check_every) {
   if (!(r.contact_distance >= 0) || !std::isfinite(c.distance)) {
     char given[32];
     std::snprintf(given, sizeof given, "%g", r.contact_distance);
-    fail(std::string("--contact-distance ") + given + ": expected a finite distance >= 0 (within the float range)");
+    fail_usage(std::string("--contact-distance ") + given + ": expected a finite distance >= 0 (within the float range)");
   }
-  if (c.substeps == 0) fail("--contact-substeps 0: expected at least 1 (1: the two frames only)");
+  if (c.substeps == 0) fail_usage("--contact-substeps 0: expected at least 1 (1: the two frames only)");
   if (!check_every && (c.distance != ContactCheck{}.distance || c.substeps != ContactCheck{}.substeps))
-    fail("--contact-distance and --contact-substeps say what --check counts: they need --check");
+    fail_usage("--contact-distance and --contact-substeps say what --check counts: they need --check");
   return c;
 }
 
@@ -265,7 +313,7 @@ uint32_t check_interval(const std::string& check) {
   uint32_t n = 0;
   const auto [end, ec] = std::from_chars(check.data(), check.data() + check.size(), n);
   if (ec != std::errc() || end != check.data() + check.size() || n == 0)
-    fail("--check " + check + ": expected every, off or a positive frame interval");
+    fail_usage("--check " + check + ": expected every, off or a positive frame interval");
   return n;
 }
 
@@ -319,10 +367,35 @@ std::vector<std::string> split_pipelines(const std::string& list) {
   for (;;) {
     const size_t comma = list.find(',', start);
     names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-    if (names.back().empty()) fail("--pipeline " + list + ": empty pipeline name");
+    if (names.back().empty()) fail_usage("--pipeline " + list + ": empty pipeline name");
     if (comma == std::string::npos) return names;
     start = comma + 1;
   }
+}
+
+// Every pipeline of the list, made before any work, so a bad name or option is found
+// before the first one runs. Configuration errors are usage errors.
+std::vector<std::unique_ptr<Pipeline>> make_pipelines(const CommonOptions& o, const std::vector<std::string>& names,
+                                                      const std::string& device) {
+  std::vector<std::unique_ptr<Pipeline>> pipelines;
+  for (const auto& name : names) {
+    try {
+      pipelines.push_back(make_pipeline(make_config(o, name, device)));
+    } catch (const UsageError&) {
+      throw;
+    } catch (const Error& e) {
+      fail_usage(e.what());
+    }
+  }
+  return pipelines;
+}
+
+// --out with {pipeline} replaced by the pipeline's name.
+std::string results_path(const std::string& pattern, const std::string& pipeline) {
+  std::string path = pattern;
+  const size_t at = path.find("{pipeline}");
+  if (at != std::string::npos) path.replace(at, 10, pipeline);
+  return path;
 }
 
 int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options) {
@@ -330,7 +403,10 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   const std::vector<std::string> names = split_pipelines(r.pipeline);
   const ContactCheck contact = contact_check(r, check_interval(r.check));
   if (names.size() > 1 && !r.out.empty() && r.out.find("{pipeline}") == std::string::npos)
-    fail("--out " + r.out + ": several pipelines need {pipeline} in the file name");
+    fail_usage("--out " + r.out + ": several pipelines need {pipeline} in the file name");
+  std::vector<std::unique_ptr<Pipeline>> pipelines = make_pipelines(o, names, device);
+  if (!r.out.empty())
+    for (const auto& name : names) check_output_path(results_path(r.out, name));
   print_environment(device);
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
@@ -346,15 +422,16 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::unique_ptr<FrameSource> cached;
   if (names.size() > 1 || r.repeat > 1) cached = std::make_unique<CachedFrames>(*scene.source);
   const FrameSource& frames = cached ? *cached : *scene.source;
-  for (const auto& name : names) {
+  for (size_t p = 0; p < names.size(); ++p) {
+    const std::string& name = names[p];
     const PipelineConfig config = make_config(o, name, device);
-    auto pipeline = make_pipeline(config);
+    // Released after its run, so pipelines do not hold their buffers side by side.
+    const std::unique_ptr<Pipeline> pipeline = std::move(pipelines[p]);
     pipeline->set_topology(topo);
     std::printf("pipeline: %s on %s\n", name.c_str(), device.c_str());
     RunOptions one = r;
     one.pipeline = name;
-    const size_t at = one.out.find("{pipeline}");
-    if (at != std::string::npos) one.out.replace(at, 10, name);
+    one.out = results_path(r.out, name);
     std::optional<ResultsFile> out;
     if (!one.out.empty()) {
       RunInfo info = run_info(o, one, scene, config, range, cli_options);
@@ -364,6 +441,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     RunLoopOptions loop;
     loop.warmup = r.warmup;
     loop.frame_lines = !r.quiet;
+    loop.list_growth = !r.quiet;
     loop.progress = Progress::mode_for(r.quiet);
     loop.save_pairs = r.save_pairs;
     loop.check_every = check_interval(r.check);
@@ -386,17 +464,18 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
 int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
                    size_t brute_limit) {
   const std::string device = resolve_device(o.device);
+  if (pipelines.empty())
+    for (const auto& n : pipeline_names())
+      if (n != oracle_pipeline()) pipelines.push_back(n);
+  std::vector<std::unique_ptr<Pipeline>> runs = make_pipelines(o, pipelines, device);
   print_environment(device);
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
   const FrameRange range = parse_frame_range(o.frames, scene.source->num_frames());
-  if (pipelines.empty())
-    for (const auto& n : pipeline_names())
-      if (n != oracle_pipeline()) pipelines.push_back(n);
   const bool brute_oracle = topo.faces.size() <= brute_limit;
   // The oracle sees the same fat, swept or quantized boxes only as the brute-force pipeline.
   if (!brute_oracle && (o.box_margin > 0 || o.boxes != "discrete" || o.box_precision != "fp32"))
-    fail("verify --box-margin/--boxes swept/--box-precision q16 needs the brute-force oracle (raise --brute-limit)");
+    fail_usage("verify --box-margin/--boxes swept/--box-precision q16 needs the brute-force oracle (raise --brute-limit)");
   std::printf("verify: scene %s (%zu triangles), frames %u:%u, device %s, oracle %s\n",
               scene.name.c_str(), topo.faces.size(), range.first, range.last, device.c_str(),
               brute_oracle ? "brute force (same device)" : "sort-and-sweep (cpu)");
@@ -405,11 +484,7 @@ int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
     oracle = make_pipeline(make_config(o, oracle_pipeline(), device));
     oracle->set_topology(topo);
   }
-  std::vector<std::unique_ptr<Pipeline>> runs;
-  for (const auto& name : pipelines) {
-    runs.push_back(make_pipeline(make_config(o, name, device)));
-    runs.back()->set_topology(topo);
-  }
+  for (const auto& run : runs) run->set_topology(topo);
   std::vector<uint64_t> mismatched_frames(pipelines.size(), 0);
   std::vector<vec3f> vertices;
   for (uint32_t f = range.first; f < range.last; ++f) {
@@ -522,7 +597,14 @@ int sweep_command(const SweepOptions& w, const CLI::App& run) {
   std::vector<RunOptionInfo> run_options;
   for (const CLI::Option* opt : run.get_options())
     if (!opt->get_lnames().empty()) run_options.push_back({opt->get_lnames()[0], opt->get_expected_max() == 0});
-  const SweepPlan plan = load_sweep(w.file, run_options, pipeline_names());
+  // The sweep file is the sweep's command line: its errors are usage errors.
+  const SweepPlan plan = [&] {
+    try {
+      return load_sweep(w.file, run_options, pipeline_names());
+    } catch (const Error& e) {
+      fail_usage(e.what());
+    }
+  }();
   SweepRunOptions options;
   options.out_dir = w.out_dir;
   options.scenes_dir = w.scenes_dir.empty() ? "" : std::filesystem::absolute(w.scenes_dir).string();
@@ -542,54 +624,72 @@ int sweep_command(const SweepOptions& w, const CLI::App& run) {
 int main(int argc, char** argv) {
   CLI::App app{"cdbench: GPU broad-phase collision detection benchmark for deforming meshes"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", version_text());
   CommonOptions o;
 
-  auto* run = app.add_subcommand("run", "run one pipeline on a scene and print timings");
-  add_common(run, o);
+  auto* run = app.add_subcommand("run", "run pipelines on a scene and print timings");
   RunOptions r;
   run->add_option("--pipeline", r.pipeline,
                   "one of " + pipeline_list() + "; or several, comma-separated, run one after the other on the same frames")
+      ->group(kPipelineGroup)
       ->capture_default_str();
-  run->add_option("--warmup", r.warmup, "frames left out of the summary statistics")
-      ->capture_default_str();
-  run->add_flag("--quiet", r.quiet, "no per-frame lines; no progress lines when stderr is not a terminal");
-  auto* out_option = run->add_option(
-      "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced");
-  run->add_flag("--save-pairs", r.save_pairs, "also store each frame's sorted pairs in the results file")
-      ->needs(out_option);
+  add_common(run, o);
+  add_restructure(run, o);
   run->add_option("--check", r.check,
                   "compare frames with the exact CPU oracle: every, N (every N-th frame) or off; "
                   "recall, precision, missed and false positives per checked frame, and true contacts among the reported "
                   "pairs (exact triangle test), outside the timing")
+      ->group(kAccuracyGroup)
       ->capture_default_str();
-  run->add_option("--repeat", r.repeat,
-                  "passes over the frames, each from a fresh state; times are the per-frame mean, "
-                  "with the relative standard deviation reported as noise")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  run->add_option("--max-noise", r.max_noise,
-                  "stop repeating once the passes' mean frame times agree within this many percent (0: all passes)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  run->add_flag("--cold", r.cold, "flush the device's last-level cache before every frame (outside its timing)");
   run->add_option("--contact-distance", r.contact_distance,
                   "--check: contacts are reported pairs whose triangles lie within this distance (scene units, "
                   "exact test; 0: intersecting)")
+      ->group(kAccuracyGroup)
       ->capture_default_str();
   run->add_option("--contact-substeps", r.contact_substeps,
                   "--check: the interval from the previous frame is sampled at this many substeps (linear "
                   "motion, both frames included) to count the contacts discrete boxes miss; a lower bound")
+      ->group(kAccuracyGroup)
       ->capture_default_str();
+  run->add_option("--warmup", r.warmup, "frames left out of the summary statistics")
+      ->group(kMeasurementGroup)
+      ->capture_default_str();
+  run->add_option("--repeat", r.repeat,
+                  "passes over the frames, each from a fresh state; times are the per-frame mean, "
+                  "with the relative standard deviation reported as noise; Ctrl-C keeps the finished passes")
+      ->group(kMeasurementGroup)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  run->add_option("--max-noise", r.max_noise,
+                  "stop repeating once the passes' mean frame times agree within this many percent (0: all passes)")
+      ->group(kMeasurementGroup)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  run->add_flag("--cold", r.cold, "flush the device's last-level cache before every frame (outside its timing)")
+      ->group(kMeasurementGroup);
+  auto* out_option = run->add_option(
+      "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced")
+      ->group(kOutputGroup);
+  run->add_flag("--save-pairs", r.save_pairs, "also store each frame's sorted pairs in the results file")
+      ->group(kOutputGroup)
+      ->needs(out_option);
+  run->add_flag("--quiet", r.quiet,
+                "no per-frame lines and no list of the buffers that grew (the summary keeps their count); no "
+                "progress lines when stderr is not a terminal")
+      ->group(kOutputGroup);
+  add_tuning(run, o);
 
   auto* verify = app.add_subcommand("verify", "compare pipelines with the exact oracle, frame by frame");
-  add_common(verify, o);
   std::vector<std::string> pipelines;
   size_t brute_limit = 30000;
-  verify->add_option("--pipelines", pipelines, "pipelines to check (default: all)");
+  verify->add_option("--pipelines", pipelines, "pipelines to check (default: all)")->group(kPipelineGroup);
+  add_common(verify, o);
+  add_restructure(verify, o);
   verify->add_option("--brute-limit", brute_limit,
                      "largest triangle count for the O(N^2) oracle; above it, CPU sort-and-sweep")
+      ->group(kAccuracyGroup)
       ->capture_default_str();
-
+  add_tuning(verify, o);
   auto* scenes = app.add_subcommand("scenes", "list, describe and generate scenes");
   scenes->add_option("--scenes-dir", o.scenes_dir, "where named scenes live");
   auto* list = scenes->add_subcommand("list", "list scenes with sizes");
@@ -623,7 +723,12 @@ int main(int argc, char** argv) {
   sweep->add_flag("--dry-run", w.dry_run, "list the cells, their state and command lines; run nothing");
   sweep->add_option("--scenes-dir", w.scenes_dir, "where named scenes live, passed on to every cell");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version end here with 0; every parse error is a usage error.
+    return app.exit(e) == 0 ? kExitOk : kExitUsage;
+  }
   try {
     if (*run) return run_command(o, r, options_json(*run));
     if (*verify) return verify_command(o, pipelines, brute_limit);
@@ -632,14 +737,14 @@ int main(int argc, char** argv) {
     if (*generate) return scenes_generate(o, scene_name, scene_sets, generate_out);
     if (*report) return print_results_table(report_files, csv);
     if (*sweep) return sweep_command(w, *run);
-  } catch (const Error& e) {
+  } catch (const UsageError& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "cdbench: error: %s\n", e.what());
-    return 2;
+    return kExitUsage;
   } catch (const std::exception& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "cdbench: error: %s\n", e.what());
-    return 2;
+    return kExitFailure;
   }
-  return 0;
+  return kExitOk;
 }

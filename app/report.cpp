@@ -3,6 +3,8 @@
 #include <omp.h>
 
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "pipeline/run_summary.h"
 
@@ -33,8 +35,40 @@ void print_frame_line(uint32_t frame, const FrameStats& s) {
   std::printf("\n");
 }
 
+namespace {
+
+// One line per buffer that grew; the buffers of one structure (front_internal.prim,
+// front_internal.node, ...) that grew alike share a line.
+void print_growth(const std::vector<BufferGrowth>& grown) {
+  std::vector<bool> printed(grown.size(), false);
+  for (size_t i = 0; i < grown.size(); ++i) {
+    if (printed[i]) continue;
+    const BufferGrowth& g = grown[i];
+    const size_t dot = g.buffer.rfind('.');
+    const std::string owner = dot == std::string::npos ? "" : g.buffer.substr(0, dot + 1);
+    std::string names = g.buffer.substr(owner.size());
+    size_t alike = 1;
+    for (size_t j = i + 1; j < grown.size() && !owner.empty(); ++j) {
+      const BufferGrowth& h = grown[j];
+      const bool same_owner =
+          h.buffer.compare(0, owner.size(), owner) == 0 && h.buffer.find('.', owner.size()) == std::string::npos;
+      if (printed[j] || !same_owner || h.times != g.times || h.first_count != g.first_count ||
+          h.last_count != g.last_count)
+        continue;
+      names.append(",").append(h.buffer, owner.size());
+      printed[j] = true;
+      ++alike;
+    }
+    const std::string what = alike > 1 ? std::string(owner).append("{").append(names).append("}") : g.buffer;
+    std::printf("  grew        %s %zu time%s, %zu to %zu\n", what.c_str(), g.times, g.times == 1 ? "" : "s",
+                g.first_count, g.last_count);
+  }
+}
+
+}  // namespace
+
 void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const MemoryStats& mem,
-                   double copy_gbps, const ContactCheck& contact) {
+                   double copy_gbps, const ContactCheck& contact, bool list_growth) {
   if (frames.empty()) return;
   const RunSummary r = summarize_run(frames, warmup);
   std::printf("summary: %zu frames measured (first %zu left out as warm-up)\n", r.total.count, r.warmup);
@@ -90,6 +124,7 @@ void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const
                 r.decided_restructure, r.decided_rebuild);
   std::printf("  memory      peak %.2f MiB, %zu allocations, %zu growths, %u query re-runs\n",
               double(mem.peak_bytes) / (1 << 20), mem.allocations, mem.growths, r.query_reruns);
+  if (list_growth) print_growth(mem.grown);
 }
 
 void print_mismatch(const std::string& pipeline, uint32_t frame, const PairSetDiff& d) {

@@ -113,6 +113,7 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
   std::vector<FrameStats> frames;
   std::vector<vec3f> vertices, previous;  // previous: the last frame's positions, for --check
   EarlierPasses earlier;
+  uint32_t kept_passes = 0;  // --repeat stopped by a signal: the finished passes recorded
   uint32_t f = range.first;
   const auto run_one = [&](uint32_t frame) {
     source.frame(frame, vertices);
@@ -135,8 +136,29 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
           earlier.noise_of_means(options.warmup) < options.max_noise)
         break;
     }
-    if (earlier.count() > 0) pipeline.set_topology(source.topology());
-    for (f = range.first; f < range.last && !interrupts.signal(); ++f) {
+    if (earlier.count() > 0 && earlier.passes.back().size() < frames_per_pass)
+      earlier.passes.pop_back();  // the pass a signal cut short
+    if (interrupts.signal() && earlier.count() > 0) {
+      // Stopped before the recording pass: the finished passes are the result, the last of
+      // them recorded with the mean of all. --check and --save-pairs need the recording
+      // pass's pipeline state, so those frames have neither.
+      const std::vector<FrameStats> last = std::move(earlier.passes.back());
+      earlier.passes.pop_back();
+      kept_passes = uint32_t(earlier.count() + 1);
+      for (size_t k = 0; k < last.size(); ++k) {
+        f = range.first + uint32_t(k);
+        frames.push_back(last[k]);
+        earlier.merge_into(k, f, frames.back());
+        if (out) out->append_frame(f, frames.back(), pipeline.memory());
+        if (options.frame_lines) {
+          progress.clear();
+          print_frame_line(f, frames.back());
+        }
+      }
+    } else if (earlier.count() > 0) {
+      pipeline.set_topology(source.topology());
+    }
+    for (f = range.first; f < range.last && !interrupts.signal() && !kept_passes; ++f) {
       frames.push_back(run_one(f));
       earlier.merge_into(frames.size() - 1, f, frames.back());
       if (options.check_every) {
@@ -166,12 +188,15 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     throw;
   }
   progress.finish();
-  print_summary(frames, options.warmup, pipeline.memory(), options.copy_gbps, options.contact);
+  print_summary(frames, options.warmup, pipeline.memory(), options.copy_gbps, options.contact, options.list_growth);
   if (!options.accuracy_warning.empty()) print_accuracy_warning(options.accuracy_warning, frames, options.warmup);
   if (const int signal = interrupts.signal()) {
-    const std::string why = std::string("interrupted by ") + signal_name(signal) + " after " +
-                            std::to_string(frames.size()) + " of " + std::to_string(frames_per_pass) +
-                            " frames";
+    const std::string why =
+        kept_passes ? std::string("interrupted by ") + signal_name(signal) + " after " +
+                          std::to_string(kept_passes) + " of " + std::to_string(options.repeat) +
+                          " passes (the finished passes kept)"
+                    : std::string("interrupted by ") + signal_name(signal) + " after " +
+                          std::to_string(frames.size()) + " of " + std::to_string(frames_per_pass) + " frames";
     std::fflush(stdout);
     std::fprintf(stderr, "cdbench: %s\n", why.c_str());
     if (out) {

@@ -19,6 +19,7 @@ namespace cdb {
 struct RunLoopOptions {
   uint32_t warmup = 1;
   bool frame_lines = true;  // one line per frame on stdout
+  bool list_growth = true;  // the summary names each buffer that grew (--quiet: only their count)
   Progress::Mode progress = Progress::Mode::off;
   bool save_pairs = false;  // each frame's sorted pairs into the results file
   // --check: compare every check_every-th frame (0: none) with `oracle`'s pairs for the

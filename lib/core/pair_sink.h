@@ -12,7 +12,7 @@ CDB_HD_INLINE bool share_vertex(const uint32_t* a, const uint32_t* b) {
 
 // Where a query writes its pairs: a counter and a buffer of fixed capacity. Every pair is
 // counted; pairs past the capacity are not stored, and the caller, seeing count >
-// capacity after the kernel, grows the buffer (logged, counted) and runs the query again.
+// capacity after the kernel, grows the buffer (counted) and runs the query again.
 // Nothing is ever truncated silently.
 //
 // Co-vertex filtering (--skip-adjacent): given the faces' vertex indices (3 per face), pairs

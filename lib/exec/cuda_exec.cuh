@@ -274,7 +274,7 @@ class CudaExec {
   // executor owns: one host copy into it, then an asynchronous DMA. From pageable memory the
   // driver stages the data itself and the stream waits on that (funnel's upload 17-18 us
   // that way, 11-13 us this way on the H100). reserve_upload sizes the buffer outside the
-  // frame; a larger upload grows it (counted and logged as a growth).
+  // frame; a larger upload grows it (counted as a growth).
   void reserve_upload(size_t bytes);
   template <class T>
   void upload(T* dst, const T* src, size_t n) {

@@ -1,18 +1,28 @@
 #pragma once
 #include <cstddef>
-#include <cstdio>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace cdb {
 
+// One buffer that had to grow after its first reservation: how often, and from which size
+// to which (in elements, or in bytes where the name says so).
+struct BufferGrowth {
+  std::string buffer;
+  size_t times = 0;
+  size_t first_count = 0, last_count = 0;
+};
+
 // Accounting every executor's allocator shares: bytes in use, peak, and how many times a
-// buffer had to grow after the run started (each growth is also logged to stderr).
+// buffer had to grow after the run started, per buffer. Nothing is printed while frames
+// run: the CLI sums the growths up at the end of a run.
 struct MemoryStats {
   size_t current_bytes = 0;
   size_t peak_bytes = 0;
   size_t allocations = 0;
   size_t growths = 0;
+  std::vector<BufferGrowth> grown;  // one entry per buffer name, in the order they first grew
 };
 
 class MemoryResource {
@@ -33,18 +43,20 @@ class MemoryResource {
   }
   void note_growth(const char* what, size_t old_count, size_t new_count) {
     ++stats_.growths;
-    if (verbose_growth_)
-      std::fprintf(stderr, "cdbench: grew %s from %zu to %zu elements\n", what, old_count,
-                   new_count);
+    for (BufferGrowth& g : stats_.grown)
+      if (g.buffer == what) {
+        ++g.times;
+        g.last_count = new_count;
+        return;
+      }
+    stats_.grown.push_back({what, 1, old_count, new_count});
   }
   const MemoryStats& stats() const { return stats_; }
-  void set_verbose_growth(bool on) { verbose_growth_ = on; }
 
  private:
   virtual void* do_allocate(size_t bytes) = 0;
   virtual void do_deallocate(void* p, size_t bytes) = 0;
   MemoryStats stats_;
-  bool verbose_growth_ = true;
 };
 
 // A typed buffer in an executor's memory. Contents are not preserved when it grows: every
@@ -70,7 +82,7 @@ class Array {
   }
 
   // Makes room for n elements. A first reservation is the planned allocation; a later one
-  // that needs more is a growth and is counted and logged.
+  // that needs more is a growth and is counted.
   void reserve(size_t n) {
     if (n <= capacity_) {
       size_ = n;
@@ -104,7 +116,7 @@ class Array {
     std::swap(capacity_, o.capacity_);
   }
   MemoryResource* mr_ = nullptr;
-  std::string name_ = "buffer";  // for the growth log
+  std::string name_ = "buffer";  // names the buffer in the growth summary
   T* ptr_ = nullptr;
   size_t size_ = 0;
   size_t capacity_ = 0;

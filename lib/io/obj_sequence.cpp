@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "io/natural_order.h"
 #include "io/obj_reader.h"
 
 namespace cdb {
@@ -60,7 +61,9 @@ class MeshSequence final : public FrameSource {
       std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
       if (e.is_regular_file() && ext == ".obj") files_.push_back(e.path());
     }
-    std::sort(files_.begin(), files_.end());
+    std::sort(files_.begin(), files_.end(), [](const std::filesystem::path& a, const std::filesystem::path& b) {
+      return natural_less(a.filename().native(), b.filename().native());
+    });
     if (files_.empty()) fail(dir.string() + ": no .obj frames in this directory");
     std::vector<vec3f> positions;
     const size_t polygons = read_mesh_file(files_[0], topology_, positions);
@@ -68,6 +71,10 @@ class MeshSequence final : public FrameSource {
       std::fprintf(stderr, "cdbench: %s: %zu polygon faces triangulated (%zu triangles in all)\n",
                    files_[0].string().c_str(), polygons, topology_.faces.size());
     check_frame(positions, topology_, files_[0].string(), 0);
+    // Every frame is read once here, so a bad frame stops the program before the first
+    // one is timed rather than after the frames before it ran (the files are read again
+    // as the frames are asked for: keeping them all would cost frames x vertices x 12 bytes).
+    for (uint32_t k = 1; k < files_.size(); ++k) frame(k, positions);
   }
   const Topology& topology() const override { return topology_; }
   uint32_t num_frames() const override { return uint32_t(files_.size()); }

@@ -1,6 +1,8 @@
 #pragma once
-// A directory of mesh files, one per frame in name order (frame_0000.obj, ...), read with
-// assimp. Frame 0 fixes the topology; every later frame must match it.
+// A directory of OBJ files, one per frame in natural name order (f2.obj before f10.obj;
+// io/natural_order.h), read by io/obj_reader.h. Frame 0 fixes the topology; every later
+// frame must match it (triangle and vertex counts) and be finite, which is checked for all
+// frames when the directory is opened.
 #include <filesystem>
 #include <memory>
 #include <string>

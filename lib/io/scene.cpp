@@ -346,7 +346,7 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   if (root.has("params") && !root.has("generator")) fail(file.string() + ": /params: only valid with /generator");
   if (root.has("frame_count") && !root.has("parts")) fail(file.string() + ": /frame_count: only valid with /parts");
   if (!overrides.empty() && !root.has("generator") && !root.has("crowd"))
-    fail(file.string() + ": parameters can only be set on a procedural scene or a crowd");
+    fail_usage(file.string() + ": parameters can only be set on a procedural scene or a crowd");
   if (root.has("generator")) {
     const std::string generator = root.text("generator");
     nlohmann::json params = j.contains("params") ? j["params"] : nlohmann::json::object();
@@ -406,7 +406,7 @@ Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_di
                  const nlohmann::json& overrides) {
   const std::filesystem::path p(spec);
   if (std::filesystem::is_directory(p)) {
-    if (!overrides.empty()) fail(spec + ": parameters can only be set on a procedural scene");
+    if (!overrides.empty()) fail_usage(spec + ": parameters can only be set on a procedural scene");
     Scene s;
     // "frames/" names the directory "frames", not "".
     const std::filesystem::path named = p.has_filename() ? p : p.parent_path();
@@ -420,7 +420,7 @@ Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_di
   if (std::filesystem::is_regular_file(named)) return open_descriptor(named, overrides);
   std::string known;
   for (const auto& n : list_scenes(scenes_dir)) known += (known.empty() ? "" : ", ") + n;
-  fail("unknown scene '" + spec + "': not a directory of mesh frames, not a .json descriptor, and not in " +
+  fail_usage("unknown scene '" + spec + "': not a directory of mesh frames, not a .json descriptor, and not in " +
        scenes_dir.string() + " (known: " + known + ")");
 }
 

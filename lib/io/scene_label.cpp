@@ -22,7 +22,7 @@ nlohmann::json parse_set_overrides(const std::vector<std::string>& sets) {
   nlohmann::json j = nlohmann::json::object();
   for (const auto& kv : sets) {
     const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) fail("--set " + kv + ": expected key=value");
+    if (eq == std::string::npos || eq == 0) fail_usage("--set " + kv + ": expected key=value");
     const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
     j[key] = nlohmann::json::accept(value) ? nlohmann::json::parse(value) : nlohmann::json(value);
   }

@@ -233,8 +233,8 @@ class PairBuffer {
     return c;
   }
   const std::array<unsigned long long, kCounters>& last_counters() const { return last_; }
-  // After a read-back: if the pairs did not fit, grow to the measured need (logged,
-  // counted) and say so; the caller re-runs the query.
+  // After a read-back: if the pairs did not fit, grow to the measured need
+  // (counted) and say so; the caller re-runs the query.
   bool grow_if_needed() {
     const uint64_t need = count();
     if (need <= pairs_.capacity()) return false;

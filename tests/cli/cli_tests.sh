@@ -17,6 +17,27 @@ check "unknown scene" 2 "unknown scene 'nowhere'" -- "$cdbench" run --device cpu
 check "frame range past the end" 2 "only 20 frames" -- "$cdbench" run --device cpu --frames 0:99
 check "bad frame range" 2 "expected A:B" -- "$cdbench" run --device cpu --frames x:y
 
+# Exit codes (docs/usage.md): 0 ok, 1 failure, 2 usage.
+check "version names the release" 0 "^cdbench [0-9]+\.[0-9]+\.[0-9]+$" -- "$cdbench" --version
+has "version names the commit" "$tmp/out" "^commit +[0-9a-f]{12}(-dirty)?$"
+has "version names the CUDA toolkit or its absence" "$tmp/out" "^cuda +(nvcc [0-9.]+|none \(built without CUDA)"
+has "version names the build type" "$tmp/out" "^build +(Release|Debug|RelWithDebInfo|MinSizeRel), "
+check "unknown option is a usage error" 2 "no-such-option" -- "$cdbench" run --no-such-option
+check "bad option value is a usage error" 2 "--device" -- "$cdbench" run --device gpu
+check "missing subcommand is a usage error" 2 "subcommand" -- "$cdbench"
+check "unknown pipeline in a list: usage, before any run" 2 "unknown pipeline 'foo'" -- "$cdbench" run --device cpu --pipeline b,foo
+if grep -qE "^(scene|pipeline|frame) " "$tmp/out"; then fail "pipeline b ran before foo was rejected"; else echo "ok   nothing ran before the bad name was found"; fi
+check "verify rejects an unknown pipeline first" 2 "unknown pipeline 'foo'" -- "$cdbench" verify --device cpu --pipelines b foo
+check "default pipeline is c" 0 "^pipeline: c on cpu" -- "$cdbench" run --device cpu --quiet --frames 0:2
+check "help groups the options" 0 "^GPU tuning:" -- "$cdbench" run --help
+has "help has a scene group" "$tmp/out" "^Scene:"
+has "help has a pipeline group" "$tmp/out" "^Pipeline:"
+check "out names a directory" 2 "--out $tmp/outdir/: names a directory" -- "$cdbench" run --device cpu --frames 0:2 --out "$tmp/outdir/"
+touch "$tmp/plainfile"
+check "out under a file" 1 "--out $tmp/plainfile/r.h5: cannot create directory" -- "$cdbench" run --device cpu --frames 0:2 --out "$tmp/plainfile/r.h5"
+check "out where nothing can be written" 1 "--out /proc/cdbench-r.h5: cannot write in directory /proc" -- "$cdbench" run --device cpu --frames 0:2 --out /proc/cdbench-r.h5
+if grep -q "HDF5" "$tmp/out"; then fail "raw HDF5 errors printed"; else echo "ok   no HDF5 error stack"; fi
+
 check "pipeline c runs and decides" 0 "formula 2 +[0-9]+ refit, [0-9]+ restructure" -- "$cdbench" run --device cpu --quiet --pipeline c --front-cycle 1 --restructure-quality 0 --restructure-min-leaves 8 --threshold-refit 0 --threshold-build 1
 check "verify with co-vertex filtering" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:3 --skip-adjacent
 check "verify with co-vertex filtering, sweep oracle" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:2 --skip-adjacent --brute-limit 10
@@ -30,22 +51,22 @@ check "crowd verify" 0 "all pipelines match the oracle" -- "$cdbench" verify --d
 check "rigid part of a scene" 0 "object +bunny +faces 7938..77604 +rigid" -- "$cdbench" scenes info bunny-drop
 check "scans extracted into the cache" 0 "object +armadillo +faces 88928..140928 +rigid" -- env CDBENCH_CACHE="$tmp/cache" "$cdbench" scenes info elephant-armadillo
 printf '{"frame_count": 2, "parts": [{"name": "b", "mesh": {"file": "/usr/share/glmark2/models/bunny.obj"}, "motion": {"velocity": [0, "up", 0]}}]}' >"$tmp/badmotion.json"
-check "bad rigid motion names the JSON path" 2 "badmotion.json: /parts/0/motion/velocity/1: must be a number" -- "$cdbench" run --device cpu --scene "$tmp/badmotion.json"
+check "bad rigid motion names the JSON path" 1 "badmotion.json: /parts/0/motion/velocity/1: must be a number" -- "$cdbench" run --device cpu --scene "$tmp/badmotion.json"
 printf '{"generator": "funnel", "params": {"frames": 2}, "queries": {"self": ["cloth"], "inter": [["cloth", "rocket"]]}}' >"$tmp/badq.json"
-check "query names an unknown object" 2 "/queries/inter/0/1: unknown object 'rocket'" -- "$cdbench" run --device cpu --scene "$tmp/badq.json"
+check "query names an unknown object" 1 "/queries/inter/0/1: unknown object 'rocket'" -- "$cdbench" run --device cpu --scene "$tmp/badq.json"
 printf '{"generator": "soup", "params": {"triangles": 10}, "queries": {"self": ["x"]}}' >"$tmp/noobj.json"
-check "queries need objects" 2 "no objects to query" -- "$cdbench" run --device cpu --scene "$tmp/noobj.json"
+check "queries need objects" 1 "no objects to query" -- "$cdbench" run --device cpu --scene "$tmp/noobj.json"
 mkdir -p "$tmp/oor" "$tmp/negidx" "$tmp/quad" "$tmp/garbage" "$tmp/trunc"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n' >"$tmp/oor/frame_0000.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -9\n' >"$tmp/negidx/frame_0000.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n' >"$tmp/quad/frame_0000.obj"
 head -c 3000 /dev/urandom >"$tmp/garbage/frame_0000.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2' >"$tmp/trunc/frame_0000.obj"
-check "face index out of range names file" 2 "oor/frame_0000.obj: line 4: vertex index 7 out of range" -- "$cdbench" run --device cpu --scene "$tmp/oor"
-check "negative face index out of range names file" 2 "negidx/frame_0000.obj: line 4: vertex index -9 out of range" -- "$cdbench" run --device cpu --scene "$tmp/negidx"
+check "face index out of range names file" 1 "oor/frame_0000.obj: line 4: vertex index 7 out of range" -- "$cdbench" run --device cpu --scene "$tmp/oor"
+check "negative face index out of range names file" 1 "negidx/frame_0000.obj: line 4: vertex index -9 out of range" -- "$cdbench" run --device cpu --scene "$tmp/negidx"
 check "polygons are triangulated and said so" 0 "1 polygon faces triangulated \\(2 triangles" -- "$cdbench" run --device cpu --scene "$tmp/quad"
-check "binary garbage names file" 2 "garbage/frame_0000.obj: " -- "$cdbench" run --device cpu --scene "$tmp/garbage"
-check "truncated OBJ names file" 2 "trunc/frame_0000.obj: " -- "$cdbench" run --device cpu --scene "$tmp/trunc"
+check "binary garbage names file" 1 "garbage/frame_0000.obj: " -- "$cdbench" run --device cpu --scene "$tmp/garbage"
+check "truncated OBJ names file" 1 "trunc/frame_0000.obj: " -- "$cdbench" run --device cpu --scene "$tmp/trunc"
 check "scene directory with a trailing slash keeps its name" 0 "scene: quad " -- "$cdbench" run --device cpu --scene "$tmp/quad/"
 check "check every frame: recall and precision 1" 0 "check +20 frames against the oracle: recall min 1.000000, precision min 1.000000, 0 missed, 0 false positives" -- "$cdbench" run --device cpu --quiet --pipeline c --check every
 check "check every 5th frame, co-vertex filtered" 0 "check +4 frames against the oracle: recall min 1.000000" -- "$cdbench" run --device cpu --quiet --pipeline grid --check 5 --skip-adjacent
@@ -62,7 +83,7 @@ check "bad threshold order" 2 "threshold" -- "$cdbench" run --device cpu --quiet
 check "scenes info" 0 "vertex motion mean" -- "$cdbench" scenes info funnel --set frames=3
 check "scenes generate" 0 "wrote 2 frames" -- "$cdbench" scenes generate funnel --set frames=2 --out "$tmp/gen"
 check "generated scene runs" 0 "frames 0:2" -- "$cdbench" run --device cpu --scene "$tmp/gen"
-check "unknown generator parameter" 2 "nope" -- "$cdbench" scenes info funnel --set nope=1
+check "unknown generator parameter" 1 "nope" -- "$cdbench" scenes info funnel --set nope=1
 check "set on a mesh sequence" 2 "procedural" -- "$cdbench" scenes info "$tmp/gen" --set res=4
 
 mkdir -p "$tmp/seq"
@@ -74,25 +95,25 @@ check "obj sequence verifies" 0 "all pipelines match" -- "$cdbench" verify --dev
 
 cp -r "$tmp/seq" "$tmp/nan"
 printf 'v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n' >"$tmp/nan/frame_0001.obj"
-check "NaN vertex names file, frame, vertex" 2 "frame_0001.obj: frame 1, vertex 2: non-finite" -- "$cdbench" run --device cpu --scene "$tmp/nan"
+check "NaN vertex names file, frame, vertex" 1 "frame_0001.obj: frame 1, vertex 2: non-finite" -- "$cdbench" run --device cpu --scene "$tmp/nan"
 
 cp -r "$tmp/seq" "$tmp/count"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 2 3\nf 1 2 4\nf 1 2 5\n' >"$tmp/count/frame_0001.obj"
-check "changed topology names frame" 2 "frame_0001.obj: frame 1 has 3 triangles, frame 0 has 2" -- "$cdbench" run --device cpu --scene "$tmp/count"
+check "changed topology names frame" 1 "frame_0001.obj: frame 1 has 3 triangles, frame 0 has 2" -- "$cdbench" run --device cpu --scene "$tmp/count"
 
 mkdir -p "$tmp/bad"
 printf 'this is not a mesh\n{{{\n' >"$tmp/bad/frame_0000.obj"
-check "malformed OBJ names file" 2 "frame_0000.obj" -- "$cdbench" run --device cpu --scene "$tmp/bad"
+check "malformed OBJ names file" 1 "frame_0000.obj" -- "$cdbench" run --device cpu --scene "$tmp/bad"
 
 mkdir -p "$tmp/empty"
-check "empty directory" 2 "no .obj frames" -- "$cdbench" run --device cpu --scene "$tmp/empty"
+check "empty directory" 1 "no .obj frames" -- "$cdbench" run --device cpu --scene "$tmp/empty"
 
 printf '{"generator": "funnel", "params": {"res": 8, "frames": 3, "colour": 1}}' >"$tmp/typo.json"
-check "unknown generator parameter" 2 "parameter 'colour': unknown parameter" -- "$cdbench" run --device cpu --scene "$tmp/typo.json"
+check "unknown generator parameter" 1 "parameter 'colour': unknown parameter" -- "$cdbench" run --device cpu --scene "$tmp/typo.json"
 printf '{"generator": "funnel", "extra": 1}' >"$tmp/key.json"
-check "unknown descriptor key" 2 "/extra: unknown key" -- "$cdbench" run --device cpu --scene "$tmp/key.json"
+check "unknown descriptor key" 1 "/extra: unknown key" -- "$cdbench" run --device cpu --scene "$tmp/key.json"
 printf '{"generator": ' >"$tmp/broken.json"
-check "malformed JSON" 2 "broken.json: malformed JSON" -- "$cdbench" run --device cpu --scene "$tmp/broken.json"
+check "malformed JSON" 1 "broken.json: malformed JSON" -- "$cdbench" run --device cpu --scene "$tmp/broken.json"
 printf '{"generator": "soup", "params": {"triangles": 0}}' >"$tmp/empty.json"
 check "empty scene runs" 0 "pairs +0" -- "$cdbench" run --device cpu --scene "$tmp/empty.json"
 printf '{"generator": "soup", "params": {"triangles": 1}}' >"$tmp/one.json"
@@ -104,17 +125,23 @@ check "run writes a results file" 0 "results: $out/funnel.h5 \(20 frames\)" -- \
   "$cdbench" run --scene funnel --device cpu --quiet --out "$out/funnel.h5" --save-pairs
 check "results file is complete" 0 "status: complete \(20 frames written\)" -- "${read_results[@]}" "$out/funnel.h5"
 check "results file keeps pairs" 0 "pairs saved for 20 frames" -- "${read_results[@]}" --summary "$out/funnel.h5"
-check "save-pairs needs --out" 107 "--save-pairs requires --out" -- "$cdbench" run --device cpu --save-pairs
+check "save-pairs needs --out" 2 "--save-pairs requires --out" -- "$cdbench" run --device cpu --save-pairs
 
 mkdir -p "$tmp/midway"
 for f in 0 1 2 3; do
   printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 %d\nf 1 2 3\nf 1 2 4\n' "$f" >"$tmp/midway/frame_000$f.obj"
 done
 printf 'v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n' >"$tmp/midway/frame_0002.obj"
-check "error mid-run exits non-zero" 2 "frame_0002.obj: frame 2, vertex 2: non-finite" -- \
+check "a bad frame is found before the first is timed" 1 "frame_0002.obj: frame 2, vertex 2: non-finite" -- \
   "$cdbench" run --device cpu --scene "$tmp/midway" --out "$out/midway.h5"
-check "failed run leaves an incomplete file" 0 "status: incomplete \(2 frames written\)" -- "${read_results[@]}" "$out/midway.h5"
-check "failed run records the error" 0 "error: frame 2: .*non-finite" -- "${read_results[@]}" --summary "$out/midway.h5"
+if grep -q "^frame " "$tmp/out"; then fail "frames ran before the bad frame was found"; else echo "ok   no frame ran"; fi
+[[ ! -e $out/midway.h5 ]] && echo "ok   no results file for a run that did not start" || fail "midway.h5 written"
+mkdir -p "$tmp/natural"
+for f in 0 1 2 10 11; do
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 %d\nf 1 2 3\nf 1 2 4\n' "$f" >"$tmp/natural/f$f.obj"
+done
+check "frames in natural order: f10 is frame 3" 0 "^frame +3 +box \[0 0 0\]\.\.\[1 1 10\]" -- "$cdbench" scenes info "$tmp/natural"
+has "frames in natural order: f2 is frame 2" "$tmp/out" "^frame +2 +box \[0 0 0\]\.\.\[1 1 2\]"
 
 # Interrupted: a scene far too long to finish, stopped by SIGTERM once it is under way.
 printf '{"generator": "cloth-wave", "params": {"res": 16, "frames": 1000000}}' >"$tmp/endless.json"
@@ -170,6 +197,34 @@ check "report without checked files has no check columns" 0 "^\| file \| scene \
 "$cdbench" run --device cpu --quiet --frames 0:3 --check every --save-pairs --out "$out/documented.h5" >/dev/null 2>&1
 check "results format documented exactly" 0 "^0 differences" -- \
   "$python" "$root/tests/cli/results_format_check.py" "$root/docs/results-format.md" "$out/documented.h5"
+# --repeat stopped by SIGINT once passes have finished: they are kept, summed up and written.
+"$cdbench" run --device cpu --scene funnel --frames 0:3 --repeat 1000000 --quiet --out "$out/repeat.h5" >"$tmp/repeat.out" 2>&1 &
+pid=$!
+for _ in $(seq 600); do grep -q "^copy bandwidth" "$tmp/repeat.out" && break; sleep 0.1; done
+sleep 2
+kill -INT "$pid"
+wait "$pid"; rc=$?
+if [[ $rc -eq 130 ]] && grep -qE "interrupted by SIGINT after [0-9]+ of 1000000 passes \(the finished passes kept\)" "$tmp/repeat.out" &&
+   grep -qE "^  noise .* over [0-9]+ passes" "$tmp/repeat.out"; then
+  echo "ok   SIGINT under --repeat keeps the finished passes"
+else
+  fail "SIGINT under --repeat: rc=$rc (want 130)"; tail -8 "$tmp/repeat.out" | sed 's/^/    /'
+fi
+check "the kept passes are in the results file" 0 "status: incomplete \(3 frames written\)" -- "${read_results[@]}" "$out/repeat.h5"
+
+# Buffer growth: summed up after the run, never printed while frames run; --quiet leaves the count.
+printf '{"generator": "soup", "params": {"triangles": 200, "size": 1, "frames": 2}}' >"$tmp/dense.json"
+check "growth summed up after the run" 0 "^  grew +pairs [0-9]+ times?, [0-9]+ to [0-9]+$" -- "$cdbench" run --device cpu --scene "$tmp/dense.json" --pipeline bvh
+if grep -q "^cdbench: grew" "$tmp/out"; then fail "growth printed while frames ran"; else echo "ok   no growth line during the frames"; fi
+check "quiet keeps only the growth count" 0 "^  memory .* [1-9][0-9]* growths" -- "$cdbench" run --device cpu --scene "$tmp/dense.json" --pipeline bvh --quiet
+if grep -q "grew" "$tmp/out"; then fail "--quiet still lists the growth"; else echo "ok   --quiet lists no growth"; fi
+
+check "report shows the complete run" 0 "\| funnel \| c \| cpu: .* \| complete \|" -- \
+  "$cdbench" report "$out/funnel.h5" "$out/endless.h5"
+check "report shows the interrupted run as incomplete" 0 "\| endless \| c \|.*\| incomplete .*SIGTERM" -- \
+  "$cdbench" report "$out/funnel.h5" "$out/endless.h5"
+check "report as CSV" 0 "endless\.h5,endless,c,.*,incomplete: interrupted by SIGTERM after [0-9]+ of 1000000 frames$" -- \
+  "$cdbench" report --csv "$out/funnel.h5" "$out/endless.h5"
 check "report names an unreadable file" 1 "unreadable: .*seq/frame_0000.obj" -- \
   "$cdbench" report "$out/funnel.h5" "$tmp/seq/frame_0000.obj"
 

@@ -58,10 +58,10 @@ check "q16 verifies exactly against the brute-force oracle on q16 boxes" 0 "all 
   "$cdbench" verify --device cpu --scene "$tmp/soup-fast.json" --frames 0:3 --pipelines bvh b sweep hash grid --box-precision q16
 check "q16 verify refuses the discrete sweep oracle" 2 "--box-precision q16 needs the brute-force oracle" -- \
   "$cdbench" verify --device cpu --scene "$tmp/soup-fast.json" --frames 0:1 --brute-limit 10 --box-precision q16
-check "unknown box precision refused" 105 "--box-precision: fp16 not in" -- \
+check "unknown box precision refused" 2 "--box-precision: fp16 not in" -- \
   "$cdbench" run --device cpu --scene "$tmp/soup-fast.json" --box-precision fp16
-check "negative margin refused" 105 "--box-margin" -- "$cdbench" run --device cpu --scene "$tmp/soup-fast.json" --box-margin -1
-check "unknown box kind refused" 105 "--boxes" -- "$cdbench" run --device cpu --scene "$tmp/soup-fast.json" --boxes fat
+check "negative margin refused" 2 "--box-margin" -- "$cdbench" run --device cpu --scene "$tmp/soup-fast.json" --box-margin -1
+check "unknown box kind refused" 2 "--boxes" -- "$cdbench" run --device cpu --scene "$tmp/soup-fast.json" --boxes fat
 
 check "plot_pareto draws the runs" 0 "^\| pipeline \| box margin" -- \
   "$python" "$root/scripts/plot_pareto.py" "$res" --scene soup-fast --out "$tmp/pareto.png" --table

@@ -29,8 +29,8 @@ count "report has six complete rows" 6 "\.h5 \| .* \| complete \|$"
 check "second sweep skips complete cells" 0 "6 already complete, 0 to run" -- "$cdbench" sweep "$sweep" --out "$out"
 count "each skip is said" 6 "^skip .*: results complete"
 
-# Failing cells next to the complete ones: a scene whose frame 2 has a NaN (an incomplete
-# file) and a scene that does not exist (no file at all).
+# Failing cells next to the complete ones: a scene whose frame 2 has a NaN (found before
+# any frame runs) and a scene that does not exist; neither leaves a results file.
 mkdir -p "$tmp/midway"
 for f in 0 1 2 3; do
   printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 %d\nf 1 2 3\nf 1 2 4\n' "$f" >"$tmp/midway/frame_000$f.obj"
@@ -41,10 +41,10 @@ cat >"$tmp/failing.json" <<'JSON'
  "pipelines": ["bvh"], "devices": ["cpu"]}
 JSON
 check "failed cells make the sweep exit 1" 1 "3 cells, 1 already complete, 2 to run" -- "$cdbench" sweep "$tmp/failing.json" --out "$out"
-count "the others are reported failed" 2 "^\[[12]/2\] (midway|nowhere)_bvh_cpu: FAILED, exit 2: cdbench: error: "
+count "the others are reported failed" 2 "^\[[12]/2\] (midway|nowhere)_bvh_cpu: FAILED, exit [12]: cdbench: error: "
 check "failure recorded with its exit code" 0 '"exit_code": 2' -- cat "$out/nowhere_bvh_cpu.status.json"
-check "sweep.log has the failure" 0 "failed midway_bvh_cpu exit 2: .*non-finite" -- cat "$out/sweep.log"
-check "report shows the incomplete cell" 0 "midway_bvh_cpu\.h5 \| midway \| bvh \|.*\| incomplete \(2/4 frames\): frame 2: " -- "$cdbench" report "$out"
+check "sweep.log has the failure" 0 "failed midway_bvh_cpu exit 1: .*non-finite" -- cat "$out/sweep.log"
+check "report shows the cell with a bad frame" 0 "midway_bvh_cpu\.h5 \| midway \| bvh \| cpu \|.*\| failed, no results file: exit 1: .*frame 2, vertex 2: non-finite" -- "$cdbench" report "$out"
 check "report shows the cell without a file" 0 "nowhere_bvh_cpu\.h5 \| nowhere \| bvh \| cpu \|.*\| failed, no results file: exit 2: .*nowhere" -- "$cdbench" report "$out"
 count "report still has the six complete rows" 6 "\| complete \|$"
 check "dry run says which cells failed" 0 "nowhere_bvh_cpu  to run again \(failed: exit 2" -- "$cdbench" sweep "$tmp/failing.json" --out "$out" --dry-run

@@ -1,0 +1,108 @@
+// Directories of OBJ frames: natural frame order, and every frame checked when the
+// directory is opened (before any frame is timed), with errors naming file, frame and field.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "io/natural_order.h"
+#include "io/obj_sequence.h"
+
+namespace cdb::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class FrameDir {
+ public:
+  FrameDir() : dir_(fs::temp_directory_path() / ("cdb_obj_sequence_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  ~FrameDir() { fs::remove_all(dir_); }
+  const fs::path& path() const { return dir_; }
+  // Two triangles over four vertices; the last vertex's z is `z` (text, so "nan" fits).
+  void write(const std::string& name, const std::string& z, bool extra_triangle = false) const {
+    std::ofstream os(dir_ / name);
+    os << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 " << z << "\nf 1 2 3\nf 1 2 4\n";
+    if (extra_triangle) os << "f 2 3 4\n";
+  }
+
+ private:
+  fs::path dir_;
+};
+
+// f<k>.obj, built by appending (GCC 12 warns falsely on "f" + std::string).
+std::string frame_name(int k) { return std::string("f").append(std::to_string(k)).append(".obj"); }
+
+std::string error_of(const fs::path& dir) {
+  try {
+    open_mesh_sequence(dir);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(NaturalOrder, DigitRunsCompareByValue) {
+  EXPECT_TRUE(natural_less("f2.obj", "f10.obj"));
+  EXPECT_FALSE(natural_less("f10.obj", "f2.obj"));
+  EXPECT_TRUE(natural_less("frame_0009.obj", "frame_0010.obj"));
+  EXPECT_TRUE(natural_less("a9b", "a10a"));
+  EXPECT_TRUE(natural_less("f", "f0"));  // a prefix first
+  EXPECT_TRUE(natural_less("a.obj", "b.obj"));
+  // Longer than any integer type: still by value.
+  EXPECT_TRUE(natural_less("f99999999999999999999999", "f100000000000000000000000"));
+  // Equal by value, different text: still a strict, total order.
+  EXPECT_NE(natural_less("f01", "f1"), natural_less("f1", "f01"));
+  EXPECT_FALSE(natural_less("f1", "f1"));
+}
+
+TEST(NaturalOrder, SortsFrameNames) {
+  std::vector<std::string> names = {"f10", "f0", "f11", "f2", "f1"};
+  std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) { return natural_less(a, b); });
+  EXPECT_EQ(names, (std::vector<std::string>{"f0", "f1", "f2", "f10", "f11"}));
+}
+
+TEST(MeshSequence, FramesInNaturalOrder) {
+  FrameDir dir;
+  for (int k : {0, 1, 2, 10, 11}) dir.write(frame_name(k), std::to_string(k));
+  const auto seq = open_mesh_sequence(dir.path());
+  ASSERT_EQ(seq->num_frames(), 5u);
+  std::vector<vec3f> v;
+  const float expected_z[] = {0, 1, 2, 10, 11};
+  for (uint32_t k = 0; k < 5; ++k) {
+    seq->frame(k, v);
+    ASSERT_EQ(v.size(), 4u);
+    EXPECT_EQ(v[3].z, expected_z[k]) << "frame " << k;
+  }
+}
+
+TEST(MeshSequence, NonFiniteFrameFoundWhenOpened) {
+  FrameDir dir;
+  for (int k : {0, 1, 2, 10}) dir.write(frame_name(k), std::to_string(k));
+  dir.write("f10.obj", "inf");
+  const std::string error = error_of(dir.path());
+  EXPECT_NE(error.find("f10.obj: frame 3, vertex 3: non-finite position"), std::string::npos) << error;
+}
+
+TEST(MeshSequence, ChangedCountsFoundWhenOpened) {
+  FrameDir dir;
+  dir.write("f0.obj", "0");
+  dir.write("f1.obj", "1");
+  dir.write("f2.obj", "2", true);
+  std::string error = error_of(dir.path());
+  EXPECT_NE(error.find("f2.obj: frame 2 has 3 triangles, frame 0 has 2"), std::string::npos) << error;
+  // Same triangles, one vertex more.
+  dir.write("f2.obj", "2\nv 5 5 5");
+  error = error_of(dir.path());
+  EXPECT_NE(error.find("f2.obj: frame 2 has 5 vertices, frame 0 has 4"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace cdb::test
