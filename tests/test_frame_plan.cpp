@@ -93,35 +93,40 @@ TEST(FramePlan, RebuildAndStaleFrames) {
   EXPECT_EQ(stale_frames, (std::vector<bool>{false, true, false, true, false}));
 }
 
-// Fronts whose steady frames never get dearer are updated once, to take the price of an
-// update (kProbeCycle frames after they were generated), and never again: preserving them
-// costs nothing more.
+// Fronts whose steady frames never get dearer are never updated: preserving them costs
+// nothing more.
 TEST(FramePlan, AdaptiveKeepsFrontsThatDoNotDegrade) {
   FramePlanner planner(FrontStrategy{}, cycle_config(0));
   const std::string s = schedule(planner, 60, flat);
-  EXPECT_EQ(s, "bpppu" + std::string(55, 'p'));
+  EXPECT_EQ(s, "b" + std::string(59, 'p'));
 }
 
 // Steady frames dearer by `a` per frame since the fronts were produced: the rent after n
 // steady frames is a n (n - 1) / 2, and the update comes on the first frame after it
-// reaches the price of an update, its cost over a fresh steady frame (`extra`).
+// reaches the price of an update: before one is measured the build frame's cost over a
+// steady frame over kBuildPerUpdate, after, the measured update's cost over a fresh steady
+// frame (`extra`).
 TEST(FramePlan, AdaptiveUpdatesWhenTheRentPaidReachesTheUpdatesPrice) {
+  auto steady_frames = [](double a, double price) {
+    size_t n = 1;
+    while (a * double(n * (n - 1)) / 2 < price - 1e-12) ++n;
+    return n;
+  };
   for (const double a : {0.02, 0.1, 0.5}) {
-    const double extra = 2.0;
+    const double build = 10.0, extra = 2.0;
     int since = 0;
     auto cost = [&](int, const FramePlan& p) {
       if (!p.steady()) {
         since = 0;
-        return p.rebuild ? 10.0 : 1.0 + extra;
+        return p.rebuild ? build : 1.0 + extra;
       }
       return 1.0 + a * since++;
     };
     FramePlanner planner(FrontStrategy{}, cycle_config(0));
     const std::string s = schedule(planner, 300, cost);
-    size_t n = 1;
-    while (a * double(n * (n - 1)) / 2 < extra - 1e-12) ++n;
-    const std::string cycle = std::string(n, 'p') + "u";
-    EXPECT_EQ(s.substr(0, 5 + 3 * cycle.size()), "bpppu" + cycle + cycle + cycle) << "a = " << a << ": " << s;
+    const std::string first = "b" + std::string(steady_frames(a, (build - 1.0) / FrontMaintenance::kBuildPerUpdate), 'p') + "u";
+    const std::string cycle = std::string(steady_frames(a, extra), 'p') + "u";
+    EXPECT_EQ(s.substr(0, first.size() + 3 * cycle.size()), first + cycle + cycle + cycle) << "a = " << a << ": " << s;
   }
 }
 
@@ -142,7 +147,7 @@ TEST(FramePlan, AdaptiveDoesNotFeedOnDearLateUpdates) {
   };
   FramePlanner planner(FrontStrategy{}, cycle_config(0));
   const std::string s = schedule(planner, 400, cost);
-  // The probe's update (3 frames stale) prices fresh + 3b; the next ones price lower as
+  // The first update prices fresh + b times its staleness; the next ones price lower as
   // their cycles shorten, never higher.
   std::vector<size_t> gaps;
   for (size_t at = s.find('u'), next; (next = s.find('u', at + 1)) != std::string::npos; at = next)
@@ -156,16 +161,16 @@ TEST(FramePlan, AdaptiveDoesNotFeedOnDearLateUpdates) {
 // that ran once has.
 TEST(FramePlan, UpdatesThatRanTwiceDoNotSetThePrice) {
   FrontMaintenance m(FrontMaintenance::kAuto);
-  m.observe(true, false, true, 1.0, 10);
-  m.observe(false, true, false, 9.0, 10);  // ran twice, the only price so far
+  m.observe(true, false, false, true, 1.0, 10);
+  m.observe(false, true, false, false, 9.0, 10);  // ran twice, the only price so far
   EXPECT_DOUBLE_EQ(m.price_ms(10), 8.0);
   m.produced();
-  m.observe(true, false, true, 1.0, 10);
-  m.observe(false, true, true, 3.0, 10);  // ran once: replaces the twice-run price
+  m.observe(true, false, false, true, 1.0, 10);
+  m.observe(false, true, false, true, 3.0, 10);  // ran once: replaces the twice-run price
   EXPECT_DOUBLE_EQ(m.price_ms(10), 2.0);
   m.produced();
-  m.observe(true, false, true, 1.0, 10);
-  m.observe(false, true, false, 1.5, 10);  // ran twice: ignored, however cheap
+  m.observe(true, false, false, true, 1.0, 10);
+  m.observe(false, true, false, false, 1.5, 10);  // ran twice: ignored, however cheap
   EXPECT_DOUBLE_EQ(m.price_ms(10), 2.0);
 }
 
@@ -173,12 +178,16 @@ TEST(FramePlan, UpdatesThatRanTwiceDoNotSetThePrice) {
 TEST(FramePlan, ThePriceScalesWithTheFront) {
   FrontMaintenance m(FrontMaintenance::kAuto);
   EXPECT_FALSE(m.priced());
-  m.observe(true, false, true, 1.0, 100);
-  m.observe(false, true, true, 3.0, 100);  // 2 ms over a steady frame for 100 nodes
+  m.observe(false, false, true, true, 17.0, 100);  // the build frame: a guess until measured
+  m.observe(true, false, false, true, 1.0, 100);
+  EXPECT_DOUBLE_EQ(m.price_ms(100), 16.0 / FrontMaintenance::kBuildPerUpdate);
+  m.produced();
+  m.observe(true, false, false, true, 1.0, 100);
+  m.observe(false, true, false, true, 3.0, 100);  // 2 ms over a steady frame for 100 nodes
   EXPECT_DOUBLE_EQ(m.price_ms(300), 6.0);
   m.produced();
-  m.observe(true, false, true, 1.0, 100);
-  m.observe(false, true, true, 6.0, 100);  // a dearer (staler) update leaves the price
+  m.observe(true, false, false, true, 1.0, 100);
+  m.observe(false, true, false, true, 6.0, 100);  // a dearer (staler) update leaves the price
   EXPECT_DOUBLE_EQ(m.price_ms(100), 2.0);
 }
 
@@ -278,9 +287,9 @@ TEST(FramePlan, ResetStartsOver) {
   FramePlanner planner(FrontStrategy{}, cycle_config(0));
   int since = 0;
   schedule(planner, 30, [&](int, const FramePlan& p) { return p.steady() ? 1.0 + 0.5 * since++ : (since = 0, 3.0); });
-  ASSERT_GE(planner.maintenance().price_ms(100), 0.0);
+  ASSERT_TRUE(planner.maintenance().priced());
   planner.reset();
   EXPECT_EQ(planner.frame(), 0u);
-  EXPECT_LT(planner.maintenance().price_ms(100), 0.0);
-  EXPECT_EQ(schedule(planner, 5, flat), "bpppu");
+  EXPECT_FALSE(planner.maintenance().priced());
+  EXPECT_EQ(schedule(planner, 5, flat), "bpppp");
 }

@@ -114,8 +114,8 @@ class FramePlanner {
   void finish(const FramePlan& p, const Outcome& o) {
     const bool produced = p.self != FrontOp::preserve || p.inter != FrontOp::preserve ||
                           p.rigid_self != FrontOp::preserve;
-    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, o.ran_once, o.ms,
-                         o.front_nodes);
+    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild, o.ran_once,
+                         o.ms, o.front_nodes);
     if (p.rebuild || p.self == FrontOp::generate) generated_ = frame_;
     if (produced) {
       produced_ = frame_;

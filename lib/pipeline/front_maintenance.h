@@ -25,8 +25,11 @@
 // the length is the fresh update's, the cheapest. Pricing by the last update instead feeds on
 // itself: a late update is dear, which makes the next one later still (measured: the sphere
 // scene's steady frame doubled between updates). Updates that outgrew their buffers ran
-// twice and price only until one runs once. The first update comes kProbeCycle frames after
-// the fronts were generated (the paper's cycle), to take a first price.
+// twice and price only until one runs once. Until an update is measured, the price is the
+// build frame's cost over a steady frame divided by kBuildPerUpdate: on the H200's anchor
+// scenes a clean update of pipeline a cost 1/6 (the 1M cloth) to 1/19 (the 32K cloth) of
+// the frame that built the tree and generated the fronts, so fronts that degrade fast get a
+// first update soon and fronts that barely degrade none in a short run.
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -36,7 +39,7 @@ namespace cdb {
 class FrontMaintenance {
  public:
   static constexpr uint32_t kAuto = 0;
-  static constexpr uint32_t kProbeCycle = 4;
+  static constexpr double kBuildPerUpdate = 8.0;
 
   // cycle: frames per fixed cycle, or kAuto.
   explicit FrontMaintenance(uint32_t cycle = kAuto) : cycle_(cycle) {}
@@ -51,7 +54,6 @@ class FrontMaintenance {
   bool update_due(uint64_t frame, uint64_t generated, uint64_t produced, uint64_t front_nodes) const {
     if (!adaptive()) return frame > generated && (frame - generated) % cycle_ == 0;
     if (frame <= produced) return false;
-    if (!priced()) return frame - generated >= kProbeCycle;
     return steady_ > 0 && rent_ms() >= price_ms(front_nodes);
   }
 
@@ -60,16 +62,20 @@ class FrontMaintenance {
 
   bool priced() const { return price_per_node_ms_ >= 0.0; }
 
-  // What an update of fresh fronts of `front_nodes` nodes costs over a steady frame, in ms
-  // (negative: none measured yet).
+  // What an update of fresh fronts of `front_nodes` nodes costs over a steady frame, in ms:
+  // measured, or before any update was, guessed from the build frame (0 before a steady
+  // frame was measured).
   double price_ms(uint64_t front_nodes) const {
-    return priced() ? price_per_node_ms_ * double(std::max<uint64_t>(front_nodes, 1)) : -1.0;
+    if (priced()) return price_per_node_ms_ * double(std::max<uint64_t>(front_nodes, 1));
+    return steady_ > 0 ? std::max(0.0, build_ms_ - steady_min_) / kBuildPerUpdate : 0.0;
   }
 
   // A frame's measured cost: `steady` for refit + preserve frames, `updated` for frames
-  // whose fronts were updated (and nothing heavier ran with it), `once` when it ran its
-  // operations once (no buffer grew); `front_nodes`: the fronts it updated.
-  void observe(bool steady, bool updated, bool once, double ms, uint64_t front_nodes) {
+  // whose fronts were updated (and nothing heavier ran with it), `built` for frames that
+  // built the tree and generated the fronts; `once` when it ran its operations once (no
+  // buffer grew); `front_nodes`: the fronts it started from.
+  void observe(bool steady, bool updated, bool built, bool once, double ms, uint64_t front_nodes) {
+    if (built) build_ms_ = ms;
     if (steady) {
       steady_sum_ += ms;
       steady_min_ = std::min(steady_min_, ms);
@@ -93,6 +99,7 @@ class FrontMaintenance {
  private:
   uint32_t cycle_;
   double price_per_node_ms_ = -1.0;  // the cheapest measured update per front node
+  double build_ms_ = 0.0;            // the last frame that built the tree
   bool clean_ = false;               // that price comes from updates that ran once
   double steady_sum_ = 0.0;
   double steady_min_ = std::numeric_limits<double>::infinity();

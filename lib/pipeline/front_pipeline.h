@@ -98,7 +98,7 @@ class FrontPipeline final : public Pipeline {
         if (op_of(plan, q) != FrontOp::preserve) again = query(q).grow_if_needed(c) || again;
       if (!again) {
         for (Query q : kQueries)
-          if (op_of(plan, q) != FrontOp::preserve) query(q).adopt(c, strategy().ordered);
+          if (op_of(plan, q) != FrontOp::preserve) query(q).adopt(exec_, c, strategy().ordered);
         break;
       }
       ++graph_version_;

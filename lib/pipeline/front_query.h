@@ -180,7 +180,7 @@ class FrontQuery {
   }
 
   // The produced fronts become current: the sorted copies, or the raw ones if unordered.
-  void adopt(const Counters& c, bool ordered) {
+  void adopt(Exec& exec, const Counters& c, bool ordered) {
     if (!active_) return;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
@@ -192,8 +192,8 @@ class FrontQuery {
         std::swap(f.node, f.raw_node);
       }
       f.size = size_t(c[counter_ + k]);
-      reserve_headroom(f);
       match_capacity(f);
+      reserve_headroom(exec, f);
     }
   }
 
@@ -218,16 +218,30 @@ class FrontQuery {
     return s;
   }
 
-  // The next operation's output buffers hold the front just adopted with half to spare: an
-  // update that sprouts more than it prunes then fits, instead of overflowing and running
-  // again (the dearest frames of a run were such re-runs; funnel's fronts grow 1.7x in 18
-  // frames, by more than a quarter in some single updates). Growth is counted as every
-  // growth is, and happens on a frame that already produced a front, not on a steady one.
-  static void reserve_headroom(FrontArrays<Exec>& f) {
-    const size_t want = f.size + f.size / 2;
-    if (f.raw_prim.capacity() >= want) return;
-    for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node}) a->reserve(want);
-    f.raw_mark.reserve(want);
+  // Every buffer of a kind holds the front just adopted with a quarter to spare, or all
+  // grow to half to spare: the next update, which may sprout more than it prunes, then fits
+  // instead of overflowing and running again (funnel's fronts grow 1.7x in 18 frames, by
+  // more than a quarter in some single updates), and balance, which swaps the current front
+  // with a scratch copy, finds the scratch as large and allocates nothing inside a frame.
+  // The current front is copied into its larger buffer. This runs after the frame's
+  // read-back, outside its timing, and only when the front has outgrown the last growth.
+  static void reserve_headroom(Exec& exec, FrontArrays<Exec>& f) {
+    const size_t need = f.size + f.size / 4, want = f.size + f.size / 2;
+    auto kept = {&f.prim, &f.node};
+    auto scratch = {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node};
+    size_t least = f.raw_mark.capacity();
+    for (auto* a : kept) least = std::min(least, a->capacity());
+    for (auto* a : scratch) least = std::min(least, a->capacity());
+    if (least >= need) return;
+    for (auto* a : scratch)
+      if (a->capacity() < want) a->reserve(want);
+    if (f.raw_mark.capacity() < want) f.raw_mark.reserve(want);
+    for (auto [current, spare] : {std::pair{&f.prim, &f.raw_prim}, std::pair{&f.node, &f.raw_node}}) {
+      if (current->capacity() >= want) continue;
+      exec.copy(spare->data(), current->data(), f.size);
+      std::swap(*current, *spare);
+      spare->reserve(want);
+    }
   }
 
   // Scratch buffers swapped with the current front keep up with its capacity, so a front
