@@ -13,6 +13,9 @@ check "run prints environment" 0 "commit [0-9a-f]+" -- "$cdbench" run --device c
 check "verify all pipelines" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:5
 check "verify with sweep oracle" 0 "sort-and-sweep" -- "$cdbench" verify --device cpu --frames 0:2 --brute-limit 10
 check "unknown pipeline" 2 "unknown pipeline 'nope'" -- "$cdbench" run --device cpu --pipeline nope
+check "front cycle auto" 0 "summary: 2 frames measured" -- "$cdbench" run --device cpu --quiet --frames 0:3 --front-cycle auto
+check "front cycle K" 0 "summary: 2 frames measured" -- "$cdbench" run --device cpu --quiet --frames 0:3 --front-cycle 3
+check "front cycle neither auto nor K" 2 "auto or a positive whole number of frames, not 0" -- "$cdbench" run --device cpu --frames 0:3 --front-cycle 0
 check "unknown scene" 2 "unknown scene 'nowhere'" -- "$cdbench" run --device cpu --scene nowhere
 check "frame range past the end" 2 "only 20 frames" -- "$cdbench" run --device cpu --frames 0:99
 check "bad frame range" 2 "expected A:B" -- "$cdbench" run --device cpu --frames x:y
