@@ -4,9 +4,9 @@
 // front operation per query — (1) generate, (2) preserve, (3) update, with (4) balance
 // before it in pipelines b and c, or (5) restructure in c. Produced fronts are ordered by
 // histogram sort unless the strategy is `unordered`. One read-back a frame: pair, front and
-// inspection counters together; an overflow grows the buffer (logged, counted) and re-runs
-// the operation from the untouched current front. The steady frame (refit + preserve)
-// replays a CUDA graph while nothing it launches changed.
+// inspection counters together; an overflow grows the buffer (counted, listed after the
+// run) and re-runs the operation from the untouched current front. The steady frame (refit
+// + preserve) replays a CUDA graph while nothing it launches changed.
 //
 // A scene with declared queries and rigid objects is split (geometry/object_split.h): T_D
 // over the deformable faces follows this state machine; T_R over the rigid faces is built

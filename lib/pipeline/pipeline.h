@@ -42,7 +42,7 @@ struct PipelineConfig {
   MortonBits morton_bits = MortonBits::b63;
   // bvh: rebuild the hierarchy every this many frames (0: only on the first frame).
   uint32_t rebuild_every = 0;
-  // Initial pair capacity per triangle; the buffer grows (logged, counted) when exceeded.
+  // Initial pair capacity per triangle; the buffer grows (counted, listed after the run) when exceeded.
   double pairs_per_triangle = 8.0;
   // Initial front capacity per triangle and kind (internal, external); grows the same way.
   double front_per_triangle = 8.0;
