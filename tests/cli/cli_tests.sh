@@ -161,14 +161,6 @@ fi
 check "interrupted run leaves an incomplete file" 0 "error: interrupted by SIGTERM after [0-9]+ of 1000000 frames" -- \
   "${read_results[@]}" --summary "$out/endless.h5"
 
-check "report shows the complete run" 0 "\| funnel \| bvh \| cpu: .* \| complete \|" -- \
-  "$cdbench" report "$out/funnel.h5" "$out/midway.h5" "$out/endless.h5"
-check "report shows the failed run as incomplete" 0 "\| midway \| bvh \|.*\| incomplete \(2/4 frames\): frame 2:" -- \
-  "$cdbench" report "$out/funnel.h5" "$out/midway.h5" "$out/endless.h5"
-check "report shows the interrupted run as incomplete" 0 "\| endless \| bvh \|.*\| incomplete .*SIGTERM" -- \
-  "$cdbench" report "$out/funnel.h5" "$out/midway.h5" "$out/endless.h5"
-check "report as CSV" 0 "midway\.h5,midway,bvh,.*,\"incomplete: frame 2: " -- \
-  "$cdbench" report --csv "$out/funnel.h5" "$out/midway.h5"
 # Scene identity and options: a --set run carries its label, the report shows it, the
 # options that differ between files, and the check columns when a file was checked.
 check "run with --set writes a results file" 0 "results: " -- \
@@ -183,12 +175,12 @@ check "numbers in params_json are numbers" 0 "^int int float str list \['res=24'
 import h5py, json, sys
 o = json.loads(h5py.File(sys.argv[1]).attrs['params_json'])['options']
 print(*(type(o[k]).__name__ for k in ('front-cycle', 'morton-bits', 'box-margin', 'frames', 'set')), o['set'])" "$out/funnel-res24.h5"
-check "report shows the scene label" 0 "\| funnel\[res=24\] \| bvh \| cpu: [^|]* \| [0-9]+ \|" -- \
+check "report shows the scene label" 0 "\| funnel\[res=24\] \| c \| cpu: [^|]* \| [0-9]+ \|" -- \
   "$cdbench" report "$out/funnel.h5" "$out/funnel-res24.h5"
 check "report adds the options that differ" 0 "^\| file \| scene \| pipeline \| device \| triangles \| --box-margin \| --frames \| --front-cycle \| --save-pairs \| frames \|" -- \
   "$cdbench" report "$out/funnel.h5" "$out/funnel-res24.h5"
-has "report's option values" "$tmp/out" "\| funnel\[res=24\] \| bvh \| [^|]* \| 3682 \| 0\.5 \| 0:3 \| 2 \| no \| 3 \|"
-has "report's default option values" "$tmp/out" "funnel\.h5 \| funnel \| bvh \| [^|]* \| 8674 \| 0 \|  \| 4 \| yes \| 20 \|"
+has "report's option values" "$tmp/out" "\| funnel\[res=24\] \| c \| [^|]* \| 3682 \| 0\.5 \| 0:3 \| 2 \| no \| 3 \|"
+has "report's default option values" "$tmp/out" "funnel\.h5 \| funnel \| c \| [^|]* \| 8674 \| 0 \|  \| auto \| yes \| 20 \|"
 check "report without differing options" 0 "^\| file \| scene \| pipeline \| device \| triangles \| frames \| mean_ms \|" -- \
   "$cdbench" report "$out/funnel.h5"
 check "report shows check columns" 0 "\| recall_min \| precision_min \| contacts \| contact_precision \|" -- \

@@ -14,10 +14,11 @@ res=$tmp/results
 export OMP_NUM_THREADS=1
 pipelines=static,radix-order,bvh
 run() { "$cdbench" run --device cpu --quiet "$@" >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; fail "cdbench run $*"; }; }
-run --scene funnel --frames 0:6 --pipeline "$pipelines" --repeat 2 --out "$res/funnel-{pipeline}.h5"
+# --front-cycle 2: update frames, whose fronts the sort table compares, in six frames.
+run --scene funnel --frames 0:6 --pipeline "$pipelines" --front-cycle 2 --repeat 2 --out "$res/funnel-{pipeline}.h5"
 # A smaller cloth-wave than the named scene keeps the test short; the file's stem names the scene.
 printf '{"generator": "cloth-wave", "params": {"res": 48, "frames": 6}}' >"$tmp/cloth-wave.json"
-run --scene "$tmp/cloth-wave.json" --pipeline "$pipelines" --out "$res/cloth-wave-{pipeline}.h5"
+run --scene "$tmp/cloth-wave.json" --pipeline "$pipelines" --front-cycle 2 --out "$res/cloth-wave-{pipeline}.h5"
 # Pipeline c with thresholds that make it decide, so that the curves have marked frames.
 run --scene funnel --frames 0:6 --pipeline c --front-cycle 1 --restructure-quality 0 --restructure-min-leaves 8 \
   --threshold-refit 0 --threshold-build 1 --out "$res/funnel-c.h5"
