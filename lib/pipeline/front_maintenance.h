@@ -23,13 +23,12 @@
 // fronts costs more than one of fresh fronts, by about a constant per frame of staleness,
 // which is rent too. That moves the best cycle's cost, not its length, so the price that sets
 // the length is the fresh update's, the cheapest. Pricing by the last update instead feeds on
-// itself: a late update is dear, which makes the next one later still (measured: the sphere
-// scene's steady frame doubled between updates). Updates that outgrew their buffers ran
-// twice and price only until one runs once. Until an update is measured, the price is the
-// build frame's cost over a steady frame divided by kBuildPerUpdate: on the H200's anchor
-// scenes a clean update of pipeline a cost 1/6 (the 1M cloth) to 1/19 (the 32K cloth) of
-// the frame that built the tree and generated the fronts, so fronts that degrade fast get a
-// first update soon and fronts that barely degrade none in a short run.
+// itself: a late update is dear, which makes the next one later still. Updates that outgrew
+// their buffers ran twice and price only until one runs once. Until an update is measured,
+// the price is the build frame's cost over a steady frame divided by kBuildPerUpdate, the
+// ratio measured between the two on the anchor scenes, so fronts that degrade fast get a
+// first update soon and fronts that barely degrade none in a short run. Figures and what
+// was tried: docs/front-maintenance.md.
 #include <algorithm>
 #include <cstdint>
 #include <limits>
