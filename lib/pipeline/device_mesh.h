@@ -140,12 +140,6 @@ class DeviceMesh {
   bool uploaded_ = false, have_previous_ = false;
 };
 
-// --refit-every: whether a frame that does not rebuild refits its hierarchy (otherwise it
-// keeps the last frame's boxes: not conservative).
-inline bool refit_due(uint64_t frame, uint32_t refit_every) {
-  return refit_every <= 1 || frame % refit_every == 0;
-}
-
 // Starts a frame's timing and uploads its vertices (timed apart: upload is left out of the
 // frame total, since simulators hold their vertices on the device already); with q16 boxes
 // the frame's grid follows, in the boxes phase, for every pipeline and baseline alike.

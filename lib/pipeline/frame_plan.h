@@ -55,9 +55,11 @@ struct FramePlan {
   Formula2 decision = Formula2::none;
   Candidates restructuring;  // what (5) restructures this frame
 
-  bool steady() const {
-    return !rebuild && self == FrontOp::preserve && inter == FrontOp::preserve && rigid_self == FrontOp::preserve;
+  // Whether any query produces fronts (anything but preserve).
+  bool produces() const {
+    return self != FrontOp::preserve || inter != FrontOp::preserve || rigid_self != FrontOp::preserve;
   }
+  bool steady() const { return !rebuild && !produces(); }
 };
 
 class FramePlanner {
@@ -86,7 +88,7 @@ class FramePlanner {
     p.rebuild = frame_ == 0 || strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
                 (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
     // --refit-every: between refits both trees keep their last boxes (not conservative).
-    p.stale = !p.rebuild && !(config_.refit_every <= 1 || frame_ % config_.refit_every == 0);
+    p.stale = !p.rebuild && !refit_due(frame_, config_.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
     // name T_D's leaves, which a rebuild or a restructure renumbers: they regenerate then.
     // T_R is only refitted after its build, so its self fronts follow the rule.
@@ -112,12 +114,10 @@ class FramePlanner {
     Candidates found;         // what its inspection found (capped at the candidates' buffer)
   };
   void finish(const FramePlan& p, const Outcome& o) {
-    const bool produced = p.self != FrontOp::preserve || p.inter != FrontOp::preserve ||
-                          p.rigid_self != FrontOp::preserve;
     maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild, o.ran_once,
                          o.ms, o.front_nodes);
     if (p.rebuild || p.self == FrontOp::generate) generated_ = frame_;
-    if (produced) {
+    if (p.produces()) {
       produced_ = frame_;
       maintenance_.produced();
     }

@@ -94,6 +94,12 @@ struct PipelineConfig {
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
 };
 
+// --refit-every: whether a frame that does not rebuild refits its hierarchy (otherwise it
+// keeps the last frame's boxes: not conservative).
+inline bool refit_due(uint64_t frame, uint32_t refit_every) {
+  return refit_every <= 1 || frame % refit_every == 0;
+}
+
 // Whether the config can miss pairs of the exact box-overlap set (refit_every > 1 on a
 // pipeline that refits a hierarchy).
 bool config_conservative(const PipelineConfig& config);
