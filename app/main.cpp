@@ -19,6 +19,8 @@
 #include "exit_codes.h"
 #include "frame_range.h"
 #include "geometry/cached_frames.h"
+#include "geometry/float_spacing.h"
+#include "geometry/position_rounding.h"
 #include "io/obj_writer.h"
 #include "io/results_file.h"
 #include "io/scene.h"
@@ -117,11 +119,13 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
       ->check(CLI::IsMember({"discrete", "swept"}))
       ->capture_default_str();
   cmd->add_option("--box-precision", o.box_precision,
-                  "fp32: exact float triangle boxes; q16: boxes snapped outward onto a 16-bit grid per axis over "
-                  "the frame's vertex bounds, as a 16-bit box format stores them; conservative (recall stays 1, "
-                  "precision drops); all pipelines")
+                  "fp32: the boxes of the positions rounded to float; fp64: the positions rebased on the first "
+                  "frame's centre in double before rounding, for scenes far from the origin (a run warns when fp32 "
+                  "cannot hold a scene); q16: fp32 boxes snapped outward onto a 16-bit grid per axis over the "
+                  "frame's vertex bounds, as a 16-bit box format stores them; all conservative against the double "
+                  "geometry (recall stays 1, precision drops); all pipelines")
       ->group(kAccuracyGroup)
-      ->check(CLI::IsMember({"fp32", "q16"}))
+      ->check(CLI::IsMember({"fp32", "fp64", "q16"}))
       ->capture_default_str();
   cmd->add_option("--refit-every", o.refit_every,
                   "NOT CONSERVATIVE: front pipelines and bvh refit the hierarchy only every K frames and keep stale "
@@ -337,6 +341,7 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.triangles = scene.source->topology().faces.size();
   run.vertices = scene.source->topology().num_vertices;
   run.cold = r.cold;
+  run.precision = box_precision_name(config.box_precision);
   run.contact_distance = double(float(r.contact_distance));
   run.contact_substeps = r.contact_substeps;
   const auto scenes_dir = o.scenes_dir.empty() ? default_scenes_dir() : std::filesystem::path(o.scenes_dir);
@@ -414,6 +419,10 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
               scene.name.c_str(), scene.description.c_str(), topo.faces.size(),
               topo.num_vertices, range.first, range.last);
+  const BoxPrecision precision = parse_box_precision(o.box_precision);
+  const std::string spacing_warning =
+      range.last > range.first ? float_spacing_warning(*scene.source, range.first, precision == BoxPrecision::fp64) : "";
+  if (!spacing_warning.empty()) std::printf("warning: %s\n", spacing_warning.c_str());
   // Measured once, before any frame: the yardstick of the bandwidth floor; and the cache
   // flush of --cold, allocated here rather than in the frame loop.
   const std::unique_ptr<DeviceProbe> probe = make_device_probe(device);
@@ -436,6 +445,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     if (!one.out.empty()) {
       RunInfo info = run_info(o, one, scene, config, range, cli_options);
       info.copy_gbps = copy_gbps;
+      info.precision_warning = spacing_warning;
       out.emplace(one.out, info);
     }
     RunLoopOptions loop;
@@ -450,7 +460,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     loop.cold = r.cold;
     loop.probe = probe.get();
     loop.copy_gbps = copy_gbps;
-    loop.oracle = [&topo, &o](const std::vector<vec3f>& v) { return sweep_oracle_pairs(topo, v, o.skip_adjacent); };
+    loop.oracle = [&topo, &o](const std::vector<vec3d>& v) { return sweep_oracle_pairs(topo, v, o.skip_adjacent); };
     loop.faces = &topo.faces;
     loop.contact = contact;
     if (!config_conservative(config))
@@ -474,7 +484,7 @@ int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
   const FrameRange range = parse_frame_range(o.frames, scene.source->num_frames());
   const bool brute_oracle = topo.faces.size() <= brute_limit;
   // The oracle sees the same fat, swept or quantized boxes only as the brute-force pipeline.
-  if (!brute_oracle && (o.box_margin > 0 || o.boxes != "discrete" || o.box_precision != "fp32"))
+  if (!brute_oracle && (o.box_margin > 0 || o.boxes != "discrete" || o.box_precision == "q16"))
     fail_usage("verify --box-margin/--boxes swept/--box-precision q16 needs the brute-force oracle (raise --brute-limit)");
   std::printf("verify: scene %s (%zu triangles), frames %u:%u, device %s, oracle %s\n",
               scene.name.c_str(), topo.faces.size(), range.first, range.last, device.c_str(),
@@ -486,30 +496,49 @@ int verify_command(const CommonOptions& o, std::vector<std::string> pipelines,
   }
   for (const auto& run : runs) run->set_topology(topo);
   std::vector<uint64_t> mismatched_frames(pipelines.size(), 0);
+  // Each pipeline against the oracle of the floats it ran on (exact), and against the
+  // scene's double geometry: none of its pairs may be missed (position_rounding.h says
+  // when that holds), and the extra ones are float's blur.
+  const BoxPrecision precision = parse_box_precision(o.box_precision);
+  const bool keeps_double_pairs = precision == BoxPrecision::fp64 || o.box_margin == 0;
+  std::vector<uint64_t> double_missed(pipelines.size(), 0), double_extra(pipelines.size(), 0);
+  uint64_t double_pairs = 0;
+  PositionRounding rounding(precision == BoxPrecision::fp64);
+  std::vector<vec3d> positions;
   std::vector<vec3f> vertices;
   for (uint32_t f = range.first; f < range.last; ++f) {
-    scene.source->frame(f, vertices);
+    scene.source->positions(f, positions);
+    rounding.round(positions, vertices);
     std::vector<PrimPair> expected;
     if (oracle) {
-      oracle->run_frame(vertices);
+      oracle->run_frame(positions);
       expected = oracle->sorted_pairs();
     } else {
       expected = sweep_oracle_pairs(topo, vertices, o.skip_adjacent);
     }
+    const std::vector<PrimPair> exact = sweep_oracle_pairs(topo, positions, o.skip_adjacent);
+    double_pairs += exact.size();
     for (size_t p = 0; p < runs.size(); ++p) {
-      runs[p]->run_frame(vertices);
-      const PairSetDiff d = diff_pair_sets(expected, runs[p]->sorted_pairs());
+      runs[p]->run_frame(positions);
+      const std::vector<PrimPair> reported = runs[p]->sorted_pairs();
+      const PairSetDiff d = diff_pair_sets(expected, reported);
       if (!d.equal()) {
         ++mismatched_frames[p];
         print_mismatch(pipelines[p], f, d);
       }
+      const PairSetDiff g = diff_pair_sets(exact, reported, 0);
+      double_missed[p] += g.missing_count;
+      double_extra[p] += g.unexpected_count;
     }
   }
   bool ok = true;
   for (size_t p = 0; p < runs.size(); ++p) {
-    std::printf("  %-12s %s (%u frames)\n", pipelines[p].c_str(),
-                mismatched_frames[p] ? "MISMATCH" : "exact", range.last - range.first);
-    ok = ok && mismatched_frames[p] == 0;
+    const bool lost = keeps_double_pairs && double_missed[p] > 0;
+    std::printf("  %-12s %s (%u frames); double geometry: %llu of %llu pairs missed%s, %llu extra\n",
+                pipelines[p].c_str(), mismatched_frames[p] ? "MISMATCH" : "exact", range.last - range.first,
+                static_cast<unsigned long long>(double_missed[p]), static_cast<unsigned long long>(double_pairs),
+                lost ? " (LOST)" : "", static_cast<unsigned long long>(double_extra[p]));
+    ok = ok && mismatched_frames[p] == 0 && !lost;
   }
   if (o.refit_every > 1)
     std::printf("verify: --refit-every %u is not conservative: bvh and the front pipelines may miss pairs\n",
@@ -562,10 +591,17 @@ int scenes_info(const CommonOptions& o, const std::string& scene, const std::vec
     for (const auto& [a, b] : topo.queries.inter)
       std::printf("query       inter %s - %s\n", topo.objects[a].name.c_str(), topo.objects[b].name.c_str());
   }
-  std::vector<vec3f> v, prev;
+  if (s.source->num_frames() > 0) {
+    std::vector<vec3d> first;
+    s.source->positions(0, first);
+    const FloatSpacing fs = float_spacing(topo, first, {0, 0, 0});
+    std::printf("precision   median edge %.4g, float spacing %.4g at the largest coordinate %.6g%s\n", fs.median_edge,
+                fs.spacing, fs.largest, fs.too_coarse() ? ": too coarse for fp32 (use --box-precision fp64)" : "");
+  }
+  std::vector<vec3d> v, prev;
   for (uint32_t f = 0; f < s.source->num_frames(); ++f) {
-    s.source->frame(f, v);
-    vec3f lo = v.empty() ? vec3f{} : v[0], hi = lo;
+    s.source->positions(f, v);
+    vec3d lo = v.empty() ? vec3d{} : v[0], hi = lo;
     double max_move = 0, sum_move = 0;
     for (size_t k = 0; k < v.size(); ++k) {
       lo = {std::min(lo.x, v[k].x), std::min(lo.y, v[k].y), std::min(lo.z, v[k].z)};

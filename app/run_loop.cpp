@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/pair_set.h"
+#include "geometry/position_rounding.h"
 #include "interrupt.h"
 #include "narrow/contacts.h"
 #include "pipeline/run_summary.h"
@@ -111,14 +112,18 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
   Progress progress(frames_per_pass * options.repeat, options.progress);
   uint32_t done = 0;
   std::vector<FrameStats> frames;
-  std::vector<vec3f> vertices, previous;  // previous: the last frame's positions, for --check
+  std::vector<vec3d> positions;
+  // --check's contacts: the frame (and the one before) rebased and rounded as fp64 rounds
+  // them, so exact float tests see the scene's geometry whatever the pipeline's precision.
+  PositionRounding contact_rounding(true);
+  std::vector<vec3f> vertices, previous;
   EarlierPasses earlier;
   uint32_t kept_passes = 0;  // --repeat stopped by a signal: the finished passes recorded
   uint32_t f = range.first;
   const auto run_one = [&](uint32_t frame) {
-    source.frame(frame, vertices);
+    source.positions(frame, positions);
     if (options.cold) options.probe->flush_caches();
-    FrameStats s = pipeline.run_frame(vertices);
+    FrameStats s = pipeline.run_frame(positions);
     s.bytes_floor = frame_bytes_floor(source.topology(), s.pairs);
     progress.update(++done);
     return s;
@@ -164,9 +169,11 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
       if (options.check_every) {
         // After the timed frame. The pass's first frame has no previous one (its swept
         // boxes are its own boxes), so its interval is the frame itself.
+        if (f == range.first) contact_rounding.restart();
+        contact_rounding.round(positions, vertices);
         if (f == range.first) previous = vertices;
         if ((f - range.first) % options.check_every == 0)
-          check_frame_pairs(pipeline, options.oracle(vertices), *options.faces, previous, vertices, options.contact,
+          check_frame_pairs(pipeline, options.oracle(positions), *options.faces, previous, vertices, options.contact,
                             frames.back());
         previous = vertices;
       }

@@ -23,9 +23,10 @@ struct RunLoopOptions {
   Progress::Mode progress = Progress::Mode::off;
   bool save_pairs = false;  // each frame's sorted pairs into the results file
   // --check: compare every check_every-th frame (0: none) with `oracle`'s pairs for the
-  // same positions, outside the timed frame.
+  // same positions in double (the scene's geometry, not the pipeline's floats), outside the
+  // timed frame.
   uint32_t check_every = 0;
-  std::function<std::vector<PrimPair>(const std::vector<vec3f>&)> oracle;
+  std::function<std::vector<PrimPair>(const std::vector<vec3d>&)> oracle;
   // --repeat: at most this many passes over the frames, each from a fresh pipeline state;
   // the last records, its times the mean over all passes with their noise beside them.
   uint32_t repeat = 1;

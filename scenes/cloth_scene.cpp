@@ -17,7 +17,7 @@ ClothSceneSource::ClothSceneSource(ClothSceneSpec spec) : spec_(std::move(spec))
   topology_.num_vertices = base;
 }
 
-void ClothSceneSource::frame(uint32_t k, std::vector<vec3f>& out) const {
+void ClothSceneSource::positions(uint32_t k, std::vector<vec3d>& out) const {
   if (k >= spec_.frames) fail("frame " + std::to_string(k) + " out of range (" + std::to_string(spec_.frames) + " frames)");
   std::lock_guard<std::mutex> lock(mutex_);
   const double dt = spec_.frame_time;
@@ -37,13 +37,13 @@ void ClothSceneSource::frame(uint32_t k, std::vector<vec3f>& out) const {
 
   out.clear();
   out.reserve(topology_.num_vertices);
-  for (const dvec3& p : current_->positions()) out.push_back({float(p.x), float(p.y), float(p.z)});
+  for (const dvec3& p : current_->positions()) out.push_back({p.x, p.y, p.z});
   const double t = (spec_.warmup + k) * dt;
   for (const auto& b : spec_.bodies) {
     const Pose pose = b.pose(t);
     for (const dvec3& v : b.mesh.vertices) {
       const dvec3 p = pose.apply(v);
-      out.push_back({float(p.x), float(p.y), float(p.z)});
+      out.push_back({p.x, p.y, p.z});
     }
   }
 }

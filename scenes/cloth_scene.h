@@ -45,7 +45,7 @@ class ClothSceneSource final : public FrameSource {
   explicit ClothSceneSource(ClothSceneSpec spec);
   const Topology& topology() const override { return topology_; }
   uint32_t num_frames() const override { return spec_.frames; }
-  void frame(uint32_t k, std::vector<vec3f>& out) const override;
+  void positions(uint32_t k, std::vector<vec3d>& out) const override;
   std::string describe() const override { return spec_.description; }
 
  private:

@@ -84,14 +84,14 @@ class SoupSource final : public GeneratedSource {
     dist_ = dist;
   }
 
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
     out.resize(base_.size());
     Rng rng{seed_ * 7919 + k};
     const double j = k == 0 || dist_ == "identical" ? 0.0 : jitter_;
     for (size_t v = 0; v < base_.size(); ++v) {
       const auto& b = base_[v];
-      out[v] = {float((b.x + j * rng.symmetric()) * scale_), float((b.y + j * rng.symmetric()) * scale_),
-                float((b.z + j * rng.symmetric()) * scale_)};
+      out[v] = {(b.x + j * rng.symmetric()) * scale_, (b.y + j * rng.symmetric()) * scale_,
+                (b.z + j * rng.symmetric()) * scale_};
     }
   }
 
@@ -117,7 +117,7 @@ class ClothWaveSource final : public GeneratedSource {
     description_ = "cloth-wave: " + std::to_string(res_) + "x" + std::to_string(res_) + " cloth";
   }
 
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
     out.resize(size_t(res_) * res_);
     const double t = frames_ > 1 ? double(k) / (frames_ - 1) : 0.0;
     const double roll_start = 0.85 - 0.45 * t;  // the roll eats into the sheet over time
@@ -132,7 +132,7 @@ class ClothWaveSource final : public GeneratedSource {
           x = roll_start + r * std::sin(theta);
           y += r * (1.0 - std::cos(theta));
         }
-        out[size_t(j) * res_ + i] = {float(x), float(y), float(z)};
+        out[size_t(j) * res_ + i] = {x, y, z};
       }
   }
 

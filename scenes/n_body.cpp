@@ -201,7 +201,7 @@ class NBodySource final : public FrameSource {
   uint32_t num_frames() const override { return frames_; }
   std::string describe() const override { return description_; }
 
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
     if (k >= frames_) fail("frame " + std::to_string(k) + " out of range (" + std::to_string(frames_) + " frames)");
     std::lock_guard<std::mutex> lock(mutex_);
     if (!start_) {
@@ -220,7 +220,7 @@ class NBodySource final : public FrameSource {
       const double scale = b.shape == 0 ? b.radius : 1.0;
       for (const dvec3& v : meshes_[b.shape].vertices) {
         const dvec3 p = pose.apply(scale * v);
-        out.push_back({float(p.x), float(p.y), float(p.z)});
+        out.push_back({p.x, p.y, p.z});
       }
     }
   }

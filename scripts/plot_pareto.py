@@ -95,12 +95,13 @@ def main():
         fig, axes = plt.subplots(1, 2, figsize=(12, 5.2), sharex=True)
         pipelines = sorted({p.run.pipeline for p in points})
         colors = {name: plt.cm.tab10(k % 10) for k, name in enumerate(pipelines)}
+        edge_of = {"q16": "black", "fp64": "tab:red"}  # fp32: no edge
         markers = {("discrete", True): "o", ("swept", True): "s", ("discrete", False): "v", ("swept", False): "D"}
         for ax, (ylabel, key, name) in zip(axes, panels):
             for p in points:
                 ax.scatter(p.ms, key(p), color=colors[p.run.pipeline], s=22 + 60 * min(p.margin, 1.0) ** 0.5,
                            marker=markers[(p.boxes, p.refit_every == 1)], alpha=0.8, zorder=2,
-                           edgecolors="black" if p.precision == "q16" else "none", linewidths=1.5)
+                           edgecolors=edge_of.get(p.precision, "none"), linewidths=1.5)
             front = pareto(points, key)
             for p in front:
                 p.front.append(name)
@@ -118,6 +119,7 @@ def main():
         axes[0].scatter([], [], marker="s", color="gray", label="swept, refit every frame")
         axes[0].scatter([], [], marker="v", color="gray", label="lazy refit (not conservative)")
         axes[0].scatter([], [], marker="o", color="gray", edgecolors="black", linewidths=1.5, label="q16 boxes")
+        axes[0].scatter([], [], marker="o", color="gray", edgecolors="tab:red", linewidths=1.5, label="fp64 (rebased) boxes")
         axes[0].scatter([], [], s=140, facecolors="none", edgecolors="black", label="Pareto front")
         axes[0].legend(fontsize=7)
         fig.suptitle(f"{args.scene}: speed/accuracy knobs ({points[0].run.device}); "

@@ -200,7 +200,7 @@ class StoredFrames final : public FrameSource {
   explicit StoredFrames(SceneFrames s) : s_(std::move(s)) {}
   const Topology& topology() const override { return s_.topology; }
   uint32_t num_frames() const override { return uint32_t(s_.frames.size()); }
-  void frame(uint32_t k, std::vector<vec3f>& out) const override { out = s_.frames.at(k); }
+  void positions(uint32_t k, std::vector<vec3d>& out) const override { widen_to_double(s_.frames.at(k), out); }
   std::string describe() const override { return "stored test frames"; }
 
  private:

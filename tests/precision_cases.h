@@ -4,7 +4,8 @@
 // runs them on the host executor, test_bvh_cuda.cu on CUDA.
 // - every q16 box contains its exact box and lies within one grid cell of it per side;
 // - the float boxes (margin, q16) contain the boxes computed in double from the same
-//   vertices with the margin added in double (why there is no fp64 mode);
+//   vertices with the margin added in double (fp64 differs only in how the vertices are
+//   rounded: offset_cases.h);
 // - the executor's grid (DeviceMesh) equals the one computed here from the vertices;
 // - every pipeline reports exactly the O(N^2) overlaps of the same q16 boxes, a superset
 //   of the exact pairs.

@@ -6,6 +6,7 @@
 #include "inter_cases.h"
 #include "knob_cases.h"
 #include "precision_cases.h"
+#include "offset_cases.h"
 #include "io/scene.h"
 #include "exec/cuda_exec.cuh"
 
@@ -161,6 +162,19 @@ TEST_P(CudaPrecision, EveryPipelineReportsExactlyTheQ16Overlaps) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaPrecision, testing::ValuesIn(precision_cases()), baseline_case_name);
+
+// Millimetre sheets far from the origin (offset_cases.h) through every pipeline's kernels.
+class CudaOffsets : public testing::TestWithParam<OffsetCase> {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_P(CudaOffsets, Fp64KeepsEveryPairOfTheDoubleGeometry) { check_fp64_offset("cuda", GetParam().offset); }
+TEST_P(CudaOffsets, Fp32KeepsEveryPairButBlursAndWarns) { check_fp32_offset("cuda", GetParam().offset); }
+
+INSTANTIATE_TEST_SUITE_P(Sheets, CudaOffsets, testing::ValuesIn(offset_cases()), offset_case_name);
 
 TEST(CudaKnobs, Q16AddsPairsAndCombinesWithMarginAndSweptBoxes) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;

@@ -5,6 +5,7 @@
 #include "exec/host_exec.h"
 #include "inter_cases.h"
 #include "knob_cases.h"
+#include "offset_cases.h"
 #include "precision_cases.h"
 
 namespace cdb::test {
@@ -135,6 +136,43 @@ TEST_P(HostPrecision, EveryPipelineReportsExactlyTheQ16Overlaps) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HostPrecision, testing::ValuesIn(precision_cases()), baseline_case_name);
+
+class HostOffsets : public testing::TestWithParam<OffsetCase> {};
+
+TEST_P(HostOffsets, Fp64KeepsEveryPairOfTheDoubleGeometry) { check_fp64_offset("cpu", GetParam().offset); }
+TEST_P(HostOffsets, Fp32KeepsEveryPairButBlursAndWarns) { check_fp32_offset("cpu", GetParam().offset); }
+
+INSTANTIATE_TEST_SUITE_P(Sheets, HostOffsets, testing::ValuesIn(offset_cases()), offset_case_name);
+
+TEST(PositionRounding, Fp64RebasesOnTheFirstFramesCentreUntilRestarted) {
+  const auto sheet = millimetre_sheet(1e7);
+  EXPECT_TRUE(float_spacing_warning(*millimetre_sheet(0.0), 0, false).empty());
+  std::vector<vec3d> a, b;
+  sheet->positions(0, a);
+  sheet->positions(2, b);
+  PositionRounding fp64(true), fp32(false);
+  std::vector<vec3f> out;
+  fp64.round(a, out);
+  const vec3d origin = fp64.origin();
+  EXPECT_NEAR(origin.x, 1e7, 1.0);
+  for (size_t v = 0; v < a.size(); ++v) {
+    EXPECT_EQ(out[v].x, float(a[v].x - origin.x));
+    EXPECT_LT(std::fabs(out[v].z), 1.0f);
+  }
+  fp64.round(b, out);
+  EXPECT_EQ(fp64.origin().x, origin.x) << "the origin stays for the run";
+  fp64.restart();
+  fp64.round(b, out);
+  EXPECT_EQ(fp64.origin().x, bounds_centre(b).x);
+  fp32.round(a, out);
+  EXPECT_EQ(fp32.origin().x, 0.0);
+  EXPECT_EQ(out[0].x, float(a[0].x));
+  // Beyond float range: an error naming the vertex and the remedy; fp64 takes it.
+  std::vector<vec3d> far = {{1e39, 0, 0}, {1e39, 1, 0}, {1e39, 0, 1}};
+  EXPECT_THROW(fp32.round(far, out), Error);
+  PositionRounding rebased(true);
+  EXPECT_NO_THROW(rebased.round(far, out));
+}
 
 // Coarse cells (a 1e6-wide scene of 1e-3 cubes) add pairs; with swept boxes and a margin
 // on a fast soup, the grid spans the previous frame too and the margin goes on the snapped box.

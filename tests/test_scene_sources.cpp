@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "geometry/float_spacing.h"
 #include "io/animated_mesh.h"
 #include "io/archive_cache.h"
 #include "io/keyframe_mesh.h"
@@ -475,6 +476,53 @@ TEST(SceneDescriptors, ErrorsNameTheFileAndJsonPath) {
   const fs::path rigid = s.descriptor({{"frame_count", 2}, {"parts", {{{"name", "box"}, {"mesh", cube}}}}});
   has(error_of([&] { open_scene(rigid.string(), s.dir, {{"count", 2}}); }),
       "parameters can only be set on a procedural scene or a crowd");
+  // Placement: on any scene, checked.
+  has(error_of([&] { open_scene(rigid.string(), s.dir, {{"placement.scale", 0}}); }), "--set placement.scale: must be positive");
+  has(error_of([&] { open_scene(rigid.string(), s.dir, {{"placement.offset", {1, 2}}}); }),
+      "--set placement.offset: must be a number or [x, y, z]");
+  has(error_of([&] { open_scene(rigid.string(), s.dir, {{"placement.turn", 1}}); }),
+      "--set placement.turn: unknown (known: placement.scale, placement.offset)");
+  has(s.error({{"frame_count", 2}, {"parts", {{{"name", "box"}, {"mesh", cube}}}}, {"placement", {{"spin", 1}}}}),
+      file + ": /placement/spin: unknown key (scale, offset)");
+}
+
+// ---- placement ----
+
+// placement.scale and placement.offset move a scene in double, on top of the descriptor's
+// own placement, and name the scene.
+TEST(Placement, ScalesThenMovesInDoubleOnTopOfTheDescriptors) {
+  Scratch s;
+  const json wave = {{"generator", "cloth-wave"}, {"params", {{"res", 4}, {"frames", 2}}}};
+  const Scene plain = open_scene(s.descriptor(wave).string(), s.dir);
+  json placed_wave = wave;
+  placed_wave["placement"] = {{"scale", 2.0}};
+  const Scene placed = open_scene(s.descriptor(placed_wave).string(), s.dir,
+                                  {{"placement.scale", 1e-3}, {"placement.offset", {1e12, 0, -1e7}}});
+  EXPECT_NE(placed.description.find("placement.offset"), std::string::npos) << placed.description;
+  std::vector<vec3d> a, b;
+  plain.source->positions(1, a);
+  placed.source->positions(1, b);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t v = 0; v < a.size(); ++v) {
+    EXPECT_EQ(b[v].x, 1e-3 * (2.0 * a[v].x) + 1e12);
+    EXPECT_EQ(b[v].y, 1e-3 * (2.0 * a[v].y));
+    EXPECT_EQ(b[v].z, 1e-3 * (2.0 * a[v].z) - 1e7);
+  }
+}
+
+// Float's spacing holds every shipped scene's features (no warning), and stops holding
+// them once the scene is moved far out.
+TEST(Placement, ShippedScenesDrawNoFloatSpacingWarning) {
+  size_t checked = 0;
+  for (const std::string& name : list_scenes(default_scenes_dir())) {
+    const Scene scene = open_scene(name, default_scenes_dir());
+    EXPECT_EQ(float_spacing_warning(*scene.source, 0, false), "") << name;
+    ++checked;
+  }
+  EXPECT_GE(checked, 20u);
+  const Scene far = open_scene("funnel", default_scenes_dir(), {{"placement.offset", 1e7}});
+  EXPECT_NE(float_spacing_warning(*far.source, 0, false), "");
+  EXPECT_EQ(float_spacing_warning(*far.source, 0, true), "");
 }
 
 }  // namespace

@@ -53,14 +53,14 @@ std::vector<SizeCase> size_cases() {
   return c;
 }
 
-std::vector<std::vector<vec3f>> all_frames(const FrameSource& s) {
-  std::vector<std::vector<vec3f>> f(s.num_frames());
-  for (uint32_t k = 0; k < s.num_frames(); ++k) s.frame(k, f[k]);
+std::vector<std::vector<vec3d>> all_frames(const FrameSource& s) {
+  std::vector<std::vector<vec3d>> f(s.num_frames());
+  for (uint32_t k = 0; k < s.num_frames(); ++k) s.positions(k, f[k]);
   return f;
 }
 
-bool bitwise_equal(const std::vector<vec3f>& a, const std::vector<vec3f>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(vec3f)) == 0;
+bool bitwise_equal(const std::vector<vec3d>& a, const std::vector<vec3d>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(vec3d)) == 0;
 }
 
 class SceneSizes : public testing::TestWithParam<SizeCase> {};
@@ -83,10 +83,10 @@ TEST_P(SceneSizes, DeclaredCountFixedTopologyFiniteAndReproducible) {
   // A second source, and the first one asked again out of order, give the same bits.
   auto b = make_generator(c.generator, c.params);
   const auto again = all_frames(*b);
-  std::vector<vec3f> v;
+  std::vector<vec3d> v;
   for (uint32_t k : {2u, 0u, 1u}) {
     EXPECT_TRUE(bitwise_equal(frames[k], again[k])) << "frame " << k;
-    a->frame(k, v);
+    a->positions(k, v);
     EXPECT_TRUE(bitwise_equal(frames[k], v)) << "frame " << k << " asked again";
   }
 }
@@ -220,9 +220,9 @@ class CountingSource final : public FrameSource {
   const Topology& topology() const override { return inner_->topology(); }
   uint32_t num_frames() const override { return inner_->num_frames(); }
   std::string describe() const override { return inner_->describe(); }
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
     ++*made_;
-    inner_->frame(k, out);
+    inner_->positions(k, out);
   }
 
  private:
@@ -239,33 +239,33 @@ TEST(FrameCache, SimulatesOnceThenReadsTheSameBitsAndRedoesABrokenFile) {
                         "funnel " + params.dump(), dir);
   };
   int first = 0, second = 0, third = 0;
-  std::vector<std::vector<vec3f>> expected(4);
+  std::vector<std::vector<vec3d>> expected(4);
   {
     auto a = make(&first);
-    for (uint32_t k = 0; k < 4; ++k) a->frame(k, expected[k]);
+    for (uint32_t k = 0; k < 4; ++k) a->positions(k, expected[k]);
   }
   EXPECT_EQ(first, 4);
-  std::vector<vec3f> v;
+  std::vector<vec3d> v;
   {
     auto b = make(&second);
     for (uint32_t k = 0; k < 4; ++k) {
-      b->frame(k, v);
+      b->positions(k, v);
       ASSERT_EQ(v.size(), expected[k].size());
-      EXPECT_EQ(std::memcmp(v.data(), expected[k].data(), v.size() * sizeof(vec3f)), 0) << "frame " << k;
+      EXPECT_EQ(std::memcmp(v.data(), expected[k].data(), v.size() * sizeof(vec3d)), 0) << "frame " << k;
     }
   }
   EXPECT_EQ(second, 0) << "cached frames were simulated again";
   // A truncated frame file is not trusted: that frame is simulated again, the rest read.
   std::filesystem::path file;
   for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
-    if (e.path().filename() == "frame_2.f32") file = e.path();
+    if (e.path().filename() == "frame_2.f64") file = e.path();
   ASSERT_FALSE(file.empty());
   std::filesystem::resize_file(file, std::filesystem::file_size(file) - 4);
   {
     auto c = make(&third);
     for (uint32_t k = 0; k < 4; ++k) {
-      c->frame(k, v);
-      EXPECT_EQ(std::memcmp(v.data(), expected[k].data(), v.size() * sizeof(vec3f)), 0) << "frame " << k;
+      c->positions(k, v);
+      EXPECT_EQ(std::memcmp(v.data(), expected[k].data(), v.size() * sizeof(vec3d)), 0) << "frame " << k;
     }
   }
   EXPECT_EQ(third, 1);

@@ -6,13 +6,15 @@
 #include "core/aabb.h"
 
 namespace cdb {
+namespace {
 
-std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
-                                         const std::vector<vec3f>& vertices, bool skip_adjacent) {
+template <class T>
+std::vector<PrimPair> sweep_pairs_of(const Topology& topology, const std::vector<vec3<T>>& vertices,
+                                     bool skip_adjacent) {
   const size_t n = topology.faces.size();
   PairFilterTables filter;
   if (topology.queries.declared) filter = pair_filter_tables(topology.objects, topology.queries, n);
-  std::vector<vec4f> lo(n), hi(n);
+  std::vector<vec4<T>> lo(n), hi(n);
   for (size_t f = 0; f < n; ++f) {
     const Tri t = topology.faces[f];
     triangle_box(vertices[t.v0], vertices[t.v1], vertices[t.v2], lo[f], hi[f]);
@@ -42,6 +44,18 @@ std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
   std::sort(pairs.begin(), pairs.end(),
             [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
   return pairs;
+}
+
+}  // namespace
+
+std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology, const std::vector<vec3f>& vertices,
+                                         bool skip_adjacent) {
+  return sweep_pairs_of(topology, vertices, skip_adjacent);
+}
+
+std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology, const std::vector<vec3d>& vertices,
+                                         bool skip_adjacent) {
+  return sweep_pairs_of(topology, vertices, skip_adjacent);
 }
 
 }  // namespace cdb

@@ -11,9 +11,14 @@
 namespace cdb {
 
 // skip_adjacent: leave out pairs of triangles that share a vertex (co-vertex filtering).
-// A topology with declared queries keeps only the pairs they ask for.
+// A topology with declared queries keeps only the pairs they ask for. The double overload
+// judges the scene's own geometry (what --check and verify compare against); the float one
+// the floats a pipeline ran on.
 std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
                                          const std::vector<vec3f>& vertices,
+                                         bool skip_adjacent = false);
+std::vector<PrimPair> sweep_oracle_pairs(const Topology& topology,
+                                         const std::vector<vec3d>& vertices,
                                          bool skip_adjacent = false);
 
 }  // namespace cdb

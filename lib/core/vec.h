@@ -17,6 +17,9 @@ struct alignas(4 * sizeof(T)) vec4 {
 
 using vec3f = vec3<float>;
 using vec4f = vec4<float>;
+// Positions as scenes hold them (--box-precision fp64 keeps them; docs/design.md "Box precision").
+using vec3d = vec3<double>;
+using vec4d = vec4<double>;
 
 template <class T>
 CDB_HD_INLINE T min_of(T a, T b) { return b < a ? b : a; }

@@ -1,5 +1,7 @@
 #pragma once
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "geometry/box_grid.h"
@@ -30,8 +32,10 @@ struct Topology {
 // The speed/accuracy knobs every box goes through (docs/design.md "Speed/accuracy knobs"):
 // `prev_vertices` (null: none) makes each box also bound the triangle at the previous
 // frame (swept boxes), `grid` (null: none) snaps it outward onto this frame's 16-bit grid
-// (--box-precision q16; executor memory, written on the executor each frame), and `margin`
-// (absolute, scene units, >= 0) inflates it on every side (fat boxes).
+// (--box-precision q16; executor memory, written on the executor each frame), `widen`
+// moves each side out by one float spacing (--box-precision fp64 with a margin: the
+// positions' rounding error, geometry/position_rounding.h), and `margin` (absolute, scene
+// units, >= 0) inflates it on every side (fat boxes).
 struct MeshView {
   const vec3f* vertices;
   const Tri* faces;
@@ -39,6 +43,7 @@ struct MeshView {
   const vec3f* prev_vertices = nullptr;
   float margin = 0.0f;
   const BoxGrid* grid = nullptr;
+  bool widen = false;
 };
 
 // The one per-face box every pipeline and baseline uses. Each step only widens the box and
@@ -54,6 +59,11 @@ CDB_HD_INLINE void face_box(const MeshView& m, uint32_t f, vec4f& lo, vec4f& hi)
     hi = {max_of(hi.x, phi.x), max_of(hi.y, phi.y), max_of(hi.z, phi.z), 0.0f};
   }
   if (m.grid) snap_box_outward(*m.grid, lo, hi);
+  if (m.widen) {
+    constexpr float kDown = -std::numeric_limits<float>::infinity(), kUp = std::numeric_limits<float>::infinity();
+    lo = {nextafterf(lo.x, kDown), nextafterf(lo.y, kDown), nextafterf(lo.z, kDown), 0.0f};
+    hi = {nextafterf(hi.x, kUp), nextafterf(hi.y, kUp), nextafterf(hi.z, kUp), 0.0f};
+  }
   if (m.margin != 0.0f) {
     const float e = m.margin;
     lo = {sub_round_down(lo.x, e), sub_round_down(lo.y, e), sub_round_down(lo.z, e), 0.0f};

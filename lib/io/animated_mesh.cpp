@@ -98,16 +98,20 @@ class AnimatedMesh final : public AnimatedClip {
   const Topology& topology() const override { return topology_; }
   uint32_t num_frames() const override { return num_frames_; }
 
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
     if (k >= num_frames_)
       fail(file_ + ": frame " + std::to_string(k) + " out of range (" + std::to_string(num_frames_) + " frames)");
-    evaluate(options_.start + k / options_.fps, out);
+    std::vector<vec3f> f;
+    evaluate(options_.start + k / options_.fps, f);
+    widen_to_double(f, out);
     check_frame(out, topology_, file_, k);
   }
 
   void positions_at(double seconds, std::vector<vec3f>& out) const override {
     evaluate(seconds, out);
-    check_frame(out, topology_, file_ + " at " + std::to_string(seconds) + " s", 0);
+    std::vector<vec3d> d;
+    widen_to_double(out, d);
+    check_frame(d, topology_, file_ + " at " + std::to_string(seconds) + " s", 0);
   }
 
   double clip_seconds() const override { return anim_->mDuration / ticks_per_second_; }

@@ -27,12 +27,12 @@ class ComposedScene final : public FrameSource {
   }
   const Topology& topology() const override { return topology_; }
   uint32_t num_frames() const override { return frames_; }
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
     if (k >= frames_) fail("frame " + std::to_string(k) + " out of range (" + std::to_string(frames_) + " frames)");
     out.resize(topology_.num_vertices);
-    std::vector<vec3f> part;
+    std::vector<vec3d> part;
     for (size_t p = 0; p < parts_.size(); ++p) {
-      parts_[p].source->frame(k, part);
+      parts_[p].source->positions(k, part);
       std::copy(part.begin(), part.end(), out.begin() + first_vertex_[p]);
     }
   }
@@ -98,7 +98,7 @@ class Crowd final : public FrameSource {
     return clip_seconds_ > 0 ? std::fmod(t, clip_seconds_) : o_.animation.start;
   }
 
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
     if (k >= frames_) fail(o_.name + ": frame " + std::to_string(k) + " out of range (" + std::to_string(frames_) + " frames)");
     const uint32_t n = clip_->topology().num_vertices;
     out.resize(topology_.num_vertices);
@@ -107,7 +107,7 @@ class Crowd final : public FrameSource {
       clip_->positions_at(instance_time(i, k), one);
       const auto& d = offsets_[i];
       for (uint32_t v = 0; v < n; ++v)
-        out[size_t(i) * n + v] = {float(one[v].x + d[0]), float(one[v].y + d[1]), float(one[v].z + d[2])};
+        out[size_t(i) * n + v] = {one[v].x + d[0], one[v].y + d[1], one[v].z + d[2]};
     }
     check_frame(out, topology_, o_.name, k);
   }

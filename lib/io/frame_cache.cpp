@@ -39,7 +39,8 @@ std::string binary_identity() {
   return id;
 }
 
-constexpr char kMagic[8] = {'c', 'd', 'b', 'f', 'r', 'm', '0', '1'};
+// 02: positions in double (01 held floats).
+constexpr char kMagic[8] = {'c', 'd', 'b', 'f', 'r', 'm', '0', '2'};
 
 struct FrameHeader {
   char magic[8];
@@ -54,15 +55,15 @@ class DiskCachedFrames final : public FrameSource {
   uint32_t num_frames() const override { return source_->num_frames(); }
   std::string describe() const override { return source_->describe(); }
 
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
-    const std::filesystem::path file = dir_ / ("frame_" + std::to_string(k) + ".f32");
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
+    const std::filesystem::path file = dir_ / ("frame_" + std::to_string(k) + ".f64");
     if (read(file, k, out)) return;
-    source_->frame(k, out);
+    source_->positions(k, out);
     write(file, k, out);
   }
 
  private:
-  bool read(const std::filesystem::path& file, uint32_t k, std::vector<vec3f>& out) const {
+  bool read(const std::filesystem::path& file, uint32_t k, std::vector<vec3d>& out) const {
     std::ifstream in(file, std::ios::binary);
     if (!in) return false;
     FrameHeader h{};
@@ -71,15 +72,15 @@ class DiskCachedFrames final : public FrameSource {
         h.frame != k || h.num_vertices != n)
       return false;
     out.resize(n);
-    if (!in.read(reinterpret_cast<char*>(out.data()), std::streamsize(n * sizeof(vec3f))) || in.peek() != EOF)
+    if (!in.read(reinterpret_cast<char*>(out.data()), std::streamsize(n * sizeof(vec3d))) || in.peek() != EOF)
       return false;
-    for (const vec3f& p : out)
+    for (const vec3d& p : out)
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
     return true;
   }
 
   // Best effort: a cache that cannot be written costs time, never a result.
-  void write(const std::filesystem::path& file, uint32_t k, const std::vector<vec3f>& v) const {
+  void write(const std::filesystem::path& file, uint32_t k, const std::vector<vec3d>& v) const {
     std::error_code ec;
     std::filesystem::create_directories(dir_, ec);
     const std::filesystem::path part = file.string() + ".part" + std::to_string(getpid());
@@ -90,7 +91,7 @@ class DiskCachedFrames final : public FrameSource {
       h.frame = k;
       h.num_vertices = uint32_t(v.size());
       os.write(reinterpret_cast<const char*>(&h), sizeof h);
-      os.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(vec3f)));
+      os.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(vec3d)));
       if (!os) {
         std::filesystem::remove(part, ec);
         warn_once();
@@ -129,7 +130,7 @@ std::filesystem::path frame_cache_dir() {
 
 std::unique_ptr<FrameSource> cache_frames(std::unique_ptr<FrameSource> source, const std::string& identity,
                                           const std::filesystem::path& dir, uint64_t max_bytes) {
-  const uint64_t bytes = uint64_t(source->topology().num_vertices) * sizeof(vec3f) * source->num_frames();
+  const uint64_t bytes = uint64_t(source->topology().num_vertices) * sizeof(vec3d) * source->num_frames();
   if (dir.empty() || bytes > max_bytes) return source;
   char key[17];
   std::snprintf(key, sizeof key, "%016llx",

@@ -17,7 +17,7 @@ namespace cdb {
 // ($CDBENCH_FRAME_CACHE=off) or there is no such directory.
 std::filesystem::path frame_cache_dir();
 
-// Wraps a generator's source: frame k comes from DIR/<key>/frame_<k>.f32 when present,
+// Wraps a generator's source: frame k comes from DIR/<key>/frame_<k>.f64 when present,
 // else from the generator, and is then stored there. `identity` names the generator and its
 // parameters; the key also covers this binary (git sha, size, modification time), so frames
 // of a changed generator are never reused. Scenes larger than max_bytes in all are not

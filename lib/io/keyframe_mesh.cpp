@@ -119,20 +119,20 @@ class KeyframeMesh final : public FrameSource {
   const Topology& topology() const override { return topology_; }
   uint32_t num_frames() const override { return num_frames_; }
 
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
     if (k >= num_frames_)
       fail(file_ + ": frame " + std::to_string(k) + " out of range (" + std::to_string(num_frames_) + " frames)");
     const uint32_t key = options_.first + k / options_.subframes, step = k % options_.subframes;
     const FlatKeyframe a = import_keyframe(file_, key);
     check_topology(a, key);
-    out.assign(topology_.num_vertices, vec3f{0, 0, 0});
+    out.assign(topology_.num_vertices, vec3d{0, 0, 0});
     if (step == 0) {
       for (size_t v = 0; v < a.positions.size(); ++v) out[weld_[v]] = {a.positions[v].x, a.positions[v].y, a.positions[v].z};
     } else {
       const FlatKeyframe b = import_keyframe(file_, key + 1);
       check_topology(b, key + 1);
       const double w = double(step) / options_.subframes;
-      auto blend = [w](float p, float q) { return float(p + w * (double(q) - p)); };
+      auto blend = [w](double p, double q) { return p + w * (q - p); };
       for (size_t v = 0; v < a.positions.size(); ++v)
         out[weld_[v]] = {blend(a.positions[v].x, b.positions[v].x), blend(a.positions[v].y, b.positions[v].y),
                          blend(a.positions[v].z, b.positions[v].z)};

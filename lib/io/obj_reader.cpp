@@ -18,7 +18,7 @@ const char* skip_space(const char* p) {
 
 }  // namespace
 
-size_t read_obj_file(const std::filesystem::path& file, Topology& topology, std::vector<vec3f>& positions) {
+size_t read_obj_file(const std::filesystem::path& file, Topology& topology, std::vector<vec3d>& positions) {
   std::ifstream in(file, std::ios::binary);
   if (!in) fail(file.string() + ": cannot open");
   topology.faces.clear();
@@ -31,13 +31,13 @@ size_t read_obj_file(const std::filesystem::path& file, Topology& topology, std:
     const std::string where = file.string() + ": line " + std::to_string(line_no);
     const char* p = skip_space(line.c_str());
     if (p[0] == 'v' && (p[1] == ' ' || p[1] == '\t')) {
-      float c[3];
+      double c[3];
       p += 1;
-      for (float& x : c) {
+      for (double& x : c) {
         p = skip_space(p);
         char* end = nullptr;
         errno = 0;
-        x = std::strtof(p, &end);
+        x = std::strtod(p, &end);
         if (end == p) fail(where + ": a vertex needs 3 coordinates");
         p = end;
       }

@@ -14,7 +14,7 @@
 namespace cdb {
 
 size_t read_mesh_file(const std::filesystem::path& file, Topology& topology,
-                      std::vector<vec3f>& positions) {
+                      std::vector<vec3d>& positions) {
   if (!std::filesystem::is_regular_file(file)) fail(file.string() + ": no such file");
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
@@ -65,7 +65,7 @@ class MeshSequence final : public FrameSource {
       return natural_less(a.filename().native(), b.filename().native());
     });
     if (files_.empty()) fail(dir.string() + ": no .obj frames in this directory");
-    std::vector<vec3f> positions;
+    std::vector<vec3d> positions;
     const size_t polygons = read_mesh_file(files_[0], topology_, positions);
     if (polygons)
       std::fprintf(stderr, "cdbench: %s: %zu polygon faces triangulated (%zu triangles in all)\n",
@@ -73,12 +73,12 @@ class MeshSequence final : public FrameSource {
     check_frame(positions, topology_, files_[0].string(), 0);
     // Every frame is read once here, so a bad frame stops the program before the first
     // one is timed rather than after the frames before it ran (the files are read again
-    // as the frames are asked for: keeping them all would cost frames x vertices x 12 bytes).
-    for (uint32_t k = 1; k < files_.size(); ++k) frame(k, positions);
+    // as the frames are asked for: keeping them all would cost frames x vertices x 24 bytes).
+    for (uint32_t k = 1; k < files_.size(); ++k) this->positions(k, positions);
   }
   const Topology& topology() const override { return topology_; }
   uint32_t num_frames() const override { return uint32_t(files_.size()); }
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
     Topology t;
     read_mesh_file(files_.at(k), t, out);
     const std::string where = files_[k].string();

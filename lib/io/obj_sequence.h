@@ -18,6 +18,6 @@ std::unique_ptr<FrameSource> open_mesh_sequence(const std::filesystem::path& dir
 // dropping of degenerate faces; polygons are triangulated (their count is returned, so the
 // caller can say so). Throws naming the file on any failure.
 size_t read_mesh_file(const std::filesystem::path& file, Topology& topology,
-                      std::vector<vec3f>& positions);
+                      std::vector<vec3d>& positions);
 
 }  // namespace cdb

@@ -112,6 +112,7 @@ ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
   write_attr(root, "driver_version", int64_t(info.driver_version), at);
   write_attr(root, "runtime_version", int64_t(info.runtime_version), at);
   write_attr(root, "precision", info.precision, at);
+  write_attr(root, "precision_warning", info.precision_warning, at);
   write_attr(root, "params_json", info.params_json, at);
   write_attr(root, "warmup", uint64_t(info.warmup), at);
   write_attr(root, "frame_first", uint64_t(info.frame_first), at);

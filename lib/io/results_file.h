@@ -35,6 +35,9 @@ struct RunInfo {
   std::string device_name;  // the GPU's name, or the CPU model
   int driver_version = 0, runtime_version = 0;  // CUDA's; 0 on the CPU
   std::string precision = "fp32";               // of the boxes
+  // Float's spacing too coarse for the scene's features (geometry/float_spacing.h): the
+  // warning the run printed, empty when none.
+  std::string precision_warning;
   std::string params_json;  // every parameter of the run, defaults included
   uint32_t warmup = 0;
   uint32_t frame_first = 0, frame_last = 0;  // the range asked for, half-open

@@ -63,14 +63,14 @@ class RigidMeshSource final : public FrameSource {
   }
   const Topology& topology() const override { return topology_; }
   uint32_t num_frames() const override { return frames_; }
-  void frame(uint32_t k, std::vector<vec3f>& out) const override {
+  void positions(uint32_t k, std::vector<vec3d>& out) const override {
     if (k >= frames_)
       fail(origin_ + ": frame " + std::to_string(k) + " out of range (" + std::to_string(frames_) + " frames)");
     const Pose pose = rigid_pose(motion_, k);
     out.resize(mesh_.positions.size());
     for (size_t v = 0; v < out.size(); ++v) {
       const dvec3 p = pose.apply(mesh_.positions[v]);
-      out[v] = {float(p.x), float(p.y), float(p.z)};
+      out[v] = {p.x, p.y, p.z};
     }
     check_frame(out, topology_, origin_, k);
   }
@@ -92,7 +92,7 @@ class RigidMeshSource final : public FrameSource {
 
 StaticMesh load_static_mesh(const std::filesystem::path& file, double scale, bool center) {
   Topology topology;
-  std::vector<vec3f> positions;
+  std::vector<vec3d> positions;
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
   if (ext == ".obj") {
@@ -103,17 +103,17 @@ StaticMesh load_static_mesh(const std::filesystem::path& file, double scale, boo
     // keyframe loader applies them (one keyframe: the file as it is).
     const auto still = open_keyframe_mesh({file, 0, 1});
     topology = still->topology();
-    still->frame(0, positions);
+    still->positions(0, positions);
   }
   check_frame(positions, topology, file.string(), 0);
-  auto bits = [](float x) {
-    uint32_t u;
+  auto bits = [](double x) {
+    uint64_t u;
     std::memcpy(&u, &x, sizeof u);
     return u;
   };
-  std::map<std::tuple<uint32_t, uint32_t, uint32_t>, uint32_t> first;
+  std::map<std::tuple<uint64_t, uint64_t, uint64_t>, uint32_t> first;
   std::vector<uint32_t> weld(positions.size());
-  std::vector<vec3f> welded;
+  std::vector<vec3d> welded;
   for (size_t v = 0; v < positions.size(); ++v) {
     const auto [it, added] = first.emplace(std::make_tuple(bits(positions[v].x), bits(positions[v].y),
                                                            bits(positions[v].z)), uint32_t(welded.size()));
@@ -121,13 +121,13 @@ StaticMesh load_static_mesh(const std::filesystem::path& file, double scale, boo
     weld[v] = it->second;
   }
   dvec3 lo{welded[0].x, welded[0].y, welded[0].z}, hi = lo;
-  for (const vec3f& p : welded) {
-    lo = {std::min(lo.x, double(p.x)), std::min(lo.y, double(p.y)), std::min(lo.z, double(p.z))};
-    hi = {std::max(hi.x, double(p.x)), std::max(hi.y, double(p.y)), std::max(hi.z, double(p.z))};
+  for (const vec3d& p : welded) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
   }
   const dvec3 c = center ? 0.5 * (lo + hi) : dvec3{};
   StaticMesh mesh;
-  for (const vec3f& p : welded) mesh.positions.push_back(scale * (dvec3{p.x, p.y, p.z} - c));
+  for (const vec3d& p : welded) mesh.positions.push_back(scale * (dvec3{p.x, p.y, p.z} - c));
   for (const Tri& t : topology.faces) mesh.faces.push_back({weld[t.v0], weld[t.v1], weld[t.v2]});
   return mesh;
 }

@@ -16,6 +16,7 @@
 #include "io/frame_cache.h"
 #include "io/keyframe_mesh.h"
 #include "io/obj_sequence.h"
+#include "io/placed_scene.h"
 #include "io/rigid_mesh.h"
 #include "io/scene_label.h"
 
@@ -29,7 +30,7 @@ class DeclaredQueries final : public FrameSource {
       : inner_(std::move(inner)), topology_(std::move(topology)) {}
   const Topology& topology() const override { return topology_; }
   uint32_t num_frames() const override { return inner_->num_frames(); }
-  void frame(uint32_t k, std::vector<vec3f>& out) const override { inner_->frame(k, out); }
+  void positions(uint32_t k, std::vector<vec3d>& out) const override { inner_->positions(k, out); }
   std::string describe() const override { return inner_->describe(); }
 
  private:
@@ -333,7 +334,7 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   if (!j.is_object()) fail(file.string() + ": a scene descriptor must be a JSON object");
   const DescriptorObject root(j, file.string() + ": ",
                               {"description", "generator", "params", "frames", "animation", "keyframes", "crowd",
-                               "parts", "frame_count", "objects", "queries"});
+                               "parts", "frame_count", "objects", "queries", "placement"});
   Scene s;
   s.name = file.stem().string();
   if (j.contains("description")) s.description = root.text("description");
@@ -376,6 +377,13 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   }
   if (j.contains("objects") || j.contains("queries"))
     s.source = declare_queries(std::move(s.source), j, file.string());
+  if (root.has("placement")) {
+    const DescriptorObject p = root.object("placement", {"scale", "offset"});
+    nlohmann::json keys = nlohmann::json::object();
+    if (p.has("scale")) keys["placement.scale"] = j["placement"]["scale"];
+    if (p.has("offset")) keys["placement.offset"] = j["placement"]["offset"];
+    s.source = place_scene(std::move(s.source), parse_placement(keys, file.string() + ": /"));
+  }
   // The descriptor's own description states its default sizes; with overrides the
   // generated source describes what actually runs.
   if (s.description.empty() || !overrides.empty()) s.description = s.source->describe();
@@ -402,8 +410,10 @@ std::vector<std::string> list_scenes(const std::filesystem::path& scenes_dir) {
   return names;
 }
 
-Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_dir,
-                 const nlohmann::json& overrides) {
+namespace {
+
+Scene open_unplaced(const std::string& spec, const std::filesystem::path& scenes_dir,
+                    const nlohmann::json& overrides) {
   const std::filesystem::path p(spec);
   if (std::filesystem::is_directory(p)) {
     if (!overrides.empty()) fail_usage(spec + ": parameters can only be set on a procedural scene");
@@ -422,6 +432,26 @@ Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_di
   for (const auto& n : list_scenes(scenes_dir)) known += (known.empty() ? "" : ", ") + n;
   fail_usage("unknown scene '" + spec + "': not a directory of mesh frames, not a .json descriptor, and not in " +
        scenes_dir.string() + " (known: " + known + ")");
+}
+
+}  // namespace
+
+Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_dir,
+                 const nlohmann::json& overrides) {
+  // placement.* applies to every kind of scene, after the descriptor's own placement; the
+  // other keys are the generator's.
+  nlohmann::json rest = nlohmann::json::object(), placement = nlohmann::json::object();
+  for (auto it = overrides.begin(); it != overrides.end(); ++it)
+    (it.key().rfind("placement.", 0) == 0 ? placement : rest)[it.key()] = it.value();
+  for (auto it = placement.begin(); it != placement.end(); ++it)
+    if (it.key() != "placement.scale" && it.key() != "placement.offset")
+      fail_usage("--set " + it.key() + ": unknown (known: placement.scale, placement.offset)");
+  Scene s = open_unplaced(spec, scenes_dir, rest);
+  if (placement.empty()) return s;
+  s.source = place_scene(std::move(s.source), parse_placement(placement, "--set "));
+  s.overrides.update(placement);
+  s.description = s.source->describe() + " (" + scene_label(s.name, s.overrides) + ")";
+  return s;
 }
 
 }  // namespace cdb

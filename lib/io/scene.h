@@ -21,8 +21,9 @@ struct Scene {
   std::unique_ptr<FrameSource> source;
 };
 
-// `overrides` (a JSON object) replaces or adds generator parameters of a procedural scene;
-// it is an error for a mesh sequence.
+// `overrides` (a JSON object) replaces or adds generator parameters of a procedural scene
+// (an error for a mesh sequence); its keys placement.scale and placement.offset move any
+// scene (io/placed_scene.h).
 Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_dir,
                  const nlohmann::json& overrides = nlohmann::json::object());
 

@@ -32,7 +32,8 @@ template <class Exec, class Timer>
 class BroadPhase final : public Pipeline {
  public:
   BroadPhase(const PipelineConfig& config, BroadPhaseMethod method)
-      : config_(config),
+      : Pipeline(config.box_precision),
+        config_(config),
         method_(method),
         exec_(ExecOptions{config.dependent_launch}),
         timer_(exec_, config.phase_timing),
@@ -49,7 +50,10 @@ class BroadPhase final : public Pipeline {
     if (config_.refit_every == 0) fail("--refit-every must be at least 1");
   }
 
+  using Pipeline::run_frame;
+
   void set_topology(const Topology& topology) override {
+    restart_rounding();
     mesh_.set_topology(exec_, topology);
     const uint32_t n = mesh_.num_faces();
     pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);

@@ -87,6 +87,9 @@ class DeviceMesh {
     swept_ = config.swept_boxes;
     margin_ = config.box_margin;
     precision_ = config.box_precision;
+    // fp64's rounding keeps every overlap on its own; with a margin it needs the spacing
+    // (geometry/position_rounding.h).
+    widen_ = precision_ == BoxPrecision::fp64 && margin_ > 0.0f;
   }
   bool quantized() const { return precision_ == BoxPrecision::q16; }
   // Swept boxes: the two vertex buffers swap roles, the new positions go over the older
@@ -113,7 +116,7 @@ class DeviceMesh {
   }
   MeshView view() const {
     return {vertices_[current_].data(), faces_.data(), num_faces_, previous(), margin_,
-            quantized() ? grid_.data() : nullptr};
+            quantized() ? grid_.data() : nullptr, widen_};
   }
   // The faces' vertex indices, 3 per face, for co-vertex filtering.
   const uint32_t* face_vertices() const { return reinterpret_cast<const uint32_t*>(faces_.data()); }
@@ -132,6 +135,7 @@ class DeviceMesh {
   uint32_t num_vertices_ = 0, num_faces_ = 0;
   bool swept_ = false;
   float margin_ = 0.0f;
+  bool widen_ = false;
   BoxPrecision precision_ = BoxPrecision::fp32;
   Array<Aabb<float>> bounds_;
   Array<BoxGrid> grid_;

@@ -33,7 +33,7 @@ template <class Exec, class Timer>
 class FrontPipeline final : public Pipeline {
  public:
   FrontPipeline(const PipelineConfig& config, FrontStrategy chosen)
-      : config_(config), planner_(chosen, config), exec_(ExecOptions{config.dependent_launch}),
+      : Pipeline(config.box_precision), config_(config), planner_(chosen, config), exec_(ExecOptions{config.dependent_launch}),
         timer_(exec_, config.phase_timing), mesh_(exec_), bvh_(exec_),
         rigid_bvh_(exec_, "rigid_bvh"), pairs_(exec_), restructure_(exec_),
         self_(exec_, "front", kSelfCounters), inter_(exec_, "inter_front", kInterCounters),
@@ -44,7 +44,10 @@ class FrontPipeline final : public Pipeline {
     if (strategy().restructure) check_restructure_config(config_);
   }
 
+  using Pipeline::run_frame;
+
   void set_topology(const Topology& topology) override {
+    restart_rounding();
     mesh_.set_topology(exec_, topology);
     const ObjectSplit& split = mesh_.split();
     pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);

@@ -11,12 +11,15 @@ const std::vector<std::string>& pipeline_names() {
   return names;
 }
 
-const char* box_precision_name(BoxPrecision p) { return p == BoxPrecision::q16 ? "q16" : "fp32"; }
+const char* box_precision_name(BoxPrecision p) {
+  return p == BoxPrecision::q16 ? "q16" : p == BoxPrecision::fp64 ? "fp64" : "fp32";
+}
 
 BoxPrecision parse_box_precision(const std::string& name) {
   if (name == "fp32") return BoxPrecision::fp32;
+  if (name == "fp64") return BoxPrecision::fp64;
   if (name == "q16") return BoxPrecision::q16;
-  fail("unknown box precision '" + name + "' (known: fp32, q16)");
+  fail("unknown box precision '" + name + "' (known: fp32, fp64, q16)");
 }
 
 const char* preserve_warp_name(PreserveWarp w) {

@@ -13,13 +13,17 @@
 #include "core/phase.h"
 #include "exec/memory.h"
 #include "geometry/mesh.h"
+#include "geometry/position_rounding.h"
 
 namespace cdb {
 
-// How triangle boxes are stored (docs/design.md "Speed/accuracy knobs"): fp32, the exact
-// float box; q16, snapped outward onto a 16-bit grid per axis over the frame's vertex bounds
-// (conservative by construction).
-enum class BoxPrecision { fp32, q16 };
+// How triangle boxes are computed (docs/design.md "Box precision"): fp32, the exact box of
+// the positions rounded to float; fp64, the positions rebased on a double origin before
+// rounding (geometry/position_rounding.h), so scenes far from the origin keep their
+// features; q16, the fp32 box snapped outward onto a 16-bit grid per axis over the frame's
+// vertex bounds. All three are conservative against the double geometry (fp32 and q16 with
+// no --box-margin; fp64 with any).
+enum class BoxPrecision { fp32, fp64, q16 };
 
 const char* box_precision_name(BoxPrecision p);
 // Throws cdb::Error naming the known values.
@@ -72,7 +76,7 @@ struct PipelineConfig {
   // Swept boxes: each box bounds the triangle at the previous and the current frame (the
   // first frame its own positions). Conservative with respect to the discrete pairs.
   bool swept_boxes = false;
-  // 16-bit quantized boxes. Conservative: each box contains its exact box.
+  // Rebased or 16-bit quantized boxes (BoxPrecision).
   BoxPrecision box_precision = BoxPrecision::fp32;
   // Front pipelines and bvh: refit only every this many frames (1: every frame), keeping
   // the stale boxes in between. NOT conservative: pairs can be missed. Baselines ignore it.
@@ -152,10 +156,31 @@ class Pipeline {
  public:
   virtual ~Pipeline() = default;
   virtual void set_topology(const Topology& topology) = 0;
+  // A frame of float positions, run as they are.
   virtual FrameStats run_frame(const std::vector<vec3f>& vertices) = 0;
+  // A frame as the scene holds it, in double: rounded to floats as the box precision says
+  // (fp64 rebases; the origin is picked at the first frame after set_topology), then run.
+  // The rounding is host work before the frame, not part of its time.
+  FrameStats run_frame(const std::vector<vec3d>& positions) {
+    rounding_.round(positions, rounded_);
+    return run_frame(rounded_);
+  }
+  // The floats the last double frame ran on.
+  const std::vector<vec3f>& rounded_positions() const { return rounded_; }
+  // The origin fp64 subtracts ({0, 0, 0} for fp32 and q16).
+  vec3d position_origin() const { return rounding_.origin(); }
   // The last frame's pairs, sorted, for verification (a download; not part of a frame).
   virtual std::vector<PrimPair> sorted_pairs() = 0;
   virtual MemoryStats memory() const = 0;
+
+ protected:
+  explicit Pipeline(BoxPrecision precision) : rounding_(precision == BoxPrecision::fp64) {}
+  // For set_topology: the next double frame picks the origin again.
+  void restart_rounding() { rounding_.restart(); }
+
+ private:
+  PositionRounding rounding_;
+  std::vector<vec3f> rounded_;
 };
 
 // Pipelines the factory knows, in the order verify runs them.
