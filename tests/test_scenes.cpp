@@ -274,14 +274,14 @@ TEST(FrameCache, SimulatesOnceThenReadsTheSameBitsAndRedoesABrokenFile) {
   const json params2 = {{"res", 17}, {"frames", 4}};
   auto d = cache_frames(std::make_unique<CountingSource>(make_generator("funnel", params2), &other),
                         "funnel " + params2.dump(), dir);
-  d->frame(0, v);
+  d->positions(0, v);
   EXPECT_EQ(other, 1);
   // Too large for the cache: passed through, nothing stored.
   int big = 0;
   auto e = cache_frames(std::make_unique<CountingSource>(make_generator("funnel", params), &big),
                         "funnel big " + params.dump(), dir, 16);
-  e->frame(0, v);
-  e->frame(0, v);
+  e->positions(0, v);
+  e->positions(0, v);
   EXPECT_EQ(big, 2);
   std::filesystem::remove_all(dir);
 }
