@@ -95,7 +95,7 @@ def main():
         fig, axes = plt.subplots(1, 2, figsize=(12, 5.2), sharex=True)
         pipelines = sorted({p.run.pipeline for p in points})
         colors = {name: plt.cm.tab10(k % 10) for k, name in enumerate(pipelines)}
-        edge_of = {"q16": "black", "fp64": "tab:red"}  # fp32: no edge
+        edge_of = {"q16": "black", "fp64": "magenta"}  # fp32: no edge
         markers = {("discrete", True): "o", ("swept", True): "s", ("discrete", False): "v", ("swept", False): "D"}
         for ax, (ylabel, key, name) in zip(axes, panels):
             for p in points:
@@ -119,7 +119,7 @@ def main():
         axes[0].scatter([], [], marker="s", color="gray", label="swept, refit every frame")
         axes[0].scatter([], [], marker="v", color="gray", label="lazy refit (not conservative)")
         axes[0].scatter([], [], marker="o", color="gray", edgecolors="black", linewidths=1.5, label="q16 boxes")
-        axes[0].scatter([], [], marker="o", color="gray", edgecolors="tab:red", linewidths=1.5, label="fp64 (rebased) boxes")
+        axes[0].scatter([], [], marker="o", color="gray", edgecolors="magenta", linewidths=1.5, label="fp64 (rebased) boxes")
         axes[0].scatter([], [], s=140, facecolors="none", edgecolors="black", label="Pareto front")
         axes[0].legend(fontsize=7)
         fig.suptitle(f"{args.scene}: speed/accuracy knobs ({points[0].run.device}); "
