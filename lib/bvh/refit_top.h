@@ -1,8 +1,8 @@
 #pragma once
 // The top of the refit in one block. refit.h climbs in tiles of kRefitTile leaves; nodes
 // whose leaves span tiles ("spanning nodes", the top of the tree) cost a device-scope atomic
-// and an L2 load each in the tile kernel, about 1.5 us a level, and they are most of the
-// deepest path (funnel 18 of 20 levels, cloth-ball 23 of 26). With the top in one block the
+// and an L2 load each in the tile kernel, and they are most of the deepest path
+// (docs/design.md "Constants and their measurements"). With the top in one block the
 // tile kernel stops below them and one block of threads refits all of them, with their
 // boxes, arrival bits and parent links in shared memory: a level is a shared-memory atomic
 // and a shared-memory load.

@@ -5,22 +5,21 @@
 //
 // Why: every producer appends to a few counters that the whole GPU shares (the pair count,
 // one count per front kind). Same-address atomics are served one after the other by one L2
-// slice, whatever the number of lanes in each (bench/append_bench.cu on the H100: 64K warp
-// instructions on one counter take 44 us over plain stores, at 32, 8 or 2 active lanes
-// alike, and as long with a plain atomic per lane as with warp aggregation); the traversals
-// issue hundreds of thousands of such instructions a frame.
+// slice, whatever the number of lanes in each, and as slowly with a plain atomic per lane as
+// with warp aggregation (bench/append_bench.cu); the traversals issue hundreds of
+// thousands of such instructions a frame.
 //
 // A stage holds kCapacity entries; entries past that go to the global counter directly, as
 // unstaged ones always do, so nothing is dropped and every entry is counted once.
 //
 // Staging costs each block a barrier and a flush at its end (an atomic's round trip), so it
-// pays where blocks produce many entries and not where they produce few: measured on the
-// H100 (docs/results.md), update and the baselines' pair kernels gain everywhere, preserve
-// gains on cloth (60-90 pairs per block) and loses on n-body (11 pairs per block of front
-// nodes), so preserve stages only while the last frame's pairs per front node say it pays
-// (FrontQuery::preserve). Stages of 256 entries instead of 1024 / 512 lost 5-25%; the
+// pays where blocks produce many entries and not where they produce few: update and the
+// baselines' pair kernels gain everywhere, preserve gains on cloth and loses on n-body
+// (fewer pairs per block of front nodes), so preserve stages only while the last frame's
+// pairs per front node say it pays (FrontQuery::preserve). Smaller stages lost; the
 // leaf-per-thread query of bvh and the brute force produce thousands of pairs per block,
-// far past any stage, and lost 5-18% staged: they append directly. The order
+// far past any stage, and lost staged: they append directly (docs/design.md "Constants
+// and their measurements" has the figures). The order
 // within an output changes, never the set: pairs are a set, and produced fronts are sorted
 // afterwards (histogram or radix) or used in any order.
 //

@@ -117,7 +117,7 @@ CDB_HD_INLINE vec4f load_coherent(const vec4f* p) {
 // fetch-add. On the GPU the lanes of a warp that claim from the same counter together (the
 // coalesced group, split by address) share one atomic and take consecutive values by lane
 // rank. Front producers and the histogram scatter claim millions of slots a frame from a few
-// hot counters; aggregation cut update and generate by 3-5x on the H200 (docs/results.md).
+// hot counters, where aggregation pays (docs/experiments.md).
 template <class T>
 CDB_HD_INLINE T claim_one(T* counter) {
 #if defined(__CUDA_ARCH__)

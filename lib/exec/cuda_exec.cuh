@@ -2,7 +2,7 @@
 // CUDA executor: runs the functors of lib/ as kernels on one stream; scans and sorts go
 // through CUB with temporary storage the caller provides (queried first, CUB style).
 // Included only by .cu files; host code reaches the CUDA backend through
-// pipeline/backends.h.
+// make_cuda_pipeline (pipeline/pipeline.h, defined in pipeline/cuda_backend.cu).
 #include <cuda_runtime.h>
 
 #include <array>
@@ -272,8 +272,8 @@ class CudaExec {
   }
   // A frame's input from the host (its vertices) goes through a pinned staging buffer the
   // executor owns: one host copy into it, then an asynchronous DMA. From pageable memory the
-  // driver stages the data itself and the stream waits on that (funnel's upload 17-18 us
-  // that way, 11-13 us this way on the H100). reserve_upload sizes the buffer outside the
+  // driver stages the data itself and the stream waits on that, which was slower
+  // (docs/design.md "Constants and their measurements"). reserve_upload sizes the buffer outside the
   // frame; a larger upload grows it (counted as a growth).
   void reserve_upload(size_t bytes);
   template <class T>

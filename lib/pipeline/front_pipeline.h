@@ -284,7 +284,7 @@ class FrontPipeline final : public Pipeline {
 
   // Preserve stages its pairs per block while blocks produce enough of them to pay for the
   // stage's flush (core/append_stage.h): at least kStagedPairsPerBlock per block of front
-  // nodes in the frame just read back (cloth scenes 60-90, n-body 11 on the H100). A change
+  // nodes in the frame just read back (docs/design.md "Constants and their measurements"). A change
   // is a different launch, so the steady frame's graph is recorded again.
   // The traversals are shared within warps as --preserve-warp says (PreserveWarp).
   static constexpr uint64_t kStagedPairsPerBlock = 32;

@@ -220,8 +220,8 @@ class FrontQuery {
 
   // Every buffer of a kind holds the front just adopted with a quarter to spare, or all
   // grow to half to spare: the next update, which may sprout more than it prunes, then fits
-  // instead of overflowing and running again (funnel's fronts grow 1.7x in 18 frames, by
-  // more than a quarter in some single updates), and balance, which swaps the current front
+  // instead of overflowing and running again (fronts grow by more than a quarter in some
+  // single updates), and balance, which swaps the current front
   // with a scratch copy, finds the scratch as large and allocates nothing inside a frame.
   // The current front is copied into its larger buffer. This runs after the frame's
   // read-back, outside its timing, and only when the front has outgrown the last growth.
