@@ -7,8 +7,7 @@
 #include <cstdint>
 
 #include "bvh/bvh_view.h"
-#include "bvh/next_node.h"
-#include "core/aabb.h"
+#include "bvh/traverse.h"
 #include "core/pair_sink.h"
 #include "exec/balance.h"
 
@@ -21,12 +20,7 @@ struct CrossQueryFn {
   CDB_HD void operator()(uint32_t i) const {
     const vec4f lo = query.leaf_lo[i], hi = query.leaf_hi[i];
     const uint32_t prim = lane_link(hi.w);
-    uint32_t node = tree.root();
-    while (node != kNoNode) {
-      const NextNode step = next_node(tree, node, lo, hi);
-      if (step.leaf_hit) sink.emit(prim, step.prim);
-      node = step.next;
-    }
+    traverse(tree, lo, hi, tree.root(), kNoNode, [&](uint32_t other) { sink.emit(prim, other); });
   }
 };
 

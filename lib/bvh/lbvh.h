@@ -92,9 +92,8 @@ struct Lbvh {
   }
 
   BvhView view() const {
-    return {num_leaves,       leaf_lo.data(),    leaf_hi.data(),    leaf_prim.data(),
-            leaf_escape.data(), node_lo.data(),  node_hi.data(),    node_left.data(),
-            node_right.data(), node_escape.data(), node_first.data(), node_last.data()};
+    return {num_leaves,        leaf_lo.data(),    leaf_hi.data(),   node_lo.data(),
+            node_hi.data(),    node_right.data(), node_first.data(), node_last.data()};
   }
 
   uint32_t num_leaves = 0;

@@ -20,7 +20,7 @@ CDB_HD_INLINE uint32_t ref_index(uint32_t ref) { return ref & ~kLeafBit; }
 
 // A box carries its links in the spare lane of each corner, bit for bit: an internal
 // node's node_lo[k].w holds node_left[k] and node_hi[k].w node_escape[k]; a leaf's
-// leaf_lo[i].w holds leaf_escape[i] and leaf_hi[i].w leaf_prim[i]. bvh/next_node.h reads
+// leaf_lo[i].w holds leaf_escape[i] and leaf_hi[i].w leaf_prim[i]. bvh/traverse.h reads
 // them with the box. Moved as raw bits, never as arithmetic floats.
 CDB_HD_INLINE float link_lane(uint32_t ref) { return bits_float(ref); }
 CDB_HD_INLINE uint32_t lane_link(float lane) { return float_bits(lane); }

@@ -7,8 +7,7 @@
 
 #include "exec/balance.h"
 #include "bvh/bvh_view.h"
-#include "bvh/next_node.h"
-#include "core/aabb.h"
+#include "bvh/traverse.h"
 #include "core/pair_sink.h"
 
 namespace cdb {
@@ -19,12 +18,7 @@ struct SelfQueryFn {
   CDB_HD void operator()(uint32_t i) const {
     const vec4f lo = bvh.leaf_lo[i], hi = bvh.leaf_hi[i];
     const uint32_t prim = lane_link(hi.w);
-    uint32_t node = lane_link(lo.w);
-    while (node != kNoNode) {
-      const NextNode step = next_node(bvh, node, lo, hi);
-      if (step.leaf_hit) sink.emit(prim, step.prim);
-      node = step.next;
-    }
+    traverse(bvh, lo, hi, lane_link(lo.w), kNoNode, [&](uint32_t other) { sink.emit(prim, other); });
   }
 };
 

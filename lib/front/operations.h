@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "bvh/bvh_view.h"
-#include "bvh/next_node.h"
+#include "bvh/traverse.h"
 #include "core/aabb.h"
 #include "core/pair_sink.h"
 #include "front/front.h"
@@ -27,9 +27,6 @@ struct FrontTree {
     return is_leaf(ref) ? overlaps(lo, hi, bvh.leaf_lo[k], bvh.leaf_hi[k])
                         : overlaps(lo, hi, bvh.node_lo[k], bvh.node_hi[k]);
   }
-  CDB_HD_INLINE uint32_t escape(uint32_t ref) const {
-    return is_leaf(ref) ? bvh.leaf_escape[ref_index(ref)] : bvh.node_escape[ref];
-  }
   CDB_HD_INLINE uint32_t parent(uint32_t ref) const {
     return is_leaf(ref) ? leaf_parent[ref_index(ref)] : node_parent[ref];
   }
@@ -44,30 +41,23 @@ struct FrontView {
   FrontTree tree;
   const vec4f* query_lo;
   const vec4f* query_hi;
-  const uint32_t* query_prim;
   bool cross;
 
-  CDB_HD_INLINE uint32_t start(uint32_t i) const {
-    return cross ? tree.bvh.root() : tree.bvh.leaf_escape[i];
-  }
+  // Where the query leaf with corner `lo` starts: a self front's leaf is the tree's own, and
+  // its escape index rides in its box (node_ref.h).
+  CDB_HD_INLINE uint32_t start(const vec4f& lo) const { return cross ? tree.bvh.root() : lane_link(lo.w); }
 };
 
-// Stackless traversal of the nodes from `node` up to (not including) `end` in depth-first
-// order: overlapping internal nodes descend, everything else is a stop node. Leaves that
-// overlap are pairs. Stop nodes are pushed to the sink when one is given. Each step loads
-// a node's links with its box (bvh/next_node.h): one round trip a step, not two.
+// The traversal (bvh/traverse.h) of the nodes from `node` up to (not including) `end` for
+// query leaf i: leaves that overlap are pairs, and its stop nodes are pushed to the front
+// when kRecord.
 template <bool kRecord>
 CDB_HD_INLINE void traverse_range(const FrontView& v, uint32_t i, const vec4f& lo, const vec4f& hi,
                                   uint32_t node, uint32_t end, const PairSink& pairs,
                                   const FrontSink& front) {
-  const FrontTree& t = v.tree;
   const uint32_t prim = lane_link(hi.w);  // the query leaf's primitive rides in its box (node_ref.h)
-  while (node != end) {
-    const NextNode step = next_node(t.bvh, node, lo, hi);
-    if (step.leaf_hit) pairs.emit(prim, step.prim);
-    if (kRecord && step.stop) front.push(i, node, 1);
-    node = step.next;
-  }
+  traverse(v.tree.bvh, lo, hi, node, end, [&](uint32_t other) { pairs.emit(prim, other); },
+           [&](uint32_t stop) { if constexpr (kRecord) front.push(i, stop, 1); });
 }
 
 // (1) Generate: the leaf algorithm from leaf i's start (escape index, or the root of a
@@ -79,7 +69,7 @@ struct GenerateFrontFn {
   FrontSink front;
   CDB_HD void operator()(uint32_t i, Stage* stage = nullptr) const {
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-    traverse_range<true>(view, i, lo, hi, view.start(i), kNoNode, pairs.staged(stage ? &stage->pairs : nullptr),
+    traverse_range<true>(view, i, lo, hi, view.start(lo), kNoNode, pairs.staged(stage ? &stage->pairs : nullptr),
                          front.staged(stage ? &stage->front : nullptr));
   }
 #if defined(__CUDACC__)
@@ -105,8 +95,8 @@ struct PreserveFrontFn {
   CDB_HD PreserveTask first_step(uint32_t e, const PairSink& sink) const {
     const uint32_t i = prim[e], j = node[e];
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-    const NextNode step = next_node(view.tree.bvh, j, lo, hi);
-    if (step.leaf_hit) sink.emit(lane_link(hi.w), step.prim);
+    const uint32_t q = lane_link(hi.w);
+    const NextNode step = visit(view.tree.bvh, j, lo, hi, [&](uint32_t other) { sink.emit(q, other); });
     return {lo, hi, step.next, step.escape, !step.stop};
   }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {

@@ -20,6 +20,7 @@
 
 #include "bvh/node_ref.h"
 #include "bvh/restructure.h"
+#include "bvh/traverse.h"
 #include "front/operations.h"
 
 namespace cdb {
@@ -67,20 +68,19 @@ struct RestructureFrontFn {
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t i = prim[e], j = node[e];
     if (j == kFrontDropped) return;
-    const FrontTree& tree = view.tree;
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     if (j == kFrontRegenerate) {
       const uint32_t c = cand.slot_of_leaf(i) - 1;
-      traverse_range<true>(view, i, lo, hi, tree.bvh.leaf_escape[i], cand.escape[c], pairs, front);
+      // From leaf i's escape, which rides in its box (node_ref.h), to the subtree's.
+      traverse_range<true>(view, i, lo, hi, lane_link(lo.w), cand.escape[c], pairs, front);
       return;
     }
     front.push(i, j, 0);
-    if (!tree.overlaps_node(lo, hi, j)) return;
-    if (is_leaf(j))
-      pairs.emit(view.query_prim[i], tree.bvh.leaf_prim[ref_index(j)]);
-    else
-      traverse_range<false>(view, i, lo, hi, tree.bvh.node_left[j], tree.bvh.node_escape[j], pairs,
-                            FrontSink{});
+    // Node j's links and a leaf's primitive come with its box (bvh/traverse.h); if it is a
+    // stop node, next is its escape and nothing is left.
+    const uint32_t q = lane_link(hi.w);
+    const NextNode step = visit(view.tree.bvh, j, lo, hi, [&](uint32_t other) { pairs.emit(q, other); });
+    traverse_range<false>(view, i, lo, hi, step.next, step.escape, pairs, FrontSink{});
   }
 };
 

@@ -15,7 +15,7 @@
 #include <cstdint>
 
 #include "bvh/bvh_view.h"
-#include "bvh/next_node.h"
+#include "bvh/traverse.h"
 #include "core/pair_sink.h"
 
 namespace cdb {
@@ -36,8 +36,8 @@ __device__ inline void traverse_in_warp(const BvhView& bvh, PreserveTask t, cons
   for (;;) {
     uint32_t offer = kNoNode;  // [offer, t.end): the traversal's rest after this node's subtree
     if (t.busy) {
-      const NextNode step = next_node(bvh, t.node, t.lo, t.hi);
-      if (step.leaf_hit) sink.emit(lane_link(t.hi.w), step.prim);
+      const uint32_t q = lane_link(t.hi.w);
+      const NextNode step = visit(bvh, t.node, t.lo, t.hi, [&](uint32_t other) { sink.emit(q, other); });
       if (!step.stop && step.escape != t.end) offer = step.escape;
       t.node = step.next;
       t.busy = t.node != t.end;

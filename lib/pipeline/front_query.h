@@ -52,7 +52,6 @@ class FrontQuery {
     return {{t.view(), t.leaf_parent.data(), t.node_parent.data()},
             leaves_->leaf_lo.data(),
             leaves_->leaf_hi.data(),
-            leaves_->leaf_prim.data(),
             leaves_ != tree_};
   }
 

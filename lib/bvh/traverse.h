@@ -1,6 +1,7 @@
 #pragma once
-// One step of the stackless depth-first traversal by escape indices (paper Alg. 1, lines
-// 1-11) against a query box: where it goes next, and what it met. A step loads the node's
+// The stackless depth-first traversal by escape indices (paper Alg. 1, lines 1-11) against a
+// query box, in the shape of cuBQL's forEachLeaf, for the self and cross queries, the front
+// operations and the warp-shared preserve (front/warp_traversal.h). A step loads the node's
 // links (and a leaf's primitive) together with its box, before the overlap test picks one:
 // the loads are in flight at once, so a step costs one memory round trip, where loading the
 // chosen link after the test cost two, and a hit's pair needs no further load. The links
@@ -34,6 +35,29 @@ CDB_HD_INLINE NextNode next_node(const BvhView& bvh, uint32_t node, const vec4f&
   const bool hit = overlaps(lo, hi, nlo, nhi);
   const uint32_t escape = lane_link(nhi.w);
   return {hit ? lane_link(nlo.w) : escape, escape, 0u, false, !hit};
+}
+
+// What a step meets goes to callbacks, taken by value and inlined (no indirection in the
+// loop): on_leaf_hit(prim) for a leaf that overlaps, on_stop(node) for a stop node. They
+// capture scalars, not the query box: a captured box made nvcc branch in the overlap test.
+struct NoStop {
+  CDB_HD_INLINE void operator()(uint32_t) const {}
+};
+
+template <class OnLeafHit, class OnStop = NoStop>
+CDB_HD_INLINE NextNode visit(const BvhView& bvh, uint32_t node, const vec4f& lo, const vec4f& hi,
+                             OnLeafHit on_leaf_hit, OnStop on_stop = {}) {
+  const NextNode step = next_node(bvh, node, lo, hi);
+  if (step.leaf_hit) on_leaf_hit(step.prim);
+  if (step.stop) on_stop(node);
+  return step;
+}
+
+// From `node` up to (not including) `end` in depth-first order; kNoNode: to the end.
+template <class OnLeafHit, class OnStop = NoStop>
+CDB_HD_INLINE void traverse(const BvhView& bvh, const vec4f& lo, const vec4f& hi, uint32_t node,
+                            uint32_t end, OnLeafHit on_leaf_hit, OnStop on_stop = {}) {
+  while (node != end) node = visit(bvh, node, lo, hi, on_leaf_hit, on_stop).next;
 }
 
 }  // namespace cdb
