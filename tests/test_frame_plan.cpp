@@ -39,7 +39,7 @@ std::string schedule(FramePlanner& planner, int frames, Cost cost) {
   for (int f = 0; f < frames; ++f) {
     const FramePlan p = planner.plan(1000, 100);
     s += letter(p);
-    planner.finish(p, {cost(f, p), 1, 100, 1.0, {}});
+    planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
   }
   return s;
 }
@@ -66,7 +66,7 @@ TEST(FramePlan, BalanceOnlyBeforeUpdatesOfPipelinesThatBalance) {
   for (int f = 0; f < 6; ++f) {
     const FramePlan p = planner.plan(100, 100);
     EXPECT_EQ(p.balance, p.self == FrontOp::update) << "frame " << f;
-    planner.finish(p, {1.0, 1, 100, 1.0, {}});
+    planner.finish(p, {1.0, true, 100, 1.0, {}});
   }
 }
 
@@ -88,7 +88,7 @@ TEST(FramePlan, RebuildAndStaleFrames) {
   for (int f = 0; f < 5; ++f) {
     const FramePlan p = stale.plan(100, 100);
     stale_frames.push_back(p.stale);
-    stale.finish(p, {1.0, 1, 100, 1.0, {}});
+    stale.finish(p, {1.0, true, 100, 1.0, {}});
   }
   EXPECT_EQ(stale_frames, (std::vector<bool>{false, true, false, true, false}));
 }
@@ -157,24 +157,20 @@ TEST(FramePlan, AdaptiveDoesNotFeedOnDearLateUpdates) {
   EXPECT_EQ(gaps[gaps.size() - 1], gaps[gaps.size() - 2]) << s;  // settled
 }
 
-// An update that outgrew its buffers ran twice: it prices at one run's share, and not at all
-// once an update that ran once has.
+// An update that outgrew its buffers ran twice: it does not set the price once an update
+// that ran once has.
 TEST(FramePlan, UpdatesThatRanTwiceDoNotSetThePrice) {
   FrontMaintenance m(FrontMaintenance::kAuto);
-  m.observe(true, false, false, 1, 1.0, 10);
-  m.observe(false, true, false, 2, 9.0, 10);  // ran twice, the only price so far: 8 ms over 2
-  EXPECT_DOUBLE_EQ(m.price_ms(10), 4.0);
+  m.observe(true, false, false, true, 1.0, 10);
+  m.observe(false, true, false, false, 9.0, 10);  // ran twice, the only price so far
+  EXPECT_DOUBLE_EQ(m.price_ms(10), 8.0);
   m.produced();
-  m.observe(true, false, false, 1, 1.0, 10);
-  m.observe(false, true, false, 1, 5.0, 10);  // ran once: replaces the twice-run price
-  EXPECT_DOUBLE_EQ(m.price_ms(10), 4.0);
-  m.produced();
-  m.observe(true, false, false, 1, 1.0, 10);
-  m.observe(false, true, false, 1, 3.0, 10);  // ran once and cheaper
+  m.observe(true, false, false, true, 1.0, 10);
+  m.observe(false, true, false, true, 3.0, 10);  // ran once: replaces the twice-run price
   EXPECT_DOUBLE_EQ(m.price_ms(10), 2.0);
   m.produced();
-  m.observe(true, false, false, 1, 1.0, 10);
-  m.observe(false, true, false, 3, 1.5, 10);  // ran three times: ignored, however cheap
+  m.observe(true, false, false, true, 1.0, 10);
+  m.observe(false, true, false, false, 1.5, 10);  // ran twice: ignored, however cheap
   EXPECT_DOUBLE_EQ(m.price_ms(10), 2.0);
 }
 
@@ -182,16 +178,16 @@ TEST(FramePlan, UpdatesThatRanTwiceDoNotSetThePrice) {
 TEST(FramePlan, ThePriceScalesWithTheFront) {
   FrontMaintenance m(FrontMaintenance::kAuto);
   EXPECT_FALSE(m.priced());
-  m.observe(false, false, true, 1, 17.0, 100);  // the build frame: a guess until measured
-  m.observe(true, false, false, 1, 1.0, 100);
+  m.observe(false, false, true, true, 17.0, 100);  // the build frame: a guess until measured
+  m.observe(true, false, false, true, 1.0, 100);
   EXPECT_DOUBLE_EQ(m.price_ms(100), 16.0 / FrontMaintenance::kBuildPerUpdate);
   m.produced();
-  m.observe(true, false, false, 1, 1.0, 100);
-  m.observe(false, true, false, 1, 3.0, 100);  // 2 ms over a steady frame for 100 nodes
+  m.observe(true, false, false, true, 1.0, 100);
+  m.observe(false, true, false, true, 3.0, 100);  // 2 ms over a steady frame for 100 nodes
   EXPECT_DOUBLE_EQ(m.price_ms(300), 6.0);
   m.produced();
-  m.observe(true, false, false, 1, 1.0, 100);
-  m.observe(false, true, false, 1, 6.0, 100);  // a dearer (staler) update leaves the price
+  m.observe(true, false, false, true, 1.0, 100);
+  m.observe(false, true, false, true, 6.0, 100);  // a dearer (staler) update leaves the price
   EXPECT_DOUBLE_EQ(m.price_ms(100), 2.0);
 }
 
@@ -264,16 +260,16 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
     FramePlanner planner(c, config);
     FramePlan p = planner.plan(1000, 100);  // frame 0 builds: Q(root) becomes the reference
     EXPECT_FALSE(p.inspect);
-    planner.finish(p, {5.0, 1, 100, 2.0, {}});
+    planner.finish(p, {5.0, true, 100, 2.0, {}});
     EXPECT_DOUBLE_EQ(planner.q_ref(), 2.0);
     p = planner.plan(1000, 100);  // frame 1 preserves
     EXPECT_FALSE(p.inspect);
-    planner.finish(p, {1.0, 1, 100, 2.0, {3, 99}});  // found nothing: not inspected
+    planner.finish(p, {1.0, true, 100, 2.0, {3, 99}});  // found nothing: not inspected
     p = planner.plan(1000, 100);  // frame 2 updates and inspects
     ASSERT_EQ(p.self, FrontOp::update);
     EXPECT_TRUE(p.inspect);
     EXPECT_EQ(p.decision, Formula2::none);
-    planner.finish(p, {2.0, 1, 100, 2.5, {4, k.leaves_in_candidates}});
+    planner.finish(p, {2.0, true, 100, 2.5, {4, k.leaves_in_candidates}});
     p = planner.plan(1000, 100);
     EXPECT_EQ(p.decision, k.decision);
     EXPECT_EQ(letter(p), k.op);
@@ -282,7 +278,7 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
       EXPECT_EQ(p.restructuring.count, 4u);
       EXPECT_EQ(p.restructuring.leaves, k.leaves_in_candidates);
     }
-    planner.finish(p, {2.0, 1, 100, 2.0, {}});
+    planner.finish(p, {2.0, true, 100, 2.0, {}});
     EXPECT_EQ(planner.plan(1000, 100).decision, Formula2::none);  // each inspection decides once
   }
 }

@@ -108,13 +108,13 @@ class FramePlanner {
   // After the frame ran, what it measured.
   struct Outcome {
     double ms = 0.0;          // its cost without upload
-    uint32_t runs = 1;        // times its operations ran (1: no buffer grew)
+    bool ran_once = true;     // no buffer grew, so its operations ran once
     uint64_t front_nodes = 0; // the fronts it started from, all queries, all kinds
     double q_root = 0.0;      // internal over external self-front nodes after it
     Candidates found;         // what its inspection found (capped at the candidates' buffer)
   };
   void finish(const FramePlan& p, const Outcome& o) {
-    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild, o.runs,
+    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild, o.ran_once,
                          o.ms, o.front_nodes);
     if (p.rebuild || p.self == FrontOp::generate) generated_ = frame_;
     if (p.produces()) {

@@ -24,10 +24,7 @@
 // which is rent too. That moves the best cycle's cost, not its length, so the price that sets
 // the length is the fresh update's, the cheapest. Pricing by the last update instead feeds on
 // itself: a late update is dear, which makes the next one later still. Updates that outgrew
-// their buffers ran their operations twice (or more): each run did the whole update, so they
-// price at their cost over a steady frame divided by their runs, and only until an update
-// runs once; taken whole, one such update priced the next out of a short run (funnel's
-// 0.70 ms, docs/front-maintenance.md). Until an update is measured,
+// their buffers ran twice and price only until one runs once. Until an update is measured,
 // the price is the build frame's cost over a steady frame divided by kBuildPerUpdate, the
 // ratio measured between the two on the anchor scenes, so fronts that degrade fast get a
 // first update soon and fronts that barely degrade none in a short run. Figures and what
@@ -74,10 +71,9 @@ class FrontMaintenance {
 
   // A frame's measured cost: `steady` for refit + preserve frames, `updated` for frames
   // whose fronts were updated (and nothing heavier ran with it), `built` for frames that
-  // built the tree and generated the fronts; `runs`: how many times it ran its operations
-  // (1: no buffer grew); `front_nodes`: the fronts it started from.
-  void observe(bool steady, bool updated, bool built, uint32_t runs, double ms, uint64_t front_nodes) {
-    const bool once = runs <= 1;
+  // built the tree and generated the fronts; `once` when it ran its operations once (no
+  // buffer grew); `front_nodes`: the fronts it started from.
+  void observe(bool steady, bool updated, bool built, bool once, double ms, uint64_t front_nodes) {
     if (built) build_ms_ = ms;
     if (steady) {
       steady_sum_ += ms;
@@ -86,10 +82,8 @@ class FrontMaintenance {
       return;
     }
     if (!updated || steady_ == 0 || (!once && clean_)) return;
-    // Over the cheapest steady frame before it (the cost of a steady frame on fresh fronts),
-    // one run's share.
-    const double per_node =
-        std::max(0.0, ms - steady_min_) / double(std::max(runs, 1u)) / double(std::max<uint64_t>(front_nodes, 1));
+    // Over the cheapest steady frame before it: the cost of a steady frame on fresh fronts.
+    const double per_node = std::max(0.0, ms - steady_min_) / double(std::max<uint64_t>(front_nodes, 1));
     price_per_node_ms_ = priced() && (clean_ || !once) ? std::min(price_per_node_ms_, per_node) : per_node;
     clean_ = clean_ || once;
   }

@@ -127,7 +127,7 @@ class FrontPipeline final : public Pipeline {
           c[kCandidatesCounter] ? double(c[kCandidateQCounter]) / 1000.0 / double(c[kCandidatesCounter]) : 0.0;
     }
     record_timings(timer_, stats);
-    planner_.finish(plan, {stats.total_ms, 1 + stats.query_reruns, fronts, stats.q_root, found});
+    planner_.finish(plan, {stats.total_ms, stats.query_reruns == 0, fronts, stats.q_root, found});
     choose_preserve_launch(stats.pairs);
     return stats;
   }
