@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "io/scene_label.h"
 #include "pipeline/device_probe.h"
+#include "pipeline/pipeline_kinds.h"
 #include "report.h"
 
 namespace cdb {
@@ -170,6 +171,15 @@ std::string pipeline_list() {
   return list;
 }
 
+std::string pipeline_table() {
+  std::string table = "Pipelines:\n";
+  for (const PipelineKind& k : pipeline_kinds()) {
+    char name[32];
+    std::snprintf(name, sizeof name, "  %-13s ", k.name);
+    table += name + std::string(k.description) + (*k.paper ? std::string(" [paper: ") + k.paper + "]" : "") + "\n";
+  }
+  return table;
+}
 
 std::string resolve_device(const std::string& device) {
   if (device != "auto") return device;

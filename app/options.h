@@ -56,6 +56,8 @@ void add_restructure(CLI::App* cmd, CommonOptions& o);
 
 // The pipeline names, comma-separated, for help text.
 std::string pipeline_list();
+// One line a pipeline: its name, what it does, its name in the paper; a help footer.
+std::string pipeline_table();
 
 // --device: auto becomes cuda when a GPU is present, else cpu.
 std::string resolve_device(const std::string& device);

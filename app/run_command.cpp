@@ -177,6 +177,7 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
                 "progress lines when stderr is not a terminal")
       ->group(kOutputGroup);
   add_tuning(run, o);
+  run->footer(pipeline_table());
   return run;
 }
 
