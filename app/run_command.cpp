@@ -249,5 +249,4 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   return 0;
 }
 
-
 }  // namespace cdb
