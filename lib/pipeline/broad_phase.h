@@ -15,18 +15,10 @@
 #include "hash/spatial_hash.h"
 #include "pipeline/device_mesh.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/pipeline_kinds.h"
 #include "sweep/sweep.h"
 
 namespace cdb {
-
-enum class BroadPhaseMethod {
-  bvh,    // build once (and every rebuild_every frames), refit otherwise; a split scene's
-          // rigid tree is only refitted after its build (docs/design.md)
-  sweep,  // sort-and-sweep along the axis of largest centroid variance, every frame
-  grid,   // uniform grid with size levels (OTG style), every frame
-  hash,   // uniform-grid spatial hashing (kDet style), every frame
-  brute,  // O(N^2) oracle
-};
 
 template <class Exec, class Timer>
 class BroadPhase final : public Pipeline {

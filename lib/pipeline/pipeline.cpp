@@ -1,13 +1,48 @@
 #include "pipeline/pipeline.h"
 
 #include "core/error.h"
+#include "pipeline/pipeline_kinds.h"
 
 namespace cdb {
 
+const std::vector<PipelineKind>& pipeline_kinds() {
+  using M = BroadPhaseMethod;
+  // static = b and restructure = c: the paper's strategy names (§5.2, Fig. 5) beside its pipelines.
+  static const std::vector<PipelineKind> kinds = {
+      {"bvh", "", "ordered LBVH built on the first frame (and every --rebuild-every K), refitted, queried", M::bvh},
+      {"unordered", "unordered", "fronts preserved and updated, never sorted", FrontStrategy{.ordered = false}},
+      {"static", "static", "b: fronts sorted, and balanced before every update", FrontStrategy{.balance = true}},
+      {"periodic", "periodic", "static, but every second maintenance generates the fronts instead of updating them",
+       FrontStrategy{.balance = true, .periodic = true}},
+      {"restructure", "restructure", "c: b plus quality inspection and restructuring (Formulas 1 and 2)",
+       FrontStrategy{.balance = true, .restructure = true}},
+      {"reference", "reference", "the hierarchy rebuilt and the fronts generated every frame",
+       FrontStrategy{.rebuild_every_frame = true}},
+      {"a", "pipeline a", "fronts sorted (histogram), preserved and updated", FrontStrategy{}},
+      {"b", "pipeline b", "a plus balancing before every update", FrontStrategy{.balance = true}},
+      {"c", "pipeline c", "b plus quality inspection and restructuring (Formulas 1 and 2)",
+       FrontStrategy{.balance = true, .restructure = true}},
+      {"radix-order", "radix sort (Fig. 6)", "static with fronts and hierarchy ordered by a radix sort",
+       FrontStrategy{.balance = true, .radix_sort = true}},
+      {"sweep", "", "sort-and-sweep along the axis of largest centroid variance, every frame", M::sweep},
+      {"hash", "", "uniform-grid spatial hashing (kDet style), every frame", M::hash},
+      {"grid", "", "uniform grid with size levels (OTG style), every frame", M::grid},
+      {"brute", "", "every pair tested, O(N^2): the oracle", M::brute}};
+  return kinds;
+}
+
+const PipelineKind* find_pipeline_kind(const std::string& name) {
+  for (const PipelineKind& k : pipeline_kinds())
+    if (name == k.name) return &k;
+  return nullptr;
+}
+
 const std::vector<std::string>& pipeline_names() {
-  static const std::vector<std::string> names = {
-      "bvh",         "unordered", "static", "periodic", "restructure", "reference", "a",
-      "b",           "c",         "radix-order", "sweep", "hash", "grid", "brute"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const PipelineKind& k : pipeline_kinds()) n.push_back(k.name);
+    return n;
+  }();
   return names;
 }
 
@@ -35,15 +70,15 @@ PreserveWarp parse_preserve_warp(const std::string& name) {
 
 bool config_conservative(const PipelineConfig& config) {
   // The baselines and the per-frame rebuild never keep stale boxes.
-  for (const char* n : {"sweep", "hash", "grid", "brute", "reference"})
-    if (config.name == n) return true;
-  return config.refit_every <= 1;
+  const PipelineKind* kind = find_pipeline_kind(config.name);
+  const auto* method = kind ? std::get_if<BroadPhaseMethod>(&kind->builds) : nullptr;
+  const bool fresh = method ? *method != BroadPhaseMethod::bvh
+                            : kind && std::get<FrontStrategy>(kind->builds).rebuild_every_frame;
+  return fresh || config.refit_every <= 1;
 }
 
 std::unique_ptr<Pipeline> make_pipeline(const PipelineConfig& config) {
-  bool known = false;
-  for (const auto& n : pipeline_names()) known = known || n == config.name;
-  if (!known) {
+  if (!find_pipeline_kind(config.name)) {
     std::string list;
     for (const auto& n : pipeline_names()) list += (list.empty() ? "" : ", ") + n;
     fail("unknown pipeline '" + config.name + "' (known: " + list + ")");

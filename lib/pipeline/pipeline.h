@@ -183,7 +183,7 @@ class Pipeline {
   std::vector<vec3f> rounded_;
 };
 
-// Pipelines the factory knows, in the order verify runs them.
+// Pipelines the factory knows, in the order verify runs them (pipeline/pipeline_kinds.h).
 const std::vector<std::string>& pipeline_names();
 
 // The oracle pipeline's name.

@@ -1,0 +1,253 @@
+#include "options.h"
+
+#include <cstdio>
+#include <functional>
+
+#include "core/build_info.h"
+#include "core/error.h"
+#include "io/scene_label.h"
+#include "pipeline/device_probe.h"
+#include "pipeline/pipeline_kinds.h"
+#include "report.h"
+
+namespace cdb {
+namespace {
+
+// An option that takes one of `words` into a typed field: CLI11 checks the word (the help
+// lists the words) and `parse` makes the value. The word stays the option's text, which
+// the results file records (cli_params.h), and `shown` is the default the help prints.
+template <class T>
+CLI::Option* add_choice(CLI::App* cmd, const std::string& name, T& field, const std::string& help,
+                        std::vector<std::string> words, std::function<T(const std::string&)> parse,
+                        const std::string& shown) {
+  return cmd->add_option_function<std::string>(name, [&field, parse](const std::string& w) { field = parse(w); }, help)
+      ->check(CLI::IsMember(std::move(words)))
+      ->default_str(shown);
+}
+
+// An on/off option into a bool; CLI11 reads on as true and off as false. Typed TEXT in the
+// help, as the word it takes.
+CLI::Option* add_switch(CLI::App* cmd, const std::string& name, bool& field, const std::string& help) {
+  return cmd->add_option(name, field, help)
+      ->check(CLI::IsMember({"on", "off"}))
+      ->type_name("TEXT")
+      ->default_str(field ? "on" : "off");
+}
+
+}  // namespace
+
+void add_common(CLI::App* cmd, CommonOptions& o) {
+  cmd->add_option("--scene", o.scene, "scene name, .json descriptor, or directory of mesh frames")
+      ->group(kSceneGroup)
+      ->capture_default_str();
+  cmd->add_option("--device", o.device, "cuda, cpu, or auto (cuda when a GPU is present)")
+      ->group(kPipelineGroup)
+      ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
+      ->capture_default_str();
+  cmd->add_option("--set", o.sets, "override a generator parameter of a procedural scene: key=value (repeatable)")
+      ->group(kSceneGroup);
+  cmd->add_option("--frames", o.frames, "frame range A:B (half-open), A: or A; default all")->group(kSceneGroup);
+  cmd->add_option("--scenes-dir", o.scenes_dir, "where named scenes live")->group(kSceneGroup);
+  cmd->add_option("--rebuild-every", o.rebuild_every,
+                  "bvh pipeline: rebuild every K frames (0: build on the first frame only)")
+      ->group(kPipelineGroup)
+      ->capture_default_str();
+  cmd->add_option_function<std::string>(
+         "--front-cycle",
+         [&o](const std::string& v) { o.front_cycle = v == "auto" ? 0u : uint32_t(std::stoul(v)); },
+         "front pipelines: when fronts are updated instead of preserved; auto: once the measured growth of "
+         "the steady frames' cost since the last update has paid for one (rent or buy); K: every K-th frame "
+         "since the fronts were generated (the paper's fixed cycle)")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            if (v == "auto") return "";
+            const bool digits = !v.empty() && v.size() < 10 && v.find_first_not_of("0123456789") == std::string::npos;
+            return digits && std::stoul(v) > 0 ? "" : "auto or a positive whole number of frames, not " + v;
+          },
+          "auto|K"))
+      ->default_str(o.front_cycle ? std::to_string(o.front_cycle) : "auto");
+  cmd->add_flag("--skip-adjacent", o.skip_adjacent,
+                "co-vertex filtering: do not report pairs of triangles that share a vertex (oracle too)")
+      ->group(kAccuracyGroup);
+  cmd->add_option("--box-margin", o.box_margin,
+                  "fat boxes: inflate every triangle box by this much (scene units) on each side; conservative "
+                  "(recall stays 1 against the exact oracle, precision drops); all pipelines")
+      ->group(kAccuracyGroup)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  add_choice<bool>(
+      cmd, "--boxes", o.swept_boxes,
+      "discrete: each triangle's box at the frame; swept: its box over the frame interval (previous and current "
+      "positions); swept is conservative with respect to the discrete oracle; all pipelines",
+      {"discrete", "swept"}, [](const std::string& w) { return w == "swept"; }, o.swept_boxes ? "swept" : "discrete")
+      ->group(kAccuracyGroup);
+  add_choice<BoxPrecision>(
+      cmd, "--box-precision", o.box_precision,
+      "fp32: the boxes of the positions rounded to float; fp64: the positions rebased on the first frame's centre in "
+      "double before rounding, for scenes far from the origin (a run warns when fp32 cannot hold a scene); q16: fp32 "
+      "boxes snapped outward onto a 16-bit grid per axis over the frame's vertex bounds, as a 16-bit box format stores "
+      "them; all conservative against the double geometry (recall stays 1, precision drops); all pipelines",
+      {"fp32", "fp64", "q16"}, parse_box_precision, box_precision_name(o.box_precision))
+      ->group(kAccuracyGroup);
+  cmd->add_option("--refit-every", o.refit_every,
+                  "NOT CONSERVATIVE: front pipelines and bvh refit the hierarchy only every K frames and keep stale "
+                  "boxes in between, so pairs can be missed (recall < 1 under --check); sweep, hash, grid and brute "
+                  "ignore it; 1: every frame")
+      ->group(kAccuracyGroup)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  // --front-cycle is declared above with the other pipeline options; its heading:
+  cmd->get_option("--front-cycle")->group(kPipelineGroup);
+}
+
+// The defaults were tuned on the H100 (sm_90); where a default depends on the GPU the help says so.
+void add_tuning(CLI::App* cmd, CommonOptions& o) {
+  cmd->add_option("--morton-bits", o.morton_bits, "Morton code width (all devices)")
+      ->group(kTuningGroup)
+      ->check(CLI::IsMember({30, 63}))
+      ->capture_default_str();
+  add_switch(cmd, "--cuda-graph", o.cuda_graph,
+             "front pipelines on cuda: capture the steady-state frame (refit + preserve) in a CUDA graph once "
+             "and replay it while its launches stay the same; off: plain launches every frame")
+      ->group(kTuningGroup);
+  add_switch(cmd, "--dependent-launch", o.dependent_launch,
+             "cuda: launch every kernel with programmatic stream serialization, so it is scheduled while the "
+             "kernel before it runs and waits for it on the device; off: plain launches. Per architecture: "
+             "a Hopper (sm_90) feature, the kernels' wait is compiled for sm_90 and later only; its effect "
+             "on earlier GPUs is not measured")
+      ->group(kTuningGroup);
+  add_switch(cmd, "--phase-timing", o.phase_timing,
+             "time each phase of a frame with events; off: only the frame and its upload (no event between "
+             "kernels, which in a CUDA graph costs a node and keeps the next kernel from launching early)")
+      ->group(kMeasurementGroup);
+  add_choice<PreserveWarp>(
+      cmd, "--preserve-warp", o.preserve_warp,
+      "front pipelines on cuda: preserve shares each front node's traversal with the idle lanes of its warp; auto: "
+      "while the fronts fit in " + std::to_string(kPreserveWarpWaves) +
+          " waves of the GPU's resident threads (per architecture: SMs x threads per SM, read from the GPU at run time)",
+      {"auto", "on", "off"}, parse_preserve_warp, preserve_warp_name(o.preserve_warp))
+      ->group(kTuningGroup);
+  cmd->add_option("--refit-top-leaves", o.refit_top_leaves,
+                  "front pipelines and bvh: trees of up to this many leaves refit their top (the nodes whose leaves "
+                  "span refit tiles) in one block of threads, larger trees hand it over between blocks; 0: always "
+                  "hand over. The default was measured on the H100; other GPUs may want another")
+      ->group(kTuningGroup)
+      ->check(CLI::Range(0u, kRefitTopLeavesLimit))
+      ->capture_default_str();
+}
+
+void add_restructure(CLI::App* cmd, CommonOptions& o) {
+  PipelineConfig& r = o.restructure;
+  cmd->add_option("--restructure-quality", r.restructure_quality,
+                  "pipeline c: a subtree is degraded when its Q exceeds this times Q(root) after the last rebuild")
+      ->group(kPipelineGroup)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--restructure-min-leaves", r.restructure_min_leaves,
+                  "pipeline c: smallest candidate subtree, in leaves")
+      ->group(kPipelineGroup)
+      ->check(CLI::Range(2u, 0x7FFFFFFFu))
+      ->capture_default_str();
+  cmd->add_option("--restructure-max-fraction", r.restructure_max_fraction,
+                  "pipeline c: largest candidate subtree, as a share of all leaves")
+      ->group(kPipelineGroup)
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--threshold-refit", r.threshold_refit,
+                  "pipeline c, Formula 2: below this share of leaves in candidates, only refit")
+      ->group(kPipelineGroup)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--threshold-build", r.threshold_build,
+                  "pipeline c, Formula 2: from this share of leaves in candidates on, rebuild instead of restructuring")
+      ->group(kPipelineGroup)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+}
+
+std::string pipeline_list() {
+  std::string list;
+  for (const auto& n : pipeline_names()) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
+std::string pipeline_table() {
+  std::string table = "Pipelines:\n";
+  for (const PipelineKind& k : pipeline_kinds()) {
+    char name[32];
+    std::snprintf(name, sizeof name, "  %-13s ", k.name);
+    table += name + std::string(k.description) + (*k.paper ? std::string(" [paper: ") + k.paper + "]" : "") + "\n";
+  }
+  return table;
+}
+
+std::string resolve_device(const std::string& device) {
+  if (device != "auto") return device;
+  return cuda_device_info().available ? "cuda" : "cpu";
+}
+
+PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
+                           const std::string& device) {
+  PipelineConfig c;
+  c.name = pipeline;
+  c.device = device;
+  c.morton_bits = o.morton_bits == 30 ? MortonBits::b30 : MortonBits::b63;
+  c.rebuild_every = o.rebuild_every;
+  c.front_cycle = o.front_cycle;
+  c.skip_adjacent = o.skip_adjacent;
+  c.box_margin = o.box_margin;
+  c.swept_boxes = o.swept_boxes;
+  c.box_precision = o.box_precision;
+  c.refit_every = o.refit_every;
+  c.cuda_graph = o.cuda_graph;
+  c.dependent_launch = o.dependent_launch;
+  c.phase_timing = o.phase_timing;
+  c.preserve_warp = o.preserve_warp;
+  c.refit_top_leaves = o.refit_top_leaves;
+  c.restructure_quality = o.restructure.restructure_quality;
+  c.restructure_min_leaves = o.restructure.restructure_min_leaves;
+  c.restructure_max_fraction = o.restructure.restructure_max_fraction;
+  c.threshold_refit = o.restructure.threshold_refit;
+  c.threshold_build = o.restructure.threshold_build;
+  return c;
+}
+
+// Every pipeline of the list, made before any work, so a bad name or option is found
+// before the first one runs. Configuration errors are usage errors.
+std::vector<std::unique_ptr<Pipeline>> make_pipelines(const CommonOptions& o, const std::vector<std::string>& names,
+                                                      const std::string& device) {
+  std::vector<std::unique_ptr<Pipeline>> pipelines;
+  for (const auto& name : names) {
+    try {
+      pipelines.push_back(make_pipeline(make_config(o, name, device)));
+    } catch (const UsageError&) {
+      throw;
+    } catch (const Error& e) {
+      fail_usage(e.what());
+    }
+  }
+  return pipelines;
+}
+
+std::filesystem::path scenes_dir(const std::string& given) {
+  return given.empty() ? default_scenes_dir() : std::filesystem::path(given);
+}
+
+Scene load_scene(const CommonOptions& o) {
+  return open_scene(o.scene, scenes_dir(o.scenes_dir), parse_set_overrides(o.sets));
+}
+
+void print_environment(const std::string& device) {
+  const BuildInfo& b = build_info();
+  std::printf("cdbench %s  commit %s  %s  %s%s%s\n", CDBENCH_VERSION, b.git_sha, b.build_type,
+              b.cxx_compiler, *b.cuda_compiler ? "  nvcc " : "", b.cuda_compiler);
+  const CudaDeviceInfo info = cuda_device_info();
+  if (device == "cuda")
+    std::printf("device: %s (driver %d, runtime %d, %.1f GiB)\n", info.name.c_str(),
+                info.driver_version, info.runtime_version, double(info.total_bytes) / (1 << 30));
+  else
+    std::printf("device: cpu (%d OpenMP threads)%s%s\n", omp_threads(),
+                info.available ? "" : "; no GPU: ", info.available ? "" : info.reason.c_str());
+}
+
+}  // namespace cdb

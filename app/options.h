@@ -1,0 +1,80 @@
+#pragma once
+// The options every command that runs pipelines shares (run, verify; scenes reads
+// --scenes-dir), and what the commands make of them: the pipeline configuration, the
+// device, the scene.
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/scene.h"
+#include "pipeline/pipeline.h"
+
+namespace cdb {
+
+struct CommonOptions {
+  std::string scene = "funnel";
+  std::string device = "auto";
+  std::string frames;
+  std::string scenes_dir;
+  int morton_bits = 63;
+  uint32_t rebuild_every = 0;
+  uint32_t front_cycle = 0;  // 0: auto
+  PipelineConfig restructure;  // the restructure_* and threshold_* fields
+  bool skip_adjacent = false;
+  float box_margin = 0.0f;
+  bool swept_boxes = false;
+  BoxPrecision box_precision = BoxPrecision::fp32;
+  uint32_t refit_every = 1;
+  bool cuda_graph = true;
+  bool dependent_launch = true;
+  bool phase_timing = true;
+  PreserveWarp preserve_warp = PreserveWarp::automatic;
+  uint32_t refit_top_leaves = kRefitTopMaxLeaves;
+  std::vector<std::string> sets;  // generator overrides, key=value
+};
+
+// The headings of `run --help` and `verify --help`. CLI11 lists them in the order their
+// first option was added, so commands add --pipeline(s) first, then add_common,
+// add_restructure, their own options, and add_tuning last.
+inline constexpr const char* kSceneGroup = "Scene";
+inline constexpr const char* kPipelineGroup = "Pipeline";
+inline constexpr const char* kAccuracyGroup = "Accuracy";
+inline constexpr const char* kMeasurementGroup = "Measurement";
+inline constexpr const char* kOutputGroup = "Output";
+inline constexpr const char* kTuningGroup = "GPU tuning";
+
+// Scene, pipeline and accuracy options.
+void add_common(CLI::App* cmd, CommonOptions& o);
+// Speed knobs that change no result (and --phase-timing, a measurement choice).
+void add_tuning(CLI::App* cmd, CommonOptions& o);
+// Pipeline c's restructuring (paper section 4, Formulas 1 and 2).
+void add_restructure(CLI::App* cmd, CommonOptions& o);
+
+// The pipeline names, comma-separated, for help text.
+std::string pipeline_list();
+// One line a pipeline: its name, what it does, its name in the paper; a help footer.
+std::string pipeline_table();
+
+// --device: auto becomes cuda when a GPU is present, else cpu.
+std::string resolve_device(const std::string& device);
+
+PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline, const std::string& device);
+
+// Every pipeline of the list, made before any work, so a bad name or option is found
+// before the first one runs. Configuration errors are usage errors.
+std::vector<std::unique_ptr<Pipeline>> make_pipelines(const CommonOptions& o, const std::vector<std::string>& names,
+                                                      const std::string& device);
+
+// --scenes-dir, or the installed scenes when it is not given.
+std::filesystem::path scenes_dir(const std::string& given);
+
+Scene load_scene(const CommonOptions& o);
+
+// The build and the device, the first lines of run and verify.
+void print_environment(const std::string& device);
+
+}  // namespace cdb

@@ -1,0 +1,252 @@
+#include "run_command.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "bruteforce/sweep_oracle.h"
+#include "core/error.h"
+#include "frame_range.h"
+#include "geometry/cached_frames.h"
+#include "geometry/float_spacing.h"
+#include "io/results_file.h"
+#include "output_path.h"
+#include "pipeline/config_json.h"
+#include "pipeline/device_probe.h"
+#include "progress.h"
+#include "report.h"
+#include "run_loop.h"
+
+namespace cdb {
+namespace {
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+      return line.substr(line.find_first_not_of(" \t", line.find(':') + 1));
+  return "unknown cpu";
+}
+
+// --contact-distance and --contact-substeps, checked: a finite float distance >= 0, at
+// least one substep, and only with --check (they say what --check counts).
+ContactCheck contact_check(const RunOptions& r, uint32_t check_every) {
+  ContactCheck c;
+  c.distance = float(r.contact_distance);
+  c.substeps = r.contact_substeps;
+  if (!(r.contact_distance >= 0) || !std::isfinite(c.distance)) {
+    char given[32];
+    std::snprintf(given, sizeof given, "%g", r.contact_distance);
+    fail_usage(std::string("--contact-distance ") + given + ": expected a finite distance >= 0 (within the float range)");
+  }
+  if (c.substeps == 0) fail_usage("--contact-substeps 0: expected at least 1 (1: the two frames only)");
+  if (!check_every && (c.distance != ContactCheck{}.distance || c.substeps != ContactCheck{}.substeps))
+    fail_usage("--contact-distance and --contact-substeps say what --check counts: they need --check");
+  return c;
+}
+
+// --check every | N | off: frames between checks against the oracle (0: none).
+uint32_t check_interval(const std::string& check) {
+  if (check == "off") return 0;
+  if (check == "every") return 1;
+  uint32_t n = 0;
+  const auto [end, ec] = std::from_chars(check.data(), check.data() + check.size(), n);
+  if (ec != std::errc() || end != check.data() + check.size() || n == 0)
+    fail_usage("--check " + check + ": expected every, off or a positive frame interval");
+  return n;
+}
+
+// What the results file records about the run besides its frames.
+RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene, const PipelineConfig& config,
+                 FrameRange range, const nlohmann::json& cli_options) {
+  const bool gpu = config.device == "cuda";
+  const CudaDeviceInfo info = gpu ? cuda_device_info() : CudaDeviceInfo{};
+  RunInfo run;
+  run.scene = scene.name;
+  run.scene_description = scene.description;
+  run.scene_overrides = scene.overrides;
+  run.pipeline = r.pipeline;
+  run.backend = config.device;
+  run.device_name = gpu ? info.name : cpu_model() + " (" + std::to_string(omp_threads()) + " OpenMP threads)";
+  run.driver_version = info.driver_version;
+  run.runtime_version = info.runtime_version;
+  run.warmup = r.warmup;
+  run.frame_first = range.first;
+  run.frame_last = range.last;
+  run.triangles = scene.source->topology().faces.size();
+  run.vertices = scene.source->topology().num_vertices;
+  run.cold = r.cold;
+  run.precision = box_precision_name(config.box_precision);
+  run.contact_distance = double(float(r.contact_distance));
+  run.contact_substeps = r.contact_substeps;
+  run.params_json = nlohmann::json{{"command", "run"},
+                                   {"options", cli_options},
+                                   {"pipeline_config", to_json(config)},
+                                   {"resolved",
+                                    {{"device", config.device},
+                                     {"scene", scene.name},
+                                     {"scenes_dir", scenes_dir(o.scenes_dir).string()},
+                                     {"frame_first", range.first},
+                                     {"frame_last", range.last},
+                                     {"warmup", r.warmup},
+                                     {"repeat", r.repeat},
+                                     {"max_noise", r.max_noise},
+                                     {"cold", r.cold},
+                                     {"contact_distance", double(float(r.contact_distance))},
+                                     {"contact_substeps", r.contact_substeps}}}}
+                        .dump();
+  return run;
+}
+
+// Pipelines named by --pipeline: one, or several separated by commas, run one after the
+// other on the same frames (kept in memory) so they can be compared within one run.
+std::vector<std::string> split_pipelines(const std::string& list) {
+  std::vector<std::string> names;
+  size_t start = 0;
+  for (;;) {
+    const size_t comma = list.find(',', start);
+    names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (names.back().empty()) fail_usage("--pipeline " + list + ": empty pipeline name");
+    if (comma == std::string::npos) return names;
+    start = comma + 1;
+  }
+}
+
+// --out with {pipeline} replaced by the pipeline's name.
+std::string results_path(const std::string& pattern, const std::string& pipeline) {
+  std::string path = pattern;
+  const size_t at = path.find("{pipeline}");
+  if (at != std::string::npos) path.replace(at, 10, pipeline);
+  return path;
+}
+
+}  // namespace
+
+CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
+  auto* run = app.add_subcommand("run", "run pipelines on a scene and print timings");
+  run->add_option("--pipeline", r.pipeline,
+                  "one of " + pipeline_list() + "; or several, comma-separated, run one after the other on the same frames")
+      ->group(kPipelineGroup)
+      ->capture_default_str();
+  add_common(run, o);
+  add_restructure(run, o);
+  run->add_option("--check", r.check,
+                  "compare frames with the exact CPU oracle: every, N (every N-th frame) or off; "
+                  "recall, precision, missed and false positives per checked frame, and true contacts among the reported "
+                  "pairs (exact triangle test), outside the timing")
+      ->group(kAccuracyGroup)
+      ->capture_default_str();
+  run->add_option("--contact-distance", r.contact_distance,
+                  "--check: contacts are reported pairs whose triangles lie within this distance (scene units, "
+                  "exact test; 0: intersecting)")
+      ->group(kAccuracyGroup)
+      ->capture_default_str();
+  run->add_option("--contact-substeps", r.contact_substeps,
+                  "--check: the interval from the previous frame is sampled at this many substeps (linear "
+                  "motion, both frames included) to count the contacts discrete boxes miss; a lower bound")
+      ->group(kAccuracyGroup)
+      ->capture_default_str();
+  run->add_option("--warmup", r.warmup, "frames left out of the summary statistics")
+      ->group(kMeasurementGroup)
+      ->capture_default_str();
+  run->add_option("--repeat", r.repeat,
+                  "passes over the frames, each from a fresh state; times are the per-frame mean, "
+                  "with the relative standard deviation reported as noise; Ctrl-C keeps the finished passes")
+      ->group(kMeasurementGroup)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  run->add_option("--max-noise", r.max_noise,
+                  "stop repeating once the passes' mean frame times agree within this many percent (0: all passes)")
+      ->group(kMeasurementGroup)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  run->add_flag("--cold", r.cold, "flush the device's last-level cache before every frame (outside its timing)")
+      ->group(kMeasurementGroup);
+  auto* out_option = run->add_option(
+      "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced")
+      ->group(kOutputGroup);
+  run->add_flag("--save-pairs", r.save_pairs, "also store each frame's sorted pairs in the results file")
+      ->group(kOutputGroup)
+      ->needs(out_option);
+  run->add_flag("--quiet", r.quiet,
+                "no per-frame lines and no list of the buffers that grew (the summary keeps their count); no "
+                "progress lines when stderr is not a terminal")
+      ->group(kOutputGroup);
+  add_tuning(run, o);
+  run->footer(pipeline_table());
+  return run;
+}
+
+int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options) {
+  const std::string device = resolve_device(o.device);
+  const std::vector<std::string> names = split_pipelines(r.pipeline);
+  const ContactCheck contact = contact_check(r, check_interval(r.check));
+  if (names.size() > 1 && !r.out.empty() && r.out.find("{pipeline}") == std::string::npos)
+    fail_usage("--out " + r.out + ": several pipelines need {pipeline} in the file name");
+  std::vector<std::unique_ptr<Pipeline>> pipelines = make_pipelines(o, names, device);
+  if (!r.out.empty())
+    for (const auto& name : names) check_output_path(results_path(r.out, name));
+  print_environment(device);
+  Scene scene = load_scene(o);
+  const Topology& topo = scene.source->topology();
+  const FrameRange range = parse_frame_range(o.frames, scene.source->num_frames());
+  std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
+              scene.name.c_str(), scene.description.c_str(), topo.faces.size(),
+              topo.num_vertices, range.first, range.last);
+  const bool fp64 = o.box_precision == BoxPrecision::fp64;
+  const std::string spacing_warning =
+      range.last > range.first ? float_spacing_warning(*scene.source, range.first, fp64) : "";
+  if (!spacing_warning.empty()) std::printf("warning: %s\n", spacing_warning.c_str());
+  // Measured once, before any frame: the yardstick of the bandwidth floor; and the cache
+  // flush of --cold, allocated here rather than in the frame loop.
+  const std::unique_ptr<DeviceProbe> probe = make_device_probe(device);
+  const double copy_gbps = probe->copy_bandwidth_gbps();
+  std::printf("copy bandwidth: %.0f GB/s (%s, measured; read + written)\n", copy_gbps, device.c_str());
+  std::unique_ptr<FrameSource> cached;
+  if (names.size() > 1 || r.repeat > 1) cached = std::make_unique<CachedFrames>(*scene.source);
+  const FrameSource& frames = cached ? *cached : *scene.source;
+  for (size_t p = 0; p < names.size(); ++p) {
+    const std::string& name = names[p];
+    const PipelineConfig config = make_config(o, name, device);
+    // Released after its run, so pipelines do not hold their buffers side by side.
+    const std::unique_ptr<Pipeline> pipeline = std::move(pipelines[p]);
+    pipeline->set_topology(topo);
+    std::printf("pipeline: %s on %s\n", name.c_str(), device.c_str());
+    RunOptions one = r;
+    one.pipeline = name;
+    one.out = results_path(r.out, name);
+    std::optional<ResultsFile> out;
+    if (!one.out.empty()) {
+      RunInfo info = run_info(o, one, scene, config, range, cli_options);
+      info.copy_gbps = copy_gbps;
+      info.precision_warning = spacing_warning;
+      out.emplace(one.out, info);
+    }
+    RunLoopOptions loop;
+    loop.warmup = r.warmup;
+    loop.frame_lines = !r.quiet;
+    loop.list_growth = !r.quiet;
+    loop.progress = Progress::mode_for(r.quiet);
+    loop.save_pairs = r.save_pairs;
+    loop.check_every = check_interval(r.check);
+    loop.repeat = r.repeat;
+    loop.max_noise = r.max_noise / 100.0;
+    loop.cold = r.cold;
+    loop.probe = probe.get();
+    loop.copy_gbps = copy_gbps;
+    loop.oracle = [&topo, &o](const std::vector<vec3d>& v) { return sweep_oracle_pairs(topo, v, o.skip_adjacent); };
+    loop.faces = &topo.faces;
+    loop.contact = contact;
+    if (!config_conservative(config))
+      loop.accuracy_warning = "--refit-every " + std::to_string(config.refit_every) +
+                              " keeps stale boxes between refits: NOT conservative, pairs can be missed";
+    if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, loop)) return rc;
+  }
+  return 0;
+}
+
+}  // namespace cdb

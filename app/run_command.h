@@ -1,0 +1,34 @@
+#pragma once
+// `cdbench run`: pipelines on a scene, timed frame by frame, checked against the oracle on
+// request, recorded in a results file.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+
+#include "narrow/contacts.h"
+#include "options.h"
+
+namespace cdb {
+
+struct RunOptions {
+  std::string pipeline = "c";  // the paper's scheme
+  uint32_t warmup = 1;
+  bool quiet = false;
+  std::string out;
+  bool save_pairs = false;
+  std::string check = "off";
+  uint32_t repeat = 1;
+  double max_noise = 0.0;  // percent on the command line, a fraction here
+  bool cold = false;
+  double contact_distance = 0.0;                     // as given; used as a float
+  uint32_t contact_substeps = ContactCheck{}.substeps;
+};
+
+CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r);
+
+// `cli_options`: the command's options as the results file records them (cli_params.h).
+int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options);
+
+}  // namespace cdb

@@ -1,0 +1,30 @@
+#pragma once
+// `cdbench scenes list|info|generate`: the scenes, their sizes and motion, and their
+// frames written as OBJ files.
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
+
+namespace cdb {
+
+struct ScenesOptions {
+  std::string scenes_dir;
+  std::string scene;
+  std::vector<std::string> sets;  // generator overrides, key=value
+  std::string out_dir;            // generate
+};
+
+struct ScenesCommand {
+  CLI::App* list = nullptr;
+  CLI::App* info = nullptr;
+  CLI::App* generate = nullptr;
+};
+
+ScenesCommand add_scenes_command(CLI::App& app, ScenesOptions& s);
+
+int scenes_list(const ScenesOptions& s);
+int scenes_info(const ScenesOptions& s);
+int scenes_generate(const ScenesOptions& s);
+
+}  // namespace cdb
