@@ -107,7 +107,7 @@ void expect_self_query_exact(Exec& exec, const Lbvh<Exec>& bvh, const Topology& 
   ASSERT_EQ(found, expected.size()) << "frame " << frame;
   std::vector<PrimPair> got(found);
   exec.copy_to_host(got.data(), pairs.data(), found);
-  std::sort(got.begin(), got.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+  sort_by_pair_key(got);
   const PairSetDiff d = diff_pair_sets(expected, got);
   ASSERT_TRUE(d.equal()) << "frame " << frame << ": " << d.missing_count << " missing, "
                          << d.unexpected_count << " unexpected";

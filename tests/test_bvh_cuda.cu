@@ -307,7 +307,7 @@ TEST(CudaExtremes, IndexWidthPastTwoToThe24Triangles) {
   for (uint32_t m = 0; m < kPairs; ++m) expected.push_back({2 * m, 2 * m + 1});
   expected.push_back({0, kLast});
   expected.push_back({1, kLast});
-  std::sort(expected.begin(), expected.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+  sort_by_pair_key(expected);
   for (const std::string name : {"b", "c", "bvh", "grid", "hash", "sweep"}) {
     PipelineConfig cfg = config_for("cuda", 1.0, 2.0);
     cfg.name = name;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/pair_set.h"
 #include "exec/host_exec.h"
 
 namespace cdb {
@@ -178,6 +179,23 @@ TEST(HostExecSort, RefusesTooLittleTemporaryStorage) {
   EXPECT_THROW(exec.sort_pairs(keys.data(), keys_out.data(), values.data(), values_out.data(), keys.size(), 64,
                                temp.data(), temp.size()),
                Error);
+}
+
+// sort_by_pair_key (core/pair_set.h) sorts the pair lists the tests and verify read back.
+TEST(SortByPairKey, MatchesStdSort) {
+  std::mt19937 rng(13);
+  for (size_t n : awkward_sizes()) {
+    std::vector<PrimPair> pairs(n);
+    // Few distinct first triangles, so many pairs share one; some pairs repeat.
+    for (PrimPair& p : pairs) p = make_pair_ordered(rng() % 97, rng() % 5000000);
+    for (size_t i = 1; i < n; i += 7) pairs[i] = pairs[i / 2];
+    std::vector<PrimPair> expected = pairs;
+    std::sort(expected.begin(), expected.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+    sort_by_pair_key(pairs);
+    ASSERT_EQ(pairs.size(), expected.size());
+    for (size_t i = 0; i < n; ++i)
+      ASSERT_EQ(pair_key(pairs[i]), pair_key(expected[i])) << "n " << n << ", position " << i;
+  }
 }
 
 }  // namespace

@@ -1,6 +1,27 @@
 #include "core/pair_set.h"
 
+#include <cstddef>
+
+#include "exec/host_exec.h"
+
 namespace cdb {
+
+void sort_by_pair_key(std::vector<PrimPair>& pairs) {
+  const size_t n = pairs.size();
+  if (n < 2) return;
+  HostExec exec;
+  // The key holds the whole pair, so the sorted keys are the sorted pairs; the values the
+  // sort carries along go unused.
+  std::vector<uint64_t> keys(n), sorted(n);
+  std::vector<uint32_t> values(n), values_sorted(n);
+  exec.for_each_n(n, [&](uint32_t i) {
+    keys[i] = pair_key(pairs[i]);
+    values[i] = i;
+  });
+  std::vector<std::byte> temp(exec.sort_temp_bytes(n));
+  exec.sort_pairs(keys.data(), sorted.data(), values.data(), values_sorted.data(), n, 64, temp.data(), temp.size());
+  exec.for_each_n(n, [&](uint32_t i) { pairs[i] = {uint32_t(sorted[i] >> 32), uint32_t(sorted[i])}; });
+}
 
 PairSetDiff diff_pair_sets(const std::vector<PrimPair>& expected,
                            const std::vector<PrimPair>& actual, size_t keep) {
