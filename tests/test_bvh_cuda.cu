@@ -250,7 +250,9 @@ TEST(CudaKnobs, DependentLaunchesAndUntimedPhasesKeepEveryPipelineExact) {
     for (bool dependent : {false, true}) check_launch_knobs("cuda", graph, dependent);
 }
 
-class CudaFrontCycles : public testing::TestWithParam<uint32_t> {
+// Every front cycle (1, 2, 3, 5 and auto) on each front scene, against the scene's oracle
+// pairs computed once.
+class CudaFrontCycles : public testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
     if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
@@ -258,10 +260,15 @@ class CudaFrontCycles : public testing::TestWithParam<uint32_t> {
 };
 
 TEST_P(CudaFrontCycles, AllPipelinesExactEveryFrame) {
-  for (auto& scene : front_scenes(96, 16)) check_pipelines_on(config_for("cuda", 0.5, 0.05, GetParam()), *scene);
+  const ExactFrames scene = exact_frames(*front_scene(GetParam(), 96, 16));
+  for (uint32_t cycle : {1u, 2u, 3u, 5u, 0u}) {
+    SCOPED_TRACE("front cycle " + std::to_string(cycle));
+    check_pipelines_on(config_for("cuda", 0.5, 0.05, cycle), scene);
+    if (HasFatalFailure()) return;
+  }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cycles, CudaFrontCycles, testing::Values(1u, 2u, 3u, 5u, 0u));
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaFrontCycles, testing::ValuesIn(front_scene_names()), front_scene_name);
 
 class CudaExtremes : public testing::TestWithParam<BaselineCase> {
  protected:
@@ -353,7 +360,7 @@ TEST(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   check_restructure_subtrees<CudaExec>(*same, 3);
 }
 
-class CudaForcedDecisions : public testing::TestWithParam<uint32_t> {
+class CudaForcedDecisions : public testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
     if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
@@ -361,10 +368,11 @@ class CudaForcedDecisions : public testing::TestWithParam<uint32_t> {
 };
 
 TEST_P(CudaForcedDecisions, EveryBranchOfFormula2IsExact) {
-  for (auto& scene : front_scenes(96, 16)) check_forced_decisions("cuda", *scene, GetParam());
+  const ExactFrames scene = exact_frames(*front_scene(GetParam(), 96, 16));
+  for (uint32_t cycle : {1u, 2u}) check_forced_decisions("cuda", scene, cycle);
 }
 
-INSTANTIATE_TEST_SUITE_P(Cycles, CudaForcedDecisions, testing::Values(1u, 2u));
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaForcedDecisions, testing::ValuesIn(front_scene_names()), front_scene_name);
 
 // Deformable and rigid objects with declared queries (tests/inter_cases.h): every splitting
 // pipeline exact on every frame, the fronts each query keeps, T_R only refitted, and
