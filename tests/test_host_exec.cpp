@@ -29,7 +29,6 @@ std::vector<size_t> awkward_sizes() {
           HostExec::kSortChunkKeys + 1,
           (size_t(1) << 15) + 1,
           65521,
-          999983,
           (size_t(1) << 20) + 3};
 }
 
@@ -86,7 +85,7 @@ TEST(HostExecScan, RefusesTooLittleTemporaryStorage) {
   EXPECT_THROW(exec.exclusive_scan(in.data(), out.data(), in.size(), temp.data(), temp.size()), Error);
 }
 
-enum class Keys { random, all_equal, descending, few_distinct, high_bits_only };
+enum class Keys { random, all_equal, descending, few_distinct, high_bits_only, two_runs };
 
 const char* keys_name(Keys k) {
   switch (k) {
@@ -95,6 +94,7 @@ const char* keys_name(Keys k) {
     case Keys::descending: return "descending";
     case Keys::few_distinct: return "few distinct";
     case Keys::high_bits_only: return "high bits only";
+    case Keys::two_runs: return "two runs of bits";
   }
   return "?";
 }
@@ -109,6 +109,8 @@ std::vector<uint64_t> make_keys(Keys kind, size_t n, std::mt19937_64& rng) {
       case Keys::few_distinct: keys[i] = (rng() % 5) << 40 | (rng() % 3); break;
       // Keys that differ only above bit 40: a sort on fewer bits must keep their order.
       case Keys::high_bits_only: keys[i] = (rng() << 40) | 0x5A5A5ull; break;
+      // Two indices below 20000 side by side, as pair_key makes them.
+      case Keys::two_runs: keys[i] = (rng() % 20000) << 32 | (rng() % 20000); break;
     }
   }
   return keys;
@@ -133,11 +135,14 @@ TEST(HostExecSort, MatchesTheStableSerialSort) {
   HostExec exec;
   std::mt19937_64 rng(11);
   for (size_t n : awkward_sizes())
-    for (Keys kind : {Keys::random, Keys::all_equal, Keys::descending, Keys::few_distinct, Keys::high_bits_only})
+    for (Keys kind :
+         {Keys::random, Keys::all_equal, Keys::descending, Keys::few_distinct, Keys::high_bits_only, Keys::two_runs})
       for (int end_bit : {64, 63, 41, 33, 22, 11, 1, 0}) {
-        // The large sizes at fewer settings: every digit for each kind of keys, and a last
-        // digit cut short (33) for random keys.
-        if (n > (size_t(1) << 16) && end_bit != 64 && !(end_bit == 33 && kind == Keys::random)) continue;
+        // 2^20 + 3 at fewer settings: every digit for four kinds of keys, and a last digit
+        // cut short (33) for random keys.
+        const bool large_case = (end_bit == 64 && kind != Keys::few_distinct && kind != Keys::high_bits_only) ||
+                                (end_bit == 33 && kind == Keys::random);
+        if (n > (size_t(1) << 16) && !large_case) continue;
         const std::vector<uint64_t> keys = make_keys(kind, n, rng);
         // Values are the input positions: a stability slip shows as a wrong value.
         std::vector<uint32_t> values(n);
@@ -156,6 +161,11 @@ TEST(HostExecSort, MatchesTheStableSerialSort) {
               << "n " << n << ", " << keys_name(kind) << ", end bit " << end_bit << ", threads " << threads;
           ASSERT_EQ(got_values, expected_values)
               << "n " << n << ", " << keys_name(kind) << ", end bit " << end_bit << ", threads " << threads;
+          std::vector<uint64_t> keys_only(n, 0xFEEDull);
+          std::vector<uint8_t> keys_temp(exec.sort_keys_temp_bytes(n));
+          exec.sort_keys(keys.data(), keys_only.data(), n, end_bit, keys_temp.data(), keys_temp.size());
+          ASSERT_EQ(keys_only, expected_keys)
+              << "keys only, n " << n << ", " << keys_name(kind) << ", end bit " << end_bit << ", threads " << threads;
         }
       }
 }
@@ -163,11 +173,13 @@ TEST(HostExecSort, MatchesTheStableSerialSort) {
 // Storage sized for a capacity serves every smaller sort (the pipelines size once).
 TEST(HostExecSort, TemporaryStorageNeverShrinksWithMoreKeys) {
   HostExec exec;
-  size_t last = exec.sort_temp_bytes(0);
+  size_t last = exec.sort_temp_bytes(0), last_keys = exec.sort_keys_temp_bytes(0);
   for (size_t n = 1; n <= HostExec::kSortChunks * HostExec::kSortChunkKeys + 3; n += 997) {
-    const size_t bytes = exec.sort_temp_bytes(n);
+    const size_t bytes = exec.sort_temp_bytes(n), keys_bytes = exec.sort_keys_temp_bytes(n);
     ASSERT_GE(bytes, last) << n;
+    ASSERT_GE(keys_bytes, last_keys) << n;
     last = bytes;
+    last_keys = keys_bytes;
   }
 }
 
@@ -179,6 +191,8 @@ TEST(HostExecSort, RefusesTooLittleTemporaryStorage) {
   EXPECT_THROW(exec.sort_pairs(keys.data(), keys_out.data(), values.data(), values_out.data(), keys.size(), 64,
                                temp.data(), temp.size()),
                Error);
+  temp.resize(exec.sort_keys_temp_bytes(keys.size()) - 1);
+  EXPECT_THROW(exec.sort_keys(keys.data(), keys_out.data(), keys.size(), 64, temp.data(), temp.size()), Error);
 }
 
 // sort_by_pair_key (core/pair_set.h) sorts the pair lists the tests and verify read back.

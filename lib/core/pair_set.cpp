@@ -1,6 +1,7 @@
 #include "core/pair_set.h"
 
 #include <cstddef>
+#include <memory>
 
 #include "exec/host_exec.h"
 
@@ -10,16 +11,14 @@ void sort_by_pair_key(std::vector<PrimPair>& pairs) {
   const size_t n = pairs.size();
   if (n < 2) return;
   HostExec exec;
-  // The key holds the whole pair, so the sorted keys are the sorted pairs; the values the
-  // sort carries along go unused.
-  std::vector<uint64_t> keys(n), sorted(n);
-  std::vector<uint32_t> values(n), values_sorted(n);
-  exec.for_each_n(n, [&](uint32_t i) {
-    keys[i] = pair_key(pairs[i]);
-    values[i] = i;
-  });
-  std::vector<std::byte> temp(exec.sort_temp_bytes(n));
-  exec.sort_pairs(keys.data(), sorted.data(), values.data(), values_sorted.data(), n, 64, temp.data(), temp.size());
+  // A key holds its whole pair, so the sorted keys are the sorted pairs. The buffers are
+  // left uninitialized: every element is written before it is read.
+  const auto keys = std::make_unique_for_overwrite<uint64_t[]>(n);
+  const auto sorted = std::make_unique_for_overwrite<uint64_t[]>(n);
+  const size_t temp_bytes = exec.sort_keys_temp_bytes(n);
+  const auto temp = std::make_unique_for_overwrite<std::byte[]>(temp_bytes);
+  exec.for_each_n(n, [&](uint32_t i) { keys[i] = pair_key(pairs[i]); });
+  exec.sort_keys(keys.get(), sorted.get(), n, 64, temp.get(), temp_bytes);
   exec.for_each_n(n, [&](uint32_t i) { pairs[i] = {uint32_t(sorted[i] >> 32), uint32_t(sorted[i])}; });
 }
 

@@ -113,6 +113,12 @@ class HostExec {
   void sort_pairs(const uint64_t* keys_in, uint64_t* keys_out, const uint32_t* values_in,
                   uint32_t* values_out, size_t n, int end_bit, void* temp,
                   size_t temp_bytes) const;
+  // The same sort without values (CUB's SortKeys).
+  size_t sort_keys_temp_bytes(size_t n) const {
+    return sort_chunks(n) * kSortBuckets * sizeof(size_t) + n * sizeof(uint64_t);
+  }
+  void sort_keys(const uint64_t* keys_in, uint64_t* keys_out, size_t n, int end_bit, void* temp,
+                 size_t temp_bytes) const;
 
   size_t reduce_temp_bytes(size_t) const { return 0; }
   template <class F>
