@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs on the GPU machine from a device bundle (.devbundle, see ../shared/tools/device-bundle):
 # GPU tests, verify of every pipeline on the CUDA executor, and benchmarks. Logs go to $OUT.
-# BENCH_SCENES / BENCH_PIPELINES choose the benchmark cells.
+# BENCH_SCENES / BENCH_PIPELINES choose the benchmark cells. GPU_TEST_FILTER chooses the GPU
+# tests: all by default, the long ones (suite CudaLong, ctest bvh_cuda_long) included;
+# -CudaLong.* runs what ctest's label gpu runs.
 set -uo pipefail
 export LD_LIBRARY_PATH=$PWD/.devbundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 export CDBENCH_SCENES=$PWD/scenes

@@ -320,8 +320,7 @@ void expect_pairs(Exec& exec, const std::vector<PrimPair>& expected, const Array
   ASSERT_EQ(found, expected.size()) << what;
   std::vector<PrimPair> got(found);
   exec.copy_to_host(got.data(), pairs.data(), found);
-  std::sort(got.begin(), got.end(),
-            [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+  sort_by_pair_key(got);
   const PairSetDiff d = diff_pair_sets(expected, got);
   ASSERT_TRUE(d.equal()) << what << ": " << d.missing_count << " missing, "
                          << d.unexpected_count << " unexpected";

@@ -107,7 +107,7 @@ void expect_self_query_exact(Exec& exec, const Lbvh<Exec>& bvh, const Topology& 
   ASSERT_EQ(found, expected.size()) << "frame " << frame;
   std::vector<PrimPair> got(found);
   exec.copy_to_host(got.data(), pairs.data(), found);
-  std::sort(got.begin(), got.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+  sort_by_pair_key(got);
   const PairSetDiff d = diff_pair_sets(expected, got);
   ASSERT_TRUE(d.equal()) << "frame " << frame << ": " << d.missing_count << " missing, "
                          << d.unexpected_count << " unexpected";
@@ -176,34 +176,85 @@ void check_soup_case(const SoupCase& c, uint32_t shared_slots = kRefitTopSharedS
   }
 }
 
-// Every pipeline (or those named in `only`), through the public factory, on every frame of
-// a scene, against the sweep oracle; with a pair buffer far too small at the start so it
-// must grow. The O(N^2) brute pipeline joins only up to brute_limit triangles.
-inline void check_pipelines_on(const PipelineConfig& base, FrameSource& source,
-                               size_t brute_limit = 100000, const std::vector<std::string>& only = {}) {
-  const Topology& topo = source.topology();
+// A scene's frames with the sweep oracle's pairs on each, computed once for every pipeline
+// and setting checked on the scene: the oracle runs on the host and costs more than most
+// pipelines, so the tests that run many pipelines over one scene share it.
+struct ExactFrames {
+  Topology topology;
+  bool skip_adjacent = false;
+  std::vector<std::vector<vec3f>> vertices;
+  std::vector<std::vector<PrimPair>> pairs;
+  uint32_t num_frames() const { return uint32_t(vertices.size()); }
+};
+
+inline ExactFrames exact_frames(const FrameSource& source, bool skip_adjacent = false) {
+  ExactFrames e{source.topology(), skip_adjacent, {}, {}};
+  e.vertices.resize(source.num_frames());
+  e.pairs.resize(source.num_frames());
+  for (uint32_t f = 0; f < source.num_frames(); ++f) {
+    source.frame(f, e.vertices[f]);
+    e.pairs[f] = sweep_oracle_pairs(e.topology, e.vertices[f], skip_adjacent);
+  }
+  return e;
+}
+
+// Every pipeline (or those named in `only`), through the public factory, each given the
+// topology; the O(N^2) brute pipeline joins only up to brute_limit triangles.
+struct PipelineSet {
   std::vector<std::string> names;
   std::vector<std::unique_ptr<Pipeline>> pipelines;
+};
+
+inline PipelineSet make_pipelines(const PipelineConfig& base, const Topology& topo, size_t brute_limit,
+                                  const std::vector<std::string>& only) {
+  PipelineSet set;
   for (const auto& name : pipeline_names()) {
     if (name == oracle_pipeline() && topo.faces.size() > brute_limit) continue;
     if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
     PipelineConfig cfg = base;
     cfg.name = name;
-    names.push_back(name);
-    pipelines.push_back(make_pipeline(cfg));
-    pipelines.back()->set_topology(topo);
+    set.names.push_back(name);
+    set.pipelines.push_back(make_pipeline(cfg));
+    set.pipelines.back()->set_topology(topo);
   }
+  return set;
+}
+
+// One frame through every pipeline of the set: exactly the expected pairs.
+inline void expect_frame_exact(PipelineSet& set, uint32_t f, const std::vector<vec3f>& v,
+                               const std::vector<PrimPair>& expected) {
+  for (size_t p = 0; p < set.pipelines.size(); ++p) {
+    const FrameStats s = set.pipelines[p]->run_frame(v);
+    ASSERT_EQ(s.pairs, expected.size()) << set.names[p] << " frame " << f << " (" << s.op << ")";
+    const PairSetDiff d = diff_pair_sets(expected, set.pipelines[p]->sorted_pairs());
+    ASSERT_TRUE(d.equal()) << set.names[p] << " frame " << f << " (" << s.op << "): " << d.missing_count
+                           << " missing, " << d.unexpected_count << " unexpected";
+  }
+}
+
+// Every pipeline (or those named in `only`) on every frame of a scene, against the sweep
+// oracle; with a pair buffer far too small at the start so it must grow. One frame at a
+// time: the scene's frames are never all held.
+inline void check_pipelines_on(const PipelineConfig& base, FrameSource& source,
+                               size_t brute_limit = 100000, const std::vector<std::string>& only = {}) {
+  const Topology& topo = source.topology();
+  PipelineSet set = make_pipelines(base, topo, brute_limit, only);
   std::vector<vec3f> v;
   for (uint32_t f = 0; f < source.num_frames(); ++f) {
     source.frame(f, v);
-    const auto expected = sweep_oracle_pairs(topo, v, base.skip_adjacent);
-    for (size_t p = 0; p < pipelines.size(); ++p) {
-      const FrameStats s = pipelines[p]->run_frame(v);
-      ASSERT_EQ(s.pairs, expected.size()) << names[p] << " frame " << f << " (" << s.op << ")";
-      const PairSetDiff d = diff_pair_sets(expected, pipelines[p]->sorted_pairs());
-      ASSERT_TRUE(d.equal()) << names[p] << " frame " << f << " (" << s.op << "): " << d.missing_count
-                             << " missing, " << d.unexpected_count << " unexpected";
-    }
+    expect_frame_exact(set, f, v, sweep_oracle_pairs(topo, v, base.skip_adjacent));
+    if (testing::Test::HasFatalFailure()) return;
+  }
+}
+
+// The same over frames whose oracle pairs are already known.
+inline void check_pipelines_on(const PipelineConfig& base, const ExactFrames& exact, size_t brute_limit = 100000,
+                               const std::vector<std::string>& only = {}) {
+  ASSERT_EQ(base.skip_adjacent, exact.skip_adjacent) << "the oracle's pairs were computed for other settings";
+  PipelineSet set = make_pipelines(base, exact.topology, brute_limit, only);
+  for (uint32_t f = 0; f < exact.num_frames(); ++f) {
+    expect_frame_exact(set, f, exact.vertices[f], exact.pairs[f]);
+    if (testing::Test::HasFatalFailure()) return;
   }
 }
 
@@ -245,29 +296,29 @@ inline PipelineConfig config_for(const std::string& device, double pairs_per_tri
 
 // Scenes whose motion makes fronts sprout and prune: a rolling cloth, the funnel, and a
 // soup whose jitter is larger than its triangles.
-inline std::vector<std::unique_ptr<FrameSource>> front_scenes(uint32_t cloth_res, uint32_t frames) {
-  std::vector<std::unique_ptr<FrameSource>> s;
-  s.push_back(make_generator("cloth-wave", {{"res", cloth_res}, {"frames", frames}}));
-  s.push_back(make_generator(
-      "funnel", {{"res", cloth_res}, {"frames", frames}, {"segments", 16}, {"ball_level", 1}}));
-  s.push_back(make_generator("soup", {{"triangles", 3000}, {"distribution", "clustered"},
-                                      {"jitter", 3.0}, {"frames", frames}, {"seed", 5}}));
-  return s;
+inline std::vector<std::string> front_scene_names() { return {"cloth_wave", "funnel", "soup"}; }
+
+inline std::unique_ptr<FrameSource> front_scene(const std::string& name, uint32_t cloth_res, uint32_t frames) {
+  if (name == "cloth_wave") return make_generator("cloth-wave", {{"res", cloth_res}, {"frames", frames}});
+  if (name == "funnel")
+    return make_generator("funnel", {{"res", cloth_res}, {"frames", frames}, {"segments", 16}, {"ball_level", 1}});
+  return make_generator(
+      "soup", {{"triangles", 3000}, {"distribution", "clustered"}, {"jitter", 3.0}, {"frames", frames}, {"seed", 5}});
 }
 
-// Runs one pipeline over every frame of a scene against the sweep oracle; returns the
+inline std::string front_scene_name(const testing::TestParamInfo<std::string>& info) { return info.param; }
+
+// Runs one pipeline over every frame of a scene against the oracle's pairs; returns the
 // frames' stats for the caller to check which operations ran.
-inline std::vector<FrameStats> run_exact(const PipelineConfig& cfg, FrameSource& source) {
-  const Topology& topo = source.topology();
+inline std::vector<FrameStats> run_exact(const PipelineConfig& cfg, const ExactFrames& exact) {
+  EXPECT_EQ(cfg.skip_adjacent, exact.skip_adjacent) << "the oracle's pairs were computed for other settings";
   auto p = make_pipeline(cfg);
-  p->set_topology(topo);
+  p->set_topology(exact.topology);
   std::vector<FrameStats> out;
-  std::vector<vec3f> v;
-  for (uint32_t f = 0; f < source.num_frames(); ++f) {
-    source.frame(f, v);
-    const auto expected = sweep_oracle_pairs(topo, v, cfg.skip_adjacent);
-    out.push_back(p->run_frame(v));
+  for (uint32_t f = 0; f < exact.num_frames(); ++f) {
+    out.push_back(p->run_frame(exact.vertices[f]));
     const FrameStats& s = out.back();
+    const std::vector<PrimPair>& expected = exact.pairs[f];
     EXPECT_EQ(s.pairs, expected.size()) << cfg.name << " frame " << f << " (" << s.op << ")";
     const PairSetDiff d = diff_pair_sets(expected, p->sorted_pairs());
     EXPECT_TRUE(d.equal()) << cfg.name << " frame " << f << " (" << s.op << "): " << d.missing_count
@@ -280,7 +331,7 @@ inline std::vector<FrameStats> run_exact(const PipelineConfig& cfg, FrameSource&
 // Pipeline c with Formula 2 forced into each branch by extreme settings: quality factor 0
 // makes every subtree with fronts degraded; thresholds pick the branch. Every frame must
 // stay exact and the forced decision must actually be taken.
-inline void check_forced_decisions(const std::string& device, FrameSource& source, uint32_t cycle) {
+inline void check_forced_decisions(const std::string& device, const ExactFrames& scene, uint32_t cycle) {
   struct Forced {
     const char* decision;
     double refit, build;
@@ -295,7 +346,7 @@ inline void check_forced_decisions(const std::string& device, FrameSource& sourc
     cfg.restructure_min_leaves = 4;
     cfg.threshold_refit = f.refit;
     cfg.threshold_build = f.build;
-    const auto frames = run_exact(cfg, source);
+    const auto frames = run_exact(cfg, scene);
     size_t taken = 0;
     for (const auto& s : frames) {
       EXPECT_TRUE(s.decision.empty() || s.decision == f.decision) << s.decision;
@@ -311,7 +362,7 @@ inline void check_forced_decisions(const std::string& device, FrameSource& sourc
   PipelineConfig cfg = config_for(device, 8.0, 8.0, cycle);
   cfg.name = "restructure";
   cfg.restructure_quality = 1e9;
-  for (const auto& s : run_exact(cfg, source)) {
+  for (const auto& s : run_exact(cfg, scene)) {
     EXPECT_EQ(s.candidates, 0u);
     EXPECT_TRUE(s.decision.empty());
   }

@@ -227,7 +227,7 @@ inline const std::vector<std::string>& splitting_pipelines() {
 // (The other pipelines only filter, and are checked on declared queries elsewhere.)
 inline void check_inter_pipelines(const std::string& device, const InterCase& c) {
   SCOPED_TRACE("scene " + c.name);
-  StoredFrames scene(c.make());
+  const ExactFrames scene = exact_frames(StoredFrames(c.make()));
   const auto& only = splitting_pipelines();
   for (uint32_t cycle : {1u, 3u}) {
     SCOPED_TRACE("front cycle " + std::to_string(cycle));
@@ -246,8 +246,8 @@ inline void check_inter_pipelines(const std::string& device, const InterCase& c)
 // and then only refitted: once T_D refits too, no frame spends time building.
 inline void check_inter_fronts(const std::string& device, const InterCase& c) {
   SCOPED_TRACE("scene " + c.name);
-  StoredFrames scene(c.make());
-  const Topology& topo = scene.topology();
+  const ExactFrames scene = exact_frames(StoredFrames(c.make()));
+  const Topology& topo = scene.topology;
   uint32_t deformable = 0;
   for (const SceneObject& o : topo.objects) deformable += o.rigid ? 0 : o.num_faces;
   for (const std::string name : {"a", "b", "c", "unordered", "static", "periodic", "restructure",
@@ -282,7 +282,7 @@ inline void check_inter_fronts(const std::string& device, const InterCase& c) {
 // rebuilding T_D renumbers the leaves the cross fronts query, which must regenerate.
 inline void check_inter_decisions(const std::string& device, const InterCase& c) {
   SCOPED_TRACE("scene " + c.name);
-  StoredFrames scene(c.make());
+  const ExactFrames scene = exact_frames(StoredFrames(c.make()));
   for (uint32_t cycle : {1u, 2u}) check_forced_decisions(device, scene, cycle);
 }
 

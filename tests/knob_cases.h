@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bruteforce/sweep_oracle.h"
+#include "bvh_cases.h"
 #include "core/outward_rounding.h"
 #include "core/pair_set.h"
 #include "generators.h"
@@ -190,9 +191,8 @@ inline PipelineConfig growing_config(const std::string& device, const std::strin
 // off: every pipeline reports exactly the oracle's pairs, every frame, with and without
 // frame graphs; with phases off no phase but the upload has a time and the frame has one.
 inline void check_launch_knobs(const std::string& device, bool graph, bool dependent) {
-  auto funnel = make_generator("funnel", {{"res", 40}, {"frames", 10}, {"segments", 16}, {"ball_level", 1}});
-  const Topology& topo = funnel->topology();
-  std::vector<vec3f> v;
+  const ExactFrames funnel =
+      exact_frames(*make_generator("funnel", {{"res", 40}, {"frames", 10}, {"segments", 16}, {"ball_level", 1}}));
   for (const auto& name : pipeline_names()) {
     PipelineConfig cfg = growing_config(device, name);
     cfg.front_cycle = 4;
@@ -201,10 +201,9 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
     cfg.preserve_warp = dependent ? PreserveWarp::on : PreserveWarp::off;
     cfg.phase_timing = false;
     auto p = make_pipeline(cfg);
-    p->set_topology(topo);
-    for (uint32_t f = 0; f < funnel->num_frames(); ++f) {
-      funnel->frame(f, v);
-      const FrameStats s = p->run_frame(v);
+    p->set_topology(funnel.topology);
+    for (uint32_t f = 0; f < funnel.num_frames(); ++f) {
+      const FrameStats s = p->run_frame(funnel.vertices[f]);
       const std::string where = name + (graph ? " graph" : "") + (dependent ? " dependent" : "") + " frame " +
                                 std::to_string(f);
       EXPECT_GT(s.total_ms, 0.0) << where;
@@ -213,7 +212,7 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
         if (Phase(ph) == Phase::upload) continue;
         EXPECT_EQ(s.phase_ms[ph], 0.0) << where << ", phase " << ph;
       }
-      const PairSetDiff d = diff_pair_sets(sweep_oracle_pairs(topo, v, false), p->sorted_pairs());
+      const PairSetDiff d = diff_pair_sets(funnel.pairs[f], p->sorted_pairs());
       ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count << " extra";
     }
   }

@@ -208,11 +208,12 @@ TEST(CudaPipelines, SecondPassAfterGrowthMatchesTheFirst) {
   check_second_pass_matches_first(config_for("cuda", 0.01, 0.05, 2), *funnel);
 }
 
-TEST(CudaPipelines, LargeUniformSoupRepeatedBuildsAreExact) {
+// Many rebuilds of a scene of many blocks: a missing fence in the bottom-up build shows up
+// as an occasional corrupt tree, so repeat. 2^16 + 1 triangles: one past a power of two,
+// so the last block and tile hold a single triangle. CudaLong repeats it at 1M.
+TEST(CudaPipelines, UniformSoupRepeatedBuildsAreExact) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  // Many rebuilds of a 1M-triangle scene: a missing fence in the bottom-up build shows up
-  // as an occasional corrupt tree, so repeat.
-  auto soup = make_generator("soup", {{"triangles", 1000000}, {"frames", 4}});
+  auto soup = make_generator("soup", {{"triangles", (1 << 16) + 1}, {"frames", 4}});
   check_pipelines_on(config_for("cuda", 8.0), *soup);
 }
 
@@ -264,7 +265,9 @@ TEST(CudaKnobs, DependentLaunchesAndUntimedPhasesKeepEveryPipelineExact) {
     for (bool dependent : {false, true}) check_launch_knobs("cuda", graph, dependent);
 }
 
-class CudaFrontCycles : public testing::TestWithParam<uint32_t> {
+// Every front cycle (1, 2, 3, 5 and auto) on each front scene, against the scene's oracle
+// pairs computed once.
+class CudaFrontCycles : public testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
     if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
@@ -272,10 +275,15 @@ class CudaFrontCycles : public testing::TestWithParam<uint32_t> {
 };
 
 TEST_P(CudaFrontCycles, AllPipelinesExactEveryFrame) {
-  for (auto& scene : front_scenes(96, 16)) check_pipelines_on(config_for("cuda", 0.5, 0.05, GetParam()), *scene);
+  const ExactFrames scene = exact_frames(*front_scene(GetParam(), 96, 16));
+  for (uint32_t cycle : {1u, 2u, 3u, 5u, 0u}) {
+    SCOPED_TRACE("front cycle " + std::to_string(cycle));
+    check_pipelines_on(config_for("cuda", 0.5, 0.05, cycle), scene);
+    if (HasFatalFailure()) return;
+  }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cycles, CudaFrontCycles, testing::Values(1u, 2u, 3u, 5u, 0u));
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaFrontCycles, testing::ValuesIn(front_scene_names()), front_scene_name);
 
 class CudaExtremes : public testing::TestWithParam<BaselineCase> {
  protected:
@@ -290,54 +298,6 @@ TEST_P(CudaExtremes, EveryPipelineExactEveryFrame) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaExtremes, testing::ValuesIn(extreme_cases()), baseline_case_name);
-
-// 2^24 + 1 triangles: past the integers a float holds exactly, so an index that goes
-// through a float, or a 24-bit field, loses the last one. Pairs of overlapping triangles
-// sit in cells 4 apart (2^23 pairs) and the last triangle overlaps the first pair, so the
-// exact pair set is known: (2m, 2m + 1) for every m, (0, last) and (1, last). Three frames
-// (moving by 1e-3 each) take the front pipelines through generate, a captured and a
-// replayed preserve frame; baselines and bvh must agree on every frame.
-TEST(CudaExtremes, IndexWidthPastTwoToThe24Triangles) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  constexpr uint32_t kPairs = 1u << 23, kTriangles = 2 * kPairs + 1, kLast = kTriangles - 1;
-  Topology topo;
-  topo.faces.resize(kTriangles);
-  topo.num_vertices = 3 * kTriangles;
-  for (uint32_t t = 0; t < kTriangles; ++t) topo.faces[t] = {3 * t, 3 * t + 1, 3 * t + 2};
-  std::vector<vec3f> base(topo.num_vertices);
-  auto put = [&](uint32_t t, vec3f c) {
-    base[3 * t] = c;
-    base[3 * t + 1] = {c.x + 1.0f, c.y, c.z};
-    base[3 * t + 2] = {c.x, c.y + 1.0f, c.z + 1.0f};
-  };
-  for (uint32_t m = 0; m < kPairs; ++m) {
-    const vec3f c{4.0f * float(m % 256), 4.0f * float((m / 256) % 256), 4.0f * float(m / 65536)};
-    put(2 * m, c);
-    put(2 * m + 1, {c.x + 0.5f, c.y + 0.5f, c.z + 0.5f});
-  }
-  put(kLast, {0.25f, 0.25f, 0.25f});
-  std::vector<PrimPair> expected;
-  expected.reserve(kPairs + 2);
-  for (uint32_t m = 0; m < kPairs; ++m) expected.push_back({2 * m, 2 * m + 1});
-  expected.push_back({0, kLast});
-  expected.push_back({1, kLast});
-  std::sort(expected.begin(), expected.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
-  for (const std::string name : {"b", "c", "bvh", "grid", "hash", "sweep"}) {
-    PipelineConfig cfg = config_for("cuda", 1.0, 2.0);
-    cfg.name = name;
-    auto pipeline = make_pipeline(cfg);
-    pipeline->set_topology(topo);
-    std::vector<vec3f> v(base.size());
-    for (uint32_t f = 0; f < 3; ++f) {
-      for (size_t k = 0; k < base.size(); ++k) v[k] = {base[k].x + 1e-3f * float(f), base[k].y, base[k].z};
-      const FrameStats stats = pipeline->run_frame(v);
-      ASSERT_EQ(stats.pairs, expected.size()) << name << " frame " << f;
-      const PairSetDiff d = diff_pair_sets(expected, pipeline->sorted_pairs());
-      ASSERT_TRUE(d.equal()) << name << " frame " << f << ": " << d.missing_count << " missing, "
-                             << d.unexpected_count << " unexpected";
-    }
-  }
-}
 
 TEST(CudaRefit, TopInOneBlockSpillsPastSharedMemoryAndAgrees) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
@@ -367,7 +327,7 @@ TEST(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   check_restructure_subtrees<CudaExec>(*same, 3);
 }
 
-class CudaForcedDecisions : public testing::TestWithParam<uint32_t> {
+class CudaForcedDecisions : public testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
     if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
@@ -375,10 +335,11 @@ class CudaForcedDecisions : public testing::TestWithParam<uint32_t> {
 };
 
 TEST_P(CudaForcedDecisions, EveryBranchOfFormula2IsExact) {
-  for (auto& scene : front_scenes(96, 16)) check_forced_decisions("cuda", *scene, GetParam());
+  const ExactFrames scene = exact_frames(*front_scene(GetParam(), 96, 16));
+  for (uint32_t cycle : {1u, 2u}) check_forced_decisions("cuda", scene, cycle);
 }
 
-INSTANTIATE_TEST_SUITE_P(Cycles, CudaForcedDecisions, testing::Values(1u, 2u));
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaForcedDecisions, testing::ValuesIn(front_scene_names()), front_scene_name);
 
 // Deformable and rigid objects with declared queries (tests/inter_cases.h): every splitting
 // pipeline exact on every frame, the fronts each query keeps, T_R only refitted, and
@@ -414,6 +375,65 @@ TEST(CudaInter, ShippedInterScenesExact) {
     SCOPED_TRACE(std::string("scene ") + name);
     Scene s = open_scene(name, default_scenes_dir(), {{"frames", 12}});
     check_pipelines_on(config_for("cuda", 0.5, 0.05, 2), *s.source);
+  }
+}
+
+// The long tests (ctest bvh_cuda_long, label gpu-long; the gpu label runs every other
+// test): scenes of millions of triangles, checked against references on the host.
+
+TEST(CudaLong, LargeUniformSoupRepeatedBuildsAreExact) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  // Many rebuilds of a 1M-triangle scene: a missing fence in the bottom-up build shows up
+  // as an occasional corrupt tree, so repeat.
+  auto soup = make_generator("soup", {{"triangles", 1000000}, {"frames", 4}});
+  check_pipelines_on(config_for("cuda", 8.0), *soup);
+}
+
+// 2^24 + 1 triangles: past the integers a float holds exactly, so an index that goes
+// through a float, or a 24-bit field, loses the last one. Pairs of overlapping triangles
+// sit in cells 4 apart (2^23 pairs) and the last triangle overlaps the first pair, so the
+// exact pair set is known: (2m, 2m + 1) for every m, (0, last) and (1, last). Three frames
+// (moving by 1e-3 each) take the front pipelines through generate, a captured and a
+// replayed preserve frame; baselines and bvh must agree on every frame.
+TEST(CudaLong, IndexWidthPastTwoToThe24Triangles) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  constexpr uint32_t kPairs = 1u << 23, kTriangles = 2 * kPairs + 1, kLast = kTriangles - 1;
+  Topology topo;
+  topo.faces.resize(kTriangles);
+  topo.num_vertices = 3 * kTriangles;
+  for (uint32_t t = 0; t < kTriangles; ++t) topo.faces[t] = {3 * t, 3 * t + 1, 3 * t + 2};
+  std::vector<vec3f> base(topo.num_vertices);
+  auto put = [&](uint32_t t, vec3f c) {
+    base[3 * t] = c;
+    base[3 * t + 1] = {c.x + 1.0f, c.y, c.z};
+    base[3 * t + 2] = {c.x, c.y + 1.0f, c.z + 1.0f};
+  };
+  for (uint32_t m = 0; m < kPairs; ++m) {
+    const vec3f c{4.0f * float(m % 256), 4.0f * float((m / 256) % 256), 4.0f * float(m / 65536)};
+    put(2 * m, c);
+    put(2 * m + 1, {c.x + 0.5f, c.y + 0.5f, c.z + 0.5f});
+  }
+  put(kLast, {0.25f, 0.25f, 0.25f});
+  std::vector<PrimPair> expected;
+  expected.reserve(kPairs + 2);
+  for (uint32_t m = 0; m < kPairs; ++m) expected.push_back({2 * m, 2 * m + 1});
+  expected.push_back({0, kLast});
+  expected.push_back({1, kLast});
+  sort_by_pair_key(expected);
+  for (const std::string name : {"b", "c", "bvh", "grid", "hash", "sweep"}) {
+    PipelineConfig cfg = config_for("cuda", 1.0, 2.0);
+    cfg.name = name;
+    auto pipeline = make_pipeline(cfg);
+    pipeline->set_topology(topo);
+    std::vector<vec3f> v(base.size());
+    for (uint32_t f = 0; f < 3; ++f) {
+      for (size_t k = 0; k < base.size(); ++k) v[k] = {base[k].x + 1e-3f * float(f), base[k].y, base[k].z};
+      const FrameStats stats = pipeline->run_frame(v);
+      ASSERT_EQ(stats.pairs, expected.size()) << name << " frame " << f;
+      const PairSetDiff d = diff_pair_sets(expected, pipeline->sorted_pairs());
+      ASSERT_TRUE(d.equal()) << name << " frame " << f << ": " << d.missing_count << " missing, "
+                             << d.unexpected_count << " unexpected";
+    }
   }
 }
 

@@ -1,6 +1,26 @@
 #include "core/pair_set.h"
 
+#include <cstddef>
+#include <memory>
+
+#include "exec/host_exec.h"
+
 namespace cdb {
+
+void sort_by_pair_key(std::vector<PrimPair>& pairs) {
+  const size_t n = pairs.size();
+  if (n < 2) return;
+  HostExec exec;
+  // A key holds its whole pair, so the sorted keys are the sorted pairs. The buffers are
+  // left uninitialized: every element is written before it is read.
+  const auto keys = std::make_unique_for_overwrite<uint64_t[]>(n);
+  const auto sorted = std::make_unique_for_overwrite<uint64_t[]>(n);
+  const size_t temp_bytes = exec.sort_keys_temp_bytes(n);
+  const auto temp = std::make_unique_for_overwrite<std::byte[]>(temp_bytes);
+  exec.for_each_n(n, [&](uint32_t i) { keys[i] = pair_key(pairs[i]); });
+  exec.sort_keys(keys.get(), sorted.get(), n, 64, temp.get(), temp_bytes);
+  exec.for_each_n(n, [&](uint32_t i) { pairs[i] = {uint32_t(sorted[i] >> 32), uint32_t(sorted[i])}; });
+}
 
 PairSetDiff diff_pair_sets(const std::vector<PrimPair>& expected,
                            const std::vector<PrimPair>& actual, size_t keep) {

@@ -25,6 +25,11 @@ struct PairAccuracy {
 };
 PairAccuracy pair_accuracy(const std::vector<PrimPair>& expected, const std::vector<PrimPair>& actual);
 
+// Sorts pairs by pair_key: a radix sort over the host executor's threads (the pair lists
+// every checked frame reads back are long, and std::sort on one thread was the tests' top
+// cost).
+void sort_by_pair_key(std::vector<PrimPair>& pairs);
+
 // Both inputs sorted by pair_key. Duplicates in `actual` count as unexpected.
 PairSetDiff diff_pair_sets(const std::vector<PrimPair>& expected,
                            const std::vector<PrimPair>& actual, size_t keep = 8);

@@ -1,57 +1,163 @@
 #include "exec/host_exec.h"
 
 #include <algorithm>
-#include <vector>
+#include <bit>
 
 #include "core/error.h"
 
 namespace cdb {
 
-void HostExec::exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void*, size_t) const {
+namespace {
+// Below this many elements a scan runs on one thread: the second pass over the chunks
+// would cost more than it saves.
+constexpr size_t kParallelScanMin = size_t(1) << 15;
+
+// First index of chunk c of n elements split into `chunks` near-equal runs.
+size_t chunk_begin(size_t n, size_t chunks, size_t c) { return n * c / chunks; }
+}  // namespace
+
+void HostExec::exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void* temp,
+                              size_t temp_bytes) const {
+  if (temp_bytes < scan_temp_bytes(n)) fail("host scan: temporary storage too small");
+  if (n < kParallelScanMin) {
+    uint32_t sum = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t v = in[i];
+      out[i] = sum;
+      sum += v;
+    }
+    return;
+  }
+  // Sums modulo 2^32 are associative, so chunking gives the serial scan's bits.
+  auto* offset = static_cast<uint32_t*>(temp);
+  const int64_t chunks = int64_t(kScanChunks);
+#pragma omp parallel for schedule(static)
+  for (int64_t c = 0; c < chunks; ++c) {
+    uint32_t sum = 0;
+    const size_t end = chunk_begin(n, kScanChunks, size_t(c) + 1);
+    for (size_t i = chunk_begin(n, kScanChunks, size_t(c)); i < end; ++i) sum += in[i];
+    offset[c] = sum;
+  }
   uint32_t sum = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const uint32_t v = in[i];
-    out[i] = sum;
-    sum += v;
+  for (int64_t c = 0; c < chunks; ++c) {
+    const uint32_t s = offset[c];
+    offset[c] = sum;
+    sum += s;
+  }
+#pragma omp parallel for schedule(static)
+  for (int64_t c = 0; c < chunks; ++c) {
+    uint32_t run = offset[c];
+    const size_t end = chunk_begin(n, kScanChunks, size_t(c) + 1);
+    for (size_t i = chunk_begin(n, kScanChunks, size_t(c)); i < end; ++i) {
+      const uint32_t v = in[i];
+      out[i] = run;
+      run += v;
+    }
   }
 }
+
+namespace {
+// The radix sort of sort_pairs and sort_keys; kValues: values travel with their keys.
+// `temp` holds the per-chunk digit counts (chunks * kSortBuckets), then the second key
+// buffer (n), then, with values, the second value buffer (n).
+template <bool kValues>
+void radix_sort(const uint64_t* keys_in, uint64_t* keys_out, const uint32_t* values_in, uint32_t* values_out,
+                size_t n, int end_bit, void* temp) {
+  constexpr size_t kBuckets = HostExec::kSortBuckets;
+  constexpr int kDigitBits = HostExec::kSortDigitBits;
+  const int64_t count = int64_t(n);
+  const size_t chunks = HostExec::sort_chunks(n);
+  const bool parallel = chunks > 1;
+  const int bits = std::clamp(end_bit, 0, 64);
+  const uint64_t sorted_bits = bits == 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
+
+  // Bits every key shares move nothing: each pass's digit starts at the lowest bit above
+  // the last digit where some keys differ (keys often use far fewer bits than end_bit, or
+  // two separate runs of bits, as a pair's two indices).
+  uint64_t any = 0, all = ~uint64_t(0);
+#pragma omp parallel for schedule(static) reduction(| : any) reduction(& : all) if (parallel)
+  for (int64_t i = 0; i < count; ++i) {
+    any |= keys_in[i];
+    all &= keys_in[i];
+  }
+  const uint64_t differ = (any ^ all) & sorted_bits;
+  int shifts[64 / kDigitBits + 1];
+  int passes = 0;
+  for (int shift = 0; shift < 64 && (differ >> shift) != 0; shift += kDigitBits) {
+    shift += std::countr_zero(differ >> shift);
+    shifts[passes++] = shift;
+  }
+
+  const int64_t chunk_count = int64_t(chunks);
+  if (passes == 0) {
+#pragma omp parallel for schedule(static) if (parallel)
+    for (int64_t c = 0; c < chunk_count; ++c) {
+      const size_t begin = chunk_begin(n, chunks, size_t(c)), end = chunk_begin(n, chunks, size_t(c) + 1);
+      std::copy(keys_in + begin, keys_in + end, keys_out + begin);
+      if constexpr (kValues) std::copy(values_in + begin, values_in + end, values_out + begin);
+    }
+    return;
+  }
+
+  // The per-chunk digit counts first (their alignment), then the second buffers.
+  auto* counts = static_cast<size_t*>(temp);
+  auto* temp_keys = reinterpret_cast<uint64_t*>(counts + chunks * kBuckets);
+  auto* temp_values = reinterpret_cast<uint32_t*>(temp_keys + n);
+  const uint64_t* src_k = keys_in;
+  const uint32_t* src_v = values_in;
+  for (int p = 0; p < passes; ++p) {
+    // Alternate buffers so that the last pass writes the outputs.
+    const bool to_out = (passes - 1 - p) % 2 == 0;
+    uint64_t* dst_k = to_out ? keys_out : temp_keys;
+    uint32_t* dst_v = to_out ? values_out : temp_values;
+    const int shift = shifts[p];
+    const uint64_t mask = (sorted_bits >> shift) & (kBuckets - 1);
+    const size_t buckets = size_t(mask) + 1;
+#pragma omp parallel for schedule(static) if (parallel)
+    for (int64_t c = 0; c < chunk_count; ++c) {
+      size_t* h = counts + size_t(c) * kBuckets;
+      std::fill(h, h + buckets, size_t(0));
+      const size_t end = chunk_begin(n, chunks, size_t(c) + 1);
+      for (size_t i = chunk_begin(n, chunks, size_t(c)); i < end; ++i) ++h[(src_k[i] >> shift) & mask];
+    }
+    // Each chunk's first slot per digit: after every smaller digit, and after the earlier
+    // chunks' keys of the same digit (stability).
+    size_t sum = 0;
+    for (size_t b = 0; b < buckets; ++b)
+      for (size_t c = 0; c < chunks; ++c) {
+        size_t& h = counts[c * kBuckets + b];
+        const size_t k = h;
+        h = sum;
+        sum += k;
+      }
+#pragma omp parallel for schedule(static) if (parallel)
+    for (int64_t c = 0; c < chunk_count; ++c) {
+      size_t* h = counts + size_t(c) * kBuckets;
+      const size_t end = chunk_begin(n, chunks, size_t(c) + 1);
+      for (size_t i = chunk_begin(n, chunks, size_t(c)); i < end; ++i) {
+        const uint64_t k = src_k[i];
+        const size_t slot = h[(k >> shift) & mask]++;
+        dst_k[slot] = k;
+        if constexpr (kValues) dst_v[slot] = src_v[i];
+      }
+    }
+    src_k = dst_k;
+    src_v = dst_v;
+  }
+}
+}  // namespace
 
 void HostExec::sort_pairs(const uint64_t* keys_in, uint64_t* keys_out, const uint32_t* values_in,
                           uint32_t* values_out, size_t n, int end_bit, void* temp,
                           size_t temp_bytes) const {
   if (temp_bytes < sort_temp_bytes(n)) fail("host sort: temporary storage too small");
-  auto* tk = static_cast<uint64_t*>(temp);
-  auto* tv = reinterpret_cast<uint32_t*>(tk + n);
-  std::copy(keys_in, keys_in + n, keys_out);
-  std::copy(values_in, values_in + n, values_out);
-  constexpr int kDigit = 11;
-  constexpr size_t kBuckets = size_t(1) << kDigit;
-  std::vector<size_t> offsets(kBuckets);
-  uint64_t* src_k = keys_out;
-  uint32_t* src_v = values_out;
-  uint64_t* dst_k = tk;
-  uint32_t* dst_v = tv;
-  for (int shift = 0; shift < end_bit; shift += kDigit) {
-    std::fill(offsets.begin(), offsets.end(), 0);
-    for (size_t i = 0; i < n; ++i) ++offsets[(src_k[i] >> shift) & (kBuckets - 1)];
-    size_t sum = 0;
-    for (auto& o : offsets) {
-      const size_t c = o;
-      o = sum;
-      sum += c;
-    }
-    for (size_t i = 0; i < n; ++i) {
-      const size_t slot = offsets[(src_k[i] >> shift) & (kBuckets - 1)]++;
-      dst_k[slot] = src_k[i];
-      dst_v[slot] = src_v[i];
-    }
-    std::swap(src_k, dst_k);
-    std::swap(src_v, dst_v);
-  }
-  if (src_k != keys_out) {
-    std::copy(src_k, src_k + n, keys_out);
-    std::copy(src_v, src_v + n, values_out);
-  }
+  if (n) radix_sort<true>(keys_in, keys_out, values_in, values_out, n, end_bit, temp);
+}
+
+void HostExec::sort_keys(const uint64_t* keys_in, uint64_t* keys_out, size_t n, int end_bit, void* temp,
+                         size_t temp_bytes) const {
+  if (temp_bytes < sort_keys_temp_bytes(n)) fail("host sort: temporary storage too small");
+  if (n) radix_sort<false>(keys_in, keys_out, nullptr, nullptr, n, end_bit, temp);
 }
 
 }  // namespace cdb

@@ -86,14 +86,39 @@ class HostExec {
     }
   }
 
-  size_t scan_temp_bytes(size_t) const { return 0; }
-  void exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void*, size_t) const;
+  // Scan in two passes over kScanChunks chunks: the chunks' sums, then each chunk scanned
+  // from the sum before it. The temporary storage holds the chunks' sums.
+  static constexpr size_t kScanChunks = 64;
+  size_t scan_temp_bytes(size_t) const { return kScanChunks * sizeof(uint32_t); }
+  // out[i] = in[0] + ... + in[i - 1] (mod 2^32); in and out may be the same array.
+  void exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void* temp, size_t temp_bytes) const;
 
-  size_t sort_temp_bytes(size_t n) const { return n * (sizeof(uint64_t) + sizeof(uint32_t)); }
-  // Stable LSD radix sort of (key, value) on key bits [0, end_bit).
+  // Radix sort in digits of kSortDigitBits over chunks of consecutive keys: each chunk
+  // counts its digits, then scatters its keys in order behind the earlier chunks' keys of
+  // the same digit, so the sort is stable however many threads run. The temporary storage
+  // holds a digit count per chunk and a second buffer of keys and values.
+  static constexpr int kSortDigitBits = 11;
+  static constexpr size_t kSortBuckets = size_t(1) << kSortDigitBits;
+  static constexpr size_t kSortChunks = 64, kSortChunkKeys = size_t(1) << 14;
+  // At most kSortChunks, fewer below kSortChunkKeys keys each (never decreasing with n, so
+  // storage sized for a capacity serves every smaller sort).
+  static size_t sort_chunks(size_t n) {
+    return std::clamp<size_t>((n + kSortChunkKeys - 1) / kSortChunkKeys, 1, kSortChunks);
+  }
+  size_t sort_temp_bytes(size_t n) const {
+    return sort_chunks(n) * kSortBuckets * sizeof(size_t) + n * (sizeof(uint64_t) + sizeof(uint32_t));
+  }
+  // Stable LSD radix sort of (key, value) on key bits [0, end_bit): keys equal in those
+  // bits keep their order, whatever their higher bits. Inputs and outputs must not overlap.
   void sort_pairs(const uint64_t* keys_in, uint64_t* keys_out, const uint32_t* values_in,
                   uint32_t* values_out, size_t n, int end_bit, void* temp,
                   size_t temp_bytes) const;
+  // The same sort without values (CUB's SortKeys).
+  size_t sort_keys_temp_bytes(size_t n) const {
+    return sort_chunks(n) * kSortBuckets * sizeof(size_t) + n * sizeof(uint64_t);
+  }
+  void sort_keys(const uint64_t* keys_in, uint64_t* keys_out, size_t n, int end_bit, void* temp,
+                 size_t temp_bytes) const;
 
   size_t reduce_temp_bytes(size_t) const { return 0; }
   template <class F>

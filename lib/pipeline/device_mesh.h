@@ -11,6 +11,7 @@
 #include "bvh/order.h"
 #include "bvh/refit.h"
 #include "core/error.h"
+#include "core/pair_set.h"
 #include "core/pair_sink.h"
 #include "geometry/face_subset.h"
 #include "geometry/mesh.h"
@@ -243,7 +244,7 @@ class PairBuffer {
   std::vector<PrimPair> sorted_pairs(Exec& exec) const {
     std::vector<PrimPair> out(count());
     exec.copy_to_host(out.data(), pairs_.data(), out.size());
-    std::sort(out.begin(), out.end(), [](PrimPair a, PrimPair b) { return pair_key(a) < pair_key(b); });
+    sort_by_pair_key(out);
     return out;
   }
 
