@@ -165,10 +165,6 @@ class Pipeline {
     rounding_.round(positions, rounded_);
     return run_frame(rounded_);
   }
-  // The floats the last double frame ran on.
-  const std::vector<vec3f>& rounded_positions() const { return rounded_; }
-  // The origin fp64 subtracts ({0, 0, 0} for fp32 and q16).
-  vec3d position_origin() const { return rounding_.origin(); }
   // The last frame's pairs, sorted, for verification (a download; not part of a frame).
   virtual std::vector<PrimPair> sorted_pairs() = 0;
   virtual MemoryStats memory() const = 0;
