@@ -120,12 +120,23 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
              "time each phase of a frame with events; off: only the frame and its upload (no event between "
              "kernels, which in a CUDA graph costs a node and keeps the next kernel from launching early)")
       ->group(kMeasurementGroup);
-  add_choice<PreserveWarp>(
+  add_choice<WarpSharing>(
       cmd, "--preserve-warp", o.preserve_warp,
       "front pipelines on cuda: preserve shares each front node's traversal with the idle lanes of its warp; auto: "
-      "while the fronts fit in " + std::to_string(kPreserveWarpWaves) +
+      "while the fronts fit in " + std::to_string(kWarpSharingWaves) +
           " waves of the GPU's resident threads (per architecture: SMs x threads per SM, read from the GPU at run time)",
-      {"auto", "on", "off"}, parse_preserve_warp, preserve_warp_name(o.preserve_warp))
+      {"auto", "on", "off"}, parse_warp_sharing, warp_sharing_name(o.preserve_warp))
+      ->group(kTuningGroup);
+  add_choice<WarpSharing>(
+      cmd, "--update-warp", o.update_warp,
+      "front pipelines on cuda: update shares each sprouting front node's traversal with the idle lanes of its "
+      "warp; auto: as --preserve-warp",
+      {"auto", "on", "off"}, parse_warp_sharing, warp_sharing_name(o.update_warp))
+      ->group(kTuningGroup);
+  add_switch(cmd, "--order-updates", o.order_updates,
+             "ordered front pipelines: histogram-sort the front each update produces (the paper); off: keep the "
+             "update's output in its blocks' order and sort only generated and restructured fronts (b and c "
+             "sort in their balance before the next update)")
       ->group(kTuningGroup);
   cmd->add_option("--refit-top-leaves", o.refit_top_leaves,
                   "front pipelines and bvh: trees of up to this many leaves refit their top (the nodes whose leaves "
@@ -203,6 +214,8 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.dependent_launch = o.dependent_launch;
   c.phase_timing = o.phase_timing;
   c.preserve_warp = o.preserve_warp;
+  c.update_warp = o.update_warp;
+  c.order_updates = o.order_updates;
   c.refit_top_leaves = o.refit_top_leaves;
   c.restructure_quality = o.restructure.restructure_quality;
   c.restructure_min_leaves = o.restructure.restructure_min_leaves;

@@ -32,7 +32,9 @@ struct CommonOptions {
   bool cuda_graph = true;
   bool dependent_launch = true;
   bool phase_timing = true;
-  PreserveWarp preserve_warp = PreserveWarp::automatic;
+  WarpSharing preserve_warp = WarpSharing::automatic;
+  WarpSharing update_warp = WarpSharing::automatic;
+  bool order_updates = true;
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
   std::vector<std::string> sets;  // generator overrides, key=value
 };

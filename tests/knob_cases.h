@@ -198,7 +198,7 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
     cfg.front_cycle = 4;
     cfg.cuda_graph = graph;
     cfg.dependent_launch = dependent;
-    cfg.preserve_warp = dependent ? PreserveWarp::on : PreserveWarp::off;
+    cfg.preserve_warp = dependent ? WarpSharing::on : WarpSharing::off;
     cfg.phase_timing = false;
     auto p = make_pipeline(cfg);
     p->set_topology(funnel.topology);

@@ -24,7 +24,9 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"cuda_graph", c.cuda_graph},
       {"dependent_launch", c.dependent_launch},
       {"phase_timing", c.phase_timing},
-      {"preserve_warp", preserve_warp_name(c.preserve_warp)},
+      {"preserve_warp", warp_sharing_name(c.preserve_warp)},
+      {"update_warp", warp_sharing_name(c.update_warp)},
+      {"order_updates", c.order_updates},
       {"refit_top_leaves", c.refit_top_leaves},
       {"conservative", config_conservative(c)},
   };

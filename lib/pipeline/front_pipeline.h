@@ -286,14 +286,14 @@ class FrontPipeline final : public Pipeline {
   // stage's flush (core/append_stage.h): at least kStagedPairsPerBlock per block of front
   // nodes in the frame just read back (docs/design.md "Constants and their measurements"). A change
   // is a different launch, so the steady frame's graph is recorded again.
-  // The traversals are shared within warps as --preserve-warp says (PreserveWarp).
+  // The traversals are shared within warps as --preserve-warp says (WarpSharing).
   static constexpr uint64_t kStagedPairsPerBlock = 32;
   void choose_preserve_launch(uint64_t pairs) {
     const uint64_t fronts = self_.total() + inter_.total() + rigid_self_.total();
     const bool stage = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts;
-    const bool warp = config_.preserve_warp == PreserveWarp::on ||
-                      (config_.preserve_warp == PreserveWarp::automatic &&
-                       fronts <= kPreserveWarpWaves * exec_.resident_threads());
+    const bool warp = config_.preserve_warp == WarpSharing::on ||
+                      (config_.preserve_warp == WarpSharing::automatic &&
+                       fronts <= kWarpSharingWaves * exec_.resident_threads());
     if (stage != stage_preserve_ || warp != warp_preserve_) ++graph_version_;
     stage_preserve_ = stage;
     warp_preserve_ = warp;

@@ -57,14 +57,14 @@ BoxPrecision parse_box_precision(const std::string& name) {
   fail("unknown box precision '" + name + "' (known: fp32, fp64, q16)");
 }
 
-const char* preserve_warp_name(PreserveWarp w) {
-  return w == PreserveWarp::on ? "on" : w == PreserveWarp::off ? "off" : "auto";
+const char* warp_sharing_name(WarpSharing w) {
+  return w == WarpSharing::on ? "on" : w == WarpSharing::off ? "off" : "auto";
 }
 
-PreserveWarp parse_preserve_warp(const std::string& name) {
-  if (name == "auto") return PreserveWarp::automatic;
-  if (name == "on") return PreserveWarp::on;
-  if (name == "off") return PreserveWarp::off;
+WarpSharing parse_warp_sharing(const std::string& name) {
+  if (name == "auto") return WarpSharing::automatic;
+  if (name == "on") return WarpSharing::on;
+  if (name == "off") return WarpSharing::off;
   fail("unknown preserve warp sharing '" + name + "' (known: auto, on, off)");
 }
 

@@ -29,16 +29,16 @@ const char* box_precision_name(BoxPrecision p);
 // Throws cdb::Error naming the known values.
 BoxPrecision parse_box_precision(const std::string& name);
 
-// Preserve on CUDA (front/warp_traversal.h): share each front node's traversal with the idle
-// lanes of its warp. automatic: while the fronts fit in kPreserveWarpWaves waves of the
-// GPU's resident threads, where the launch's tail is its longest lanes; past that the SMs
-// are full anyway and the sharing's votes cost more than they save.
-enum class PreserveWarp { automatic, on, off };
-inline constexpr uint64_t kPreserveWarpWaves = 32;
+// Preserve and update on CUDA (front/warp_traversal.h): share each front node's traversal
+// with the idle lanes of its warp. automatic: while the fronts fit in kWarpSharingWaves
+// waves of the GPU's resident threads, where the launch's tail is its longest lanes; past
+// that the SMs are full anyway and the sharing's votes cost more than they save.
+enum class WarpSharing { automatic, on, off };
+inline constexpr uint64_t kWarpSharingWaves = 32;
 
-const char* preserve_warp_name(PreserveWarp w);
+const char* warp_sharing_name(WarpSharing w);
 // Throws cdb::Error naming the known values.
-PreserveWarp parse_preserve_warp(const std::string& name);
+WarpSharing parse_warp_sharing(const std::string& name);
 
 struct PipelineConfig {
   std::string name = "bvh";     // see pipeline_names()
@@ -91,7 +91,13 @@ struct PipelineConfig {
   // Time each phase of a frame (refit, preserve, ...) with events; off: only the frame and
   // its upload, so no event stands between two kernels.
   bool phase_timing = true;
-  PreserveWarp preserve_warp = PreserveWarp::automatic;
+  WarpSharing preserve_warp = WarpSharing::automatic;
+  WarpSharing update_warp = WarpSharing::automatic;
+  // Ordered front pipelines: histogram-sort the front an update produces (the paper). Off:
+  // the update's output is kept in the order its blocks wrote it (each block's nodes
+  // together, so near its input's order), and only generate and restructure sort; b and c
+  // still count the front per node, so their balance before the next update sorts it.
+  bool order_updates = true;
   // Refit: trees of up to this many leaves refit their top (the nodes spanning refit
   // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
