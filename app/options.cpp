@@ -138,6 +138,11 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
              "update's output in its blocks' order and sort only generated and restructured fronts (b and c "
              "sort in their balance before the next update)")
       ->group(kTuningGroup);
+  add_switch(cmd, "--update-probe", o.update_probe,
+             "front pipelines: the preserves before an update count what it can produce, and the front buffers "
+             "grow to that between frames; off: an update that outgrows them grows them inside its frame and runs "
+             "again")
+      ->group(kTuningGroup);
   cmd->add_option("--refit-top-leaves", o.refit_top_leaves,
                   "front pipelines and bvh: trees of up to this many leaves refit their top (the nodes whose leaves "
                   "span refit tiles) in one block of threads, larger trees hand it over between blocks; 0: always "
@@ -216,6 +221,7 @@ PipelineConfig make_config(const CommonOptions& o, const std::string& pipeline,
   c.preserve_warp = o.preserve_warp;
   c.update_warp = o.update_warp;
   c.order_updates = o.order_updates;
+  c.update_probe = o.update_probe;
   c.refit_top_leaves = o.refit_top_leaves;
   c.restructure_quality = o.restructure.restructure_quality;
   c.restructure_min_leaves = o.restructure.restructure_min_leaves;

@@ -35,6 +35,7 @@ struct CommonOptions {
   WarpSharing preserve_warp = WarpSharing::automatic;
   WarpSharing update_warp = WarpSharing::automatic;
   bool order_updates = true;
+  bool update_probe = true;
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
   std::vector<std::string> sets;  // generator overrides, key=value
 };

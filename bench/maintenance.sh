@@ -4,7 +4,8 @@
 # baselines, every frame's timings into one HDF5 file per scene and pipeline under
 # $OUT/maintenance/NAME/, the printed summaries into $OUT/maintenance.log.
 # BASE_BIN="NAME=PATH ..." runs other cdbench binaries on the same cells right after
-# (before/after in one call, same GPU); CONTROL=1 also the head binary with --front-cycle 4.
+# (before/after in one call, same GPU); CONTROL=1 also the head binary with --front-cycle 4;
+# VARIANTS="NAME=FLAGS;NAME=FLAGS" also the head binary with each set of flags (its own tag).
 # bench/maintenance_report.py makes the tables.
 #
 #   CELLS  which cells run (default: all): wave128 wave512 wave708 spheres sphere cloth-ball funnel
@@ -38,6 +39,13 @@ cell() {
   one head "$bundle/bin/cdbench" "$pipelines" "$name" "$scene" "$@"
   for entry in ${BASE_BIN:-}; do
     one "${entry%%=*}" "${entry#*=}" "${BASE_PIPELINES:-$pipelines}" "$name" "$scene" "$@"
+  done
+  local variants=${VARIANTS:-} v
+  while [[ -n $variants ]]; do
+    v=${variants%%;*}
+    [[ $variants == *";"* ]] && variants=${variants#*;} || variants=""
+    # shellcheck disable=SC2086
+    one "${v%%=*}" "$bundle/bin/cdbench" "${VARIANT_PIPELINES:-a,b,c}" "$name" "$scene" "$@" ${v#*=}
   done
   [[ ${CONTROL:-0} == 1 ]] && one head-cycle4 "$bundle/bin/cdbench" a,b,c "$name" "$scene" --front-cycle 4 "$@"
   return 0

@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cfenv>
 #include <random>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "bruteforce/sweep_oracle.h"
@@ -19,6 +21,7 @@
 #include "generators.h"
 #include "geometry/objects.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/pipeline_kinds.h"
 
 namespace cdb::test {
 
@@ -215,6 +218,85 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
       const PairSetDiff d = diff_pair_sets(funnel.pairs[f], p->sorted_pairs());
       ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count << " extra";
     }
+  }
+}
+
+// --order-updates off (updates keep their output in the order produced) and --update-warp
+// on and off (sprouts shared out in warps, on CUDA), on every front pipeline with fixed
+// cycles and auto, and fronts and pairs that start too small: exactly the oracle's pairs
+// every frame, and under a fixed cycle fronts of the same sizes as the paper's sorted
+// updates (the same nodes in another order).
+inline void check_update_knobs(const std::string& device) {
+  const ExactFrames funnel =
+      exact_frames(*make_generator("funnel", {{"res", 40}, {"frames", 12}, {"segments", 16}, {"ball_level", 1}}));
+  const ExactFrames soup = exact_frames(*fast_soup(8));
+  for (const ExactFrames* scene : {&funnel, &soup})
+    for (const auto& name : pipeline_names()) {
+      const PipelineKind* kind = find_pipeline_kind(name);
+      if (!std::holds_alternative<FrontStrategy>(kind->builds)) continue;
+      for (uint32_t cycle : {1u, 3u, 0u}) {
+        std::vector<std::array<uint64_t, 2>> sorted_sizes;
+        for (bool order : {true, false})
+          for (WarpSharing warp : {WarpSharing::off, WarpSharing::on}) {
+            if (order && warp == WarpSharing::on) continue;
+            PipelineConfig cfg = growing_config(device, name);
+            cfg.front_per_triangle = 0.5;
+            cfg.front_cycle = cycle;
+            cfg.order_updates = order;
+            cfg.update_warp = warp;
+            auto p = make_pipeline(cfg);
+            p->set_topology(scene->topology);
+            for (uint32_t f = 0; f < scene->num_frames(); ++f) {
+              const FrameStats s = p->run_frame(scene->vertices[f]);
+              const std::string where = name + " cycle " + std::to_string(cycle) + (order ? " sorted" : " kept") +
+                                        " warp " + warp_sharing_name(warp) + " frame " + std::to_string(f);
+              const PairSetDiff d = diff_pair_sets(scene->pairs[f], p->sorted_pairs());
+              ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count
+                                     << " extra";
+              if (cycle == 0) continue;
+              if (order)
+                sorted_sizes.push_back({s.front_internal, s.front_external});
+              else
+                EXPECT_EQ(sorted_sizes[f], (std::array<uint64_t, 2>{s.front_internal, s.front_external})) << where;
+            }
+          }
+      }
+    }
+}
+
+// --update-probe: a probing preserve (the frame before an update, --front-cycle 2) sizes the
+// front buffers for the update, which, run on the same geometry as the probe (each frame
+// but the first given twice), then never grows them and runs once; without the probe the
+// same updates outgrow their buffers (fronts and pairs start small, pairs with room to
+// spare so that only fronts grow). Exact either way.
+inline void check_update_probe(const std::string& device) {
+  const ExactFrames soup = exact_frames(*fast_soup(6));
+  for (const auto& name : {"a", "b", "c", "unordered", "periodic"}) {
+    uint32_t reruns_unprobed = 0;
+    for (bool probe : {true, false}) {
+      PipelineConfig cfg;
+      cfg.device = device;
+      cfg.name = name;
+      cfg.pairs_per_triangle = 64;
+      cfg.front_per_triangle = 0.25;
+      cfg.front_cycle = 2;
+      cfg.update_probe = probe;
+      auto p = make_pipeline(cfg);
+      p->set_topology(soup.topology);
+      for (uint32_t k = 0; k < 2 * soup.num_frames() - 1; ++k) {
+        const uint32_t f = (k + 1) / 2;
+        const FrameStats s = p->run_frame(soup.vertices[f]);
+        const std::string where = std::string(name) + (probe ? " probed" : " unprobed") + " frame " + std::to_string(k);
+        const PairSetDiff d = diff_pair_sets(soup.pairs[f], p->sorted_pairs());
+        ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count << " extra";
+        if (s.op.find("+update") == std::string::npos) continue;
+        if (probe)
+          EXPECT_EQ(s.query_reruns, 0u) << where;
+        else
+          reruns_unprobed += s.query_reruns;
+      }
+    }
+    EXPECT_GT(reruns_unprobed, 0u) << name << ": the scene does not make unprobed updates grow their fronts";
   }
 }
 

@@ -265,6 +265,16 @@ TEST(CudaKnobs, DependentLaunchesAndUntimedPhasesKeepEveryPipelineExact) {
     for (bool dependent : {false, true}) check_launch_knobs("cuda", graph, dependent);
 }
 
+TEST(CudaKnobs, UpdatesKeptAsProducedAndSharedInWarpsStayExact) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_update_knobs("cuda");
+}
+
+TEST(CudaKnobs, ProbedUpdatesRunOnce) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_update_probe("cuda");
+}
+
 // Every front cycle (1, 2, 3, 5 and auto) on each front scene, against the scene's oracle
 // pairs computed once.
 class CudaFrontCycles : public testing::TestWithParam<std::string> {

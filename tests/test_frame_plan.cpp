@@ -293,3 +293,64 @@ TEST(FramePlan, ResetStartsOver) {
   EXPECT_FALSE(planner.maintenance().priced());
   EXPECT_EQ(schedule(planner, 5, flat), "bpppp");
 }
+
+namespace {
+
+// As schedule, with a probing preserve as 'P'.
+template <class Cost>
+std::string schedule_probes(FramePlanner& planner, int frames, Cost cost) {
+  std::string s;
+  for (int f = 0; f < frames; ++f) {
+    const FramePlan p = planner.plan(1000, 100);
+    EXPECT_TRUE(!p.probe || (p.self == FrontOp::preserve && !p.rebuild)) << "frame " << f;
+    s += p.probe ? 'P' : letter(p);
+    planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
+  }
+  return s;
+}
+
+}  // namespace
+
+// A fixed cycle probes on the frame before each update, so the update's buffers are sized
+// by then; --update-probe off never probes.
+TEST(FramePlan, FixedCycleProbesTheFrameBeforeAnUpdate) {
+  FramePlanner planner(FrontStrategy{}, cycle_config(4));
+  EXPECT_EQ(schedule_probes(planner, 13, flat), "bppPuppPuppPu");
+  FramePlanner every(FrontStrategy{}, cycle_config(1));
+  EXPECT_EQ(schedule_probes(every, 5, flat), "buuuu");
+  PipelineConfig off = cycle_config(4);
+  off.update_probe = false;
+  FramePlanner unprobed(FrontStrategy{}, off);
+  EXPECT_EQ(schedule_probes(unprobed, 13, flat), "bpppupppupppu");
+}
+
+// Adaptively, probing starts once the rent paid reaches kProbeShare of the price and goes on
+// until the update: every update follows a probe, and frames with less rent do not probe.
+TEST(FramePlan, AdaptiveProbesOnceTheRentNearsThePrice) {
+  const double a = 0.1, build = 10.0, extra = 2.0;
+  int since = 0;
+  double rent = 0.0;
+  auto cost = [&](int, const FramePlan& p) {
+    if (!p.steady()) {
+      since = 0;
+      rent = 0.0;
+      return p.rebuild ? build : 1.0 + extra;
+    }
+    rent += a * since;
+    return 1.0 + a * since++;
+  };
+  FramePlanner planner(FrontStrategy{}, cycle_config(0));
+  std::string s;
+  for (int f = 0; f < 200; ++f) {
+    const FramePlan p = planner.plan(1000, 100);
+    const double rent_before = rent;
+    s += p.probe ? 'P' : letter(p);
+    const double price = planner.maintenance().price_ms(100);
+    if (p.probe) EXPECT_GE(rent_before, FrontMaintenance::kProbeShare * price - 1e-9) << "frame " << f;
+    if (p.self == FrontOp::preserve && !p.rebuild && !p.probe && f > 0)
+      EXPECT_LT(rent_before, FrontMaintenance::kProbeShare * price + 1e-9) << "frame " << f;
+    planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
+  }
+  ASSERT_NE(s.find('u'), std::string::npos) << s;
+  for (size_t k = s.find('u'); k != std::string::npos; k = s.find('u', k + 1)) EXPECT_EQ(s[k - 1], 'P') << s;
+}

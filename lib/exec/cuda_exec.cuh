@@ -5,6 +5,7 @@
 // make_cuda_pipeline (pipeline/pipeline.h, defined in pipeline/cuda_backend.cu).
 #include <cuda_runtime.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cub/block/block_reduce.cuh>
@@ -383,7 +384,8 @@ class CudaFrameGraph {
         return FrameGraphRun::replayed;
       }
     }
-    Slot& s = slots_[0].last_used <= slots_[1].last_used ? slots_[0] : slots_[1];
+    Slot& s = *std::min_element(slots_.begin(), slots_.end(),
+                                [](const Slot& a, const Slot& b) { return a.last_used < b.last_used; });
     begin_capture(exec, timer, s);
     try {
       launch();
@@ -418,7 +420,9 @@ class CudaFrameGraph {
   void end_capture(CudaExec& exec, CudaPhaseTimer& timer, Slot& s);
   void abandon_capture(CudaExec& exec, CudaPhaseTimer& timer);
   void launch_graph(CudaExec& exec, const Slot& s);
-  std::array<Slot, 2> slots_;
+  // Recordings kept at once, least recently used replaced: swept boxes alternate two vertex
+  // buffers, and probing frames (pipeline/frame_plan.h) launch another preserve.
+  std::array<Slot, 4> slots_;
   uint64_t clock_ = 0, captures_ = 0, replays_ = 0;
 };
 

@@ -18,6 +18,10 @@ namespace cdb {
 
 enum FrontKind : int { kInternalFront = 0, kExternalFront = 1 };
 
+// Slots a count that every block of a launch adds to is spread over (pipeline/
+// front_counters.h): blocks add to slot blockIdx % kStopSlots, not all to one address.
+inline constexpr uint32_t kStopSlots = 16;
+
 CDB_HD_INLINE int front_kind(uint32_t ref) { return is_leaf(ref) ? kExternalFront : kInternalFront; }
 
 // Where an operation appends the fronts it produces: per kind a counter (every push

@@ -82,7 +82,10 @@ struct GenerateFrontFn {
 
 // (2) Preserve: traverse from every stored front node; the front is not rewritten. On the
 // GPU the traversals left after the first step are shared out within each warp
-// (front/warp_traversal.h).
+// (front/warp_traversal.h). kCountStops (a probe before an update): also count, per kind,
+// the stop nodes the descents meet into `stops` (FrontQueryCounters::stops, kStopSlots
+// slots of two), which bounds what an update of the front produces.
+template <bool kCountStops>
 struct PreserveFrontFn {
   using Stage = PairStage;
   static constexpr bool kWarpTraversal = true;
@@ -90,21 +93,55 @@ struct PreserveFrontFn {
   PairSink pairs;
   const uint32_t* prim;
   const uint32_t* node;
-  bool share_in_warp = true;  // on the GPU: each lane alone when false
+  bool share_in_warp = true;          // on the GPU: each lane alone when false
+  unsigned long long* stops = nullptr;  // kCountStops: the count slots
+  CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage); }
   // Front node e's own test: its pair if it is a leaf that overlaps, and the rest.
-  CDB_HD PreserveTask first_step(uint32_t e, const PairSink& sink) const {
+  CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
     const uint32_t i = prim[e], j = node[e];
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     const uint32_t q = lane_link(hi.w);
+    const PairSink sink = pair_sink(stage);
     const NextNode step = visit(view.tree.bvh, j, lo, hi, [&](uint32_t other) { sink.emit(q, other); });
-    return {lo, hi, step.next, step.escape, !step.stop};
+    return {lo, hi, i, step.next, step.escape, !step.stop};
   }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
-    const PairSink sink = pairs.staged(stage);
-    const PreserveTask t = first_step(e, sink);
-    if (t.busy) traverse_range<false>(view, 0, t.lo, t.hi, t.node, t.end, sink, FrontSink{});
+    const TraversalTask t = first_step(e, stage);
+    uint32_t met[2] = {0, 0};
+    if (t.busy) {
+      const PairSink sink = pair_sink(stage);
+      const uint32_t q = lane_link(t.hi.w);
+      traverse(view.tree.bvh, t.lo, t.hi, t.node, t.end, [&](uint32_t other) { sink.emit(q, other); },
+               [&](uint32_t stop) {
+                 if constexpr (kCountStops) ++met[front_kind(stop)];
+               });
+    }
+    if constexpr (kCountStops) count_stops(met);
+  }
+  // Adds a lane's counts: on the GPU once per warp and kind, into its block's slot.
+  CDB_HD_INLINE void count_stops(const uint32_t (&met)[2]) const {
+#if defined(__CUDA_ARCH__)
+    const unsigned active = __activemask();
+    unsigned long long* slot = stops + 2 * (blockIdx.x % kStopSlots);
+    for (int k = 0; k < 2; ++k) {
+      const uint32_t sum = __reduce_add_sync(active, met[k]);
+      if ((threadIdx.x & 31u) == unsigned(__ffs(active) - 1) && sum) atomicAdd(&slot[k], static_cast<unsigned long long>(sum));
+    }
+#else
+    for (int k = 0; k < 2; ++k)
+      if (met[k]) atomic_add_relaxed(&stops[k], static_cast<unsigned long long>(met[k]));
+#endif
   }
 #if defined(__CUDACC__)
+  __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
+    if constexpr (kCountStops) {
+      uint32_t met[2] = {0, 0};
+      traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t, uint32_t stop) { ++met[front_kind(stop)]; });
+      count_stops(met);
+    } else {
+      traverse_in_warp(view.tree.bvh, t, pair_sink(stage));
+    }
+  }
   __device__ void flush(Stage& s) const { pairs.flush(s); }
 #endif
 };
@@ -117,32 +154,31 @@ struct PreserveFrontFn {
 // a node holding leaf i: such a node contains leaf i's box and so always overlaps. A cross
 // front partitions all leaves: its climb may end at the root, which is then kept (father
 // kNoNode), and the leftmost-node argument is the same.
-CDB_HD_INLINE void update_front_node(const FrontView& view, const PairSink& pairs,
-                                     const FrontSink& front, uint32_t i, uint32_t j) {
+// Everything but a sprout's traversal, which is returned as a task (busy when front node j
+// sprouts), so that it can run alone or shared out in the warp.
+CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const PairSink& pairs,
+                                                    const FrontSink& front, uint32_t i, uint32_t j) {
   const FrontTree& tree = view.tree;
   const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
   const NextNode step = next_node(tree.bvh, j, lo, hi);
   if (step.leaf_hit) {
     pairs.emit(lane_link(hi.w), step.prim);
     front.push(i, j, 1);
-    return;
+    return {};
   }
-  if (!step.stop) {
-    traverse_range<true>(view, i, lo, hi, step.next, step.escape, pairs, front);
-    return;
-  }
+  if (!step.stop) return {lo, hi, i, step.next, step.escape, true};
   // Each father's left link comes with its box (node_ref.h).
   uint32_t child = j, father = tree.parent(j);
   for (;;) {
     if (father == kNoNode) {
       front.push(i, child, 0);
-      return;
+      return {};
     }
     const vec4f flo = tree.bvh.node_lo[father], fhi = tree.bvh.node_hi[father];
     const bool left_child = lane_link(flo.w) == child, hit = overlaps(lo, hi, flo, fhi);
     if (!left_child || hit) {
       if (left_child || hit) front.push(i, child, 0);
-      return;
+      return {};
     }
     child = father;
     father = tree.node_parent[father];
@@ -151,16 +187,27 @@ CDB_HD_INLINE void update_front_node(const FrontView& view, const PairSink& pair
 
 struct UpdateFrontFn {
   using Stage = PairFrontStage;
+  static constexpr bool kWarpTraversal = true;
   FrontView view;
   PairSink pairs;
   FrontSink front;
   const uint32_t* prim;
   const uint32_t* node;
+  bool share_in_warp = true;  // on the GPU: each lane sprouts alone when false
+  CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
+  CDB_HD FrontSink front_sink(Stage* stage) const { return front.staged(stage ? &stage->front : nullptr); }
+  CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
+    return update_front_node_first(view, pair_sink(stage), front_sink(stage), prim[e], node[e]);
+  }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
-    update_front_node(view, pairs.staged(stage ? &stage->pairs : nullptr),
-                      front.staged(stage ? &stage->front : nullptr), prim[e], node[e]);
+    const TraversalTask t = first_step(e, stage);
+    if (t.busy) traverse_range<true>(view, t.query, t.lo, t.hi, t.node, t.end, pair_sink(stage), front_sink(stage));
   }
 #if defined(__CUDACC__)
+  __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
+    const FrontSink sink = front_sink(stage);
+    traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t i, uint32_t stop) { sink.push(i, stop, 1); });
+  }
   __device__ void flush(Stage& s) const {
     pairs.flush(s.pairs);
     front.flush(s.front);
@@ -186,7 +233,8 @@ struct BothFrontsFn {
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const { first.flush(s); }
   // Every thread of the launch, e past the fronts included (those lanes only help): each
-  // lane's first step, then the rest shared out in the warp. Both passes share the tree.
+  // lane's first step, then the rest shared out in the warp. Both passes share the tree
+  // and the sinks.
   __device__ void warp(uint32_t e, uint32_t n, Stage* stage) const
     requires F::kWarpTraversal
   {
@@ -194,10 +242,9 @@ struct BothFrontsFn {
       if (e < n) (*this)(e, stage);
       return;
     }
-    const PairSink sink = first.pairs.staged(stage);
-    PreserveTask t;
-    if (e < n) t = e < n0 ? first.first_step(e, sink) : second.first_step(e - n0, sink);
-    traverse_in_warp(first.view.tree.bvh, t, sink);
+    TraversalTask t;
+    if (e < n) t = e < n0 ? first.first_step(e, stage) : second.first_step(e - n0, stage);
+    first.rest_in_warp(t, stage);
   }
 #endif
 };

@@ -19,6 +19,12 @@
 
 namespace cdb {
 
+// What the inspection counts: degraded candidate subtrees, their leaves, and the sum of
+// their Q in thousandths (for the recorded mean).
+struct InspectCounters {
+  unsigned long long candidates, candidate_leaves, candidate_q_milli;
+};
+
 struct InspectQualityFn {
   const uint32_t* node_first;
   const uint32_t* node_last;
@@ -29,9 +35,7 @@ struct InspectQualityFn {
   uint32_t min_leaves, max_leaves;
   uint32_t max_candidates;
   uint32_t* candidate_node;
-  // counters[0]: candidates, [1]: leaves in candidates, [2]: sum of the candidates' Q in
-  // thousandths (for the recorded mean).
-  unsigned long long* counters;
+  InspectCounters* counters;
 
   CDB_HD_INLINE uint32_t leaves_of(uint32_t i) const { return node_last[i] - node_first[i] + 1; }
 
@@ -62,11 +66,11 @@ struct InspectQualityFn {
       float qp;
       if (degraded(p, qp)) return;
     }
-    const unsigned long long slot = atomic_add_relaxed(&counters[0], 1ull);
+    const unsigned long long slot = atomic_add_relaxed(&counters->candidates, 1ull);
     if (slot >= max_candidates) return;  // cannot happen: candidates are disjoint
     candidate_node[slot] = i;
-    atomic_add_relaxed(&counters[1], static_cast<unsigned long long>(leaves_of(i)));
-    atomic_add_relaxed(&counters[2], static_cast<unsigned long long>(q * 1000.0f));
+    atomic_add_relaxed(&counters->candidate_leaves, static_cast<unsigned long long>(leaves_of(i)));
+    atomic_add_relaxed(&counters->candidate_q_milli, static_cast<unsigned long long>(q * 1000.0f));
   }
 };
 

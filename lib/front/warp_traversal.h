@@ -1,7 +1,8 @@
 #pragma once
-// Preserve's traversals shared out within a warp. A front node that starts to overlap
-// descends its subtree alone, one dependent load a step, and the warp waits for its longest
-// lane: the preserve kernels ran at 12 to 22 of 32 lanes active (results/2026-11-25-h100/ncu-*.md).
+// The front traversals (preserve's, and the sprouts of update) shared out within a warp. A
+// front node that starts to overlap descends its subtree alone, one dependent load a step,
+// and the warp waits for its longest lane: the preserve kernels ran at 12 to 22 of 32 lanes
+// active (results/2026-11-25-h100/ncu-*.md), update's at 16 to 17 on funnel.
 // Here a lane with nothing left takes over part of a busy lane's traversal, and the warp's
 // steps approach its lanes' total over 32 instead of its longest lane's.
 //
@@ -10,9 +11,10 @@
 // then goes on with [escape, end), which is itself a stackless traversal from escape to end.
 // A lane that steps onto such a node with escape != end can give [escape, end) away and keep
 // the subtree (its end becomes escape). After each step of the warp, the k-th idle lane
-// takes the k-th offer (ballots, then one shuffle of the task per value). The pairs are
-// those of one lane's traversal: the pieces partition it.
+// takes the k-th offer (ballots, then one shuffle of the task per value). The pieces
+// partition the lane's traversal: the same pairs, and the same stop nodes for on_stop.
 #include <cstdint>
+#include <type_traits>
 
 #include "bvh/bvh_view.h"
 #include "bvh/traverse.h"
@@ -20,24 +22,34 @@
 
 namespace cdb {
 
-// What is left of a traversal: from `node` up to (not including) `end`, for the query leaf
-// whose box is lo, hi (its primitive rides in hi.w, node_ref.h). Idle when nothing is left.
-struct PreserveTask {
+// What is left of a traversal: from `node` up to (not including) `end`, for query leaf
+// `query` whose box is lo, hi (its primitive rides in hi.w, node_ref.h). Idle when nothing
+// is left.
+struct TraversalTask {
   vec4f lo, hi;
-  uint32_t node = kNoNode, end = kNoNode;
+  uint32_t query = 0, node = kNoNode, end = kNoNode;
   bool busy = false;
 };
 
+// A traversal that records no stop nodes (preserve).
+struct NoFrontStop {
+  CDB_HD_INLINE void operator()(uint32_t, uint32_t) const {}
+};
+
 #if defined(__CUDACC__)
-// Every lane of the warp calls this together, idle ones included.
-__device__ inline void traverse_in_warp(const BvhView& bvh, PreserveTask t, const PairSink& sink) {
+// Every lane of the warp calls this together, idle ones included. on_stop(query, node) gets
+// each stop node of the traversal, as traverse's on_stop does (update records them).
+template <class OnStop = NoFrontStop>
+__device__ void traverse_in_warp(const BvhView& bvh, TraversalTask t, const PairSink& sink, OnStop on_stop = {}) {
   constexpr unsigned kAll = 0xffffffffu;
   const unsigned lane = threadIdx.x & 31u, below = (1u << lane) - 1u;
   for (;;) {
     uint32_t offer = kNoNode;  // [offer, t.end): the traversal's rest after this node's subtree
     if (t.busy) {
       const uint32_t q = lane_link(t.hi.w);
-      const NextNode step = visit(bvh, t.node, t.lo, t.hi, [&](uint32_t other) { sink.emit(q, other); });
+      const uint32_t query = t.query;
+      const NextNode step = visit(bvh, t.node, t.lo, t.hi, [&](uint32_t other) { sink.emit(q, other); },
+                                  [&](uint32_t stop) { on_stop(query, stop); });
       if (!step.stop && step.escape != t.end) offer = step.escape;
       t.node = step.next;
       t.busy = t.node != t.end;
@@ -58,7 +70,10 @@ __device__ inline void traverse_in_warp(const BvhView& bvh, PreserveTask t, cons
                 hy = __shfl_sync(kAll, t.hi.y, src), hz = __shfl_sync(kAll, t.hi.z, src),
                 hw = __shfl_sync(kAll, t.hi.w, src);
     const uint32_t node = __shfl_sync(kAll, offer, src), end = __shfl_sync(kAll, t.end, src);
-    if (takes) t = {{lx, ly, lz, 0.0f}, {hx, hy, hz, hw}, node, end, true};
+    // Only a traversal that records its stops needs to know whose they are.
+    uint32_t query = 0;
+    if constexpr (!std::is_same_v<OnStop, NoFrontStop>) query = __shfl_sync(kAll, t.query, src);
+    if (takes) t = {{lx, ly, lz, 0.0f}, {hx, hy, hz, hw}, query, node, end, true};
     if (gives) t.end = offer;
   }
 }

@@ -20,6 +20,13 @@
 
 namespace cdb {
 
+// What the baselines' frames count: the pairs, and the entries the uniform grid's cells took
+// against its plan (UniformGrid::settle).
+struct BroadPhaseCounters {
+  unsigned long long pairs;
+  unsigned long long grid_totals[kGridTotals];
+};
+
 template <class Exec, class Timer>
 class BroadPhase final : public Pipeline {
  public:
@@ -97,7 +104,7 @@ class BroadPhase final : public Pipeline {
           break;
         case BroadPhaseMethod::grid:
           grid_pairs(exec_, grid_, mesh.num_faces, pairs_.sink());
-          exec_.copy(pairs_.counter(1), grid_.totals.data(), kGridTotals);
+          exec_.copy(pairs_.device()->grid_totals, grid_.totals.data(), kGridTotals);
           break;
         case BroadPhaseMethod::hash:
           hash_pairs(exec_, hash_, mesh.num_faces, pairs_.sink());
@@ -112,7 +119,7 @@ class BroadPhase final : public Pipeline {
       // A grid whose entries outgrew this frame's plan is rebuilt to the measured need
       // before anything else: its pair count is then incomplete.
       if (method_ == BroadPhaseMethod::grid) {
-        build_grid = !grid_.settle(c[1], c[2]);
+        build_grid = !grid_.settle(c.grid_totals[0], c.grid_totals[1]);
         if (build_grid) {
           stats.op = "regrid";
           ++stats.query_reruns;
@@ -191,7 +198,7 @@ class BroadPhase final : public Pipeline {
   SweepAndPrune<Exec> sweep_;
   UniformGrid<Exec> grid_;
   SpatialHash<Exec> hash_;
-  PairBuffer<Exec> pairs_;
+  PairBuffer<Exec, BroadPhaseCounters> pairs_;
   Array<vec4f> prim_lo_, prim_hi_;
   uint64_t frame_ = 0;
 };

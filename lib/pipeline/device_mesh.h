@@ -3,6 +3,8 @@
 // per-frame upkeep, and the pair buffer with its counters.
 #include <cmath>
 #include <cstddef>
+#include <cstring>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -196,23 +198,27 @@ std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const Me
   return "build";
 }
 
-// The pair buffer: pairs plus a small block of device counters read back once a frame
-// (counters[0] = pairs; pipelines may use the rest: pipeline/front_pipeline.h lays out its).
-template <class Exec>
+// The pair buffer: pairs plus a block of device counters read back once a frame, typed by
+// the pipeline: `Counters` is a struct of unsigned long long counters whose first is the
+// pairs (pipeline/front_counters.h, BroadPhaseCounters in pipeline/broad_phase.h).
+template <class Exec, class Counters>
 class PairBuffer {
+  static_assert(offsetof(Counters, pairs) == 0, "the pair count comes first: pair sinks count there");
+  static_assert(sizeof(Counters) % sizeof(unsigned long long) == 0 && std::is_trivially_copyable_v<Counters>);
+
  public:
-  static constexpr size_t kCounters = 12;
+  static constexpr size_t kWords = sizeof(Counters) / sizeof(unsigned long long);
   explicit PairBuffer(Exec& exec) {
     pairs_.bind(exec.memory(), "pairs");
     counters_.bind(exec.memory(), "counters");
   }
   void reserve(size_t capacity) {
     pairs_.reserve(std::max<size_t>(1024, capacity));
-    counters_.reserve(kCounters);
+    counters_.reserve(kWords);
   }
-  void reset_counters(Exec& exec) { exec.fill(counters_.data(), kCounters, 0ull); }
+  void reset_counters(Exec& exec) { exec.fill(counters_.data(), kWords, 0ull); }
   // The same reset, done by a refit on its way (bvh/refit.h).
-  CounterReset counter_reset() { return {counters_.data(), uint32_t(kCounters)}; }
+  CounterReset counter_reset() { return {counters_.data(), uint32_t(kWords)}; }
   PairSink sink() {
     return {pairs_.data(), counters_.data(), pairs_.capacity(), skip_adjacent_faces_, face_object_, partners_};
   }
@@ -223,15 +229,17 @@ class PairBuffer {
   }
   // Drop pairs of triangles sharing a vertex (faces: 3 vertex indices each), or keep all.
   void skip_adjacent(const uint32_t* faces) { skip_adjacent_faces_ = faces; }
-  unsigned long long* counter(size_t k) { return counters_.data() + k; }
+  // The block in device memory, for the addresses of its counters (`&device()->field`):
+  // never read through on the host.
+  Counters* device() { return reinterpret_cast<Counters*>(counters_.data()); }
   // The frame's one synchronization: all counters at once.
-  std::array<unsigned long long, kCounters> read_counters(Exec& exec) {
-    std::array<unsigned long long, kCounters> c{};
-    exec.copy_to_host(c.data(), counters_.data(), kCounters);
-    last_ = c;
-    return c;
+  const Counters& read_counters(Exec& exec) {
+    unsigned long long words[kWords];
+    exec.copy_to_host(words, counters_.data(), kWords);
+    std::memcpy(&last_, words, sizeof last_);
+    return last_;
   }
-  const std::array<unsigned long long, kCounters>& last_counters() const { return last_; }
+  const Counters& last_counters() const { return last_; }
   // After a read-back: if the pairs did not fit, grow to the measured need
   // (counted) and say so; the caller re-runs the query.
   bool grow_if_needed() {
@@ -240,7 +248,7 @@ class PairBuffer {
     pairs_.reserve(size_t(need + need / 4));
     return true;
   }
-  uint64_t count() const { return last_[0]; }
+  uint64_t count() const { return last_.pairs; }
   std::vector<PrimPair> sorted_pairs(Exec& exec) const {
     std::vector<PrimPair> out(count());
     exec.copy_to_host(out.data(), pairs_.data(), out.size());
@@ -254,7 +262,7 @@ class PairBuffer {
   const uint32_t* skip_adjacent_faces_ = nullptr;
   const uint32_t* face_object_ = nullptr;
   const uint64_t* partners_ = nullptr;
-  std::array<unsigned long long, kCounters> last_{};
+  Counters last_{};
 };
 
 }  // namespace cdb

@@ -52,6 +52,9 @@ struct FramePlan {
   FrontOp self = FrontOp::preserve, inter = FrontOp::preserve, rigid_self = FrontOp::preserve;
   bool balance = false;  // (4) before the updates
   bool inspect = false;  // pipeline c: inspect T_D's quality after the update
+  // Preserving queries count what an update of their fronts would produce (an update is
+  // near: FrontMaintenance::update_near), and their buffers grow to it after the frame.
+  bool probe = false;
   Formula2 decision = Formula2::none;
   Candidates restructuring;  // what (5) restructures this frame
 
@@ -102,6 +105,8 @@ class FramePlanner {
     // Inspected after an update (the paper's circle 3) only: right after a rebuild Q is the
     // reference, and a restructure keeps the stale front for the next update to refresh.
     p.inspect = strategy_.restructure && q_ref_ > 0.0 && p.self == FrontOp::update;
+    p.probe = config_.update_probe && !p.rebuild && cycle == FrontOp::preserve &&
+              maintenance_.update_near(frame_, generated_, produced_, front_nodes);
     return p;
   }
 

@@ -39,6 +39,9 @@ class FrontMaintenance {
  public:
   static constexpr uint32_t kAuto = 0;
   static constexpr double kBuildPerUpdate = 8.0;
+  // Probing starts at half the price: for rent growing linearly, the last 30% of the frames
+  // between updates probe.
+  static constexpr double kProbeShare = 0.5;
 
   // cycle: frames per fixed cycle, or kAuto.
   explicit FrontMaintenance(uint32_t cycle = kAuto) : cycle_(cycle) {}
@@ -54,6 +57,17 @@ class FrontMaintenance {
     if (!adaptive()) return frame > generated && (frame - generated) % cycle_ == 0;
     if (frame <= produced) return false;
     return steady_ > 0 && rent_ms() >= price_ms(front_nodes);
+  }
+
+  // Whether the frame after `frame` may update, so that `frame`, if it preserves, should
+  // probe: count what an update of its fronts would produce, for their buffers to be sized
+  // before the update instead of growing inside it and running it again. Fixed cycle: the
+  // frame before an update. Adaptive: once the rent paid has reached kProbeShare of the
+  // price, and on every steady frame after until the update (rent only grows).
+  bool update_near(uint64_t frame, uint64_t generated, uint64_t produced, uint64_t front_nodes) const {
+    if (!adaptive()) return update_due(frame + 1, generated, produced, front_nodes);
+    if (frame <= produced) return false;
+    return steady_ > 0 && rent_ms() >= kProbeShare * price_ms(front_nodes);
   }
 
   // The rent paid since the fronts were last produced, in ms.

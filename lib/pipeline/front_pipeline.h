@@ -6,7 +6,9 @@
 // histogram sort unless the strategy is `unordered`. One read-back a frame: pair, front and
 // inspection counters together; an overflow grows the buffer (counted, listed after the
 // run) and re-runs the operation from the untouched current front. The steady frame (refit
-// + preserve) replays a CUDA graph while nothing it launches changed.
+// + preserve) replays a CUDA graph while nothing it launches changed. With --order-updates
+// off an update's front is kept as produced (counted per node where balance or inspection
+// reads the counts) and only generated and restructured fronts are sorted.
 //
 // A scene with declared queries and rigid objects is split (geometry/object_split.h): T_D
 // over the deformable faces follows this state machine; T_R over the rigid faces is built
@@ -23,6 +25,7 @@
 
 #include "front/quality.h"
 #include "pipeline/device_mesh.h"
+#include "pipeline/front_counters.h"
 #include "pipeline/frame_plan.h"
 #include "pipeline/front_query.h"
 #include "pipeline/pipeline.h"
@@ -36,8 +39,7 @@ class FrontPipeline final : public Pipeline {
       : Pipeline(config.box_precision), config_(config), planner_(chosen, config), exec_(ExecOptions{config.dependent_launch}),
         timer_(exec_, config.phase_timing), mesh_(exec_), bvh_(exec_),
         rigid_bvh_(exec_, "rigid_bvh"), pairs_(exec_), restructure_(exec_),
-        self_(exec_, "front", kSelfCounters), inter_(exec_, "inter_front", kInterCounters),
-        rigid_self_(exec_, "rigid_front", kRigidCounters) {
+        self_(exec_, "front", 0), inter_(exec_, "inter_front", 1), rigid_self_(exec_, "rigid_front", 2) {
     radix_.bind(exec_.memory());
     if (config_.refit_every == 0) fail("--refit-every must be at least 1");
     mesh_.set_box_knobs(config_);
@@ -95,13 +97,14 @@ class FrontPipeline final : public Pipeline {
       }
       if (plan.inspect) inspect_quality();
       timer_.stop_frame();
-      const auto c = pairs_.read_counters(exec_);
+      const FrontCounters& c = pairs_.read_counters(exec_);
       bool again = pairs_.grow_if_needed();
       for (Query q : kQueries)
         if (op_of(plan, q) != FrontOp::preserve) again = query(q).grow_if_needed(c) || again;
       if (!again) {
         for (Query q : kQueries)
-          if (op_of(plan, q) != FrontOp::preserve) query(q).adopt(exec_, c, strategy().ordered);
+          if (op_of(plan, q) != FrontOp::preserve) query(q).adopt(exec_, c, sorts(op_of(plan, q)));
+        if (plan.probe) reserve_for_update(plan, c);
         break;
       }
       ++graph_version_;
@@ -118,13 +121,12 @@ class FrontPipeline final : public Pipeline {
                        : 0.0;
     Candidates found;
     if (plan.inspect) {
-      const auto c = pairs_.last_counters();
-      found.count = uint32_t(std::min<unsigned long long>(c[kCandidatesCounter], restructure_.max_candidates));
-      found.leaves = uint32_t(c[kCandidateLeavesCounter]);
-      stats.candidates = c[kCandidatesCounter];
-      stats.candidate_leaves = c[kCandidateLeavesCounter];
-      stats.q_candidates =
-          c[kCandidatesCounter] ? double(c[kCandidateQCounter]) / 1000.0 / double(c[kCandidatesCounter]) : 0.0;
+      const InspectCounters& c = pairs_.last_counters().inspect;
+      found.count = uint32_t(std::min<unsigned long long>(c.candidates, restructure_.max_candidates));
+      found.leaves = uint32_t(c.candidate_leaves);
+      stats.candidates = c.candidates;
+      stats.candidate_leaves = c.candidate_leaves;
+      stats.q_candidates = c.candidates ? double(c.candidate_q_milli) / 1000.0 / double(c.candidates) : 0.0;
     }
     record_timings(timer_, stats);
     planner_.finish(plan, {stats.total_ms, stats.query_reruns == 0, fronts, stats.q_root, found});
@@ -136,15 +138,6 @@ class FrontPipeline final : public Pipeline {
   MemoryStats memory() const override { return const_cast<Exec&>(exec_).memory().stats(); }
 
  private:
-  // The pair buffer's counter block (PairBuffer, read back once a frame), by slot: [0] the
-  // pairs; each front query counts its produced internal and external fronts in two
-  // consecutive slots; pipeline c's inspection counts its candidate subtrees, their leaves
-  // and their summed Q (times 1000) in three (front/quality.h).
-  static constexpr size_t kSelfCounters = 1;
-  static constexpr size_t kCandidatesCounter = 3, kCandidateLeavesCounter = 4, kCandidateQCounter = 5;
-  static constexpr size_t kInterCounters = 6, kRigidCounters = 8;
-  static_assert(kRigidCounters + 2 <= PairBuffer<Exec>::kCounters, "front counters past the block");
-
   enum class Query { self, inter, rigid_self };
   static constexpr std::array<Query, 3> kQueries = {Query::self, Query::inter, Query::rigid_self};
   FrontQuery<Exec>& query(Query q) {
@@ -178,7 +171,8 @@ class FrontPipeline final : public Pipeline {
 
   // A steady frame's work (refit unless stale, counters, preserve), through the frame graph
   // with --cuda-graph. The key holds what the launches depend on besides graph_version_:
-  // the vertex buffers (swept boxes alternate them) and whether the frame refits.
+  // the vertex buffers (swept boxes alternate them), whether the frame refits and whether
+  // its preserve probes.
   FrameGraphRun run_steady(const MeshView& mesh, const FramePlan& plan) {
     const bool stale = plan.stale;
     auto launch = [&] {
@@ -190,7 +184,8 @@ class FrontPipeline final : public Pipeline {
       return FrameGraphRun::plain;
     }
     const FrameGraphKey key{graph_version_, uint64_t(reinterpret_cast<uintptr_t>(mesh.vertices)),
-                            uint64_t(reinterpret_cast<uintptr_t>(mesh.prev_vertices)), stale ? 1u : 0u};
+                            uint64_t(reinterpret_cast<uintptr_t>(mesh.prev_vertices)),
+                            (stale ? 1u : 0u) | (plan.probe ? 2u : 0u)};
     return graph_.run(exec_, timer_, key, launch);
   }
 
@@ -227,11 +222,28 @@ class FrontPipeline final : public Pipeline {
                                              float(config_.restructure_quality * planner_.q_ref()),
                                              config_.restructure_min_leaves, max_leaves,
                                              restructure_.max_candidates, restructure_.node.data(),
-                                             pairs_.counter(kCandidatesCounter)});
+                                             &pairs_.device()->inspect});
     timer_.stop(Phase::inspect);
   }
 
   bool histogram_sorted() const { return strategy().ordered && !strategy().radix_sort; }
+
+  // Whether the front an operation produces is sorted (--order-updates off: not an update's
+  // with the histogram sort), and whether it is counted per tree node: for the sort, or for
+  // the balance and inspection that read the counts of a front kept as produced.
+  bool sorts(FrontOp op) const {
+    return strategy().ordered && (op != FrontOp::update || config_.order_updates || strategy().radix_sort);
+  }
+  bool counts(FrontOp op) const {
+    return histogram_sorted() && (sorts(op) || strategy().balance || strategy().restructure);
+  }
+
+  // Update's sprouts are shared within warps as --update-warp says, by the rule of
+  // --preserve-warp (WarpSharing).
+  bool update_in_warp(const FrontQuery<Exec>& fq) const {
+    return config_.update_warp == WarpSharing::on ||
+           (config_.update_warp == WarpSharing::automatic && fq.total() <= kWarpSharingWaves * exec_.resident_threads());
+  }
 
   static Phase phase_of(FrontOp op) {
     return op == FrontOp::generate      ? Phase::generate
@@ -251,13 +263,13 @@ class FrontPipeline final : public Pipeline {
       timer_.start(phase_of(op));
       switch (op) {
         case FrontOp::preserve:
-          fq.preserve(exec_, pairs_, stage_preserve_, warp_preserve_);
+          fq.preserve(exec_, pairs_, stage_preserve_, warp_preserve_, plan.probe);
           break;
         case FrontOp::generate:
           fq.generate(exec_, pairs_, histogram);
           break;
         case FrontOp::update:
-          fq.update(exec_, pairs_, histogram);
+          fq.update(exec_, pairs_, counts(op), update_in_warp(fq));
           break;
         case FrontOp::restructure:
           fq.restructure(exec_, pairs_, histogram, restructure_.view());
@@ -269,16 +281,25 @@ class FrontPipeline final : public Pipeline {
     if (!strategy().ordered || !produced) return;
     if (strategy().radix_sort) {
       // The sort needs the produced sizes on the host: one more read-back on these frames.
-      const auto c = pairs_.read_counters(exec_);
+      const FrontCounters& c = pairs_.read_counters(exec_);
       timer_.start(Phase::front_order);
       for (Query q : kQueries)
         if (op_of(plan, q) != FrontOp::preserve) query(q).radix_order(exec_, radix_, c);
       timer_.stop(Phase::front_order);
       return;
     }
+    bool any = false;
+    for (Query q : kQueries) any = any || (op_of(plan, q) != FrontOp::preserve && counts(op_of(plan, q)));
+    if (!any) return;
     timer_.start(Phase::front_order);
-    for (Query q : kQueries)
-      if (op_of(plan, q) != FrontOp::preserve) query(q).order(exec_, pairs_);
+    for (Query q : kQueries) {
+      const FrontOp op = op_of(plan, q);
+      if (op == FrontOp::preserve) continue;
+      if (sorts(op))
+        query(q).order(exec_, pairs_);
+      else if (counts(op))
+        query(q).offsets(exec_);
+    }
     timer_.stop(Phase::front_order);
   }
 
@@ -297,6 +318,15 @@ class FrontPipeline final : public Pipeline {
     if (stage != stage_preserve_ || warp != warp_preserve_) ++graph_version_;
     stage_preserve_ = stage;
     warp_preserve_ = warp;
+  }
+
+  // After a probing frame's read-back, outside its timing: the preserving queries' buffers
+  // grow to what an update of their fronts can produce, so the update runs once.
+  void reserve_for_update(const FramePlan& plan, const FrontCounters& c) {
+    bool grew = false;
+    for (Query q : kQueries)
+      if (op_of(plan, q) == FrontOp::preserve) grew = query(q).reserve_for_update(exec_, c) || grew;
+    if (grew) ++graph_version_;
   }
 
   // (4) Balance, before each update: the fronts' content is unchanged.
@@ -318,7 +348,7 @@ class FrontPipeline final : public Pipeline {
   DeviceMesh<Exec> mesh_;
   Lbvh<Exec> bvh_;        // T_D: the deformable faces, or every face of an unsplit scene
   Lbvh<Exec> rigid_bvh_;  // T_R: the rigid faces (empty unless a query needs them)
-  PairBuffer<Exec> pairs_;
+  PairBuffer<Exec, FrontCounters> pairs_;
   RadixScratch<Exec> radix_;
   RestructureScratch<Exec> restructure_;
   FrontQuery<Exec> self_;        // T_D's leaves against T_D

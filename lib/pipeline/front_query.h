@@ -1,8 +1,8 @@
 #pragma once
 // The BVTT fronts of one query of a front pipeline: the self fronts of a tree, or the cross
 // fronts of T_D's leaves against T_R (docs/design.md "Deformable and rigid objects"). It
-// holds both kinds of front, knows its two trees and which two pair-buffer counters count
-// its produced fronts, and runs the front operations on them; FrontPipeline decides which
+// holds both kinds of front, knows its two trees and where its counts lie in the frame's
+// counter block (FrontCounters::query), and runs the front operations on them; FrontPipeline decides which
 // operation runs when. A query the scene does not ask for is inactive: no fronts, no work.
 #include <algorithm>
 #include <array>
@@ -15,16 +15,17 @@
 #include "front/radix_ordering.h"
 #include "front/restructure_front.h"
 #include "pipeline/device_mesh.h"
+#include "pipeline/front_counters.h"
 
 namespace cdb {
 
 template <class Exec>
 class FrontQuery {
  public:
-  using Counters = std::array<unsigned long long, PairBuffer<Exec>::kCounters>;
+  using Pairs = PairBuffer<Exec, FrontCounters>;
 
-  // `counter`: the first of the two counters (internal, external) of its produced fronts.
-  FrontQuery(Exec& exec, const std::string& name, size_t counter) : counter_(counter) {
+  // `index`: the query's counters in the frame's counter block (FrontCounters::query).
+  FrontQuery(Exec& exec, const std::string& name, int index) : index_(index) {
     front_[kInternalFront].bind(exec.memory(), kInternalFront, name);
     front_[kExternalFront].bind(exec.memory(), kExternalFront, name);
   }
@@ -68,32 +69,56 @@ class FrontQuery {
   }
 
   // (1) Generate over all query leaves. `histogram`: count the produced nodes per tree node.
-  void generate(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
+  void generate(Exec& exec, Pairs& pairs, bool histogram) {
     if (!active_) return;
     const FrontSink sink = produce_sink(exec, pairs, histogram);
     exec.for_each_staged(leaves_->num_leaves, GenerateFrontFn{view(), pairs.sink(), sink}, Balance::uneven);
   }
 
   // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch;
-  // pairs staged per block or appended directly (`staged`, core/append_stage.h).
-  void preserve(Exec& exec, PairBuffer<Exec>& pairs, bool staged, bool share_in_warp) {
+  // pairs staged per block or appended directly (`staged`, core/append_stage.h). `probe`:
+  // also count the stop nodes of the descents, for update_bound.
+  void preserve(Exec& exec, Pairs& pairs, bool staged, bool share_in_warp, bool probe) {
     if (!active_) return;
-    auto pass = [&](const FrontArrays<Exec>& f) {
-      return PreserveFrontFn{view(), pairs.sink(), f.prim.data(), f.node.data(), share_in_warp};
-    };
-    const BothFrontsFn<PreserveFrontFn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)};
-    if (staged)
-      exec.for_each_staged(total(), both, Balance::uneven);
+    if (probe)
+      preserve_with(exec, PreserveFrontFn<true>{{}, pairs.sink(), {}, {}, share_in_warp, &counters(pairs)->stops[0][0]},
+                    staged);
     else
-      exec.for_each_n(total(), both, Balance::uneven);
+      preserve_with(exec, PreserveFrontFn<false>{{}, pairs.sink(), {}, {}, share_in_warp}, staged);
   }
 
-  // (3) Update: sprout and prune (Alg. 1). Both kinds in one launch.
-  void update(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
+  // What an update of the current fronts can produce at most, per kind, after a probing
+  // preserve of them counted the stop nodes of their descents (`c`): a front node that
+  // overlaps sprouts into its descent's stop nodes; one that misses is kept or climbs to an
+  // ancestor (internal) or is dropped, so it yields at most one node, internal unless it is
+  // a leaf kept as it is.
+  uint64_t update_bound(const FrontCounters& c, int kind) const {
+    const FrontQueryCounters& q = c.query[index_];
+    return q.stops_of(kind) + (kind == kInternalFront ? total() : size(kExternalFront));
+  }
+
+  // After a probing preserve: every buffer of a kind grows to hold update_bound with an
+  // eighth to spare, so that the coming update produces its fronts in one run. The bound
+  // holds for the probed frame's geometry; the update runs on a later frame, whose motion
+  // the eighth covers, and past it the update grows and runs again as before.
+  // True if a buffer grew.
+  bool reserve_for_update(Exec& exec, const FrontCounters& c) {
+    if (!active_) return false;
+    bool grew = false;
+    for (int k = 0; k < 2; ++k) {
+      const size_t need = size_t(update_bound(c, k));
+      grew = reserve_headroom(exec, front_[k], need, need + need / 8) || grew;
+    }
+    return grew;
+  }
+
+  // (3) Update: sprout and prune (Alg. 1). Both kinds in one launch. `histogram`: count the
+  // produced nodes per tree node; `share_in_warp`: sprouts shared out in warps (CUDA).
+  void update(Exec& exec, Pairs& pairs, bool histogram, bool share_in_warp) {
     if (!active_) return;
     const FrontSink sink = produce_sink(exec, pairs, histogram);
     auto pass = [&](const FrontArrays<Exec>& f) {
-      return UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data()};
+      return UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data(), share_in_warp};
     };
     exec.for_each_staged(total(), BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
                          Balance::uneven);
@@ -109,7 +134,7 @@ class FrontQuery {
   }
 
   // (5), second half: the front pass over the classified self fronts.
-  void restructure(Exec& exec, PairBuffer<Exec>& pairs, bool histogram, CandidateView cand) {
+  void restructure(Exec& exec, Pairs& pairs, bool histogram, CandidateView cand) {
     if (!active_) return;
     const FrontSink sink = produce_sink(exec, pairs, histogram);
     for (auto& f : front_)
@@ -119,30 +144,38 @@ class FrontQuery {
   }
 
   // Histogram sort of the produced fronts (sizes on the device in the counters).
-  void order(Exec& exec, PairBuffer<Exec>& pairs) {
+  void order(Exec& exec, Pairs& pairs) {
     if (!active_) return;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
-      order_front(exec, f, segments(k), pairs.counter(counter_ + k), f.raw_prim.data(), f.raw_node.data(),
+      order_front(exec, f, segments(k), &counters(pairs)->produced[k], f.raw_prim.data(), f.raw_node.data(),
                   f.raw_mark.data(), f.raw_prim.capacity(), tree_->temp.data(), tree_->temp.size());
     }
   }
 
+  // The produced fronts' offset logs alone (the count log's scan), for fronts kept in the
+  // order they were produced: balance scatters by them and the inspection reads them.
+  void offsets(Exec& exec) {
+    if (!active_) return;
+    for (int k = 0; k < 2; ++k) scan_count_log(exec, front_[k], segments(k), tree_->temp.data(), tree_->temp.size());
+  }
+
   // Radix sort of the produced fronts, with their sizes read back (`c`).
-  void radix_order(Exec& exec, RadixScratch<Exec>& radix, const Counters& c) {
+  void radix_order(Exec& exec, RadixScratch<Exec>& radix, const FrontCounters& c) {
     if (!active_) return;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
-      if (c[counter_ + k] <= f.raw_prim.capacity())
-        radix_order_front(exec, f, radix, size_t(c[counter_ + k]), key_bits(k), f.raw_prim.data(),
+      if (c.query[index_].produced[k] <= f.raw_prim.capacity())
+        radix_order_front(exec, f, radix, size_t(c.query[index_].produced[k]), key_bits(k), f.raw_prim.data(),
                           f.raw_node.data(), f.raw_mark.data());
     }
   }
 
   // (4) Balance: mark each current front node with the branch it will take, then reorder
-  // the current front by node key and mark. The front's content is unchanged. Ordered by the
-  // histogram sort, the front keeps the offset log of the sort that ordered it (every
-  // operation that changes a front orders it again), so one pass marks and scatters.
+  // the current front by node key and mark. The front's content is unchanged. With the
+  // histogram sort, the front keeps the offset log of the operation that produced it (every
+  // operation that changes a front counts it again, sorted or not), so one pass marks and
+  // scatters.
   void balance(Exec& exec, RadixScratch<Exec>* radix) {
     if (!active_) return;
     for (int k = 0; k < 2; ++k) {
@@ -163,12 +196,12 @@ class FrontQuery {
 
   // After a read-back: grow each kind whose produced front did not fit; true if one grew
   // (the caller re-runs the frame's front pass from the untouched current fronts).
-  bool grow_if_needed(const Counters& c) {
+  bool grow_if_needed(const FrontCounters& c) {
     if (!active_) return false;
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
-      const unsigned long long need = c[counter_ + k];
+      const unsigned long long need = c.query[index_].produced[k];
       if (need <= f.raw_prim.capacity()) continue;
       const size_t cap = size_t(need + need / 4);
       for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node}) a->reserve(cap);
@@ -179,7 +212,7 @@ class FrontQuery {
   }
 
   // The produced fronts become current: the sorted copies, or the raw ones if unordered.
-  void adopt(Exec& exec, const Counters& c, bool ordered) {
+  void adopt(Exec& exec, const FrontCounters& c, bool ordered) {
     if (!active_) return;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
@@ -190,9 +223,9 @@ class FrontQuery {
         std::swap(f.prim, f.raw_prim);
         std::swap(f.node, f.raw_node);
       }
-      f.size = size_t(c[counter_ + k]);
+      f.size = size_t(c.query[index_].produced[k]);
       match_capacity(f);
-      reserve_headroom(exec, f);
+      reserve_headroom(exec, f, f.size + f.size / 4, f.size + f.size / 2);
     }
   }
 
@@ -202,7 +235,9 @@ class FrontQuery {
     for (auto& f : front_) exec.fill(f.order_counts.data(), f.order_counts.size(), 0u);
   }
 
-  FrontSink produce_sink(Exec& exec, PairBuffer<Exec>& pairs, bool histogram) {
+  FrontQueryCounters* counters(Pairs& pairs) const { return &pairs.device()->query[index_]; }
+
+  FrontSink produce_sink(Exec& exec, Pairs& pairs, bool histogram) {
     if (histogram) zero_order_counts(exec);
     FrontSink s{};
     for (int k = 0; k < 2; ++k) {
@@ -213,25 +248,42 @@ class FrontQuery {
       s.capacity[k] = f.raw_prim.capacity();
       s.count_log[k] = histogram ? f.count_log() : nullptr;
     }
-    s.count = pairs.counter(counter_);
+    s.count = counters(pairs)->produced;
     return s;
   }
 
-  // Every buffer of a kind holds the front just adopted with a quarter to spare, or all
-  // grow to half to spare: the next update, which may sprout more than it prunes, then fits
-  // instead of overflowing and running again (fronts grow by more than a quarter in some
-  // single updates), and balance, which swaps the current front
-  // with a scratch copy, finds the scratch as large and allocates nothing inside a frame.
-  // The current front is copied into its larger buffer. This runs after the frame's
-  // read-back, outside its timing, and only when the front has outgrown the last growth.
-  static void reserve_headroom(Exec& exec, FrontArrays<Exec>& f) {
-    const size_t need = f.size + f.size / 4, want = f.size + f.size / 2;
+  // The passes of a preserve functor over both kinds of front in one launch.
+  template <class Fn>
+  void preserve_with(Exec& exec, Fn fn, bool staged) {
+    fn.view = view();
+    auto pass = [&](const FrontArrays<Exec>& f) {
+      Fn p = fn;
+      p.prim = f.prim.data();
+      p.node = f.node.data();
+      return p;
+    };
+    const BothFrontsFn<Fn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)};
+    if (staged)
+      exec.for_each_staged(total(), both, Balance::uneven);
+    else
+      exec.for_each_n(total(), both, Balance::uneven);
+  }
+
+  // Every buffer of a kind holds `need` nodes, or all grow to `want`, the current front
+  // copied into its larger buffer. After an adopt, `need` is the front with a quarter to
+  // spare and `want` with half: the next update, which may sprout more than it prunes, then
+  // mostly fits the first time instead of growing and running again (fronts grow by more
+  // than a quarter in some single updates), and balance, which swaps the current front with
+  // a scratch copy, finds the scratch as large and allocates nothing inside a frame. After a
+  // probe, `need` is what the update can produce (reserve_for_update). This runs after the
+  // frame's read-back, outside its timing, and only when a buffer is short; true if so.
+  static bool reserve_headroom(Exec& exec, FrontArrays<Exec>& f, size_t need, size_t want) {
     auto kept = {&f.prim, &f.node};
     auto scratch = {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node};
     size_t least = f.raw_mark.capacity();
     for (auto* a : kept) least = std::min(least, a->capacity());
     for (auto* a : scratch) least = std::min(least, a->capacity());
-    if (least >= need) return;
+    if (least >= need) return false;
     for (auto* a : scratch)
       if (a->capacity() < want) a->reserve(want);
     if (f.raw_mark.capacity() < want) f.raw_mark.reserve(want);
@@ -241,6 +293,7 @@ class FrontQuery {
       std::swap(*current, *spare);
       spare->reserve(want);
     }
+    return true;
   }
 
   // Scratch buffers swapped with the current front keep up with its capacity, so a front
@@ -255,7 +308,7 @@ class FrontQuery {
   FrontArrays<Exec> front_[2];
   Lbvh<Exec>* leaves_ = nullptr;
   Lbvh<Exec>* tree_ = nullptr;
-  size_t counter_;
+  int index_;
   bool active_ = false;
 };
 

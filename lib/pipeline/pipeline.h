@@ -98,6 +98,10 @@ struct PipelineConfig {
   // together, so near its input's order), and only generate and restructure sort; b and c
   // still count the front per node, so their balance before the next update sorts it.
   bool order_updates = true;
+  // Front pipelines: the preserves before an update count what it can produce, and the
+  // front buffers grow to that after their frame (pipeline/frame_plan.h, probe); off: an
+  // update that outgrows them grows them inside its frame and runs again.
+  bool update_probe = true;
   // Refit: trees of up to this many leaves refit their top (the nodes spanning refit
   // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).

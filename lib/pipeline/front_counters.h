@@ -1,0 +1,39 @@
+#pragma once
+// The front pipelines' counter block: what a frame's kernels add to and the host reads back
+// once a frame, in one copy (PairBuffer): the pairs first, since every pair sink counts
+// there, then per front query and for the inspection. Kernels get pointers into the block
+// on the device (PairBuffer::device), the host reads the block itself.
+#include <cstdint>
+
+#include "front/front.h"
+#include "front/quality.h"
+
+namespace cdb {
+
+// One front query's counts (pipeline/front_query.h).
+struct FrontQueryCounters {
+  // Front nodes the frame's operation produced, per kind (FrontKind); may exceed the
+  // capacity: the caller grows and runs the operation again.
+  unsigned long long produced[2];
+  // A probing preserve's count of the stop nodes its descents met, per kind: with the front's
+  // own nodes, a bound on what an update of that front produces (FrontQuery::update_bound).
+  // Spread over kStopSlots slots by block, so that the warps of a launch do not all add to
+  // one address.
+  unsigned long long stops[kStopSlots][2];
+
+  unsigned long long stops_of(int kind) const {
+    unsigned long long s = 0;
+    for (const auto& slot : stops) s += slot[kind];
+    return s;
+  }
+};
+
+// Front pipelines (pipeline/front_pipeline.h): the self fronts of T_D, T_D's leaves
+// against T_R, and the self fronts of T_R, in that order.
+struct FrontCounters {
+  unsigned long long pairs;
+  FrontQueryCounters query[3];
+  InspectCounters inspect;  // pipeline c's inspection (front/quality.h)
+};
+
+}  // namespace cdb
