@@ -354,3 +354,21 @@ TEST(FramePlan, AdaptiveProbesOnceTheRentNearsThePrice) {
   ASSERT_NE(s.find('u'), std::string::npos) << s;
   for (size_t k = s.find('u'); k != std::string::npos; k = s.find('u', k + 1)) EXPECT_EQ(s[k - 1], 'P') << s;
 }
+
+// Steady frames that grew a buffer (ran twice) or recorded their frame graph paid a one-off
+// cost, not rent: however dear, they bring no update nearer.
+TEST(FramePlan, OneOffCostsAreNoRent) {
+  for (bool grew : {true, false}) {
+    FramePlanner planner(FrontStrategy{}, cycle_config(0));
+    std::string s;
+    for (int f = 0; f < 40; ++f) {
+      const FramePlan p = planner.plan(1000, 100);
+      s += letter(p);
+      const bool one_off = f % 5 == 1;
+      FramePlanner::Outcome o{p.rebuild ? 10.0 : one_off ? 50.0 : 1.0, !(one_off && grew), 100, 1.0, {}};
+      o.recorded = one_off && !grew;
+      planner.finish(p, o);
+    }
+    EXPECT_EQ(s, "b" + std::string(39, 'p')) << (grew ? "grew" : "recorded");
+  }
+}

@@ -421,8 +421,8 @@ class CudaFrameGraph {
   void abandon_capture(CudaExec& exec, CudaPhaseTimer& timer);
   void launch_graph(CudaExec& exec, const Slot& s);
   // Recordings kept at once, least recently used replaced: swept boxes alternate two vertex
-  // buffers, and probing frames (pipeline/frame_plan.h) launch another preserve.
-  std::array<Slot, 4> slots_;
+  // buffers.
+  std::array<Slot, 2> slots_;
   uint64_t clock_ = 0, captures_ = 0, replays_ = 0;
 };
 

@@ -117,9 +117,11 @@ class FramePlanner {
     uint64_t front_nodes = 0; // the fronts it started from, all queries, all kinds
     double q_root = 0.0;      // internal over external self-front nodes after it
     Candidates found;         // what its inspection found (capped at the candidates' buffer)
+    bool recorded = false;    // it recorded its frame graph (a one-off cost)
   };
   void finish(const FramePlan& p, const Outcome& o) {
-    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild, o.ran_once,
+    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild,
+                         o.ran_once && !o.recorded,
                          o.ms, o.front_nodes);
     if (p.rebuild || p.self == FrontOp::generate) generated_ = frame_;
     if (p.produces()) {

@@ -86,10 +86,14 @@ class FrontMaintenance {
   // A frame's measured cost: `steady` for refit + preserve frames, `updated` for frames
   // whose fronts were updated (and nothing heavier ran with it), `built` for frames that
   // built the tree and generated the fronts; `once` when it ran its operations once (no
-  // buffer grew); `front_nodes`: the fronts it started from.
+  // buffer grew) and recorded no frame graph; `front_nodes`: the fronts it started from. A
+  // steady frame that grew a buffer or recorded its graph paid a one-off cost, not rent for
+  // stale fronts: it is left out (counted, one capture measured 0.28 ms on the H100 against
+  // 0.06 for the frame, and updates came frames early).
   void observe(bool steady, bool updated, bool built, bool once, double ms, uint64_t front_nodes) {
     if (built) build_ms_ = ms;
     if (steady) {
+      if (!once) return;
       steady_sum_ += ms;
       steady_min_ = std::min(steady_min_, ms);
       ++steady_;

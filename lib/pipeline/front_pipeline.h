@@ -129,7 +129,7 @@ class FrontPipeline final : public Pipeline {
       stats.q_candidates = c.candidates ? double(c.candidate_q_milli) / 1000.0 / double(c.candidates) : 0.0;
     }
     record_timings(timer_, stats);
-    planner_.finish(plan, {stats.total_ms, stats.query_reruns == 0, fronts, stats.q_root, found});
+    planner_.finish(plan, {stats.total_ms, stats.query_reruns == 0, fronts, stats.q_root, found, stats.graph == "captured"});
     choose_preserve_launch(stats.pairs);
     return stats;
   }
@@ -171,21 +171,21 @@ class FrontPipeline final : public Pipeline {
 
   // A steady frame's work (refit unless stale, counters, preserve), through the frame graph
   // with --cuda-graph. The key holds what the launches depend on besides graph_version_:
-  // the vertex buffers (swept boxes alternate them), whether the frame refits and whether
-  // its preserve probes.
+  // the vertex buffers (swept boxes alternate them) and whether the frame refits.
   FrameGraphRun run_steady(const MeshView& mesh, const FramePlan& plan) {
     const bool stale = plan.stale;
     auto launch = [&] {
       if (stale || !refit_trees(mesh)) pairs_.reset_counters(exec_);
       run_ops(plan);
     };
-    if (!config_.cuda_graph) {
+    // A probing frame launches plain: probes come in short runs before an update, too few
+    // to repay a recording (FrontMaintenance::observe).
+    if (!config_.cuda_graph || plan.probe) {
       launch();
       return FrameGraphRun::plain;
     }
     const FrameGraphKey key{graph_version_, uint64_t(reinterpret_cast<uintptr_t>(mesh.vertices)),
-                            uint64_t(reinterpret_cast<uintptr_t>(mesh.prev_vertices)),
-                            (stale ? 1u : 0u) | (plan.probe ? 2u : 0u)};
+                            uint64_t(reinterpret_cast<uintptr_t>(mesh.prev_vertices)), stale ? 1u : 0u};
     return graph_.run(exec_, timer_, key, launch);
   }
 
