@@ -6,12 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <set>
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/float_bits.h"
 
 namespace cdb {
 namespace {
@@ -234,19 +234,14 @@ class AnimatedMesh final : public AnimatedClip {
   // target positions and bone weights take the same index: they are computed by the same
   // operations in every frame, so the merge is exact and no face changes.
   std::vector<uint32_t> weld_map(const aiMesh* mesh) const {
-    auto bits = [](float x) {
-      uint32_t u;
-      std::memcpy(&u, &x, sizeof u);
-      return u;
-    };
     std::vector<std::vector<uint32_t>> key(mesh->mNumVertices);
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
       const aiVector3D& p = mesh->mVertices[v];
-      key[v] = {bits(p.x), bits(p.y), bits(p.z)};
+      key[v] = {float_bits(p.x), float_bits(p.y), float_bits(p.z)};
       for (unsigned t = 0; t < mesh->mNumAnimMeshes; ++t)
         if (const aiAnimMesh* target = mesh->mAnimMeshes[t]; target->mVertices && v < target->mNumVertices)
-          key[v].insert(key[v].end(), {bits(target->mVertices[v].x), bits(target->mVertices[v].y),
-                                       bits(target->mVertices[v].z)});
+          key[v].insert(key[v].end(), {float_bits(target->mVertices[v].x), float_bits(target->mVertices[v].y),
+                                       float_bits(target->mVertices[v].z)});
     }
     // Bones in mesh order, the order skinning sums them in.
     for (unsigned b = 0; b < mesh->mNumBones; ++b)
@@ -255,7 +250,7 @@ class AnimatedMesh final : public AnimatedClip {
         if (vw.mVertexId >= mesh->mNumVertices)
           fail(file_ + ": mesh '" + mesh->mName.C_Str() + "' bone '" + mesh->mBones[b]->mName.C_Str() +
                "': weight for vertex " + std::to_string(vw.mVertexId) + " of " + std::to_string(mesh->mNumVertices));
-        key[vw.mVertexId].insert(key[vw.mVertexId].end(), {~0u, b, bits(vw.mWeight)});
+        key[vw.mVertexId].insert(key[vw.mVertexId].end(), {~0u, b, float_bits(vw.mWeight)});
       }
     std::map<std::vector<uint32_t>, uint32_t> first;
     std::vector<uint32_t> weld(mesh->mNumVertices);

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
+#include <bit>
 #include <map>
 #include <tuple>
 
@@ -106,17 +106,14 @@ StaticMesh load_static_mesh(const std::filesystem::path& file, double scale, boo
     still->positions(0, positions);
   }
   check_frame(positions, topology, file.string(), 0);
-  auto bits = [](double x) {
-    uint64_t u;
-    std::memcpy(&u, &x, sizeof u);
-    return u;
-  };
   std::map<std::tuple<uint64_t, uint64_t, uint64_t>, uint32_t> first;
   std::vector<uint32_t> weld(positions.size());
   std::vector<vec3d> welded;
   for (size_t v = 0; v < positions.size(); ++v) {
-    const auto [it, added] = first.emplace(std::make_tuple(bits(positions[v].x), bits(positions[v].y),
-                                                           bits(positions[v].z)), uint32_t(welded.size()));
+    const vec3d& p = positions[v];
+    const auto [it, added] = first.emplace(
+        std::make_tuple(std::bit_cast<uint64_t>(p.x), std::bit_cast<uint64_t>(p.y), std::bit_cast<uint64_t>(p.z)),
+        uint32_t(welded.size()));
     if (added) welded.push_back(positions[v]);
     weld[v] = it->second;
   }
