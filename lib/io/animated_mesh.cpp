@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/float_bits.h"
+#include "io/quaternion.h"
 
 namespace cdb {
 namespace {
@@ -37,27 +38,11 @@ aiVector3D lerp_key(const aiVectorKey* keys, unsigned n, double t) {
   return keys[i].mValue + ai_real(f) * (keys[i + 1].mValue - keys[i].mValue);
 }
 
-// Spherical interpolation along the shorter arc, in double: assimp's own works in float,
-// whose acos loses about 1e-4 rad near small angles between keys.
-aiQuaternion slerp(const aiQuaternion& a, const aiQuaternion& b, double f) {
-  double bw = b.w, bx = b.x, by = b.y, bz = b.z;
-  double cosine = a.w * bw + a.x * bx + a.y * by + a.z * bz;
-  if (cosine < 0) cosine = -cosine, bw = -bw, bx = -bx, by = -by, bz = -bz;
-  double ka = 1 - f, kb = f;
-  if (cosine < 1 - 1e-9) {
-    const double angle = std::acos(cosine), sine = std::sin(angle);
-    ka = std::sin((1 - f) * angle) / sine;
-    kb = std::sin(f * angle) / sine;
-  }
-  const double w = ka * a.w + kb * bw, x = ka * a.x + kb * bx, y = ka * a.y + kb * by, z = ka * a.z + kb * bz;
-  const double n = std::sqrt(w * w + x * x + y * y + z * z);
-  return aiQuaternion(ai_real(w / n), ai_real(x / n), ai_real(y / n), ai_real(z / n));
-}
-
 aiQuaternion slerp_key(const aiQuatKey* keys, unsigned n, double t) {
-  // Keys written with few digits are not quite unit; slerp normalises, also at a key.
   const auto [i, f] = bracket(keys, n, t);
-  return slerp(keys[i].mValue, keys[f == 0.0 ? i : i + 1].mValue, f);
+  const aiQuaternion &a = keys[i].mValue, &b = keys[f == 0.0 ? i : i + 1].mValue;
+  const Quat q = slerp({a.w, a.x, a.y, a.z}, {b.w, b.x, b.y, b.z}, f);
+  return aiQuaternion(ai_real(q.w), ai_real(q.x), ai_real(q.y), ai_real(q.z));
 }
 
 // A mesh placed in the scene by a node: its vertex v is frame vertex first_vertex + weld[v].

@@ -1,14 +1,15 @@
 #include "io/rigid_mesh.h"
 
 #include <algorithm>
-#include <cmath>
 #include <bit>
+#include <cmath>
 #include <map>
 #include <tuple>
 
 #include "core/error.h"
 #include "io/keyframe_mesh.h"
 #include "io/obj_sequence.h"
+#include "io/quaternion.h"
 
 namespace cdb {
 namespace {
@@ -16,30 +17,11 @@ namespace {
 using scene::dvec3;
 using scene::Pose;
 
-struct Quat {
-  double w = 1, x = 0, y = 0, z = 0;
-};
-
 Quat axis_angle(dvec3 axis, double angle, const std::string& where) {
   const double len = scene::length(axis);
   if (!(len > 0)) fail(where + ": the rotation axis is zero");
   const double s = std::sin(angle / 2) / len;
   return {std::cos(angle / 2), axis.x * s, axis.y * s, axis.z * s};
-}
-
-// Along the shorter arc, normalised.
-Quat slerp(Quat a, Quat b, double f) {
-  double cosine = a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
-  if (cosine < 0) cosine = -cosine, b = {-b.w, -b.x, -b.y, -b.z};
-  double ka = 1 - f, kb = f;
-  if (cosine < 1 - 1e-12) {
-    const double angle = std::acos(std::min(cosine, 1.0)), sine = std::sin(angle);
-    ka = std::sin((1 - f) * angle) / sine;
-    kb = std::sin(f * angle) / sine;
-  }
-  Quat q{ka * a.w + kb * b.w, ka * a.x + kb * b.x, ka * a.y + kb * b.y, ka * a.z + kb * b.z};
-  const double n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-  return {q.w / n, q.x / n, q.y / n, q.z / n};
 }
 
 Pose from_quat(const Quat& q) {
