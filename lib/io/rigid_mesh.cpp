@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "geometry/position_rounding.h"
 #include "io/keyframe_mesh.h"
 #include "io/obj_sequence.h"
 #include "io/quaternion.h"
@@ -99,12 +100,8 @@ StaticMesh load_static_mesh(const std::filesystem::path& file, double scale, boo
     if (added) welded.push_back(positions[v]);
     weld[v] = it->second;
   }
-  dvec3 lo{welded[0].x, welded[0].y, welded[0].z}, hi = lo;
-  for (const vec3d& p : welded) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  const dvec3 c = center ? 0.5 * (lo + hi) : dvec3{};
+  const vec3d centre = center ? bounds_centre(welded) : vec3d{0, 0, 0};
+  const dvec3 c{centre.x, centre.y, centre.z};
   StaticMesh mesh;
   for (const vec3d& p : welded) mesh.positions.push_back(scale * (dvec3{p.x, p.y, p.z} - c));
   for (const Tri& t : topology.faces) mesh.faces.push_back({weld[t.v0], weld[t.v1], weld[t.v2]});
