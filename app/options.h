@@ -4,7 +4,6 @@
 // device, the scene.
 #include <CLI/CLI.hpp>
 
-#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -20,24 +19,10 @@ struct CommonOptions {
   std::string device = "auto";
   std::string frames;
   std::string scenes_dir;
-  int morton_bits = 63;
-  uint32_t rebuild_every = 0;
-  uint32_t front_cycle = 0;  // 0: auto
-  PipelineConfig restructure;  // the restructure_* and threshold_* fields
-  bool skip_adjacent = false;
-  float box_margin = 0.0f;
-  bool swept_boxes = false;
-  BoxPrecision box_precision = BoxPrecision::fp32;
-  uint32_t refit_every = 1;
-  bool cuda_graph = true;
-  bool dependent_launch = true;
-  bool phase_timing = true;
-  WarpSharing preserve_warp = WarpSharing::automatic;
-  WarpSharing update_warp = WarpSharing::automatic;
-  bool order_updates = true;
-  bool update_probe = true;
-  uint32_t refit_top_leaves = kRefitTopMaxLeaves;
   std::vector<std::string> sets;  // generator overrides, key=value
+  // The pipeline options are bound straight into it; its name and device are set per
+  // pipeline by make_config.
+  PipelineConfig config;
 };
 
 // The headings of `run --help` and `verify --help`. CLI11 lists them in the order their

@@ -197,7 +197,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
               scene.name.c_str(), scene.description.c_str(), topo.faces.size(),
               topo.num_vertices, range.first, range.last);
-  const bool fp64 = o.box_precision == BoxPrecision::fp64;
+  const bool fp64 = o.config.box_precision == BoxPrecision::fp64;
   const std::string spacing_warning =
       range.last > range.first ? float_spacing_warning(*scene.source, range.first, fp64) : "";
   if (!spacing_warning.empty()) std::printf("warning: %s\n", spacing_warning.c_str());
@@ -238,7 +238,9 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     loop.cold = r.cold;
     loop.probe = probe.get();
     loop.copy_gbps = copy_gbps;
-    loop.oracle = [&topo, &o](const std::vector<vec3d>& v) { return sweep_oracle_pairs(topo, v, o.skip_adjacent); };
+    loop.oracle = [&topo, &config](const std::vector<vec3d>& v) {
+      return sweep_oracle_pairs(topo, v, config.skip_adjacent);
+    };
     loop.faces = &topo.faces;
     loop.contact = contact;
     if (!config_conservative(config))

@@ -38,7 +38,8 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   const FrameRange range = parse_frame_range(o.frames, scene.source->num_frames());
   const bool brute_oracle = topo.faces.size() <= brute_limit;
   // The oracle sees the same fat, swept or quantized boxes only as the brute-force pipeline.
-  if (!brute_oracle && (o.box_margin > 0 || o.swept_boxes || o.box_precision == BoxPrecision::q16))
+  const PipelineConfig& c = o.config;
+  if (!brute_oracle && (c.box_margin > 0 || c.swept_boxes || c.box_precision == BoxPrecision::q16))
     fail_usage("verify --box-margin/--boxes swept/--box-precision q16 needs the brute-force oracle (raise --brute-limit)");
   std::printf("verify: scene %s (%zu triangles), frames %u:%u, device %s, oracle %s\n",
               scene.name.c_str(), topo.faces.size(), range.first, range.last, device.c_str(),
@@ -53,8 +54,8 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   // Each pipeline against the oracle of the floats it ran on (exact), and against the
   // scene's double geometry: none of its pairs may be missed (position_rounding.h says
   // when that holds), and the extra ones are float's blur.
-  const bool fp64 = o.box_precision == BoxPrecision::fp64;
-  const bool keeps_double_pairs = fp64 || o.box_margin == 0;
+  const bool fp64 = c.box_precision == BoxPrecision::fp64;
+  const bool keeps_double_pairs = fp64 || c.box_margin == 0;
   std::vector<uint64_t> double_missed(pipelines.size(), 0), double_extra(pipelines.size(), 0);
   uint64_t double_pairs = 0;
   PositionRounding rounding(fp64);
@@ -68,9 +69,9 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
       oracle->run_frame(positions);
       expected = oracle->sorted_pairs();
     } else {
-      expected = sweep_oracle_pairs(topo, vertices, o.skip_adjacent);
+      expected = sweep_oracle_pairs(topo, vertices, c.skip_adjacent);
     }
-    const std::vector<PrimPair> exact = sweep_oracle_pairs(topo, positions, o.skip_adjacent);
+    const std::vector<PrimPair> exact = sweep_oracle_pairs(topo, positions, c.skip_adjacent);
     double_pairs += exact.size();
     for (size_t p = 0; p < runs.size(); ++p) {
       runs[p]->run_frame(positions);
@@ -94,9 +95,9 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
                 lost ? " (LOST)" : "", static_cast<unsigned long long>(double_extra[p]));
     ok = ok && mismatched_frames[p] == 0 && !lost;
   }
-  if (o.refit_every > 1)
+  if (c.refit_every > 1)
     std::printf("verify: --refit-every %u is not conservative: bvh and the front pipelines may miss pairs\n",
-                o.refit_every);
+                c.refit_every);
   std::printf("verify: %s\n", ok ? "all pipelines match the oracle" : "FAILED");
   return ok ? 0 : 1;
 }

@@ -6,8 +6,6 @@
 
 #include "core/error.h"
 
-#include "geometry/frame_source.h"
-
 namespace cdb {
 
 vec3d bounds_centre(const std::vector<vec3d>& p) {
@@ -36,21 +34,17 @@ void check_float_range(const std::vector<vec3d>& in, const std::vector<vec3f>& o
 }  // namespace
 
 void PositionRounding::round(const std::vector<vec3d>& in, std::vector<vec3f>& out) {
-  if (!rebase_) {
-    round_to_float(in, out);
-    check_float_range(in, out, false);
-    return;
-  }
-  if (!have_origin_) {
+  if (rebase_ && !have_origin_) {
     origin_ = bounds_centre(in);
     have_origin_ = true;
   }
+  // Without a rebase the origin is {0, 0, 0}, and x - 0 is x exactly.
   out.resize(in.size());
   const vec3d o = origin_;
   for (size_t v = 0; v < in.size(); ++v)
     out[v] = {static_cast<float>(in[v].x - o.x), static_cast<float>(in[v].y - o.y),
               static_cast<float>(in[v].z - o.z)};
-  check_float_range(in, out, true);
+  check_float_range(in, out, rebase_);
 }
 
 }  // namespace cdb

@@ -6,12 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <set>
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/float_bits.h"
+#include "io/quaternion.h"
 
 namespace cdb {
 namespace {
@@ -37,27 +38,11 @@ aiVector3D lerp_key(const aiVectorKey* keys, unsigned n, double t) {
   return keys[i].mValue + ai_real(f) * (keys[i + 1].mValue - keys[i].mValue);
 }
 
-// Spherical interpolation along the shorter arc, in double: assimp's own works in float,
-// whose acos loses about 1e-4 rad near small angles between keys.
-aiQuaternion slerp(const aiQuaternion& a, const aiQuaternion& b, double f) {
-  double bw = b.w, bx = b.x, by = b.y, bz = b.z;
-  double cosine = a.w * bw + a.x * bx + a.y * by + a.z * bz;
-  if (cosine < 0) cosine = -cosine, bw = -bw, bx = -bx, by = -by, bz = -bz;
-  double ka = 1 - f, kb = f;
-  if (cosine < 1 - 1e-9) {
-    const double angle = std::acos(cosine), sine = std::sin(angle);
-    ka = std::sin((1 - f) * angle) / sine;
-    kb = std::sin(f * angle) / sine;
-  }
-  const double w = ka * a.w + kb * bw, x = ka * a.x + kb * bx, y = ka * a.y + kb * by, z = ka * a.z + kb * bz;
-  const double n = std::sqrt(w * w + x * x + y * y + z * z);
-  return aiQuaternion(ai_real(w / n), ai_real(x / n), ai_real(y / n), ai_real(z / n));
-}
-
 aiQuaternion slerp_key(const aiQuatKey* keys, unsigned n, double t) {
-  // Keys written with few digits are not quite unit; slerp normalises, also at a key.
   const auto [i, f] = bracket(keys, n, t);
-  return slerp(keys[i].mValue, keys[f == 0.0 ? i : i + 1].mValue, f);
+  const aiQuaternion &a = keys[i].mValue, &b = keys[f == 0.0 ? i : i + 1].mValue;
+  const Quat q = slerp({a.w, a.x, a.y, a.z}, {b.w, b.x, b.y, b.z}, f);
+  return aiQuaternion(ai_real(q.w), ai_real(q.x), ai_real(q.y), ai_real(q.z));
 }
 
 // A mesh placed in the scene by a node: its vertex v is frame vertex first_vertex + weld[v].
@@ -234,19 +219,14 @@ class AnimatedMesh final : public AnimatedClip {
   // target positions and bone weights take the same index: they are computed by the same
   // operations in every frame, so the merge is exact and no face changes.
   std::vector<uint32_t> weld_map(const aiMesh* mesh) const {
-    auto bits = [](float x) {
-      uint32_t u;
-      std::memcpy(&u, &x, sizeof u);
-      return u;
-    };
     std::vector<std::vector<uint32_t>> key(mesh->mNumVertices);
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
       const aiVector3D& p = mesh->mVertices[v];
-      key[v] = {bits(p.x), bits(p.y), bits(p.z)};
+      key[v] = {float_bits(p.x), float_bits(p.y), float_bits(p.z)};
       for (unsigned t = 0; t < mesh->mNumAnimMeshes; ++t)
         if (const aiAnimMesh* target = mesh->mAnimMeshes[t]; target->mVertices && v < target->mNumVertices)
-          key[v].insert(key[v].end(), {bits(target->mVertices[v].x), bits(target->mVertices[v].y),
-                                       bits(target->mVertices[v].z)});
+          key[v].insert(key[v].end(), {float_bits(target->mVertices[v].x), float_bits(target->mVertices[v].y),
+                                       float_bits(target->mVertices[v].z)});
     }
     // Bones in mesh order, the order skinning sums them in.
     for (unsigned b = 0; b < mesh->mNumBones; ++b)
@@ -255,7 +235,7 @@ class AnimatedMesh final : public AnimatedClip {
         if (vw.mVertexId >= mesh->mNumVertices)
           fail(file_ + ": mesh '" + mesh->mName.C_Str() + "' bone '" + mesh->mBones[b]->mName.C_Str() +
                "': weight for vertex " + std::to_string(vw.mVertexId) + " of " + std::to_string(mesh->mNumVertices));
-        key[vw.mVertexId].insert(key[vw.mVertexId].end(), {~0u, b, bits(vw.mWeight)});
+        key[vw.mVertexId].insert(key[vw.mVertexId].end(), {~0u, b, float_bits(vw.mWeight)});
       }
     std::map<std::vector<uint32_t>, uint32_t> first;
     std::vector<uint32_t> weld(mesh->mNumVertices);

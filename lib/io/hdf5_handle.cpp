@@ -52,8 +52,9 @@ Handle own(hid_t id, Handle::Closer close, const std::string& where, const char*
 
 namespace {
 
-void write_numeric(hid_t loc, const char* name, hid_t file_type, hid_t mem_type, const void* value,
-                   const std::string& where) {
+// A scalar attribute, replacing one of the same name.
+void write_scalar(hid_t loc, const char* name, hid_t file_type, hid_t mem_type, const void* value,
+                  const std::string& where) {
   const std::string at = where + " attribute '" + name + "'";
   if (H5Aexists(loc, name) > 0) check(H5Adelete(loc, name), at, "delete");
   Handle space = own(H5Screate(H5S_SCALAR), H5Sclose, at, "create dataspace");
@@ -67,19 +68,25 @@ Handle open_attr(hid_t loc, const char* name, const std::string& at) {
   return own(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose, at, "open");
 }
 
+// A number attribute converted to `mem_type` by HDF5.
+template <class T>
+T read_number(hid_t loc, const char* name, hid_t mem_type, const std::string& where) {
+  const std::string at = where + " attribute '" + name + "'";
+  Handle attr = open_attr(loc, name, at);
+  T value = 0;
+  check(H5Aread(attr.get(), mem_type, &value), at, "read");
+  return value;
+}
+
 }  // namespace
 
 void write_attr(hid_t loc, const char* name, const std::string& value, const std::string& where) {
   const std::string at = where + " attribute '" + name + "'";
-  if (H5Aexists(loc, name) > 0) check(H5Adelete(loc, name), at, "delete");
   Handle type = own(H5Tcopy(H5T_C_S1), H5Tclose, at, "copy string type");
   check(H5Tset_size(type.get(), H5T_VARIABLE), at, "set string size");
   check(H5Tset_cset(type.get(), H5T_CSET_UTF8), at, "set character set");
-  Handle space = own(H5Screate(H5S_SCALAR), H5Sclose, at, "create dataspace");
-  Handle attr = own(H5Acreate2(loc, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-                    at, "create");
   const char* text = value.c_str();
-  check(H5Awrite(attr.get(), type.get(), &text), at, "write");
+  write_scalar(loc, name, type.get(), type.get(), &text, where);
 }
 
 void write_attr(hid_t loc, const char* name, const char* value, const std::string& where) {
@@ -87,15 +94,15 @@ void write_attr(hid_t loc, const char* name, const char* value, const std::strin
 }
 
 void write_attr(hid_t loc, const char* name, double value, const std::string& where) {
-  write_numeric(loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value, where);
+  write_scalar(loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value, where);
 }
 
 void write_attr(hid_t loc, const char* name, int64_t value, const std::string& where) {
-  write_numeric(loc, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value, where);
+  write_scalar(loc, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value, where);
 }
 
 void write_attr(hid_t loc, const char* name, uint64_t value, const std::string& where) {
-  write_numeric(loc, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, &value, where);
+  write_scalar(loc, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, &value, where);
 }
 
 bool has_attr(hid_t loc, const char* name) { return H5Aexists(loc, name) > 0; }
@@ -137,19 +144,11 @@ std::string read_string_attr(hid_t loc, const char* name, const std::string& whe
 }
 
 double read_double_attr(hid_t loc, const char* name, const std::string& where) {
-  const std::string at = where + " attribute '" + name + "'";
-  Handle attr = open_attr(loc, name, at);
-  double value = 0;
-  check(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &value), at, "read");
-  return value;
+  return read_number<double>(loc, name, H5T_NATIVE_DOUBLE, where);
 }
 
 int64_t read_int_attr(hid_t loc, const char* name, const std::string& where) {
-  const std::string at = where + " attribute '" + name + "'";
-  Handle attr = open_attr(loc, name, at);
-  int64_t value = 0;
-  check(H5Aread(attr.get(), H5T_NATIVE_INT64, &value), at, "read");
-  return value;
+  return read_number<int64_t>(loc, name, H5T_NATIVE_INT64, where);
 }
 
 }  // namespace cdb::h5

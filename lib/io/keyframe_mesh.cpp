@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "core/float_bits.h"
 
 namespace cdb {
 namespace {
@@ -106,8 +107,8 @@ class KeyframeMesh final : public FrameSource {
       check_topology(f, o.first + k);
       std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>, uint32_t> refined;
       for (size_t v = 0; v < cls.size(); ++v)
-        cls[v] = refined.emplace(std::make_tuple(cls[v], bits(f.positions[v].x), bits(f.positions[v].y),
-                                                 bits(f.positions[v].z)),
+        cls[v] = refined.emplace(std::make_tuple(cls[v], float_bits(f.positions[v].x), float_bits(f.positions[v].y),
+                                                 float_bits(f.positions[v].z)),
                                  uint32_t(refined.size()))
                      .first->second;
     }
@@ -147,12 +148,6 @@ class KeyframeMesh final : public FrameSource {
   }
 
  private:
-  static uint32_t bits(float x) {
-    uint32_t u;
-    std::memcpy(&u, &x, sizeof u);
-    return u;
-  }
-
   void check_topology(const FlatKeyframe& f, uint32_t keyframe) const {
     const std::string at = file_ + ": keyframe " + std::to_string(keyframe) + " has ";
     const std::string ref = ", keyframe " + std::to_string(options_.first) + " has ";

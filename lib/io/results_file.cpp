@@ -145,14 +145,6 @@ ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
   last_flush_ = std::chrono::steady_clock::now();
 }
 
-ResultsFile::~ResultsFile() {
-  columns_.clear();
-  pairs_.reset();
-  frames_.reset();
-  text_type_.reset();
-  file_.reset();
-}
-
 void ResultsFile::append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory) {
   if (!file_) fail(where_ + ": frame " + std::to_string(frame) + ": the results file is already closed");
   const FrameRow row{frame, stats, memory};

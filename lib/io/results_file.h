@@ -54,8 +54,9 @@ class ResultsFile {
  public:
   // Creates the file (replacing one of that name; parent directories are made).
   ResultsFile(const std::filesystem::path& path, const RunInfo& info);
-  // Closes without touching the status: a file never finished stays "incomplete".
-  ~ResultsFile();
+  // Closes without touching the status: a file never finished stays "incomplete". The
+  // members close in reverse order of declaration, the file last.
+  ~ResultsFile() = default;
   ResultsFile(const ResultsFile&) = delete;
   ResultsFile& operator=(const ResultsFile&) = delete;
 

@@ -1,14 +1,16 @@
 #include "io/rigid_mesh.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <tuple>
 
 #include "core/error.h"
+#include "geometry/position_rounding.h"
 #include "io/keyframe_mesh.h"
 #include "io/obj_sequence.h"
+#include "io/quaternion.h"
 
 namespace cdb {
 namespace {
@@ -16,30 +18,11 @@ namespace {
 using scene::dvec3;
 using scene::Pose;
 
-struct Quat {
-  double w = 1, x = 0, y = 0, z = 0;
-};
-
 Quat axis_angle(dvec3 axis, double angle, const std::string& where) {
   const double len = scene::length(axis);
   if (!(len > 0)) fail(where + ": the rotation axis is zero");
   const double s = std::sin(angle / 2) / len;
   return {std::cos(angle / 2), axis.x * s, axis.y * s, axis.z * s};
-}
-
-// Along the shorter arc, normalised.
-Quat slerp(Quat a, Quat b, double f) {
-  double cosine = a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
-  if (cosine < 0) cosine = -cosine, b = {-b.w, -b.x, -b.y, -b.z};
-  double ka = 1 - f, kb = f;
-  if (cosine < 1 - 1e-12) {
-    const double angle = std::acos(std::min(cosine, 1.0)), sine = std::sin(angle);
-    ka = std::sin((1 - f) * angle) / sine;
-    kb = std::sin(f * angle) / sine;
-  }
-  Quat q{ka * a.w + kb * b.w, ka * a.x + kb * b.x, ka * a.y + kb * b.y, ka * a.z + kb * b.z};
-  const double n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-  return {q.w / n, q.x / n, q.y / n, q.z / n};
 }
 
 Pose from_quat(const Quat& q) {
@@ -106,26 +89,19 @@ StaticMesh load_static_mesh(const std::filesystem::path& file, double scale, boo
     still->positions(0, positions);
   }
   check_frame(positions, topology, file.string(), 0);
-  auto bits = [](double x) {
-    uint64_t u;
-    std::memcpy(&u, &x, sizeof u);
-    return u;
-  };
   std::map<std::tuple<uint64_t, uint64_t, uint64_t>, uint32_t> first;
   std::vector<uint32_t> weld(positions.size());
   std::vector<vec3d> welded;
   for (size_t v = 0; v < positions.size(); ++v) {
-    const auto [it, added] = first.emplace(std::make_tuple(bits(positions[v].x), bits(positions[v].y),
-                                                           bits(positions[v].z)), uint32_t(welded.size()));
+    const vec3d& p = positions[v];
+    const auto [it, added] = first.emplace(
+        std::make_tuple(std::bit_cast<uint64_t>(p.x), std::bit_cast<uint64_t>(p.y), std::bit_cast<uint64_t>(p.z)),
+        uint32_t(welded.size()));
     if (added) welded.push_back(positions[v]);
     weld[v] = it->second;
   }
-  dvec3 lo{welded[0].x, welded[0].y, welded[0].z}, hi = lo;
-  for (const vec3d& p : welded) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  const dvec3 c = center ? 0.5 * (lo + hi) : dvec3{};
+  const vec3d centre = center ? bounds_centre(welded) : vec3d{0, 0, 0};
+  const dvec3 c{centre.x, centre.y, centre.z};
   StaticMesh mesh;
   for (const vec3d& p : welded) mesh.positions.push_back(scale * (dvec3{p.x, p.y, p.z} - c));
   for (const Tri& t : topology.faces) mesh.faces.push_back({weld[t.v0], weld[t.v1], weld[t.v2]});

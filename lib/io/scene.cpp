@@ -38,6 +38,16 @@ class DeclaredQueries final : public FrameSource {
   Topology topology_;
 };
 
+// Runs `open`, prefixing its error with the descriptor path of what it opens or checks.
+template <class Open>
+auto opened_at(const std::string& where, Open open) {
+  try {
+    return open();
+  } catch (const Error& e) {
+    fail(where + ": " + e.what());
+  }
+}
+
 uint32_t object_index(const std::vector<SceneObject>& objects, const nlohmann::json& name,
                       const std::string& where) {
   if (!name.is_string()) fail(where + ": must be an object name (a string)");
@@ -62,32 +72,28 @@ std::unique_ptr<FrameSource> declare_queries(std::unique_ptr<FrameSource> source
       const std::string at = file + ": /objects/" + std::to_string(k);
       const auto& o = objs[k];
       if (!o.is_object()) fail(at + ": must be an object");
-      for (auto it = o.begin(); it != o.end(); ++it)
-        if (it.key() != "name" && it.key() != "faces" && it.key() != "rigid")
-          fail(at + "/" + it.key() + ": unknown key (name, faces, rigid)");
-      if (!o.contains("name") || !o["name"].is_string()) fail(at + "/name: must be a string");
+      const DescriptorObject object(o, at, {"name", "faces", "rigid"});
+      std::string name = object.text("name");
       if (!o.contains("faces") || !o["faces"].is_array() || o["faces"].size() != 2 ||
           !o["faces"][0].is_number_unsigned() || !o["faces"][1].is_number_unsigned())
         fail(at + "/faces: must be [first, count]");
-      if (o.contains("rigid") && !o["rigid"].is_boolean()) fail(at + "/rigid: must be true or false");
-      topo.objects.push_back({o["name"].get<std::string>(), o["faces"][0].get<uint32_t>(),
-                              o["faces"][1].get<uint32_t>(), o.value("rigid", false)});
+      topo.objects.push_back({std::move(name), o["faces"][0].get<uint32_t>(), o["faces"][1].get<uint32_t>(),
+                              object.flag("rigid", false)});
     }
   }
   if (j.contains("queries")) {
     const auto& q = j["queries"];
     const std::string at = file + ": /queries";
     if (!q.is_object()) fail(at + ": must be an object with self and/or inter");
-    for (auto it = q.begin(); it != q.end(); ++it)
-      if (it.key() != "self" && it.key() != "inter") fail(at + "/" + it.key() + ": unknown key (self, inter)");
+    const DescriptorObject queries(q, at, {"self", "inter"});
     if (topo.objects.empty()) fail(at + ": the scene has no objects to query");
     topo.queries.declared = true;
-    if (q.contains("self")) {
+    if (queries.has("self")) {
       if (!q["self"].is_array()) fail(at + "/self: must be an array of object names");
       for (size_t k = 0; k < q["self"].size(); ++k)
         topo.queries.self.push_back(object_index(topo.objects, q["self"][k], at + "/self/" + std::to_string(k)));
     }
-    if (q.contains("inter")) {
+    if (queries.has("inter")) {
       if (!q["inter"].is_array()) fail(at + "/inter: must be an array of [a, b] object-name pairs");
       for (size_t k = 0; k < q["inter"].size(); ++k) {
         const auto& p = q["inter"][k];
@@ -98,11 +104,8 @@ std::unique_ptr<FrameSource> declare_queries(std::unique_ptr<FrameSource> source
       }
     }
   }
-  try {
-    if (topo.queries.declared) pair_filter_tables(topo.objects, topo.queries, topo.faces.size());
-  } catch (const Error& e) {
-    fail(file + ": " + e.what());
-  }
+  if (topo.queries.declared)
+    opened_at(file, [&] { pair_filter_tables(topo.objects, topo.queries, topo.faces.size()); });
   return std::make_unique<DeclaredQueries>(std::move(source), std::move(topo));
 }
 
@@ -138,16 +141,6 @@ AnimationOptions animation_options(const DescriptorObject& a, const std::filesys
     else fail(a.at("clip") + ": must be a clip index or name");
   }
   return o;
-}
-
-// Runs `open`, prefixing its error with the descriptor path of what it opens.
-template <class Open>
-auto opened_at(const std::string& where, Open open) {
-  try {
-    return open();
-  } catch (const Error& e) {
-    fail(where + ": " + e.what());
-  }
 }
 
 std::unique_ptr<FrameSource> open_animation(const DescriptorObject& a, const std::filesystem::path& descriptor) {
