@@ -2,7 +2,8 @@
 # Runs on the GPU machine from a device bundle: compute-sanitizer's memcheck (with leak
 # check), synccheck, initcheck and racecheck over every pipeline on a small folding cloth,
 # one log per tool, archived as $OUT/sanitize.tar.xz, and a summary line per tool in
-# $OUT/sanitize-summary.txt.
+# $OUT/sanitize-summary.txt. A fixed front cycle of 3, so that the 8 frames probe, update
+# (sprouts shared in warps) and replay recorded frames.
 set -uo pipefail
 bundle=${BUNDLE:-$PWD/.devbundle}
 export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
@@ -11,7 +12,7 @@ top=${OUT:-/tmp/out}
 out=$top/sanitize
 mkdir -p "$out"
 pipelines=${PIPELINES:-a,b,c,unordered,periodic,radix-order,reference,bvh,grid,hash,sweep}
-scene=(--scene cloth-ball --set res=40 --set frames=8)
+scene=(--scene cloth-ball --set res=40 --set frames=8 --front-cycle 3)
 for tool in memcheck synccheck initcheck racecheck; do
   extra=()
   [[ $tool == memcheck ]] && extra=(--leak-check full)
