@@ -192,12 +192,12 @@ def load(paths):
     return complete, [r for r in runs if not r.complete]
 
 
-def steady_replays(run):
-    """Mask of a run's measured frames that only refit and preserve, replaying the frame's
-    CUDA graph (the frame that records the graph carries the host-side capture between its
-    events, and is left out)."""
+def steady_frames(run):
+    """Mask of a run's measured frames that only refit and preserve, launched plain or
+    replaying the frame's CUDA graph (--cuda-graph on: the frame that records the graph
+    carries the host-side capture between its events, and is left out)."""
     op, graph = run.column("op"), run.column("graph")
-    return np.array([text(o) == "refit+preserve" and text(g) == "replayed" for o, g in zip(op, graph)], dtype=bool)
+    return np.array([text(o) == "refit+preserve" and text(g) != "captured" for o, g in zip(op, graph)], dtype=bool)
 
 
 def pick_scene(paths, runs, scene):

@@ -228,6 +228,7 @@ TEST(CudaPipelines, GraphReplaysGiveThePlainLaunchesPairs) {
       PipelineConfig with = config_for("cuda", 0.05, 0.05, 6), without = with;
       with.name = without.name = name;
       with.swept_boxes = without.swept_boxes = swept;
+      with.cuda_graph = true;
       without.cuda_graph = false;
       auto graphed = make_pipeline(with), plain = make_pipeline(without);
       graphed->set_topology(topo);

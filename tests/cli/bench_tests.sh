@@ -57,7 +57,7 @@ check "ab_phases unknown binary" 1 "no cell run by cdbench-other" -- \
 check "ab_phases missing log" 1 "nowhere.log: No such file or directory" -- \
   "$python" "$root/bench/ab_phases.py" "$tmp/nowhere.log" cdbench-base cdbench
 # steady_breakdown.py: the committed H100 results have graph-replayed steady frames, one row
-# a pipeline; CPU results record no graph, and the script says so.
+# a pipeline; CPU results launch plain and count too; a pipeline without fronts has none.
 mkdir -p "$tmp/gpu"
 tar -xJf "$root/results/2026-11-25-h100/h5.tar.xz" -C "$tmp/gpu"
 check "steady_breakdown on GPU results" 0 "^\| targets \| steady-funnel-b \| [0-9]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|$" -- \
@@ -66,10 +66,14 @@ check "steady_breakdown on GPU results" 0 "^\| targets \| steady-funnel-b \| [0-
 has "steady_breakdown untimed run" "$tmp/out" "^\| targets \| untimed-funnel-b \| [0-9]+ \| [0-9.]+ \| — \| — \| — \| [0-9.]+ \|$"
 # The funnel-size target is judged on the untimed runs, with four digits.
 check "perf_targets judges the steady frame untimed" 0 \
-  "^\| steady frame of a/b/c at funnel size ≤ 0\.050 \| 0\.[0-9]{4}–0\.[0-9]{4} \(median of the graph-replayed refit\+preserve frames, phases untimed\) \| (met|\*\*not met\*\*) \|$" -- \
+  "^\| steady frame of a/b/c at funnel size ≤ 0\.050 \| 0\.[0-9]{4}–0\.[0-9]{4} \(median of the steady refit\+preserve frames, phases untimed\) \| (met|\*\*not met\*\*) \|$" -- \
   "$python" "$root/bench/perf_targets.py" "$tmp/gpu/targets"
-check "steady_breakdown without replayed frames" 1 "no graph-replayed refit\+preserve frames" -- \
+check "steady_breakdown on plain CPU frames" 0 "^\| targets \| steady-funnel-static \| [0-9]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.-]+ \| [0-9.]+ \|$" -- \
   "$python" "$root/bench/steady_breakdown.py" "$tmp/targets"
+mkdir -p "$tmp/no-fronts"
+cp "$res/funnel-bvh.h5" "$tmp/no-fronts/"
+check "steady_breakdown without steady frames" 1 "no steady refit\+preserve frames" -- \
+  "$python" "$root/bench/steady_breakdown.py" "$tmp/no-fronts"
 check "perf_targets unknown control" 1 "--controls: unknown pipeline\(s\) gird" -- \
   "$python" "$root/bench/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls gird
 
