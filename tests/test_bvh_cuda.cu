@@ -272,6 +272,11 @@ TEST(CudaKnobs, UpdatesKeptAsProducedAndSharedInWarpsStayExact) {
   check_update_knobs("cuda");
 }
 
+TEST(CudaKnobs, PairBufferGrowsBetweenFrames) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_pairs_grown_ahead("cuda");
+}
+
 TEST(CudaKnobs, ProbedUpdatesRunOnce) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   check_update_probe("cuda");

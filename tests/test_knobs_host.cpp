@@ -218,4 +218,6 @@ TEST(HostKnobs, UpdatesKeptAsProducedStayExact) { check_update_knobs("cpu"); }
 
 TEST(HostKnobs, ProbedUpdatesRunOnce) { check_update_probe("cpu"); }
 
+TEST(HostKnobs, PairBufferGrowsBetweenFrames) { check_pairs_grown_ahead("cpu"); }
+
 }  // namespace cdb::test

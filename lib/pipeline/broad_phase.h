@@ -84,6 +84,7 @@ class BroadPhase final : public Pipeline {
 
   FrameStats run_frame(const std::vector<vec3f>& vertices) override {
     FrameStats stats;
+    pairs_.reserve_ahead();
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
     stats.op = prepare(mesh);
     bool build_grid = method_ == BroadPhaseMethod::grid;

@@ -248,6 +248,18 @@ class PairBuffer {
     pairs_.reserve(size_t(need + need / 4));
     return true;
   }
+  // Before a frame, outside its timing: when the last frame's pairs filled more than seven
+  // eighths of the buffer, it grows to a quarter past them, so that a count that grows from
+  // frame to frame is met between frames instead of overflowing one and running its query
+  // twice (docs/design.md "Constants and their measurements"). The buffer holds the last
+  // frame's pairs, which are read
+  // between frames (sorted_pairs) and dead once the next frame starts. True if it grew.
+  bool reserve_ahead() {
+    const uint64_t last = count();
+    if (last <= pairs_.capacity() - pairs_.capacity() / 8) return false;
+    pairs_.reserve(size_t(last + last / 4));
+    return true;
+  }
   uint64_t count() const { return last_.pairs; }
   std::vector<PrimPair> sorted_pairs(Exec& exec) const {
     std::vector<PrimPair> out(count());

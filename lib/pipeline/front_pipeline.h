@@ -73,6 +73,7 @@ class FrontPipeline final : public Pipeline {
 
   FrameStats run_frame(const std::vector<vec3f>& vertices) override {
     FrameStats stats;
+    if (pairs_.reserve_ahead()) ++graph_version_;
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
     const uint64_t fronts = self_.total() + inter_.total() + rigid_self_.total();
     const FramePlan plan = planner_.plan(bvh_.num_leaves, fronts);

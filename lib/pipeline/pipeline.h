@@ -84,9 +84,8 @@ struct PipelineConfig {
   // Front pipelines on CUDA: the steady-state frame (refit and preserve, the same kernels
   // with the same arguments frame after frame) is captured once in a CUDA graph and
   // replayed while nothing it launches changes. The host executor ignores it. Off by
-  // default: plain launches with dependent launch ran the H100's steady frames faster than
-  // replays (funnel 32-33 us against 37) and every update costs a new recording
-  // (docs/design.md "CUDA graphs for steady frames").
+  // default: plain launches with dependent launch ran steady frames faster than replays,
+  // and every update costs a new recording (docs/design.md "CUDA graphs for steady frames").
   bool cuda_graph = false;
   // CUDA: launch kernels so that each may be scheduled while the one before it runs
   // (ExecOptions::dependent_launch). The host executor ignores it.
