@@ -97,17 +97,18 @@ class FrontQuery {
     return q.stops_of(kind) + (kind == kInternalFront ? total() : size(kExternalFront));
   }
 
-  // After a probing preserve: every buffer of a kind grows to hold update_bound with an
-  // eighth to spare, so that the coming update produces its fronts in one run. The bound
-  // holds for the probed frame's geometry; the update runs on a later frame, whose motion
-  // the eighth covers, and past it the update grows and runs again as before.
+  // After a probing preserve: the buffers of a kind that cannot hold update_bound with an
+  // eighth to spare grow to hold it with a quarter, so that the coming update produces its
+  // fronts in one run. The bound holds for the probed frame's geometry; the update runs on
+  // a later frame, whose motion the spare covers, and past it the update grows and runs
+  // again as before (docs/design.md "Constants and their measurements").
   // True if a buffer grew.
   bool reserve_for_update(Exec& exec, const FrontCounters& c) {
     if (!active_) return false;
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
       const size_t need = size_t(update_bound(c, k));
-      grew = reserve_headroom(exec, front_[k], need, need + need / 8) || grew;
+      grew = reserve_headroom(exec, front_[k], need + need / 8, need + need / 4) || grew;
     }
     return grew;
   }
