@@ -13,23 +13,24 @@ import glob
 import os
 import sys
 
-import h5py
 import numpy as np
+
+from maintenance_report import maintenance_frames
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+import cdb_results  # noqa: E402
 
 
 def load(path):
-    with h5py.File(path, "r") as h:
-        f = h["frames"]
-        t = np.asarray(f["t_total_ms"][1:], dtype=float)
-        ops = [x.decode() if isinstance(x, bytes) else str(x) for x in f["op"][1:]]
-        reruns = np.asarray(f["query_reruns"][1:])
-        device = h.attrs.get("device_name", b"")
-        sha = h.attrs.get("git_sha", b"")
-    device = device.decode() if isinstance(device, bytes) else str(device)
-    sha = sha.decode() if isinstance(sha, bytes) else str(sha)
-    maint = [k for k, op in enumerate(ops) if op.startswith("refit+") and not op.endswith("+preserve")]
+    """A run's measured frames: column() leaves out the warm-up frames (the first)."""
+    run = cdb_results.Run(path)
+    t = np.asarray(run.column("t_total_ms"), dtype=float)
+    ops = [cdb_results.text(op) for op in run.column("op")]
+    reruns = np.asarray(run.column("query_reruns"))
+    maint = maintenance_frames(ops)
     return {"mean": t.mean(), "median": np.median(t), "p95": np.percentile(t, 95), "frames": len(t),
-            "maint": len(maint), "twice": int(sum(reruns[k] > 0 for k in maint)), "device": device, "sha": sha}
+            "maint": len(maint), "twice": int(sum(reruns[k] > 0 for k in maint)), "device": run.device,
+            "sha": run.git_sha}
 
 
 def main():

@@ -57,15 +57,15 @@ void zero_cursors(Exec& exec, FrontArrays<Exec>& f) {
   exec.fill(f.cursor_front(), 2 * f.segments(), 0u);
 }
 
-// Orders a produced front (raw arrays, size on the device in *count, at most the raw
-// capacity, `launch`) into the sorted arrays, using its filled count log with `segments`
-// entries: a scan and one scatter.
 // The offset log of a produced front: its count log's exclusive scan (`segments` + 1 entries).
 template <class Exec>
 void scan_count_log(Exec& exec, FrontArrays<Exec>& f, size_t segments, void* temp, size_t temp_bytes) {
   exec.exclusive_scan(f.count_log(), f.offset_log.data(), segments + 1, temp, temp_bytes);
 }
 
+// Orders a produced front (raw arrays, size on the device in *count, at most the raw
+// capacity, `launch`) into the sorted arrays, using its filled count log with `segments`
+// entries: a scan and one scatter.
 template <class Exec>
 void order_front(Exec& exec, FrontArrays<Exec>& f, size_t segments, const unsigned long long* count,
                  const uint32_t* prim, const uint32_t* node, const uint8_t* mark, size_t launch,

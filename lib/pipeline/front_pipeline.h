@@ -239,11 +239,11 @@ class FrontPipeline final : public Pipeline {
     return histogram_sorted() && (sorts(op) || strategy().balance || strategy().restructure);
   }
 
-  // Update's sprouts are shared within warps as --update-warp says, by the rule of
-  // --preserve-warp (WarpSharing).
-  bool update_in_warp(const FrontQuery<Exec>& fq) const {
-    return config_.update_warp == WarpSharing::on ||
-           (config_.update_warp == WarpSharing::automatic && fq.total() <= kWarpSharingWaves * exec_.resident_threads());
+  // Whether a launch over `fronts` front nodes shares its traversals within warps, as
+  // --preserve-warp or --update-warp (`choice`) says (WarpSharing).
+  bool shares_in_warp(WarpSharing choice, uint64_t fronts) const {
+    return choice == WarpSharing::on ||
+           (choice == WarpSharing::automatic && fronts <= kWarpSharingWaves * exec_.resident_threads());
   }
 
   static Phase phase_of(FrontOp op) {
@@ -270,7 +270,7 @@ class FrontPipeline final : public Pipeline {
           fq.generate(exec_, pairs_, histogram);
           break;
         case FrontOp::update:
-          fq.update(exec_, pairs_, counts(op), update_in_warp(fq));
+          fq.update(exec_, pairs_, counts(op), shares_in_warp(config_.update_warp, fq.total()));
           break;
         case FrontOp::restructure:
           fq.restructure(exec_, pairs_, histogram, restructure_.view());
@@ -313,9 +313,7 @@ class FrontPipeline final : public Pipeline {
   void choose_preserve_launch(uint64_t pairs) {
     const uint64_t fronts = self_.total() + inter_.total() + rigid_self_.total();
     const bool stage = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts;
-    const bool warp = config_.preserve_warp == WarpSharing::on ||
-                      (config_.preserve_warp == WarpSharing::automatic &&
-                       fronts <= kWarpSharingWaves * exec_.resident_threads());
+    const bool warp = shares_in_warp(config_.preserve_warp, fronts);
     if (stage != stage_preserve_ || warp != warp_preserve_) ++graph_version_;
     stage_preserve_ = stage;
     warp_preserve_ = warp;

@@ -65,7 +65,7 @@ WarpSharing parse_warp_sharing(const std::string& name) {
   if (name == "auto") return WarpSharing::automatic;
   if (name == "on") return WarpSharing::on;
   if (name == "off") return WarpSharing::off;
-  fail("unknown preserve warp sharing '" + name + "' (known: auto, on, off)");
+  fail("unknown warp sharing '" + name + "' (known: auto, on, off)");
 }
 
 bool config_conservative(const PipelineConfig& config) {
