@@ -143,6 +143,17 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
              "update's output in its blocks' order and sort only generated and restructured fronts (b and c "
              "sort in their balance before the next update)")
       ->group(kTuningGroup);
+  add_switch(cmd, "--update-in-place", c.update_in_place,
+             "front pipelines: an update writes only the front nodes that change, into the current front (holes "
+             "and an appended tail), and every update once those reach --compact-share of the front produces it "
+             "whole and ordered; off: every update produces the whole front (the paper)")
+      ->group(kTuningGroup);
+  cmd->add_option("--compact-share", c.compact_share,
+                  "front pipelines with --update-in-place: the share of a front's nodes changed in place (holes "
+                  "plus appended nodes) at which the next update produces the front whole again")
+      ->group(kTuningGroup)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   add_switch(cmd, "--update-probe", c.update_probe,
              "front pipelines: the preserves before an update count what it can produce, and the front buffers "
              "grow to that between frames; off: an update that outgrows them grows them inside its frame and runs "

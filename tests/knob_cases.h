@@ -221,45 +221,68 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
   }
 }
 
-// --order-updates off (updates keep their output in the order produced) and --update-warp
-// on and off (sprouts shared out in warps, on CUDA), on every front pipeline with fixed
-// cycles and auto, and fronts and pairs that start too small: exactly the oracle's pairs
-// every frame, and under a fixed cycle fronts of the same sizes as the paper's sorted
-// updates (the same nodes in another order).
+// How an update's front is kept: --order-updates, --update-warp, --update-in-place and
+// --compact-share.
+struct UpdateKnobs {
+  bool order;
+  WarpSharing warp;
+  bool in_place;
+  double compact_share;
+  std::string name() const {
+    return std::string(order ? "sorted" : "kept") + " warp " + warp_sharing_name(warp) +
+           (in_place ? " in place, compact at " + std::to_string(compact_share) : " whole");
+  }
+};
+
+// --order-updates off (updates keep their output in the order produced), --update-warp on
+// and off (sprouts shared out in warps, on CUDA) and --update-in-place (updates write into
+// the current front; compacted at once, now and then, or never), on every front pipeline
+// with fixed cycles and auto, and fronts and pairs that start too small: exactly the
+// oracle's pairs every frame, and under a fixed cycle fronts of the same sizes as the
+// paper's sorted whole updates (the same nodes in another order).
 inline void check_update_knobs(const std::string& device) {
   const ExactFrames funnel =
       exact_frames(*make_generator("funnel", {{"res", 40}, {"frames", 12}, {"segments", 16}, {"ball_level", 1}}));
   const ExactFrames soup = exact_frames(*fast_soup(8));
+  const std::vector<UpdateKnobs> variants = {
+      {true, WarpSharing::off, false, 0.5},  {false, WarpSharing::off, false, 0.5}, {false, WarpSharing::on, false, 0.5},
+      {true, WarpSharing::off, true, 0.0},   {true, WarpSharing::off, true, 0.3},   {true, WarpSharing::on, true, 1e9},
+      {false, WarpSharing::on, true, 0.3}};
   for (const ExactFrames* scene : {&funnel, &soup})
     for (const auto& name : pipeline_names()) {
       const PipelineKind* kind = find_pipeline_kind(name);
       if (!std::holds_alternative<FrontStrategy>(kind->builds)) continue;
       for (uint32_t cycle : {1u, 3u, 0u}) {
         std::vector<std::array<uint64_t, 2>> sorted_sizes;
-        for (bool order : {true, false})
-          for (WarpSharing warp : {WarpSharing::off, WarpSharing::on}) {
-            if (order && warp == WarpSharing::on) continue;
-            PipelineConfig cfg = growing_config(device, name);
-            cfg.front_per_triangle = 0.5;
-            cfg.front_cycle = cycle;
-            cfg.order_updates = order;
-            cfg.update_warp = warp;
-            auto p = make_pipeline(cfg);
-            p->set_topology(scene->topology);
-            for (uint32_t f = 0; f < scene->num_frames(); ++f) {
-              const FrameStats s = p->run_frame(scene->vertices[f]);
-              const std::string where = name + " cycle " + std::to_string(cycle) + (order ? " sorted" : " kept") +
-                                        " warp " + warp_sharing_name(warp) + " frame " + std::to_string(f);
-              const PairSetDiff d = diff_pair_sets(scene->pairs[f], p->sorted_pairs());
-              ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count
-                                     << " extra";
-              if (cycle == 0) continue;
-              if (order)
-                sorted_sizes.push_back({s.front_internal, s.front_external});
-              else
-                EXPECT_EQ(sorted_sizes[f], (std::array<uint64_t, 2>{s.front_internal, s.front_external})) << where;
-            }
+        uint32_t in_place_frames = 0;
+        for (const UpdateKnobs& knobs : variants) {
+          PipelineConfig cfg = growing_config(device, name);
+          cfg.front_per_triangle = 0.5;
+          cfg.front_cycle = cycle;
+          cfg.order_updates = knobs.order;
+          cfg.update_warp = knobs.warp;
+          cfg.update_in_place = knobs.in_place;
+          cfg.compact_share = knobs.compact_share;
+          auto p = make_pipeline(cfg);
+          p->set_topology(scene->topology);
+          for (uint32_t f = 0; f < scene->num_frames(); ++f) {
+            const FrameStats s = p->run_frame(scene->vertices[f]);
+            const std::string where =
+                name + " cycle " + std::to_string(cycle) + " " + knobs.name() + " frame " + std::to_string(f);
+            const PairSetDiff d = diff_pair_sets(scene->pairs[f], p->sorted_pairs());
+            ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count
+                                   << " extra";
+            if (s.op.find("+update-in-place") != std::string::npos) ++in_place_frames;
+            if (cycle == 0 || (name == "c" && knobs.in_place)) continue;
+            if (sorted_sizes.size() <= f)
+              sorted_sizes.push_back({s.front_internal, s.front_external});
+            else
+              EXPECT_EQ(sorted_sizes[f], (std::array<uint64_t, 2>{s.front_internal, s.front_external})) << where;
           }
+        }
+        if (cycle == 1 && name != "reference") {
+          EXPECT_GT(in_place_frames, 0u) << name << ": no update ran in place";
+        }
       }
     }
 }
@@ -271,33 +294,37 @@ inline void check_update_knobs(const std::string& device) {
 // spare so that only fronts grow). Exact either way.
 inline void check_update_probe(const std::string& device) {
   const ExactFrames soup = exact_frames(*fast_soup(6));
-  for (const auto& name : {"a", "b", "c", "unordered", "periodic"}) {
-    uint32_t reruns_unprobed = 0;
-    for (bool probe : {true, false}) {
-      PipelineConfig cfg;
-      cfg.device = device;
-      cfg.name = name;
-      cfg.pairs_per_triangle = 64;
-      cfg.front_per_triangle = 0.25;
-      cfg.front_cycle = 2;
-      cfg.update_probe = probe;
-      auto p = make_pipeline(cfg);
-      p->set_topology(soup.topology);
-      for (uint32_t k = 0; k < 2 * soup.num_frames() - 1; ++k) {
-        const uint32_t f = (k + 1) / 2;
-        const FrameStats s = p->run_frame(soup.vertices[f]);
-        const std::string where = std::string(name) + (probe ? " probed" : " unprobed") + " frame " + std::to_string(k);
-        const PairSetDiff d = diff_pair_sets(soup.pairs[f], p->sorted_pairs());
-        ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count << " extra";
-        if (s.op.find("+update") == std::string::npos) continue;
-        if (probe)
-          EXPECT_EQ(s.query_reruns, 0u) << where;
-        else
-          reruns_unprobed += s.query_reruns;
+  for (const auto& name : {"a", "b", "c", "unordered", "periodic"})
+    for (bool in_place : {true, false}) {
+      uint32_t reruns_unprobed = 0;
+      for (bool probe : {true, false}) {
+        PipelineConfig cfg;
+        cfg.device = device;
+        cfg.name = name;
+        cfg.pairs_per_triangle = 64;
+        cfg.front_per_triangle = 0.25;
+        cfg.front_cycle = 2;
+        cfg.update_probe = probe;
+        cfg.update_in_place = in_place;
+        auto p = make_pipeline(cfg);
+        p->set_topology(soup.topology);
+        for (uint32_t k = 0; k < 2 * soup.num_frames() - 1; ++k) {
+          const uint32_t f = (k + 1) / 2;
+          const FrameStats s = p->run_frame(soup.vertices[f]);
+          const std::string where = std::string(name) + (in_place ? " in place" : " whole") +
+                                    (probe ? " probed" : " unprobed") + " frame " + std::to_string(k);
+          const PairSetDiff d = diff_pair_sets(soup.pairs[f], p->sorted_pairs());
+          ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count << " extra";
+          if (s.op.find("+update") == std::string::npos) continue;
+          if (probe)
+            EXPECT_EQ(s.query_reruns, 0u) << where;
+          else
+            reruns_unprobed += s.query_reruns;
+        }
       }
+      EXPECT_GT(reruns_unprobed, 0u) << name << (in_place ? " in place" : " whole")
+                                     << ": the scene does not make unprobed updates grow their fronts";
     }
-    EXPECT_GT(reruns_unprobed, 0u) << name << ": the scene does not make unprobed updates grow their fronts";
-  }
 }
 
 // The pair buffer grows between frames once a frame's pairs fill seven eighths of it: a

@@ -62,7 +62,9 @@ TEST(FramePlan, FixedCycleIsThePapersScheme) {
 TEST(FramePlan, BalanceOnlyBeforeUpdatesOfPipelinesThatBalance) {
   FrontStrategy b;
   b.balance = true;
-  FramePlanner planner(b, cycle_config(2));
+  PipelineConfig whole = cycle_config(2);
+  whole.update_in_place = false;
+  FramePlanner planner(b, whole);
   for (int f = 0; f < 6; ++f) {
     const FramePlan p = planner.plan(100, 100);
     EXPECT_EQ(p.balance, p.self == FrontOp::update) << "frame " << f;
@@ -242,8 +244,8 @@ TEST(FramePlan, AdaptivePeriodicAlternatesUpdateAndGenerate) {
   for (size_t k = 0; k < maintenance.size(); ++k) EXPECT_EQ(maintenance[k], k % 2 ? 'g' : 'u') << s;
 }
 
-// Pipeline c: inspection after updates once Q of the root is known; what it finds decides
-// the next frame by Formula 2 on the share of leaves in candidates.
+// Pipeline c: inspection after updates once Q of the root is known; what it finds
+// decides the next frame by Formula 2 on the share of leaves in candidates.
 TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
   FrontStrategy c;
   c.balance = c.restructure = true;
@@ -313,6 +315,32 @@ std::string schedule_probes(FramePlanner& planner, int frames, Cost cost) {
 
 // A fixed cycle probes on the frame before each update, so the update's buffers are sized
 // by then; --update-probe off never probes.
+// Updates run in place while the fronts' order has decayed by less than the compact share,
+// and produce the fronts whole from it on. Balance, which reorders a front by the offsets of
+// the sort that produced it, runs only before whole updates of fronts without holes.
+TEST(FramePlan, UpdatesInPlaceUntilTheOrderDecays) {
+  FrontStrategy c;
+  c.balance = true;
+  c.restructure = true;
+  for (bool in_place : {true, false}) {
+    PipelineConfig cfg = cycle_config(1);
+    cfg.compact_share = 0.5;
+    cfg.update_in_place = in_place;
+    FramePlanner planner(c, cfg);
+    const FramePlan built = planner.plan(100, 100);
+    ASSERT_TRUE(built.rebuild);
+    planner.finish(built, {3.0, true, 100, 1.0, {}});
+    for (double disorder : {0.0, 0.3, 0.49, 0.5, 2.0}) {
+      const FramePlan p = planner.plan(100, 100, disorder);
+      const std::string where = std::string(in_place ? "in place" : "whole") + ", disorder " + std::to_string(disorder);
+      ASSERT_EQ(p.self, FrontOp::update) << where;
+      EXPECT_EQ(p.in_place, in_place && disorder < 0.5) << where;
+      EXPECT_EQ(p.balance, !p.in_place && disorder == 0.0) << where;
+      EXPECT_TRUE(p.inspect) << where;
+    }
+  }
+}
+
 TEST(FramePlan, FixedCycleProbesTheFrameBeforeAnUpdate) {
   FramePlanner planner(FrontStrategy{}, cycle_config(4));
   EXPECT_EQ(schedule_probes(planner, 13, flat), "bppPuppPuppPu");

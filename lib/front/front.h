@@ -24,6 +24,11 @@ inline constexpr uint32_t kStopSlots = 16;
 
 CDB_HD_INLINE int front_kind(uint32_t ref) { return is_leaf(ref) ? kExternalFront : kInternalFront; }
 
+// A front node's BVH node once it is dropped where it lies: by an update in place (its
+// replacements were appended, or it climbed into another node) or by the classification of
+// a restructure. Every operation that reads a front skips it.
+inline constexpr uint32_t kFrontDropped = kNoNode;
+
 // Where an operation appends the fronts it produces: per kind a counter (every push
 // counted, pushes past capacity not stored: the caller grows and re-runs), and, for ordered
 // pipelines, the count log of the histogram sort (front nodes per BVH node j).

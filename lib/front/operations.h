@@ -80,6 +80,22 @@ struct GenerateFrontFn {
 #endif
 };
 
+// Adds a lane's two counts (one per front kind) to kStopSlots slots of two: on the GPU once
+// per warp and kind, into its block's slot; on the host to the first slot.
+CDB_HD_INLINE void add_to_slots(unsigned long long* slots, const uint32_t (&n)[2]) {
+#if defined(__CUDA_ARCH__)
+  const unsigned active = __activemask();
+  unsigned long long* slot = slots + 2 * (blockIdx.x % kStopSlots);
+  for (int k = 0; k < 2; ++k) {
+    const uint32_t sum = __reduce_add_sync(active, n[k]);
+    if ((threadIdx.x & 31u) == unsigned(__ffs(active) - 1) && sum) atomicAdd(&slot[k], static_cast<unsigned long long>(sum));
+  }
+#else
+  for (int k = 0; k < 2; ++k)
+    if (n[k]) atomic_add_relaxed(&slots[k], static_cast<unsigned long long>(n[k]));
+#endif
+}
+
 // (2) Preserve: traverse from every stored front node; the front is not rewritten. On the
 // GPU the traversals left after the first step are shared out within each warp
 // (front/warp_traversal.h). kCountStops (a probe before an update): also count, per kind,
@@ -99,6 +115,7 @@ struct PreserveFrontFn {
   // Front node e's own test: its pair if it is a leaf that overlaps, and the rest.
   CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
     const uint32_t i = prim[e], j = node[e];
+    if (j == kFrontDropped) return {};
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     const uint32_t q = lane_link(hi.w);
     const PairSink sink = pair_sink(stage);
@@ -118,20 +135,7 @@ struct PreserveFrontFn {
     }
     if constexpr (kCountStops) count_stops(met);
   }
-  // Adds a lane's counts: on the GPU once per warp and kind, into its block's slot.
-  CDB_HD_INLINE void count_stops(const uint32_t (&met)[2]) const {
-#if defined(__CUDA_ARCH__)
-    const unsigned active = __activemask();
-    unsigned long long* slot = stops + 2 * (blockIdx.x % kStopSlots);
-    for (int k = 0; k < 2; ++k) {
-      const uint32_t sum = __reduce_add_sync(active, met[k]);
-      if ((threadIdx.x & 31u) == unsigned(__ffs(active) - 1) && sum) atomicAdd(&slot[k], static_cast<unsigned long long>(sum));
-    }
-#else
-    for (int k = 0; k < 2; ++k)
-      if (met[k]) atomic_add_relaxed(&stops[k], static_cast<unsigned long long>(met[k]));
-#endif
-  }
+  CDB_HD_INLINE void count_stops(const uint32_t (&met)[2]) const { add_to_slots(stops, met); }
 #if defined(__CUDACC__)
   __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
     if constexpr (kCountStops) {
@@ -156,8 +160,10 @@ struct PreserveFrontFn {
 // kNoNode), and the leftmost-node argument is the same.
 // Everything but a sprout's traversal, which is returned as a task (busy when front node j
 // sprouts), so that it can run alone or shared out in the warp.
-CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const PairSink& pairs,
-                                                    const FrontSink& front, uint32_t i, uint32_t j) {
+// `front` is a FrontSink, or PatchSink for an update in place.
+template <class Sink>
+CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const PairSink& pairs, Sink& front,
+                                                    uint32_t i, uint32_t j) {
   const FrontTree& tree = view.tree;
   const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
   const NextNode step = next_node(tree.bvh, j, lo, hi);
@@ -197,7 +203,10 @@ struct UpdateFrontFn {
   CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
   CDB_HD FrontSink front_sink(Stage* stage) const { return front.staged(stage ? &stage->front : nullptr); }
   CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
-    return update_front_node_first(view, pair_sink(stage), front_sink(stage), prim[e], node[e]);
+    const uint32_t j = node[e];
+    if (j == kFrontDropped) return {};
+    const FrontSink sink = front_sink(stage);
+    return update_front_node_first(view, pair_sink(stage), sink, prim[e], j);
   }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
     const TraversalTask t = first_step(e, stage);
@@ -211,6 +220,80 @@ struct UpdateFrontFn {
   __device__ void flush(Stage& s) const {
     pairs.flush(s.pairs);
     front.flush(s.front);
+  }
+#endif
+};
+
+// (3) Update in place: the sprouts and prunes of UpdateFrontFn, written into the current
+// front instead of a new one, so that an update writes what changed, not the whole front
+// (docs/front-maintenance.md "Updates in place"). Front node e's first output of its own
+// kind takes its place (not written when it is e's node: a leaf kept, a node whose father
+// overlaps); e is dropped where it lies (kFrontDropped) when it has none (a sprout, a right
+// child under a missing father, a leaf that climbs to an internal node), and every other
+// output is appended past the front's end. So the front holds the nodes UpdateFrontFn
+// would produce, in its old order but for holes and an appended tail. Where the front's
+// count log is kept (pipeline c's inspection reads it), every change moves its counts.
+// Appends past the capacity are counted, not stored; the front is then incomplete and must
+// be generated again (FrontQuery::patch).
+struct PatchSink {
+  FrontSink append;  // its count log, if set, is the current front's
+  uint32_t* node;    // the current front's nodes of e's kind
+  uint32_t e, j;
+  bool placed = false;
+  CDB_HD_INLINE void push(uint32_t i, uint32_t ref, uint8_t m) {
+    if (!placed && front_kind(ref) == front_kind(j)) {
+      placed = true;
+      if (ref == j) return;
+      node[e] = ref;
+      uncount(j);
+      if (uint32_t* log = append.count_log[front_kind(ref)]) count_one(&log[ref_index(ref)]);
+      return;
+    }
+    append.push(i, ref, m);
+  }
+  CDB_HD_INLINE void uncount(uint32_t ref) const {
+    if (uint32_t* log = append.count_log[front_kind(ref)]) atomic_add_relaxed(&log[ref_index(ref)], ~0u);
+  }
+};
+
+struct PatchFrontFn {
+  using Stage = PairFrontStage;
+  static constexpr bool kWarpTraversal = true;
+  FrontView view;
+  PairSink pairs;
+  FrontSink append;  // both kinds, each past its current front's end
+  const uint32_t* prim;
+  uint32_t* node;
+  unsigned long long* dropped;  // FrontQueryCounters::dropped: front nodes dropped in place
+  bool share_in_warp = true;
+  CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
+  CDB_HD FrontSink append_sink(Stage* stage) const { return append.staged(stage ? &stage->front : nullptr); }
+  CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
+    const uint32_t j = node[e];
+    if (j == kFrontDropped) return {};
+    PatchSink sink{append_sink(stage), node, e, j};
+    const TraversalTask t = update_front_node_first(view, pair_sink(stage), sink, prim[e], j);
+    uint32_t drop[2] = {0, 0};
+    if (!sink.placed) {
+      node[e] = kFrontDropped;
+      sink.uncount(j);
+      drop[front_kind(j)] = 1;
+    }
+    add_to_slots(dropped, drop);
+    return t;
+  }
+  CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
+    const TraversalTask t = first_step(e, stage);
+    if (t.busy) traverse_range<true>(view, t.query, t.lo, t.hi, t.node, t.end, pair_sink(stage), append_sink(stage));
+  }
+#if defined(__CUDACC__)
+  __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
+    const FrontSink sink = append_sink(stage);
+    traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t i, uint32_t stop) { sink.push(i, stop, 1); });
+  }
+  __device__ void flush(Stage& s) const {
+    pairs.flush(s.pairs);
+    append.flush(s.front);
   }
 #endif
 };

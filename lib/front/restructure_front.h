@@ -25,8 +25,8 @@
 
 namespace cdb {
 
-// Node values the classification leaves in the front for the update that follows.
-inline constexpr uint32_t kFrontDropped = kNoNode;
+// Node values the classification leaves in the front for the update that follows (besides
+// kFrontDropped, front/front.h).
 inline constexpr uint32_t kFrontRegenerate = kNoNode - 1;
 
 struct ClassifyFrontFn {
@@ -37,6 +37,7 @@ struct ClassifyFrontFn {
   uint32_t* node;
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t j = node[e];
+    if (j == kFrontDropped) return;
     const uint32_t k = ref_index(j);
     const uint32_t j_first = is_leaf(j) ? k : node_first[k];
     const uint32_t tag = cand.slot_of_leaf(j_first);

@@ -27,6 +27,8 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"preserve_warp", warp_sharing_name(c.preserve_warp)},
       {"update_warp", warp_sharing_name(c.update_warp)},
       {"order_updates", c.order_updates},
+      {"update_in_place", c.update_in_place},
+      {"compact_share", c.compact_share},
       {"update_probe", c.update_probe},
       {"refit_top_leaves", c.refit_top_leaves},
       {"conservative", config_conservative(c)},

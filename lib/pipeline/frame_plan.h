@@ -50,6 +50,9 @@ struct FramePlan {
   bool stale = false;    // --refit-every: keep the last boxes, refit nothing
   // Each front query's operation: T_D's self fronts, T_D's leaves against T_R, T_R's self.
   FrontOp self = FrontOp::preserve, inter = FrontOp::preserve, rigid_self = FrontOp::preserve;
+  // The updates write into the current fronts (PipelineConfig::update_in_place), not whole
+  // new ones.
+  bool in_place = false;
   bool balance = false;  // (4) before the updates
   bool inspect = false;  // pipeline c: inspect T_D's quality after the update
   // Preserving queries count what an update of their fronts would produce (an update is
@@ -82,8 +85,9 @@ class FramePlanner {
   }
 
   // The next frame's plan, for a tree T_D of `leaves` leaves and fronts of `front_nodes`
-  // nodes in all.
-  FramePlan plan(uint32_t leaves, uint64_t front_nodes) {
+  // nodes in all, whose order updates in place have decayed by `disorder` (the largest
+  // FrontQuery::disorder of the queries).
+  FramePlan plan(uint32_t leaves, uint64_t front_nodes, double disorder = 0.0) {
     FramePlan p;
     p.decision = formula2(leaves);
     if (p.decision != Formula2::none) p.restructuring = pending_;
@@ -100,8 +104,13 @@ class FramePlanner {
     p.self = restructure ? FrontOp::restructure : cycle;
     p.inter = restructure ? FrontOp::generate : cycle;
     p.rigid_self = cycle;
-    p.balance = strategy_.balance && (p.self == FrontOp::update || p.inter == FrontOp::update ||
-                                      p.rigid_self == FrontOp::update);
+    const bool updates = p.self == FrontOp::update || p.inter == FrontOp::update || p.rigid_self == FrontOp::update;
+    // In place while the fronts' order has decayed by less than the compact share; the
+    // update after produces them whole and ordered.
+    p.in_place = updates && config_.update_in_place && disorder < config_.compact_share;
+    // Balance orders a front by the offsets of the sort that produced it: not one with holes
+    // and an appended tail.
+    p.balance = strategy_.balance && updates && !p.in_place && disorder == 0.0;
     // Inspected after an update (the paper's circle 3) only: right after a rebuild Q is the
     // reference, and a restructure keeps the stale front for the next update to refresh.
     p.inspect = strategy_.restructure && q_ref_ > 0.0 && p.self == FrontOp::update;

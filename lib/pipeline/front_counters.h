@@ -20,10 +20,16 @@ struct FrontQueryCounters {
   // Spread over kStopSlots slots by block, so that the warps of a launch do not all add to
   // one address.
   unsigned long long stops[kStopSlots][2];
+  // An update in place's front nodes dropped where they lay, per kind, spread as `stops`.
+  unsigned long long dropped[kStopSlots][2];
 
-  unsigned long long stops_of(int kind) const {
+  unsigned long long stops_of(int kind) const { return sum_of(stops, kind); }
+  unsigned long long dropped_of(int kind) const { return sum_of(dropped, kind); }
+
+ private:
+  static unsigned long long sum_of(const unsigned long long (&slots)[kStopSlots][2], int kind) {
     unsigned long long s = 0;
-    for (const auto& slot : stops) s += slot[kind];
+    for (const auto& slot : slots) s += slot[kind];
     return s;
   }
 };

@@ -8,7 +8,10 @@
 // run) and re-runs the operation from the untouched current front. The steady frame (refit
 // + preserve) replays a CUDA graph while nothing it launches changed. With --order-updates
 // off an update's front is kept as produced (counted per node where balance or inspection
-// reads the counts) and only generated and restructured fronts are sorted.
+// reads the counts) and only generated and restructured fronts are sorted. With
+// --update-in-place an update writes into the current fronts (holes and an appended tail)
+// until their order has decayed by --compact-share; a re-run after an overflow preserves
+// such fronts, or generates one whose appends did not fit.
 //
 // A scene with declared queries and rigid objects is split (geometry/object_split.h): T_D
 // over the deformable faces follows this state machine; T_R over the rigid faces is built
@@ -76,7 +79,8 @@ class FrontPipeline final : public Pipeline {
     if (pairs_.reserve_ahead()) ++graph_version_;
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
     const uint64_t fronts = self_.total() + inter_.total() + rigid_self_.total();
-    const FramePlan plan = planner_.plan(bvh_.num_leaves, fronts);
+    const double disorder = std::max({self_.disorder(), inter_.disorder(), rigid_self_.disorder()});
+    const FramePlan plan = planner_.plan(bvh_.num_leaves, fronts, disorder);
     stats.decision = formula2_name(plan.decision);
     // The steady state launches what the last steady frame launched, unless a buffer or a
     // front changed since (graph_version_).
@@ -89,34 +93,44 @@ class FrontPipeline final : public Pipeline {
     }
     if (plan.balance) balance(plan);
     if (plan.self == FrontOp::restructure) restructure_tree_and_classify_fronts(plan.restructuring);
+    // What runs: the plan, then on a re-run each query's fronts as they stand.
+    FramePlan run = plan;
     for (bool first_pass = true;; first_pass = false) {
       if (steady && first_pass) {
-        stats.graph = frame_graph_run_name(run_steady(mesh, plan));
+        stats.graph = frame_graph_run_name(run_steady(mesh, run));
       } else {
         pairs_.reset_counters(exec_);
-        run_ops(plan);
+        run_ops(run);
       }
-      if (plan.inspect) inspect_quality();
+      if (run.inspect) inspect_quality();
       timer_.stop_frame();
       const FrontCounters& c = pairs_.read_counters(exec_);
       bool again = pairs_.grow_if_needed();
+      // Fronts updated in place are current already: a re-run preserves them. One whose
+      // appends did not fit is incomplete and is generated again.
+      for (Query q : kQueries) {
+        if (!patches(run, q)) continue;
+        const bool kept = query(q).adopt_patch(exec_, c);
+        op_of(run, q) = kept ? FrontOp::preserve : FrontOp::generate;
+        again = again || !kept;
+      }
       for (Query q : kQueries)
-        if (op_of(plan, q) != FrontOp::preserve) again = query(q).grow_if_needed(c) || again;
+        if (op_of(run, q) != FrontOp::preserve) again = query(q).grow_if_needed(c) || again;
       if (!again) {
         for (Query q : kQueries)
-          if (op_of(plan, q) != FrontOp::preserve) query(q).adopt(exec_, c, sorts(op_of(plan, q)));
+          if (op_of(run, q) != FrontOp::preserve) query(q).adopt(exec_, c, sorts(op_of(run, q)));
         if (plan.probe) reserve_for_update(plan, c);
         break;
       }
       ++graph_version_;
       ++stats.query_reruns;
     }
-    stats.op += std::string("+") + front_op_name(plan.self);
+    stats.op += std::string("+") + (patches(plan, Query::self) ? "update-in-place" : front_op_name(plan.self));
     stats.pairs = pairs_.count();
-    stats.front_internal = self_.size(kInternalFront);
-    stats.front_external = self_.size(kExternalFront);
-    stats.front_inter = inter_.total();
-    stats.front_rigid = rigid_self_.total();
+    stats.front_internal = self_.live(kInternalFront);
+    stats.front_external = self_.live(kExternalFront);
+    stats.front_inter = inter_.live(kInternalFront) + inter_.live(kExternalFront);
+    stats.front_rigid = rigid_self_.live(kInternalFront) + rigid_self_.live(kExternalFront);
     stats.q_root = strategy().ordered && stats.front_external
                        ? double(stats.front_internal) / double(stats.front_external)
                        : 0.0;
@@ -150,6 +164,12 @@ class FrontPipeline final : public Pipeline {
   static FrontOp op_of(const FramePlan& p, Query q) {
     return q == Query::self ? p.self : q == Query::inter ? p.inter : p.rigid_self;
   }
+  static FrontOp& op_of(FramePlan& p, Query q) {
+    return q == Query::self ? p.self : q == Query::inter ? p.inter : p.rigid_self;
+  }
+  // Whether query q updates its fronts in place (PatchFrontFn), or produces new ones.
+  static bool patches(const FramePlan& p, Query q) { return p.in_place && op_of(p, q) == FrontOp::update; }
+  static bool produces(const FramePlan& p, Query q) { return op_of(p, q) != FrontOp::preserve && !patches(p, q); }
 
   // Refit or rebuild T_D; T_R is built on the first frame and refitted after.
   std::string update_trees(const MeshView& mesh, bool rebuild) {
@@ -238,6 +258,9 @@ class FrontPipeline final : public Pipeline {
   bool counts(FrontOp op) const {
     return histogram_sorted() && (sorts(op) || strategy().balance || strategy().restructure);
   }
+  // Whether an update in place keeps the front's count log: for the inspection, which reads
+  // it (balance does not run on fronts updated in place: FramePlanner::plan).
+  bool counts_in_place() const { return histogram_sorted() && strategy().restructure; }
 
   // Whether a launch over `fronts` front nodes shares its traversals within warps, as
   // --preserve-warp or --update-warp (`choice`) says (WarpSharing).
@@ -270,14 +293,22 @@ class FrontPipeline final : public Pipeline {
           fq.generate(exec_, pairs_, histogram);
           break;
         case FrontOp::update:
-          fq.update(exec_, pairs_, counts(op), shares_in_warp(config_.update_warp, fq.total()));
+          if (plan.in_place)
+            fq.patch(exec_, pairs_, shares_in_warp(config_.update_warp, fq.total()), counts_in_place());
+          else
+            fq.update(exec_, pairs_, counts(op), shares_in_warp(config_.update_warp, fq.total()));
           break;
         case FrontOp::restructure:
           fq.restructure(exec_, pairs_, histogram, restructure_.view());
           break;
       }
       timer_.stop(phase_of(op));
-      produced = produced || op != FrontOp::preserve;
+      produced = produced || produces(plan, q);
+    }
+    if (plan.inspect && patches(plan, Query::self)) {
+      timer_.start(Phase::front_order);
+      self_.offsets(exec_);
+      timer_.stop(Phase::front_order);
     }
     if (!strategy().ordered || !produced) return;
     if (strategy().radix_sort) {
@@ -285,17 +316,17 @@ class FrontPipeline final : public Pipeline {
       const FrontCounters& c = pairs_.read_counters(exec_);
       timer_.start(Phase::front_order);
       for (Query q : kQueries)
-        if (op_of(plan, q) != FrontOp::preserve) query(q).radix_order(exec_, radix_, c);
+        if (produces(plan, q)) query(q).radix_order(exec_, radix_, c);
       timer_.stop(Phase::front_order);
       return;
     }
     bool any = false;
-    for (Query q : kQueries) any = any || (op_of(plan, q) != FrontOp::preserve && counts(op_of(plan, q)));
+    for (Query q : kQueries) any = any || (produces(plan, q) && counts(op_of(plan, q)));
     if (!any) return;
     timer_.start(Phase::front_order);
     for (Query q : kQueries) {
       const FrontOp op = op_of(plan, q);
-      if (op == FrontOp::preserve) continue;
+      if (!produces(plan, q)) continue;
       if (sorts(op))
         query(q).order(exec_, pairs_);
       else if (counts(op))

@@ -37,14 +37,24 @@ class FrontQuery {
     tree_ = &tree;
     active_ = active;
     for (auto& f : front_) f.size = 0;
+    dropped_[0] = dropped_[1] = appended_[0] = appended_[1] = 0;
     if (!active_) return;
     const size_t cap = std::max<size_t>(1024, size_t(front_per_triangle * leaves.num_leaves));
     for (int k = 0; k < 2; ++k) front_[k].reserve(cap, std::max<size_t>(segments(k), 1));
   }
 
   bool active() const { return active_; }
+  // Entries of kind k, holes left by updates in place included: what a pass over it launches.
   size_t size(int k) const { return front_[k].size; }
   size_t total() const { return front_[0].size + front_[1].size; }
+  // Front nodes of kind k (entries but holes).
+  size_t live(int k) const { return front_[k].size - dropped_[k]; }
+  // Entries changed by updates in place since the front was last produced whole (holes plus
+  // appended nodes), as a share of its live nodes: how far its order has decayed.
+  double disorder() const {
+    const size_t changed = dropped_[0] + dropped_[1] + appended_[0] + appended_[1];
+    return changed ? double(changed) / double(std::max<size_t>(live(0) + live(1), 1)) : 0.0;
+  }
   size_t capacity() const { return front_[0].capacity(); }
   const FrontArrays<Exec>& front(int k) const { return front_[k]; }
 
@@ -123,6 +133,51 @@ class FrontQuery {
     };
     exec.for_each_staged(total(), BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
                          Balance::uneven);
+  }
+
+  // (3) Update in place (PatchFrontFn): both kinds in one launch, each appending past its
+  // front's end into the room its buffers have left. The current front changes as it runs:
+  // unlike the other operations it cannot be run again from it. After the read-back,
+  // adopt_patch says whether it fit. `counted`: the front's count log (from the sort that
+  // produced it) is kept up to date; offsets() then gives its offset log.
+  void patch(Exec& exec, Pairs& pairs, bool share_in_warp, bool counted) {
+    if (!active_) return;
+    FrontSink append{};
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      append.prim[k] = f.prim.data() + f.size;
+      append.node[k] = f.node.data() + f.size;
+      append.mark[k] = f.raw_mark.data();
+      append.capacity[k] = std::min(f.prim.capacity(), f.node.capacity()) - f.size;
+      append.count_log[k] = counted ? f.count_log() : nullptr;
+    }
+    append.count = counters(pairs)->produced;
+    unsigned long long* dropped = &counters(pairs)->dropped[0][0];
+    auto pass = [&](FrontArrays<Exec>& f) {
+      return PatchFrontFn{view(), pairs.sink(), append, f.prim.data(), f.node.data(), dropped, share_in_warp};
+    };
+    exec.for_each_staged(total(), BothFrontsFn<PatchFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
+                         Balance::uneven);
+  }
+
+  // After an update in place's read-back (`c`): true if its appends fit, and the front then
+  // takes them and the holes it left; false if some were not stored: the front is
+  // incomplete and must be generated again. Between frames, the buffers grow to keep room
+  // for the next update in place (the probe before it sizes them for its bound too).
+  bool adopt_patch(Exec& exec, const FrontCounters& c) {
+    if (!active_) return true;
+    const FrontQueryCounters& q = c.query[index_];
+    for (int k = 0; k < 2; ++k)
+      if (q.produced[k] > std::min(front_[k].prim.capacity(), front_[k].node.capacity()) - front_[k].size)
+        return false;
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      f.size += size_t(q.produced[k]);
+      appended_[k] += size_t(q.produced[k]);
+      dropped_[k] += size_t(q.dropped_of(k));
+      reserve_headroom(exec, f, f.size + live(k) / 4, f.size + live(k) / 2);
+    }
+    return true;
   }
 
   // (5), first half, for self fronts: classify against the tree's node ranges before its
@@ -225,6 +280,7 @@ class FrontQuery {
         std::swap(f.node, f.raw_node);
       }
       f.size = size_t(c.query[index_].produced[k]);
+      dropped_[k] = appended_[k] = 0;
       match_capacity(f);
       reserve_headroom(exec, f, f.size + f.size / 4, f.size + f.size / 2);
     }
@@ -307,6 +363,10 @@ class FrontQuery {
   }
 
   FrontArrays<Exec> front_[2];
+  // Per kind, since the front was last produced whole: holes left and nodes appended by
+  // updates in place.
+  size_t dropped_[2] = {0, 0};
+  size_t appended_[2] = {0, 0};
   Lbvh<Exec>* leaves_ = nullptr;
   Lbvh<Exec>* tree_ = nullptr;
   int index_;

@@ -100,6 +100,12 @@ struct PipelineConfig {
   // together, so near its input's order), and only generate and restructure sort; b and c
   // still count the front per node, so their balance before the next update sorts it.
   bool order_updates = true;
+  // Front pipelines: an update writes only what changes, into the current front (holes and
+  // an appended tail: front/operations.h PatchFrontFn); once those changes reach
+  // compact_share of the front's nodes, the next update produces the front whole and
+  // ordered again. Off: every update produces the whole front (the paper).
+  bool update_in_place = true;
+  double compact_share = 0.5;
   // Front pipelines: the preserves before an update count what it can produce, and the
   // front buffers grow to that after their frame (pipeline/frame_plan.h, probe); off: an
   // update that outgrows them grows them inside its frame and runs again.
