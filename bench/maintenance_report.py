@@ -23,8 +23,9 @@ def maintenance_frames(ops):
 
 
 def row(tag, run):
-    t = np.asarray(run.column("t_total_ms"), dtype=float)[1:]
-    ops = list(run.column("op"))[1:] if "op" in run.frames else []
+    # column() already leaves out the warm-up frame (the first).
+    t = np.asarray(run.column("t_total_ms"), dtype=float)
+    ops = list(run.column("op")) if "op" in run.frames else []
     if len(t) == 0:
         return None
     med = float(np.median(t))
