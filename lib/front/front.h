@@ -85,6 +85,8 @@ struct FrontArrays {
     sorted_node.bind(mr, k + "sorted_node");
     order_counts.bind(mr, k + "order_counts");
     offset_log.bind(mr, k + "offset_log");
+    tail_counts.bind(mr, k + "tail_counts");
+    tail_offset_log.bind(mr, k + "tail_offset_log");
   }
   // Capacity for front nodes (all buffers of the kind) and segment count (BVH nodes).
   void reserve(size_t capacity, size_t segments) {
@@ -94,6 +96,8 @@ struct FrontArrays {
     segments_ = segments;
     order_counts.reserve(3 * segments + 1);
     offset_log.reserve(segments + 1);
+    tail_counts.reserve(3 * segments + 1);
+    tail_offset_log.reserve(segments + 1);
   }
   size_t capacity() const { return prim.capacity(); }
 
@@ -105,6 +109,10 @@ struct FrontArrays {
   uint32_t* cursor_front() { return order_counts.data() + segments_ + 1; }
   uint32_t* cursor_back() { return cursor_front() + segments_; }
   size_t segments() const { return segments_; }
+  // The same for the tail an update in place appends (FrontQuery::patch), sorted apart.
+  uint32_t* tail_count_log() { return tail_counts.data(); }
+  uint32_t* tail_cursor_front() { return tail_counts.data() + segments_ + 1; }
+  uint32_t* tail_cursor_back() { return tail_cursor_front() + segments_; }
 
   Array<uint32_t> prim, node;          // the current front
   Array<uint32_t> raw_prim, raw_node;  // produced by generate/update, unordered
@@ -112,6 +120,8 @@ struct FrontArrays {
   Array<uint32_t> sorted_prim, sorted_node;
   Array<uint32_t> order_counts;  // count log and cursors (count_log(), cursor_front(), cursor_back())
   Array<uint32_t> offset_log;    // the count log's exclusive scan
+  Array<uint32_t> tail_counts;      // an appended tail's count log and cursors (tail_count_log(), ...)
+  Array<uint32_t> tail_offset_log;  // its scan
   size_t size = 0;  // nodes in the current front (host copy from the frame's read-back)
 
  private:

@@ -230,29 +230,35 @@ struct UpdateFrontFn {
 // kind takes its place (not written when it is e's node: a leaf kept, a node whose father
 // overlaps); e is dropped where it lies (kFrontDropped) when it has none (a sprout, a right
 // child under a missing father, a leaf that climbs to an internal node), and every other
-// output is appended past the front's end. So the front holds the nodes UpdateFrontFn
-// would produce, in its old order but for holes and an appended tail. Where the front's
-// count log is kept (pipeline c's inspection reads it), every change moves its counts.
-// Appends past the capacity are counted, not stored; the front is then incomplete and must
-// be generated again (FrontQuery::patch).
+// output is appended (to the front's end, or to a tail that is sorted there after:
+// FrontQuery::patch). So the front holds the nodes UpdateFrontFn would produce, in its old
+// order but for holes and an appended tail. Where the front's count log is kept (pipeline
+// c's inspection reads it), every change moves its counts. Appends past the capacity are
+// counted, not stored; the front is then incomplete and must be generated again.
 struct PatchSink {
-  FrontSink append;  // its count log, if set, is the current front's
-  uint32_t* node;    // the current front's nodes of e's kind
+  FrontSink append;
+  uint32_t* const* front_count_log;  // per kind, the current front's count log, or null: not kept
+  uint32_t* node;                    // the current front's nodes of e's kind
   uint32_t e, j;
   bool placed = false;
   CDB_HD_INLINE void push(uint32_t i, uint32_t ref, uint8_t m) {
+    recount(ref, 1u);
     if (!placed && front_kind(ref) == front_kind(j)) {
       placed = true;
-      if (ref == j) return;
+      if (ref == j) {
+        recount(ref, ~0u);
+        return;
+      }
       node[e] = ref;
-      uncount(j);
-      if (uint32_t* log = append.count_log[front_kind(ref)]) count_one(&log[ref_index(ref)]);
+      recount(j, ~0u);
       return;
     }
     append.push(i, ref, m);
   }
-  CDB_HD_INLINE void uncount(uint32_t ref) const {
-    if (uint32_t* log = append.count_log[front_kind(ref)]) atomic_add_relaxed(&log[ref_index(ref)], ~0u);
+  // Adds `delta` (~0u: -1) to the current front's count of `ref`, if kept.
+  CDB_HD_INLINE void recount(uint32_t ref, uint32_t delta) const {
+    if (front_count_log == nullptr) return;
+    if (uint32_t* log = front_count_log[front_kind(ref)]) atomic_add_relaxed(&log[ref_index(ref)], delta);
   }
 };
 
@@ -261,22 +267,23 @@ struct PatchFrontFn {
   static constexpr bool kWarpTraversal = true;
   FrontView view;
   PairSink pairs;
-  FrontSink append;  // both kinds, each past its current front's end
+  FrontSink append;  // both kinds: past the current fronts' ends, or tails sorted there after
   const uint32_t* prim;
   uint32_t* node;
   unsigned long long* dropped;  // FrontQueryCounters::dropped: front nodes dropped in place
   bool share_in_warp = true;
+  uint32_t* front_count_log[2] = {nullptr, nullptr};  // PatchSink::front_count_log
   CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
   CDB_HD FrontSink append_sink(Stage* stage) const { return append.staged(stage ? &stage->front : nullptr); }
   CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
     const uint32_t j = node[e];
     if (j == kFrontDropped) return {};
-    PatchSink sink{append_sink(stage), node, e, j};
+    PatchSink sink{append_sink(stage), front_count_log, node, e, j};
     const TraversalTask t = update_front_node_first(view, pair_sink(stage), sink, prim[e], j);
     uint32_t drop[2] = {0, 0};
     if (!sink.placed) {
       node[e] = kFrontDropped;
-      sink.uncount(j);
+      sink.recount(j, ~0u);
       drop[front_kind(j)] = 1;
     }
     add_to_slots(dropped, drop);
@@ -284,11 +291,16 @@ struct PatchFrontFn {
   }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
     const TraversalTask t = first_step(e, stage);
-    if (t.busy) traverse_range<true>(view, t.query, t.lo, t.hi, t.node, t.end, pair_sink(stage), append_sink(stage));
+    if (!t.busy) return;
+    PatchSink sink{append_sink(stage), front_count_log, node, 0, kFrontDropped, true};
+    const uint32_t q = lane_link(t.hi.w);
+    const PairSink pairs_out = pair_sink(stage);
+    traverse(view.tree.bvh, t.lo, t.hi, t.node, t.end, [&](uint32_t other) { pairs_out.emit(q, other); },
+             [&](uint32_t stop) { sink.push(t.query, stop, 1); });
   }
 #if defined(__CUDACC__)
   __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
-    const FrontSink sink = append_sink(stage);
+    PatchSink sink{append_sink(stage), front_count_log, node, 0, kFrontDropped, true};
     traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t i, uint32_t stop) { sink.push(i, stop, 1); });
   }
   __device__ void flush(Stage& s) const {

@@ -26,6 +26,7 @@ const std::vector<FrameColumn>& frame_columns() {
         {"front_int", T::u64, "internal front nodes after the frame", [](R r) -> ColumnValue { return r.stats.front_internal; }},
         {"front_ext", T::u64, "external front nodes after the frame", [](R r) -> ColumnValue { return r.stats.front_external; }},
         {"front_inter", T::u64, "split scene: front nodes of the deformable leaves against the rigid tree after the frame", [](R r) -> ColumnValue { return r.stats.front_inter; }},
+        {"front_disorder", T::f64, "front pipelines: entries changed by updates in place since the fronts were last produced whole (holes plus appended nodes), as a share of their nodes; the largest of the queries", [](R r) -> ColumnValue { return r.stats.front_disorder; }},
         {"front_rigid", T::u64, "split scene: self front nodes of the rigid tree after the frame", [](R r) -> ColumnValue { return r.stats.front_rigid; }},
         {"q_root", T::f64, "Formula 1 at the root (ordered pipelines; else 0)", [](R r) -> ColumnValue { return r.stats.q_root; }},
         {"candidates", T::u64, "pipeline c: restructure candidates found by this frame's inspection", [](R r) -> ColumnValue { return r.stats.candidates; }},

@@ -131,6 +131,7 @@ class FrontPipeline final : public Pipeline {
     stats.front_external = self_.live(kExternalFront);
     stats.front_inter = inter_.live(kInternalFront) + inter_.live(kExternalFront);
     stats.front_rigid = rigid_self_.live(kInternalFront) + rigid_self_.live(kExternalFront);
+    stats.front_disorder = std::max({self_.disorder(), inter_.disorder(), rigid_self_.disorder()});
     stats.q_root = strategy().ordered && stats.front_external
                        ? double(stats.front_internal) / double(stats.front_external)
                        : 0.0;
@@ -294,7 +295,8 @@ class FrontPipeline final : public Pipeline {
           break;
         case FrontOp::update:
           if (plan.in_place)
-            fq.patch(exec_, pairs_, shares_in_warp(config_.update_warp, fq.total()), counts_in_place());
+            fq.patch(exec_, pairs_, shares_in_warp(config_.update_warp, fq.total()), counts_in_place(),
+                     histogram_sorted());
           else
             fq.update(exec_, pairs_, counts(op), shares_in_warp(config_.update_warp, fq.total()));
           break;
@@ -305,9 +307,11 @@ class FrontPipeline final : public Pipeline {
       timer_.stop(phase_of(op));
       produced = produced || produces(plan, q);
     }
-    if (plan.inspect && patches(plan, Query::self)) {
+    if (plan.in_place && histogram) {
       timer_.start(Phase::front_order);
-      self_.offsets(exec_);
+      for (Query q : kQueries)
+        if (patches(plan, q)) query(q).sort_tails(exec_, pairs_);
+      if (plan.inspect && patches(plan, Query::self)) self_.offsets(exec_);
       timer_.stop(Phase::front_order);
     }
     if (!strategy().ordered || !produced) return;

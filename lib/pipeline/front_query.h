@@ -135,29 +135,57 @@ class FrontQuery {
                          Balance::uneven);
   }
 
-  // (3) Update in place (PatchFrontFn): both kinds in one launch, each appending past its
-  // front's end into the room its buffers have left. The current front changes as it runs:
-  // unlike the other operations it cannot be run again from it. After the read-back,
-  // adopt_patch says whether it fit. `counted`: the front's count log (from the sort that
-  // produced it) is kept up to date; offsets() then gives its offset log.
-  void patch(Exec& exec, Pairs& pairs, bool share_in_warp, bool counted) {
+  // (3) Update in place (PatchFrontFn): both kinds in one launch. The current front
+  // changes as it runs: unlike the other operations it cannot be run again from it. After
+  // the read-back, adopt_patch says whether it fit. `counted`: the front's count log (from
+  // the sort that produced it) is kept up to date, and offsets() then gives its offset log.
+  // `sort_tail`: the appended nodes go to the raw arrays, counted per tree node, and
+  // sort_tails() orders them onto the front's end by histogram sort (the appended nodes are
+  // the sprouts of the frame's contacts, the ones the next preserves descend from);
+  // otherwise they are appended to the front's end as produced.
+  void patch(Exec& exec, Pairs& pairs, bool share_in_warp, bool counted, bool sort_tail) {
     if (!active_) return;
     FrontSink append{};
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
-      append.prim[k] = f.prim.data() + f.size;
-      append.node[k] = f.node.data() + f.size;
+      if (sort_tail) {
+        exec.fill(f.tail_counts.data(), f.tail_counts.size(), 0u);
+        append.prim[k] = f.raw_prim.data();
+        append.node[k] = f.raw_node.data();
+        append.count_log[k] = f.tail_count_log();
+      } else {
+        append.prim[k] = f.prim.data() + f.size;
+        append.node[k] = f.node.data() + f.size;
+        append.count_log[k] = nullptr;
+      }
       append.mark[k] = f.raw_mark.data();
-      append.capacity[k] = std::min(f.prim.capacity(), f.node.capacity()) - f.size;
-      append.count_log[k] = counted ? f.count_log() : nullptr;
+      append.capacity[k] = append_room(k);
     }
     append.count = counters(pairs)->produced;
     unsigned long long* dropped = &counters(pairs)->dropped[0][0];
     auto pass = [&](FrontArrays<Exec>& f) {
-      return PatchFrontFn{view(), pairs.sink(), append, f.prim.data(), f.node.data(), dropped, share_in_warp};
+      PatchFrontFn fn{view(), pairs.sink(), append, f.prim.data(), f.node.data(), dropped, share_in_warp};
+      for (int k = 0; k < 2; ++k) fn.front_count_log[k] = counted ? front_[k].count_log() : nullptr;
+      return fn;
     };
     exec.for_each_staged(total(), BothFrontsFn<PatchFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
                          Balance::uneven);
+  }
+
+  // After patch with sort_tail: each kind's appended tail (size on the device, in the
+  // counters) ordered onto the front's end: a scan of its count log and one scatter.
+  void sort_tails(Exec& exec, Pairs& pairs) {
+    if (!active_) return;
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      exec.exclusive_scan(f.tail_count_log(), f.tail_offset_log.data(), segments(k) + 1, tree_->temp.data(),
+                          tree_->temp.size());
+      const size_t room = append_room(k);
+      const SegmentScatter to{f.tail_offset_log.data(), f.tail_cursor_front(), f.tail_cursor_back(),
+                              f.prim.data() + f.size, f.node.data() + f.size};
+      exec.for_each_n(room, ScatterFrontFn{&counters(pairs)->produced[k], room, f.raw_prim.data(), f.raw_node.data(),
+                                           f.raw_mark.data(), to});
+    }
   }
 
   // After an update in place's read-back (`c`): true if its appends fit, and the front then
@@ -168,8 +196,7 @@ class FrontQuery {
     if (!active_) return true;
     const FrontQueryCounters& q = c.query[index_];
     for (int k = 0; k < 2; ++k)
-      if (q.produced[k] > std::min(front_[k].prim.capacity(), front_[k].node.capacity()) - front_[k].size)
-        return false;
+      if (q.produced[k] > append_room(k)) return false;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
       f.size += size_t(q.produced[k]);
@@ -287,6 +314,15 @@ class FrontQuery {
   }
 
  private:
+  // Nodes an update in place can append to kind k: the room past the front's end, which
+  // its raw arrays (where a sorted tail is produced first) hold too.
+  size_t append_room(int k) const {
+    const FrontArrays<Exec>& f = front_[k];
+    const size_t cap = std::min({f.prim.capacity(), f.node.capacity(), f.raw_prim.capacity(), f.raw_node.capacity(),
+                                 f.raw_mark.capacity()});
+    return cap > f.size ? cap - f.size : 0;
+  }
+
   // The count logs and the scatter's cursors (front.h, order_counts): one fill a kind.
   void zero_order_counts(Exec& exec) {
     for (auto& f : front_) exec.fill(f.order_counts.data(), f.order_counts.size(), 0u);

@@ -147,6 +147,9 @@ struct FrameStats {
   // A split scene's other fronts after the frame (internal + external nodes): T_D's leaves
   // against T_R, and T_R's self fronts (docs/design.md "Deformable and rigid objects").
   uint64_t front_inter = 0, front_rigid = 0;
+  // --update-in-place: how far the fronts' order has decayed (FrontQuery::disorder), the
+  // largest of the queries.
+  double front_disorder = 0.0;
   double q_root = 0.0;  // Formula 1 at the root (internal / external front nodes), when ordered
   // Pipeline c: what this frame's inspection found (candidates, their leaves, their mean Q)
   // and the Formula 2 decision taken at its start on the previous inspection ("" if none).
