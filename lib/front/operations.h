@@ -236,14 +236,18 @@ struct UpdateFrontFn {
 // c's inspection reads it), every change moves its counts. Appends past the capacity are
 // counted, not stored; the front is then incomplete and must be generated again.
 struct PatchSink {
-  FrontSink append;
-  uint32_t* const* front_count_log;  // per kind, the current front's count log, or null: not kept
-  uint32_t* node;                    // the current front's nodes of e's kind
+  // Plain members only (no copy of a sink, no array indexed by kind), so that the compiler
+  // keeps the sink in registers: a copy of FrontSink here went to local memory and made the
+  // kernel DRAM-bound (6x the update's time, docs/experiments.md).
+  const FrontSink& append;
+  uint32_t* count_internal;  // the current front's count logs per kind, or null: not kept
+  uint32_t* count_external;
+  uint32_t* node;  // the current front's nodes of e's kind
   uint32_t e, j;
   bool placed = false;
   CDB_HD_INLINE void push(uint32_t i, uint32_t ref, uint8_t m) {
     recount(ref, 1u);
-    if (!placed && front_kind(ref) == front_kind(j)) {
+    if (!placed && is_leaf(ref) == is_leaf(j)) {
       placed = true;
       if (ref == j) {
         recount(ref, ~0u);
@@ -257,8 +261,7 @@ struct PatchSink {
   }
   // Adds `delta` (~0u: -1) to the current front's count of `ref`, if kept.
   CDB_HD_INLINE void recount(uint32_t ref, uint32_t delta) const {
-    if (front_count_log == nullptr) return;
-    if (uint32_t* log = front_count_log[front_kind(ref)]) atomic_add_relaxed(&log[ref_index(ref)], delta);
+    if (uint32_t* log = is_leaf(ref) ? count_external : count_internal) atomic_add_relaxed(&log[ref_index(ref)], delta);
   }
 };
 
@@ -272,27 +275,29 @@ struct PatchFrontFn {
   uint32_t* node;
   unsigned long long* dropped;  // FrontQueryCounters::dropped: front nodes dropped in place
   bool share_in_warp = true;
-  uint32_t* front_count_log[2] = {nullptr, nullptr};  // PatchSink::front_count_log
+  uint32_t* count_internal = nullptr;  // PatchSink's count logs
+  uint32_t* count_external = nullptr;
   CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
   CDB_HD FrontSink append_sink(Stage* stage) const { return append.staged(stage ? &stage->front : nullptr); }
   CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
     const uint32_t j = node[e];
     if (j == kFrontDropped) return {};
-    PatchSink sink{append_sink(stage), front_count_log, node, e, j};
+    const FrontSink to = append_sink(stage);
+    PatchSink sink{to, count_internal, count_external, node, e, j};
     const TraversalTask t = update_front_node_first(view, pair_sink(stage), sink, prim[e], j);
-    uint32_t drop[2] = {0, 0};
     if (!sink.placed) {
       node[e] = kFrontDropped;
       sink.recount(j, ~0u);
-      drop[front_kind(j)] = 1;
     }
+    const uint32_t drop[2] = {!sink.placed && !is_leaf(j) ? 1u : 0u, !sink.placed && is_leaf(j) ? 1u : 0u};
     add_to_slots(dropped, drop);
     return t;
   }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
     const TraversalTask t = first_step(e, stage);
     if (!t.busy) return;
-    PatchSink sink{append_sink(stage), front_count_log, node, 0, kFrontDropped, true};
+    const FrontSink to = append_sink(stage);
+    PatchSink sink{to, count_internal, count_external, node, 0, kFrontDropped, true};
     const uint32_t q = lane_link(t.hi.w);
     const PairSink pairs_out = pair_sink(stage);
     traverse(view.tree.bvh, t.lo, t.hi, t.node, t.end, [&](uint32_t other) { pairs_out.emit(q, other); },
@@ -300,7 +305,8 @@ struct PatchFrontFn {
   }
 #if defined(__CUDACC__)
   __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
-    PatchSink sink{append_sink(stage), front_count_log, node, 0, kFrontDropped, true};
+    const FrontSink to = append_sink(stage);
+    PatchSink sink{to, count_internal, count_external, node, 0, kFrontDropped, true};
     traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t i, uint32_t stop) { sink.push(i, stop, 1); });
   }
   __device__ void flush(Stage& s) const {

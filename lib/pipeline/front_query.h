@@ -165,7 +165,8 @@ class FrontQuery {
     unsigned long long* dropped = &counters(pairs)->dropped[0][0];
     auto pass = [&](FrontArrays<Exec>& f) {
       PatchFrontFn fn{view(), pairs.sink(), append, f.prim.data(), f.node.data(), dropped, share_in_warp};
-      for (int k = 0; k < 2; ++k) fn.front_count_log[k] = counted ? front_[k].count_log() : nullptr;
+      fn.count_internal = counted ? front_[kInternalFront].count_log() : nullptr;
+      fn.count_external = counted ? front_[kExternalFront].count_log() : nullptr;
       return fn;
     };
     exec.for_each_staged(total(), BothFrontsFn<PatchFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
