@@ -154,6 +154,10 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       ->group(kTuningGroup)
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  add_switch(cmd, "--prune-in-place", c.prune_in_place,
+             "front pipelines with --update-in-place: updates in place prune as well as sprout (the paper's "
+             "Algorithm 1); off: they only sprout, and the nodes a prune would merge wait for the next whole update")
+      ->group(kTuningGroup);
   add_switch(cmd, "--update-probe", c.update_probe,
              "front pipelines: the preserves before an update count what it can produce, and the front buffers "
              "grow to that between frames; off: an update that outgrows them grows them inside its frame and runs "

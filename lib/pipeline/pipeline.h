@@ -106,6 +106,9 @@ struct PipelineConfig {
   // ordered again. Off: every update produces the whole front (the paper).
   bool update_in_place = true;
   double compact_share = 0.5;
+  // Updates in place prune as well as sprout (Alg. 1); false: they only sprout, and nodes
+  // wait for the next whole update to be merged (no father read per front node).
+  bool prune_in_place = true;
   // Front pipelines: the preserves before an update count what it can produce, and the
   // front buffers grow to that after their frame (pipeline/frame_plan.h, probe); off: an
   // update that outgrows them grows them inside its frame and runs again.
