@@ -85,6 +85,7 @@ struct GenerateFrontFn {
 CDB_HD_INLINE void add_to_slots(unsigned long long* slots, const uint32_t (&n)[2]) {
 #if defined(__CUDA_ARCH__)
   const unsigned active = __activemask();
+  if (!__any_sync(active, (n[0] | n[1]) != 0)) return;
   unsigned long long* slot = slots + 2 * (blockIdx.x % kStopSlots);
   for (int k = 0; k < 2; ++k) {
     const uint32_t sum = __reduce_add_sync(active, n[k]);
@@ -283,7 +284,9 @@ struct PatchSink {
 };
 
 struct PatchFrontFn {
-  using Stage = PairFrontStage;
+  // Only pairs are staged per block: an update in place appends few nodes, and a front stage
+  // cost its flush and barrier in every block (docs/experiments.md).
+  using Stage = PairStage;
   static constexpr bool kWarpTraversal = true;
   FrontView view;
   PairSink pairs;
@@ -295,13 +298,11 @@ struct PatchFrontFn {
   uint32_t* count_internal = nullptr;  // PatchSink's count logs
   uint32_t* count_external = nullptr;
   bool prune = true;  // false: sprout only (sprout_front_node_first)
-  CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
-  CDB_HD FrontSink append_sink(Stage* stage) const { return append.staged(stage ? &stage->front : nullptr); }
+  CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage); }
   CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
     const uint32_t j = node[e];
     if (j == kFrontDropped) return {};
-    const FrontSink to = append_sink(stage);
-    PatchSink sink{to, count_internal, count_external, node, e, j};
+    PatchSink sink{append, count_internal, count_external, node, e, j};
     const TraversalTask t = prune ? update_front_node_first(view, pair_sink(stage), sink, prim[e], j)
                                   : sprout_front_node_first(view, pair_sink(stage), sink, prim[e], j);
     if (!sink.placed) {
@@ -315,8 +316,7 @@ struct PatchFrontFn {
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
     const TraversalTask t = first_step(e, stage);
     if (!t.busy) return;
-    const FrontSink to = append_sink(stage);
-    PatchSink sink{to, count_internal, count_external, node, 0, kFrontDropped, true};
+    PatchSink sink{append, count_internal, count_external, node, 0, kFrontDropped, true};
     const uint32_t q = lane_link(t.hi.w);
     const PairSink pairs_out = pair_sink(stage);
     traverse(view.tree.bvh, t.lo, t.hi, t.node, t.end, [&](uint32_t other) { pairs_out.emit(q, other); },
@@ -324,14 +324,10 @@ struct PatchFrontFn {
   }
 #if defined(__CUDACC__)
   __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
-    const FrontSink to = append_sink(stage);
-    PatchSink sink{to, count_internal, count_external, node, 0, kFrontDropped, true};
+    PatchSink sink{append, count_internal, count_external, node, 0, kFrontDropped, true};
     traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t i, uint32_t stop) { sink.push(i, stop, 1); });
   }
-  __device__ void flush(Stage& s) const {
-    pairs.flush(s.pairs);
-    append.flush(s.front);
-  }
+  __device__ void flush(Stage& s) const { pairs.flush(s); }
 #endif
 };
 
