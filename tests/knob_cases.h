@@ -228,18 +228,15 @@ struct UpdateKnobs {
   WarpSharing warp;
   bool in_place;
   double compact_share;
-  bool prune = true;  // --prune-in-place
   std::string name() const {
     return std::string(order ? "sorted" : "kept") + " warp " + warp_sharing_name(warp) +
-           (in_place ? " in place, compact at " + std::to_string(compact_share) : " whole") +
-           (prune ? "" : ", sprouts only");
+           (in_place ? " in place, compact at " + std::to_string(compact_share) : " whole");
   }
 };
 
 // --order-updates off (updates keep their output in the order produced), --update-warp on
-// and off (sprouts shared out in warps, on CUDA), --update-in-place (updates write into the
-// current front; compacted at once, now and then, or never) and --prune-in-place off
-// (updates in place only sprout), on every front pipeline
+// and off (sprouts shared out in warps, on CUDA) and --update-in-place (updates write into
+// the current front; compacted at once, now and then, or never), on every front pipeline
 // with fixed cycles and auto, and fronts and pairs that start too small: exactly the
 // oracle's pairs every frame, and under a fixed cycle fronts of the same sizes as the
 // paper's sorted whole updates (the same nodes in another order).
@@ -250,8 +247,7 @@ inline void check_update_knobs(const std::string& device) {
   const std::vector<UpdateKnobs> variants = {
       {true, WarpSharing::off, false, 0.5},  {false, WarpSharing::off, false, 0.5}, {false, WarpSharing::on, false, 0.5},
       {true, WarpSharing::off, true, 0.0},   {true, WarpSharing::off, true, 0.3},   {true, WarpSharing::on, true, 1e9},
-      {false, WarpSharing::on, true, 0.3},   {true, WarpSharing::off, true, 0.5, false},
-      {true, WarpSharing::on, true, 1e9, false}};
+      {false, WarpSharing::on, true, 0.3}};
   for (const ExactFrames* scene : {&funnel, &soup})
     for (const auto& name : pipeline_names()) {
       const PipelineKind* kind = find_pipeline_kind(name);
@@ -267,7 +263,6 @@ inline void check_update_knobs(const std::string& device) {
           cfg.update_warp = knobs.warp;
           cfg.update_in_place = knobs.in_place;
           cfg.compact_share = knobs.compact_share;
-          cfg.prune_in_place = knobs.prune;
           auto p = make_pipeline(cfg);
           p->set_topology(scene->topology);
           for (uint32_t f = 0; f < scene->num_frames(); ++f) {
@@ -278,8 +273,7 @@ inline void check_update_knobs(const std::string& device) {
             ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count
                                    << " extra";
             if (s.op.find("+update-in-place") != std::string::npos) ++in_place_frames;
-            // Updates that only sprout keep nodes a prune merges: other fronts, the same pairs.
-            if (cycle == 0 || (name == "c" && knobs.in_place) || !knobs.prune) continue;
+            if (cycle == 0 || (name == "c" && knobs.in_place)) continue;
             if (sorted_sizes.size() <= f)
               sorted_sizes.push_back({s.front_internal, s.front_external});
             else

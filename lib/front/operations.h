@@ -161,7 +161,7 @@ struct PreserveFrontFn {
 // kNoNode), and the leftmost-node argument is the same.
 // Everything but a sprout's traversal, which is returned as a task (busy when front node j
 // sprouts), so that it can run alone or shared out in the warp.
-// `front` is a FrontSink, or PatchSink for an update in place.
+// `front` is a FrontSink, or a PatchSink for an update in place.
 template <class Sink>
 CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const PairSink& pairs, Sink& front,
                                                     uint32_t i, uint32_t j) {
@@ -190,23 +190,6 @@ CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const
     child = father;
     father = tree.node_parent[father];
   }
-}
-
-// An update in place that only sprouts (--prune-in-place off): an overlapping front node
-// sprouts as in update_front_node_first, a leaf that overlaps reports its pair, and a node
-// that misses is kept where it lies without climbing: no father is read. The front still
-// partitions each leaf's range; the nodes a prune would merge wait for the next whole update.
-template <class Sink>
-CDB_HD_INLINE TraversalTask sprout_front_node_first(const FrontView& view, const PairSink& pairs, Sink& front,
-                                                    uint32_t i, uint32_t j) {
-  const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-  const NextNode step = next_node(view.tree.bvh, j, lo, hi);
-  if (step.leaf_hit) pairs.emit(lane_link(hi.w), step.prim);
-  if (step.leaf_hit || step.stop) {
-    front.push(i, j, step.leaf_hit ? 1 : 0);
-    return {};
-  }
-  return {lo, hi, i, step.next, step.escape, true};
 }
 
 struct UpdateFrontFn {
@@ -297,14 +280,12 @@ struct PatchFrontFn {
   bool share_in_warp = true;
   uint32_t* count_internal = nullptr;  // PatchSink's count logs
   uint32_t* count_external = nullptr;
-  bool prune = true;  // false: sprout only (sprout_front_node_first)
   CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage); }
   CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
     const uint32_t j = node[e];
     if (j == kFrontDropped) return {};
     PatchSink sink{append, count_internal, count_external, node, e, j};
-    const TraversalTask t = prune ? update_front_node_first(view, pair_sink(stage), sink, prim[e], j)
-                                  : sprout_front_node_first(view, pair_sink(stage), sink, prim[e], j);
+    const TraversalTask t = update_front_node_first(view, pair_sink(stage), sink, prim[e], j);
     if (!sink.placed) {
       node[e] = kFrontDropped;
       sink.recount(j, ~0u);

@@ -29,7 +29,6 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"order_updates", c.order_updates},
       {"update_in_place", c.update_in_place},
       {"compact_share", c.compact_share},
-      {"prune_in_place", c.prune_in_place},
       {"update_probe", c.update_probe},
       {"refit_top_leaves", c.refit_top_leaves},
       {"conservative", config_conservative(c)},

@@ -296,7 +296,7 @@ class FrontPipeline final : public Pipeline {
         case FrontOp::update:
           if (plan.in_place)
             fq.patch(exec_, pairs_, shares_in_warp(config_.update_warp, fq.total()), counts_in_place(),
-                     histogram_sorted(), config_.prune_in_place);
+                     histogram_sorted());
           else
             fq.update(exec_, pairs_, counts(op), shares_in_warp(config_.update_warp, fq.total()));
           break;

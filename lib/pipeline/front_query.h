@@ -142,9 +142,8 @@ class FrontQuery {
   // `sort_tail`: the appended nodes go to the raw arrays, counted per tree node, and
   // sort_tails() orders them onto the front's end by histogram sort (the appended nodes are
   // the sprouts of the frame's contacts, the ones the next preserves descend from);
-  // otherwise they are appended to the front's end as produced. `prune` false: the update
-  // only sprouts (sprout_front_node_first).
-  void patch(Exec& exec, Pairs& pairs, bool share_in_warp, bool counted, bool sort_tail, bool prune) {
+  // otherwise they are appended to the front's end as produced.
+  void patch(Exec& exec, Pairs& pairs, bool share_in_warp, bool counted, bool sort_tail) {
     if (!active_) return;
     FrontSink append{};
     for (int k = 0; k < 2; ++k) {
@@ -168,7 +167,6 @@ class FrontQuery {
       PatchFrontFn fn{view(), pairs.sink(), append, f.prim.data(), f.node.data(), dropped, share_in_warp};
       fn.count_internal = counted ? front_[kInternalFront].count_log() : nullptr;
       fn.count_external = counted ? front_[kExternalFront].count_log() : nullptr;
-      fn.prune = prune;
       return fn;
     };
     exec.for_each_staged(total(), BothFrontsFn<PatchFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},

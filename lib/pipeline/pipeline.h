@@ -103,12 +103,11 @@ struct PipelineConfig {
   // Front pipelines: an update writes only what changes, into the current front (holes and
   // an appended tail: front/operations.h PatchFrontFn); once those changes reach
   // compact_share of the front's nodes, the next update produces the front whole and
-  // ordered again. Off: every update produces the whole front (the paper).
-  bool update_in_place = true;
+  // ordered again. Off (default): every update produces the whole front (the paper). Off
+  // measured as fast or faster under --front-cycle auto, on faster only when fronts update
+  // every frame (docs/front-maintenance.md "Updates in place").
+  bool update_in_place = false;
   double compact_share = 0.5;
-  // Updates in place prune as well as sprout (Alg. 1); false: they only sprout, and nodes
-  // wait for the next whole update to be merged (no father read per front node).
-  bool prune_in_place = true;
   // Front pipelines: the preserves before an update count what it can produce, and the
   // front buffers grow to that after their frame (pipeline/frame_plan.h, probe); off: an
   // update that outgrows them grows them inside its frame and runs again.
