@@ -50,11 +50,10 @@ struct FrontView {
 
 // The traversal (bvh/traverse.h) of the nodes from `node` up to (not including) `end` for
 // query leaf i: leaves that overlap are pairs, and its stop nodes are pushed to the front
-// when kRecord.
-template <bool kRecord>
+// (a FrontSink, or a PatchSink) when kRecord.
+template <bool kRecord, class Sink = const FrontSink&>
 CDB_HD_INLINE void traverse_range(const FrontView& v, uint32_t i, const vec4f& lo, const vec4f& hi,
-                                  uint32_t node, uint32_t end, const PairSink& pairs,
-                                  const FrontSink& front) {
+                                  uint32_t node, uint32_t end, const PairSink& pairs, Sink&& front) {
   const uint32_t prim = lane_link(hi.w);  // the query leaf's primitive rides in its box (node_ref.h)
   traverse(v.tree.bvh, lo, hi, node, end, [&](uint32_t other) { pairs.emit(prim, other); },
            [&](uint32_t stop) { if constexpr (kRecord) front.push(i, stop, 1); });
@@ -294,18 +293,15 @@ struct PatchFrontFn {
     add_to_slots(dropped, drop);
     return t;
   }
+  // The sink of a sprout's stop nodes: every one appended.
+  CDB_HD PatchSink appending() const { return {append, count_internal, count_external, node, 0, kFrontDropped, true}; }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
     const TraversalTask t = first_step(e, stage);
-    if (!t.busy) return;
-    PatchSink sink{append, count_internal, count_external, node, 0, kFrontDropped, true};
-    const uint32_t q = lane_link(t.hi.w);
-    const PairSink pairs_out = pair_sink(stage);
-    traverse(view.tree.bvh, t.lo, t.hi, t.node, t.end, [&](uint32_t other) { pairs_out.emit(q, other); },
-             [&](uint32_t stop) { sink.push(t.query, stop, 1); });
+    if (t.busy) traverse_range<true>(view, t.query, t.lo, t.hi, t.node, t.end, pair_sink(stage), appending());
   }
 #if defined(__CUDACC__)
   __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
-    PatchSink sink{append, count_internal, count_external, node, 0, kFrontDropped, true};
+    PatchSink sink = appending();
     traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t i, uint32_t stop) { sink.push(i, stop, 1); });
   }
   __device__ void flush(Stage& s) const { pairs.flush(s); }

@@ -14,7 +14,7 @@ namespace cdb {
 // segment, sprout-marked from its back and prune-marked from its front (the cursors count
 // the places taken on each side; zero before the pass).
 struct SegmentScatter {
-  const uint32_t* offset_log;
+  uint32_t* offset_log;  // written by the scan before the scatter (histogram_scatter)
   uint32_t* cursor_front;
   uint32_t* cursor_back;
   uint32_t* out_prim;
@@ -63,15 +63,26 @@ void scan_count_log(Exec& exec, FrontArrays<Exec>& f, size_t segments, void* tem
   exec.exclusive_scan(f.count_log(), f.offset_log.data(), segments + 1, temp, temp_bytes);
 }
 
+// Histogram sort of produced nodes (size on the device in *count, at most `launch`)
+// counted in `count_log` (`segments` + 1 entries): the count log's exclusive scan into
+// to.offset_log, then one scatter by `to`.
+template <class Exec>
+void histogram_scatter(Exec& exec, const uint32_t* count_log, const SegmentScatter& to, size_t segments,
+                       const unsigned long long* count, const uint32_t* prim, const uint32_t* node,
+                       const uint8_t* mark, size_t launch, void* temp, size_t temp_bytes) {
+  exec.exclusive_scan(count_log, to.offset_log, segments + 1, temp, temp_bytes);
+  exec.for_each_n(launch, ScatterFrontFn{count, launch, prim, node, mark, to});
+}
+
 // Orders a produced front (raw arrays, size on the device in *count, at most the raw
 // capacity, `launch`) into the sorted arrays, using its filled count log with `segments`
-// entries: a scan and one scatter.
+// entries.
 template <class Exec>
 void order_front(Exec& exec, FrontArrays<Exec>& f, size_t segments, const unsigned long long* count,
                  const uint32_t* prim, const uint32_t* node, const uint8_t* mark, size_t launch,
                  void* temp, size_t temp_bytes) {
-  scan_count_log(exec, f, segments, temp, temp_bytes);
-  exec.for_each_n(launch, ScatterFrontFn{count, launch, prim, node, mark, segment_scatter(f)});
+  histogram_scatter(exec, f.count_log(), segment_scatter(f), segments, count, prim, node, mark, launch, temp,
+                    temp_bytes);
 }
 
 }  // namespace cdb

@@ -79,8 +79,7 @@ class FrontPipeline final : public Pipeline {
     if (pairs_.reserve_ahead()) ++graph_version_;
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
     const uint64_t fronts = self_.total() + inter_.total() + rigid_self_.total();
-    const double disorder = std::max({self_.disorder(), inter_.disorder(), rigid_self_.disorder()});
-    const FramePlan plan = planner_.plan(bvh_.num_leaves, fronts, disorder);
+    const FramePlan plan = planner_.plan(bvh_.num_leaves, fronts, disorder());
     stats.decision = formula2_name(plan.decision);
     // The steady state launches what the last steady frame launched, unless a buffer or a
     // front changed since (graph_version_).
@@ -129,9 +128,9 @@ class FrontPipeline final : public Pipeline {
     stats.pairs = pairs_.count();
     stats.front_internal = self_.live(kInternalFront);
     stats.front_external = self_.live(kExternalFront);
-    stats.front_inter = inter_.live(kInternalFront) + inter_.live(kExternalFront);
-    stats.front_rigid = rigid_self_.live(kInternalFront) + rigid_self_.live(kExternalFront);
-    stats.front_disorder = std::max({self_.disorder(), inter_.disorder(), rigid_self_.disorder()});
+    stats.front_inter = inter_.live_total();
+    stats.front_rigid = rigid_self_.live_total();
+    stats.front_disorder = disorder();
     stats.q_root = strategy().ordered && stats.front_external
                        ? double(stats.front_internal) / double(stats.front_external)
                        : 0.0;
@@ -168,6 +167,9 @@ class FrontPipeline final : public Pipeline {
   static FrontOp& op_of(FramePlan& p, Query q) {
     return q == Query::self ? p.self : q == Query::inter ? p.inter : p.rigid_self;
   }
+  // How far updates in place have decayed the fronts' order: the most of any query.
+  double disorder() const { return std::max({self_.disorder(), inter_.disorder(), rigid_self_.disorder()}); }
+
   // Whether query q updates its fronts in place (PatchFrontFn), or produces new ones.
   static bool patches(const FramePlan& p, Query q) { return p.in_place && op_of(p, q) == FrontOp::update; }
   static bool produces(const FramePlan& p, Query q) { return op_of(p, q) != FrontOp::preserve && !patches(p, q); }

@@ -47,13 +47,14 @@ class FrontQuery {
   // Entries of kind k, holes left by updates in place included: what a pass over it launches.
   size_t size(int k) const { return front_[k].size; }
   size_t total() const { return front_[0].size + front_[1].size; }
-  // Front nodes of kind k (entries but holes).
+  // Front nodes of kind k (entries but holes), and of both kinds.
   size_t live(int k) const { return front_[k].size - dropped_[k]; }
+  size_t live_total() const { return live(kInternalFront) + live(kExternalFront); }
   // Entries changed by updates in place since the front was last produced whole (holes plus
   // appended nodes), as a share of its live nodes: how far its order has decayed.
   double disorder() const {
     const size_t changed = dropped_[0] + dropped_[1] + appended_[0] + appended_[1];
-    return changed ? double(changed) / double(std::max<size_t>(live(0) + live(1), 1)) : 0.0;
+    return changed ? double(changed) / double(std::max<size_t>(live_total(), 1)) : 0.0;
   }
   size_t capacity() const { return front_[0].capacity(); }
   const FrontArrays<Exec>& front(int k) const { return front_[k]; }
@@ -174,18 +175,15 @@ class FrontQuery {
   }
 
   // After patch with sort_tail: each kind's appended tail (size on the device, in the
-  // counters) ordered onto the front's end: a scan of its count log and one scatter.
+  // counters) histogram-sorted onto the front's end.
   void sort_tails(Exec& exec, Pairs& pairs) {
     if (!active_) return;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
-      exec.exclusive_scan(f.tail_count_log(), f.tail_offset_log.data(), segments(k) + 1, tree_->temp.data(),
-                          tree_->temp.size());
-      const size_t room = append_room(k);
       const SegmentScatter to{f.tail_offset_log.data(), f.tail_cursor_front(), f.tail_cursor_back(),
                               f.prim.data() + f.size, f.node.data() + f.size};
-      exec.for_each_n(room, ScatterFrontFn{&counters(pairs)->produced[k], room, f.raw_prim.data(), f.raw_node.data(),
-                                           f.raw_mark.data(), to});
+      histogram_scatter(exec, f.tail_count_log(), to, segments(k), &counters(pairs)->produced[k], f.raw_prim.data(),
+                        f.raw_node.data(), f.raw_mark.data(), append_room(k), tree_->temp.data(), tree_->temp.size());
     }
   }
 
