@@ -79,10 +79,15 @@ struct GenerateFrontFn {
 #endif
 };
 
-// Adds a lane's two counts (one per front kind) to kStopSlots slots of two: on the GPU once
-// per warp and kind, into its block's slot; on the host to the first slot.
+// Adds a lane's two counts (one per front kind) to kStopSlots slots of two: on the GPU into
+// its block's slot, once per warp and kind where the warp reduction exists (sm_80 and
+// later), else once per lane; on the host to the first slot.
 CDB_HD_INLINE void add_to_slots(unsigned long long* slots, const uint32_t (&n)[2]) {
-#if defined(__CUDA_ARCH__)
+#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ < 800
+  unsigned long long* slot = slots + 2 * (blockIdx.x % kStopSlots);
+  for (int k = 0; k < 2; ++k)
+    if (n[k]) atomicAdd(&slot[k], static_cast<unsigned long long>(n[k]));
+#elif defined(__CUDA_ARCH__)
   const unsigned active = __activemask();
   if (!__any_sync(active, (n[0] | n[1]) != 0)) return;
   unsigned long long* slot = slots + 2 * (blockIdx.x % kStopSlots);
