@@ -134,8 +134,8 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       ->group(kTuningGroup);
   add_choice<WarpSharing>(
       cmd, "--update-warp", c.update_warp,
-      "front pipelines on cuda: update shares each sprouting front node's traversal with the idle lanes of its "
-      "warp; auto: as --preserve-warp",
+      "front pipelines on cuda: the operations that write fronts (generate, update, restructure) share each "
+      "traversal with the idle lanes of its warp; auto: as --preserve-warp",
       {"auto", "on", "off"}, parse_warp_sharing, warp_sharing_name(c.update_warp))
       ->group(kTuningGroup);
   add_switch(cmd, "--order-updates", c.order_updates,

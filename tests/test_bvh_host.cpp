@@ -1,9 +1,12 @@
+#include <vector>
+
 #include "baseline_cases.h"
 #include "bvh_cases.h"
 #include "cell_cases.h"
 #include "io/scene.h"
 #include "core/error.h"
 #include "exec/host_exec.h"
+#include "front/warp_traversal.h"
 
 namespace cdb::test {
 
@@ -21,6 +24,31 @@ TEST_P(HostBaselines, SweepHashAndGridExact) { check_baselines<HostExec>(GetPara
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HostBaselines, testing::ValuesIn(baseline_cases()),
                          baseline_case_name);
+
+// Spread launches (front/warp_traversal.h): a power of two up to kMaxSpread whose launch
+// stays within the resident threads, and exactly one starting thread per traversal.
+TEST(SpreadLaunch, FillsTheResidentThreadsAndStartsEachTraversalOnce) {
+  EXPECT_EQ(spread_for(9218, 270336), 16u);
+  EXPECT_EQ(spread_for(48000, 270336), 4u);
+  EXPECT_EQ(spread_for(135168, 270336), 2u);
+  EXPECT_EQ(spread_for(135169, 270336), 1u);
+  EXPECT_EQ(spread_for(5000000, 270336), 1u);
+  EXPECT_EQ(spread_for(1, 270336), kMaxSpread);
+  EXPECT_EQ(spread_for(0, 270336), kMaxSpread);
+  EXPECT_EQ(spread_for(7, 2), 1u);
+  for (uint32_t spread : {1u, 2u, 8u, kMaxSpread}) {
+    const uint32_t traversals = 37;
+    std::vector<int> started(traversals, 0);
+    for (uint32_t e = 0; e < traversals * spread; ++e) {
+      uint32_t index = ~0u;
+      if (spread_start(e, spread, index)) {
+        ASSERT_LT(index, traversals);
+        ++started[index];
+      }
+    }
+    for (uint32_t i = 0; i < traversals; ++i) EXPECT_EQ(started[i], 1) << "spread " << spread << " traversal " << i;
+  }
+}
 
 TEST(HostCells, CoordinateMonotoneAtExtremes) { check_cell_coord_monotone_at_extremes<HostExec>(); }
 

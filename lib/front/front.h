@@ -50,15 +50,20 @@ struct FrontSink {
   }
 
   // mark: 1 = produced by sprouting, 0 = kept by pruning (the paper's opt mark).
+  // The kind's arrays are picked by selects, never by indexing with the kind: a copy of the
+  // sink (staged() makes one per kernel) indexed by a value known only at run time lives in
+  // local memory, and the update's kernel then kept a 192-byte stack frame that every push
+  // read (ptxas -v).
   CDB_HD_INLINE void push(uint32_t i, uint32_t ref, uint8_t m) const {
-    const int k = front_kind(ref);
-    if (count_log[k]) count_one(&count_log[k][ref_index(ref)]);
+    const bool ext = is_leaf(ref);
+    const int k = ext ? kExternalFront : kInternalFront;
+    if (uint32_t* log = ext ? count_log[1] : count_log[0]) count_one(&log[ref_index(ref)]);
     if (stage && stage->put(k, i, ref, m)) return;
-    const unsigned long long slot = claim_one(&count[k]);
-    if (slot < capacity[k]) {
-      prim[k][slot] = i;
-      node[k][slot] = ref;
-      mark[k][slot] = m;
+    const unsigned long long slot = claim_one(count + k);
+    if (slot < (ext ? capacity[1] : capacity[0])) {
+      (ext ? prim[1] : prim[0])[slot] = i;
+      (ext ? node[1] : node[0])[slot] = ref;
+      (ext ? mark[1] : mark[0])[slot] = m;
     }
   }
 

@@ -60,18 +60,42 @@ CDB_HD_INLINE void traverse_range(const FrontView& v, uint32_t i, const vec4f& l
 }
 
 // (1) Generate: the leaf algorithm from leaf i's start (escape index, or the root of a
-// cross front), recording its stop nodes.
+// cross front), recording its stop nodes. On the GPU the traversals are shared out within
+// each warp (front/warp_traversal.h) when share_in_warp: a generate is one whole traversal
+// per leaf, the longest traversals of any front operation, and alone the warps ran at 8 to
+// 10 of 32 lanes (Nsight Compute, docs/experiments.md).
+// `spread` threads run each leaf (warp_traversal.h, "Spread launches").
 struct GenerateFrontFn {
   using Stage = PairFrontStage;
   FrontView view;
   PairSink pairs;
   FrontSink front;
+  bool share_in_warp = false;
+  uint32_t spread = 1;
+  CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
+  CDB_HD FrontSink front_sink(Stage* stage) const { return front.staged(stage ? &stage->front : nullptr); }
   CDB_HD void operator()(uint32_t i, Stage* stage = nullptr) const {
+    if (!spread_start(i, spread, i)) return;
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-    traverse_range<true>(view, i, lo, hi, view.start(lo), kNoNode, pairs.staged(stage ? &stage->pairs : nullptr),
-                         front.staged(stage ? &stage->front : nullptr));
+    traverse_range<true>(view, i, lo, hi, view.start(lo), kNoNode, pair_sink(stage), front_sink(stage));
   }
 #if defined(__CUDACC__)
+  // Every thread of the launch, i past the leaves included (those lanes only help).
+  __device__ void warp(uint32_t i, uint32_t n, Stage* stage) const {
+    if (!share_in_warp) {
+      if (i < n) (*this)(i, stage);
+      return;
+    }
+    TraversalTask t;
+    uint32_t leaf = 0;
+    if (i < n && spread_start(i, spread, leaf)) {
+      const vec4f lo = view.query_lo[leaf], hi = view.query_hi[leaf];
+      const uint32_t start = view.start(lo);
+      t = {lo, hi, leaf, start, kNoNode, start != kNoNode};
+    }
+    const FrontSink sink = front_sink(stage);
+    traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t q, uint32_t stop) { sink.push(q, stop, 1); });
+  }
   __device__ void flush(Stage& s) const {
     pairs.flush(s.pairs);
     front.flush(s.front);
@@ -171,6 +195,10 @@ CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const
                                                     uint32_t i, uint32_t j) {
   const FrontTree& tree = view.tree;
   const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
+  // j's father is loaded with j's box, before the test that tells whether it is needed:
+  // most front nodes of a stale front miss and read it, and loaded after the test it cost
+  // them a second memory round trip before the father's box.
+  uint32_t father = tree.parent(j);
   const NextNode step = next_node(tree.bvh, j, lo, hi);
   if (step.leaf_hit) {
     pairs.emit(lane_link(hi.w), step.prim);
@@ -178,21 +206,23 @@ CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const
     return {};
   }
   if (!step.stop) return {lo, hi, i, step.next, step.escape, true};
-  // Each father's left link comes with its box (node_ref.h).
-  uint32_t child = j, father = tree.parent(j);
+  // Each father's left link comes with its box (node_ref.h), and its own father is loaded
+  // with them, so that a climb costs one memory round trip a level.
+  uint32_t child = j;
   for (;;) {
     if (father == kNoNode) {
       front.push(i, child, 0);
       return {};
     }
     const vec4f flo = tree.bvh.node_lo[father], fhi = tree.bvh.node_hi[father];
+    const uint32_t grandfather = tree.node_parent[father];
     const bool left_child = lane_link(flo.w) == child, hit = overlaps(lo, hi, flo, fhi);
     if (!left_child || hit) {
       if (left_child || hit) front.push(i, child, 0);
       return {};
     }
     child = father;
-    father = tree.node_parent[father];
+    father = grandfather;
   }
 }
 
@@ -317,12 +347,16 @@ struct PatchFrontFn {
 // rest the second's. Each pass is as long as its slowest traversal, so one launch lets the
 // two tails overlap instead of adding up. Both passes append to the same sinks, so the
 // first's flush writes out the stage of both.
+// `spread` threads run each front node (warp_traversal.h, "Spread launches"): the launch
+// has spread times as many threads as nodes.
 template <class F>
 struct BothFrontsFn {
   using Stage = typename F::Stage;
   F first, second;
   uint32_t n0;
+  uint32_t spread = 1;
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
+    if (!spread_start(e, spread, e)) return;
     if (e < n0)
       first(e, stage);
     else
@@ -331,8 +365,8 @@ struct BothFrontsFn {
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const { first.flush(s); }
   // Every thread of the launch, e past the fronts included (those lanes only help): each
-  // lane's first step, then the rest shared out in the warp. Both passes share the tree
-  // and the sinks.
+  // starting lane's first step, then the rest shared out in the warp. Both passes share
+  // the tree and the sinks.
   __device__ void warp(uint32_t e, uint32_t n, Stage* stage) const
     requires F::kWarpTraversal
   {
@@ -341,7 +375,9 @@ struct BothFrontsFn {
       return;
     }
     TraversalTask t;
-    if (e < n) t = e < n0 ? first.first_step(e, stage) : second.first_step(e - n0, stage);
+    uint32_t node = 0;
+    if (e < n && spread_start(e, spread, node))
+      t = node < n0 ? first.first_step(node, stage) : second.first_step(node - n0, stage);
     first.rest_in_warp(t, stage);
   }
 #endif

@@ -58,31 +58,56 @@ struct ClassifyFrontFn {
 // nodes traverse the restructured subtree of leaf i recording its stop nodes, and every
 // other node is kept as it is and traversed as preserve does, for the frame's pairs. The
 // kept nodes are left to the next update (Algorithm 1) to sprout or prune: this pass costs
-// about a preserve plus the front's write, not an update.
+// about a preserve plus the front's write, not an update. On the GPU the traversals are
+// shared out within each warp (front/warp_traversal.h) when share_in_warp; a kept node's
+// traversal records nothing, which its task carries in its query's top bit (kKeptQuery).
 struct RestructureFrontFn {
+  using Stage = PairFrontStage;  // unstaged: the pass runs rarely, its sinks append directly
+  static constexpr bool kWarpTraversal = true;
+  // Leaf indices stay below kMaxLeaves (node_ref.h), so the top bit is free.
+  static constexpr uint32_t kKeptQuery = kLeafBit;
   FrontView view;  // a self front: restructuring renumbers the leaves cross fronts query from
   PairSink pairs;
   FrontSink front;
   CandidateView cand;
   const uint32_t* prim;
   const uint32_t* node;
-  CDB_HD void operator()(uint32_t e) const {
+  bool share_in_warp = false;
+  // Front node e's own part: its push if kept, and the traversal left (kept nodes' query
+  // tagged kKeptQuery).
+  CDB_HD TraversalTask first_step(uint32_t e, Stage*) const {
     const uint32_t i = prim[e], j = node[e];
-    if (j == kFrontDropped) return;
+    if (j == kFrontDropped) return {};
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     if (j == kFrontRegenerate) {
       const uint32_t c = cand.slot_of_leaf(i) - 1;
       // From leaf i's escape, which rides in its box (node_ref.h), to the subtree's.
-      traverse_range<true>(view, i, lo, hi, lane_link(lo.w), cand.escape[c], pairs, front);
-      return;
+      const uint32_t from = lane_link(lo.w), to = cand.escape[c];
+      return {lo, hi, i, from, to, from != to};
     }
     front.push(i, j, 0);
     // Node j's links and a leaf's primitive come with its box (bvh/traverse.h); if it is a
     // stop node, next is its escape and nothing is left.
     const uint32_t q = lane_link(hi.w);
     const NextNode step = visit(view.tree.bvh, j, lo, hi, [&](uint32_t other) { pairs.emit(q, other); });
-    traverse_range<false>(view, i, lo, hi, step.next, step.escape, pairs, FrontSink{});
+    return {lo, hi, i | kKeptQuery, step.next, step.escape, step.next != step.escape};
   }
+  CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
+    const TraversalTask t = first_step(e, stage);
+    if (!t.busy) return;
+    if (t.query & kKeptQuery)
+      traverse_range<false>(view, t.query & ~kKeptQuery, t.lo, t.hi, t.node, t.end, pairs, FrontSink{});
+    else
+      traverse_range<true>(view, t.query, t.lo, t.hi, t.node, t.end, pairs, front);
+  }
+#if defined(__CUDACC__)
+  __device__ void rest_in_warp(const TraversalTask& t, Stage*) const {
+    traverse_in_warp(view.tree.bvh, t, pairs, [&](uint32_t q, uint32_t stop) {
+      if (!(q & kKeptQuery)) front.push(q, stop, 1);
+    });
+  }
+  __device__ void flush(Stage&) const {}
+#endif
 };
 
 }  // namespace cdb

@@ -31,6 +31,28 @@ struct TraversalTask {
   bool busy = false;
 };
 
+// Spread launches: a launch of fewer traversals than the GPU holds threads (a generate of a
+// small mesh: a few thousand leaves, each one long traversal) leaves most of the GPU idle
+// while each warp works through its own 32. Launched with `spread` threads per traversal,
+// thread e * spread starts traversal e and the others start idle and take pieces of their
+// warp's traversals as above. spread_for picks the largest power of two up to 32 that keeps
+// the launch within the resident threads (1 past them: the launch fills the GPU already).
+inline constexpr uint32_t kMaxSpread = 32;
+
+CDB_HD_INLINE uint32_t spread_for(uint64_t traversals, uint64_t resident_threads) {
+  uint32_t spread = 1;
+  while (spread < kMaxSpread && traversals * spread * 2 <= resident_threads) spread *= 2;
+  return spread;
+}
+
+// Thread e of a spread launch: true, with its traversal's index, for the thread that starts
+// one.
+CDB_HD_INLINE bool spread_start(uint32_t e, uint32_t spread, uint32_t& index) {
+  if (e % spread != 0) return false;
+  index = e / spread;
+  return true;
+}
+
 // A traversal that records no stop nodes (preserve).
 struct NoFrontStop {
   CDB_HD_INLINE void operator()(uint32_t, uint32_t) const {}

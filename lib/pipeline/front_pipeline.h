@@ -293,7 +293,7 @@ class FrontPipeline final : public Pipeline {
           fq.preserve(exec_, pairs_, stage_preserve_, warp_preserve_, plan.probe);
           break;
         case FrontOp::generate:
-          fq.generate(exec_, pairs_, histogram);
+          fq.generate(exec_, pairs_, histogram, shares_in_warp(config_.update_warp, fq.query_leaves()));
           break;
         case FrontOp::update:
           if (plan.in_place)
@@ -303,7 +303,7 @@ class FrontPipeline final : public Pipeline {
             fq.update(exec_, pairs_, counts(op), shares_in_warp(config_.update_warp, fq.total()));
           break;
         case FrontOp::restructure:
-          fq.restructure(exec_, pairs_, histogram, restructure_.view());
+          fq.restructure(exec_, pairs_, histogram, restructure_.view(), shares_in_warp(config_.update_warp, fq.total()));
           break;
       }
       timer_.stop(phase_of(op));

@@ -47,6 +47,8 @@ class FrontQuery {
   // Entries of kind k, holes left by updates in place included: what a pass over it launches.
   size_t size(int k) const { return front_[k].size; }
   size_t total() const { return front_[0].size + front_[1].size; }
+  // Query leaves: the threads of a generate.
+  size_t query_leaves() const { return active_ ? leaves_->num_leaves : 0; }
   // Front nodes of kind k (entries but holes), and of both kinds.
   size_t live(int k) const { return front_[k].size - dropped_[k]; }
   size_t live_total() const { return live(kInternalFront) + live(kExternalFront); }
@@ -80,10 +82,13 @@ class FrontQuery {
   }
 
   // (1) Generate over all query leaves. `histogram`: count the produced nodes per tree node.
-  void generate(Exec& exec, Pairs& pairs, bool histogram) {
+  // `share_in_warp`: the traversals shared out in warps (CUDA).
+  void generate(Exec& exec, Pairs& pairs, bool histogram, bool share_in_warp) {
     if (!active_) return;
     const FrontSink sink = produce_sink(exec, pairs, histogram);
-    exec.for_each_staged(leaves_->num_leaves, GenerateFrontFn{view(), pairs.sink(), sink}, Balance::uneven);
+    const uint32_t lanes = spread(exec, leaves_->num_leaves, share_in_warp);
+    exec.for_each_staged(leaves_->num_leaves * lanes, GenerateFrontFn{view(), pairs.sink(), sink, share_in_warp, lanes},
+                         Balance::uneven);
   }
 
   // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch;
@@ -132,7 +137,9 @@ class FrontQuery {
     auto pass = [&](const FrontArrays<Exec>& f) {
       return UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data(), share_in_warp};
     };
-    exec.for_each_staged(total(), BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
+    const uint32_t lanes = spread(exec, total(), share_in_warp);
+    exec.for_each_staged(total() * lanes,
+                         BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), lanes},
                          Balance::uneven);
   }
 
@@ -170,7 +177,9 @@ class FrontQuery {
       fn.count_external = counted ? front_[kExternalFront].count_log() : nullptr;
       return fn;
     };
-    exec.for_each_staged(total(), BothFrontsFn<PatchFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)},
+    const uint32_t lanes = spread(exec, total(), share_in_warp);
+    exec.for_each_staged(total() * lanes,
+                         BothFrontsFn<PatchFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), lanes},
                          Balance::uneven);
   }
 
@@ -215,14 +224,18 @@ class FrontQuery {
                                               f.prim.data(), f.node.data()});
   }
 
-  // (5), second half: the front pass over the classified self fronts.
-  void restructure(Exec& exec, Pairs& pairs, bool histogram, CandidateView cand) {
+  // (5), second half: the front pass over the classified self fronts, both kinds in one
+  // launch; `share_in_warp`: the traversals shared out in warps (CUDA).
+  void restructure(Exec& exec, Pairs& pairs, bool histogram, CandidateView cand, bool share_in_warp) {
     if (!active_) return;
     const FrontSink sink = produce_sink(exec, pairs, histogram);
-    for (auto& f : front_)
-      exec.for_each_n(f.size,
-                      RestructureFrontFn{view(), pairs.sink(), sink, cand, f.prim.data(), f.node.data()},
-                      Balance::uneven);
+    auto pass = [&](const FrontArrays<Exec>& f) {
+      return RestructureFrontFn{view(), pairs.sink(), sink, cand, f.prim.data(), f.node.data(), share_in_warp};
+    };
+    const uint32_t lanes = spread(exec, total(), share_in_warp);
+    exec.for_each_n(total() * lanes,
+                    BothFrontsFn<RestructureFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), lanes},
+                    Balance::uneven);
   }
 
   // Histogram sort of the produced fronts (sizes on the device in the counters).
@@ -327,6 +340,12 @@ class FrontQuery {
     for (auto& f : front_) exec.fill(f.order_counts.data(), f.order_counts.size(), 0u);
   }
 
+  // Threads per traversal of a launch of `n` traversals (front/warp_traversal.h, "Spread
+  // launches"): more than one only where they are shared out in warps.
+  static uint32_t spread(const Exec& exec, size_t n, bool share_in_warp) {
+    return share_in_warp ? spread_for(n, exec.resident_threads()) : 1;
+  }
+
   FrontQueryCounters* counters(Pairs& pairs) const { return &pairs.device()->query[index_]; }
 
   FrontSink produce_sink(Exec& exec, Pairs& pairs, bool histogram) {
@@ -354,11 +373,12 @@ class FrontQuery {
       p.node = f.node.data();
       return p;
     };
-    const BothFrontsFn<Fn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size)};
+    const uint32_t lanes = spread(exec, total(), fn.share_in_warp);
+    const BothFrontsFn<Fn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), lanes};
     if (staged)
-      exec.for_each_staged(total(), both, Balance::uneven);
+      exec.for_each_staged(total() * lanes, both, Balance::uneven);
     else
-      exec.for_each_n(total(), both, Balance::uneven);
+      exec.for_each_n(total() * lanes, both, Balance::uneven);
   }
 
   // Every buffer of a kind holds `need` nodes, or all grow to `want`, the current front
