@@ -3,7 +3,8 @@
 # check), synccheck, initcheck and racecheck over every pipeline on a small folding cloth,
 # one log per tool, archived as $OUT/sanitize.tar.xz, and a summary line per tool in
 # $OUT/sanitize-summary.txt. A fixed front cycle of 3, so that the 8 frames probe, update
-# (sprouts shared in warps) and replay recorded frames.
+# (sprouts shared in warps) and replay recorded frames; periodic generates and restructure
+# restructures, both spread over warps.
 set -uo pipefail
 bundle=${BUNDLE:-$PWD/.devbundle}
 export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
@@ -11,7 +12,7 @@ export CDBENCH_SCENES=$PWD/scenes
 top=${OUT:-/tmp/out}
 out=$top/sanitize
 mkdir -p "$out"
-pipelines=${PIPELINES:-a,b,c,unordered,periodic,radix-order,reference,bvh,grid,hash,sweep}
+pipelines=${PIPELINES:-a,b,c,unordered,periodic,restructure,radix-order,reference,bvh,grid,hash,sweep}
 scene=(--scene cloth-ball --set res=40 --set frames=8 --front-cycle 3)
 for tool in memcheck synccheck initcheck racecheck; do
   extra=()

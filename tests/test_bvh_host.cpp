@@ -28,14 +28,15 @@ INSTANTIATE_TEST_SUITE_P(Scenes, HostBaselines, testing::ValuesIn(baseline_cases
 // Spread launches (front/warp_traversal.h): a power of two up to kMaxSpread whose launch
 // stays within the resident threads, and exactly one starting thread per traversal.
 TEST(SpreadLaunch, FillsTheResidentThreadsAndStartsEachTraversalOnce) {
-  EXPECT_EQ(spread_for(9218, 270336), 16u);
-  EXPECT_EQ(spread_for(48000, 270336), 4u);
-  EXPECT_EQ(spread_for(135168, 270336), 2u);
-  EXPECT_EQ(spread_for(135169, 270336), 1u);
-  EXPECT_EQ(spread_for(5000000, 270336), 1u);
-  EXPECT_EQ(spread_for(1, 270336), kMaxSpread);
-  EXPECT_EQ(spread_for(0, 270336), kMaxSpread);
-  EXPECT_EQ(spread_for(7, 2), 1u);
+  EXPECT_EQ(spread_for(9218, 270336, 1), 16u);
+  EXPECT_EQ(spread_for(48000, 270336, 1), 4u);
+  EXPECT_EQ(spread_for(135168, 270336, 1), 2u);
+  EXPECT_EQ(spread_for(135169, 270336, 1), 1u);
+  EXPECT_EQ(spread_for(297083, 270336, 4), 2u);
+  EXPECT_EQ(spread_for(5000000, 270336, 4), 1u);
+  EXPECT_EQ(spread_for(1, 270336, 1), kMaxSpread);
+  EXPECT_EQ(spread_for(0, 270336, 1), kMaxSpread);
+  EXPECT_EQ(spread_for(7, 2, 1), 1u);
   for (uint32_t spread : {1u, 2u, 8u, kMaxSpread}) {
     const uint32_t traversals = 37;
     std::vector<int> started(traversals, 0);

@@ -36,12 +36,18 @@ struct TraversalTask {
 // while each warp works through its own 32. Launched with `spread` threads per traversal,
 // thread e * spread starts traversal e and the others start idle and take pieces of their
 // warp's traversals as above. spread_for picks the largest power of two up to 32 that keeps
-// the launch within the resident threads (1 past them: the launch fills the GPU already).
+// the launch within `waves` times the resident threads (1 past them). Measured on the H100
+// (docs/experiments.md): generate within one wave (a spread past it made the generates of
+// 32K and 48K leaves 1.5x slower), update and restructure within four (sphere's update
+// 119 to 57 us, funnel's 53 to 35), preserve within one (four was no faster).
 inline constexpr uint32_t kMaxSpread = 32;
+inline constexpr uint64_t kSpreadWavesGenerate = 1;
+inline constexpr uint64_t kSpreadWavesPreserve = 1;
+inline constexpr uint64_t kSpreadWavesUpdate = 4;
 
-CDB_HD_INLINE uint32_t spread_for(uint64_t traversals, uint64_t resident_threads) {
+CDB_HD_INLINE uint32_t spread_for(uint64_t traversals, uint64_t resident_threads, uint64_t waves) {
   uint32_t spread = 1;
-  while (spread < kMaxSpread && traversals * spread * 2 <= resident_threads) spread *= 2;
+  while (spread < kMaxSpread && traversals * spread * 2 <= waves * resident_threads) spread *= 2;
   return spread;
 }
 
