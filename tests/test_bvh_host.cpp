@@ -25,29 +25,29 @@ TEST_P(HostBaselines, SweepHashAndGridExact) { check_baselines<HostExec>(GetPara
 INSTANTIATE_TEST_SUITE_P(Scenes, HostBaselines, testing::ValuesIn(baseline_cases()),
                          baseline_case_name);
 
-// Spread launches (front/warp_traversal.h): a power of two up to kMaxSpread whose launch
+// Spread launches (front/warp_traversal.h): the largest spread up to a warp whose launch
 // stays within the resident threads, and exactly one starting thread per traversal.
 TEST(SpreadLaunch, FillsTheResidentThreadsAndStartsEachTraversalOnce) {
-  EXPECT_EQ(spread_for(9218, 270336, 1), 16u);
-  EXPECT_EQ(spread_for(48000, 270336, 1), 4u);
-  EXPECT_EQ(spread_for(135168, 270336, 1), 2u);
-  EXPECT_EQ(spread_for(135169, 270336, 1), 1u);
-  EXPECT_EQ(spread_for(297083, 270336, 4), 2u);
-  EXPECT_EQ(spread_for(5000000, 270336, 4), 1u);
-  EXPECT_EQ(spread_for(1, 270336, 1), kMaxSpread);
-  EXPECT_EQ(spread_for(0, 270336, 1), kMaxSpread);
-  EXPECT_EQ(spread_for(7, 2, 1), 1u);
-  for (uint32_t spread : {1u, 2u, 8u, kMaxSpread}) {
+  EXPECT_EQ(spread_shift_for(9218, 270336, 1), 4u);
+  EXPECT_EQ(spread_shift_for(48000, 270336, 1), 2u);
+  EXPECT_EQ(spread_shift_for(135168, 270336, 1), 1u);
+  EXPECT_EQ(spread_shift_for(135169, 270336, 1), 0u);
+  EXPECT_EQ(spread_shift_for(297083, 270336, 4), 1u);
+  EXPECT_EQ(spread_shift_for(5000000, 270336, 4), 0u);
+  EXPECT_EQ(spread_shift_for(1, 270336, 1), kMaxSpreadShift);
+  EXPECT_EQ(spread_shift_for(0, 270336, 1), kMaxSpreadShift);
+  EXPECT_EQ(spread_shift_for(7, 2, 1), 0u);
+  for (uint32_t shift = 0; shift <= kMaxSpreadShift; ++shift) {
     const uint32_t traversals = 37;
     std::vector<int> started(traversals, 0);
-    for (uint32_t e = 0; e < traversals * spread; ++e) {
+    for (uint32_t e = 0; e < (traversals << shift); ++e) {
       uint32_t index = ~0u;
-      if (spread_start(e, spread, index)) {
+      if (spread_start(e, shift, index)) {
         ASSERT_LT(index, traversals);
         ++started[index];
       }
     }
-    for (uint32_t i = 0; i < traversals; ++i) EXPECT_EQ(started[i], 1) << "spread " << spread << " traversal " << i;
+    for (uint32_t i = 0; i < traversals; ++i) EXPECT_EQ(started[i], 1) << "shift " << shift << " traversal " << i;
   }
 }
 

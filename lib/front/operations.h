@@ -64,18 +64,18 @@ CDB_HD_INLINE void traverse_range(const FrontView& v, uint32_t i, const vec4f& l
 // each warp (front/warp_traversal.h) when share_in_warp: a generate is one whole traversal
 // per leaf, the longest traversals of any front operation, and alone the warps ran at 8 to
 // 10 of 32 lanes (Nsight Compute, docs/experiments.md).
-// `spread` threads run each leaf (warp_traversal.h, "Spread launches").
+// 2^spread_shift threads run each leaf (warp_traversal.h, "Spread launches").
 struct GenerateFrontFn {
   using Stage = PairFrontStage;
   FrontView view;
   PairSink pairs;
   FrontSink front;
   bool share_in_warp = false;
-  uint32_t spread = 1;
+  uint32_t spread_shift = 0;
   CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
   CDB_HD FrontSink front_sink(Stage* stage) const { return front.staged(stage ? &stage->front : nullptr); }
   CDB_HD void operator()(uint32_t i, Stage* stage = nullptr) const {
-    if (!spread_start(i, spread, i)) return;
+    if (!spread_start(i, spread_shift, i)) return;
     const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     traverse_range<true>(view, i, lo, hi, view.start(lo), kNoNode, pair_sink(stage), front_sink(stage));
   }
@@ -88,7 +88,7 @@ struct GenerateFrontFn {
     }
     TraversalTask t;
     uint32_t leaf = 0;
-    if (i < n && spread_start(i, spread, leaf)) {
+    if (i < n && spread_start(i, spread_shift, leaf)) {
       const vec4f lo = view.query_lo[leaf], hi = view.query_hi[leaf];
       const uint32_t start = view.start(lo);
       t = {lo, hi, leaf, start, kNoNode, start != kNoNode};
@@ -347,16 +347,16 @@ struct PatchFrontFn {
 // rest the second's. Each pass is as long as its slowest traversal, so one launch lets the
 // two tails overlap instead of adding up. Both passes append to the same sinks, so the
 // first's flush writes out the stage of both.
-// `spread` threads run each front node (warp_traversal.h, "Spread launches"): the launch
-// has spread times as many threads as nodes.
+// 2^spread_shift threads run each front node (warp_traversal.h, "Spread launches"): the
+// launch has that many times as many threads as nodes.
 template <class F>
 struct BothFrontsFn {
   using Stage = typename F::Stage;
   F first, second;
   uint32_t n0;
-  uint32_t spread = 1;
+  uint32_t spread_shift = 0;
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
-    if (!spread_start(e, spread, e)) return;
+    if (!spread_start(e, spread_shift, e)) return;
     if (e < n0)
       first(e, stage);
     else
@@ -376,7 +376,7 @@ struct BothFrontsFn {
     }
     TraversalTask t;
     uint32_t node = 0;
-    if (e < n && spread_start(e, spread, node))
+    if (e < n && spread_start(e, spread_shift, node))
       t = node < n0 ? first.first_step(node, stage) : second.first_step(node - n0, stage);
     first.rest_in_warp(t, stage);
   }

@@ -33,29 +33,31 @@ struct TraversalTask {
 
 // Spread launches: a launch of fewer traversals than the GPU holds threads (a generate of a
 // small mesh: a few thousand leaves, each one long traversal) leaves most of the GPU idle
-// while each warp works through its own 32. Launched with `spread` threads per traversal,
-// thread e * spread starts traversal e and the others start idle and take pieces of their
-// warp's traversals as above. spread_for picks the largest power of two up to 32 that keeps
-// the launch within `waves` times the resident threads (1 past them). Measured on the H100
-// (docs/experiments.md): generate within one wave (a spread past it made the generates of
-// 32K and 48K leaves 1.5x slower), update and restructure within four (sphere's update
-// 119 to 57 us, funnel's 53 to 35), preserve within one (four was no faster).
-inline constexpr uint32_t kMaxSpread = 32;
+// while each warp works through its own 32. Launched with 2^shift threads per traversal,
+// thread e << shift starts traversal e and the others start idle and take pieces of their
+// warp's traversals as above. spread_shift_for picks the largest spread up to 32 that keeps
+// the launch within `waves` times the resident threads (none past them). Measured on the
+// H100 (docs/experiments.md): generate within one wave (a spread past it made the generates
+// of 32K and 48K leaves 1.5x slower), update and restructure within four (sphere's update
+// 119 to 57 us, funnel's 53 to 35), preserve within one (four was no faster). A shift, not
+// a factor: a division by a value known only at run time costs every thread of the
+// launch, the preserve's millions included.
+inline constexpr uint32_t kMaxSpreadShift = 5;  // 32 threads, a warp
 inline constexpr uint64_t kSpreadWavesGenerate = 1;
 inline constexpr uint64_t kSpreadWavesPreserve = 1;
 inline constexpr uint64_t kSpreadWavesUpdate = 4;
 
-CDB_HD_INLINE uint32_t spread_for(uint64_t traversals, uint64_t resident_threads, uint64_t waves) {
-  uint32_t spread = 1;
-  while (spread < kMaxSpread && traversals * spread * 2 <= waves * resident_threads) spread *= 2;
-  return spread;
+CDB_HD_INLINE uint32_t spread_shift_for(uint64_t traversals, uint64_t resident_threads, uint64_t waves) {
+  uint32_t shift = 0;
+  while (shift < kMaxSpreadShift && (traversals << (shift + 1)) <= waves * resident_threads) ++shift;
+  return shift;
 }
 
 // Thread e of a spread launch: true, with its traversal's index, for the thread that starts
 // one.
-CDB_HD_INLINE bool spread_start(uint32_t e, uint32_t spread, uint32_t& index) {
-  if (e % spread != 0) return false;
-  index = e / spread;
+CDB_HD_INLINE bool spread_start(uint32_t e, uint32_t shift, uint32_t& index) {
+  if (e & ((1u << shift) - 1u)) return false;
+  index = e >> shift;
   return true;
 }
 

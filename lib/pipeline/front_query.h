@@ -86,8 +86,8 @@ class FrontQuery {
   void generate(Exec& exec, Pairs& pairs, bool histogram, bool share_in_warp) {
     if (!active_) return;
     const FrontSink sink = produce_sink(exec, pairs, histogram);
-    const uint32_t lanes = spread(exec, leaves_->num_leaves, share_in_warp, kSpreadWavesGenerate);
-    exec.for_each_staged(leaves_->num_leaves * lanes, GenerateFrontFn{view(), pairs.sink(), sink, share_in_warp, lanes},
+    const uint32_t shift = spread_shift(exec, leaves_->num_leaves, share_in_warp, kSpreadWavesGenerate);
+    exec.for_each_staged(size_t(leaves_->num_leaves) << shift, GenerateFrontFn{view(), pairs.sink(), sink, share_in_warp, shift},
                          Balance::uneven);
   }
 
@@ -137,9 +137,9 @@ class FrontQuery {
     auto pass = [&](const FrontArrays<Exec>& f) {
       return UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data(), share_in_warp};
     };
-    const uint32_t lanes = spread(exec, total(), share_in_warp, kSpreadWavesUpdate);
-    exec.for_each_staged(total() * lanes,
-                         BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), lanes},
+    const uint32_t shift = spread_shift(exec, total(), share_in_warp, kSpreadWavesUpdate);
+    exec.for_each_staged(total() << shift,
+                         BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift},
                          Balance::uneven);
   }
 
@@ -177,9 +177,9 @@ class FrontQuery {
       fn.count_external = counted ? front_[kExternalFront].count_log() : nullptr;
       return fn;
     };
-    const uint32_t lanes = spread(exec, total(), share_in_warp, kSpreadWavesUpdate);
-    exec.for_each_staged(total() * lanes,
-                         BothFrontsFn<PatchFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), lanes},
+    const uint32_t shift = spread_shift(exec, total(), share_in_warp, kSpreadWavesUpdate);
+    exec.for_each_staged(total() << shift,
+                         BothFrontsFn<PatchFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift},
                          Balance::uneven);
   }
 
@@ -232,9 +232,9 @@ class FrontQuery {
     auto pass = [&](const FrontArrays<Exec>& f) {
       return RestructureFrontFn{view(), pairs.sink(), sink, cand, f.prim.data(), f.node.data(), share_in_warp};
     };
-    const uint32_t lanes = spread(exec, total(), share_in_warp, kSpreadWavesUpdate);
-    exec.for_each_n(total() * lanes,
-                    BothFrontsFn<RestructureFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), lanes},
+    const uint32_t shift = spread_shift(exec, total(), share_in_warp, kSpreadWavesUpdate);
+    exec.for_each_n(total() << shift,
+                    BothFrontsFn<RestructureFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift},
                     Balance::uneven);
   }
 
@@ -340,10 +340,10 @@ class FrontQuery {
     for (auto& f : front_) exec.fill(f.order_counts.data(), f.order_counts.size(), 0u);
   }
 
-  // Threads per traversal of a launch of `n` traversals (front/warp_traversal.h, "Spread
-  // launches"): more than one only where they are shared out in warps.
-  static uint32_t spread(const Exec& exec, size_t n, bool share_in_warp, uint64_t waves) {
-    return share_in_warp ? spread_for(n, exec.resident_threads(), waves) : 1;
+  // Threads per traversal of a launch of `n` traversals, as a shift (front/warp_traversal.h,
+  // "Spread launches"): more than one only where they are shared out in warps.
+  static uint32_t spread_shift(const Exec& exec, size_t n, bool share_in_warp, uint64_t waves) {
+    return share_in_warp ? spread_shift_for(n, exec.resident_threads(), waves) : 0;
   }
 
   FrontQueryCounters* counters(Pairs& pairs) const { return &pairs.device()->query[index_]; }
@@ -373,12 +373,12 @@ class FrontQuery {
       p.node = f.node.data();
       return p;
     };
-    const uint32_t lanes = spread(exec, total(), fn.share_in_warp, kSpreadWavesPreserve);
-    const BothFrontsFn<Fn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), lanes};
+    const uint32_t shift = spread_shift(exec, total(), fn.share_in_warp, kSpreadWavesPreserve);
+    const BothFrontsFn<Fn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift};
     if (staged)
-      exec.for_each_staged(total() * lanes, both, Balance::uneven);
+      exec.for_each_staged(total() << shift, both, Balance::uneven);
     else
-      exec.for_each_n(total() * lanes, both, Balance::uneven);
+      exec.for_each_n(total() << shift, both, Balance::uneven);
   }
 
   // Every buffer of a kind holds `need` nodes, or all grow to `want`, the current front
