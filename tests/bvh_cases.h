@@ -308,6 +308,18 @@ inline std::unique_ptr<FrameSource> front_scene(const std::string& name, uint32_
 
 inline std::string front_scene_name(const testing::TestParamInfo<std::string>& info) { return info.param; }
 
+// Every pipeline exact on every frame of front scene `name` under the fixed cycles 1, 2, 3
+// and 5 and under auto (0), on `device`.
+inline void check_front_cycles(const std::string& device, const std::string& name, uint32_t cloth_res,
+                               uint32_t frames) {
+  const ExactFrames scene = exact_frames(*front_scene(name, cloth_res, frames));
+  for (uint32_t cycle : {1u, 2u, 3u, 5u, 0u}) {
+    SCOPED_TRACE("front cycle " + std::to_string(cycle));
+    check_pipelines_on(config_for(device, 0.5, 0.05, cycle), scene);
+    if (testing::Test::HasFatalFailure()) return;
+  }
+}
+
 // Runs one pipeline over every frame of a scene against the oracle's pairs; returns the
 // frames' stats for the caller to check which operations ran.
 inline std::vector<FrameStats> run_exact(const PipelineConfig& cfg, const ExactFrames& exact) {

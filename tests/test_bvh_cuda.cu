@@ -267,7 +267,7 @@ TEST(CudaKnobs, DependentLaunchesAndUntimedPhasesKeepEveryPipelineExact) {
     for (bool dependent : {false, true}) check_launch_knobs("cuda", graph, dependent);
 }
 
-TEST(CudaKnobs, UpdatesKeptAsProducedAndSharedInWarpsStayExact) {
+TEST(CudaKnobs, UpdateVariantsKeepEveryPipelineExact) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   check_update_knobs("cuda");
 }
@@ -291,14 +291,7 @@ class CudaFrontCycles : public testing::TestWithParam<std::string> {
   }
 };
 
-TEST_P(CudaFrontCycles, AllPipelinesExactEveryFrame) {
-  const ExactFrames scene = exact_frames(*front_scene(GetParam(), 96, 16));
-  for (uint32_t cycle : {1u, 2u, 3u, 5u, 0u}) {
-    SCOPED_TRACE("front cycle " + std::to_string(cycle));
-    check_pipelines_on(config_for("cuda", 0.5, 0.05, cycle), scene);
-    if (HasFatalFailure()) return;
-  }
-}
+TEST_P(CudaFrontCycles, AllPipelinesExactEveryFrame) { check_front_cycles("cuda", GetParam(), 96, 16); }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaFrontCycles, testing::ValuesIn(front_scene_names()), front_scene_name);
 

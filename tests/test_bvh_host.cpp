@@ -113,14 +113,7 @@ TEST(HostPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
 // for every cycle.
 class HostFrontCycles : public testing::TestWithParam<std::string> {};
 
-TEST_P(HostFrontCycles, AllPipelinesExactEveryFrame) {
-  const ExactFrames scene = exact_frames(*front_scene(GetParam(), 24, 12));
-  for (uint32_t cycle : {1u, 2u, 3u, 5u, 0u}) {
-    SCOPED_TRACE("front cycle " + std::to_string(cycle));
-    check_pipelines_on(config_for("cpu", 0.5, 0.05, cycle), scene);
-    if (HasFatalFailure()) return;
-  }
-}
+TEST_P(HostFrontCycles, AllPipelinesExactEveryFrame) { check_front_cycles("cpu", GetParam(), 24, 12); }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HostFrontCycles, testing::ValuesIn(front_scene_names()), front_scene_name);
 

@@ -214,7 +214,7 @@ TEST(HostKnobs, LazyRefitOnSplitTreesKeepsBothTreesStale) {
 
 TEST(HostKnobs, UntimedPhasesKeepEveryPipelineExact) { check_launch_knobs("cpu", false, false); }
 
-TEST(HostKnobs, UpdatesKeptAsProducedStayExact) { check_update_knobs("cpu"); }
+TEST(HostKnobs, UpdateVariantsKeepEveryPipelineExact) { check_update_knobs("cpu"); }
 
 TEST(HostKnobs, ProbedUpdatesRunOnce) { check_update_probe("cpu"); }
 
