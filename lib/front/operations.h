@@ -195,10 +195,6 @@ CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const
                                                     uint32_t i, uint32_t j) {
   const FrontTree& tree = view.tree;
   const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-  // j's father is loaded with j's box, before the test that tells whether it is needed:
-  // most front nodes of a stale front miss and read it, and loaded after the test it cost
-  // them a second memory round trip before the father's box.
-  uint32_t father = tree.parent(j);
   const NextNode step = next_node(tree.bvh, j, lo, hi);
   if (step.leaf_hit) {
     pairs.emit(lane_link(hi.w), step.prim);
@@ -206,23 +202,21 @@ CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const
     return {};
   }
   if (!step.stop) return {lo, hi, i, step.next, step.escape, true};
-  // Each father's left link comes with its box (node_ref.h), and its own father is loaded
-  // with them, so that a climb costs one memory round trip a level.
-  uint32_t child = j;
+  // Each father's left link comes with its box (node_ref.h).
+  uint32_t child = j, father = tree.parent(j);
   for (;;) {
     if (father == kNoNode) {
       front.push(i, child, 0);
       return {};
     }
     const vec4f flo = tree.bvh.node_lo[father], fhi = tree.bvh.node_hi[father];
-    const uint32_t grandfather = tree.node_parent[father];
     const bool left_child = lane_link(flo.w) == child, hit = overlaps(lo, hi, flo, fhi);
     if (!left_child || hit) {
       if (left_child || hit) front.push(i, child, 0);
       return {};
     }
     child = father;
-    father = grandfather;
+    father = tree.node_parent[father];
   }
 }
 

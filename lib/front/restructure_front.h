@@ -106,7 +106,6 @@ struct RestructureFrontFn {
       if (!(q & kKeptQuery)) front.push(q, stop, 1);
     });
   }
-  __device__ void flush(Stage&) const {}
 #endif
 };
 
