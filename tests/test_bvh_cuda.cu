@@ -7,6 +7,7 @@
 #include "knob_cases.h"
 #include "precision_cases.h"
 #include "offset_cases.h"
+#include "scan_cases.h"
 #include "io/scene.h"
 #include "exec/cuda_exec.cuh"
 
@@ -61,6 +62,11 @@ TEST_F(CudaCells, BoxRangesHoldTheirPointsAndHomeCells) {
 TEST_F(CudaCells, OnePointSceneIsOneCell) { check_one_point_scene_is_one_cell<CudaExec>(); }
 
 TEST_F(CudaCells, SceneStatsReduction) { check_scene_stats_reduction<CudaExec>(); }
+
+TEST(CudaExecScan, PairMatchesTheSerialScans) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_exclusive_scan_pair<CudaExec>();
+}
 
 TEST(CudaHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/pair_set.h"
 #include "exec/host_exec.h"
+#include "scan_cases.h"
 
 namespace cdb {
 namespace {
@@ -76,6 +77,8 @@ TEST(HostExecScan, MatchesTheSerialScan) {
     }
   }
 }
+
+TEST(HostExecScan, PairMatchesTheSerialScans) { check_exclusive_scan_pair<HostExec>(); }
 
 TEST(HostExecScan, RefusesTooLittleTemporaryStorage) {
   HostExec exec;

@@ -1,3 +1,4 @@
+#include <cub/block/block_scan.cuh>
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 #include <cstring>
@@ -79,6 +80,54 @@ void CudaExec::exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void*
   if (n == 0) return;
   cuda_check(cub::DeviceScan::ExclusiveSum(temp, temp_bytes, in, out, int64_t(n), stream_),
              "exclusive scan");
+}
+
+namespace {
+
+struct ScanJob {
+  const uint32_t* in;
+  uint32_t* out;
+  uint32_t n;
+};
+
+// Tiles of 4K values, about 2 us each on the H100 (a dependent round of loads, scan and
+// stores): two 9K-value count logs took 7.4 us against 13.8 for two device scans, two
+// 32K-value ones 16.7 us against 13.8 (Nsight Compute). 16 values a thread with warp scans
+// was slower still (13.3 and 37.7 us).
+constexpr uint32_t kPairScanThreads = 1024, kPairScanItems = 4;
+
+// Block b scans job b alone, tile after tile of kPairScanThreads * kPairScanItems values,
+// each thread a run of kPairScanItems consecutive ones, carrying the running total.
+__global__ void __launch_bounds__(kPairScanThreads) pair_scan_kernel(ScanJob first, ScanJob second) {
+  dependent_launch_entry();
+  const ScanJob job = blockIdx.x == 0 ? first : second;
+  using Scan = cub::BlockScan<uint32_t, kPairScanThreads>;
+  __shared__ typename Scan::TempStorage storage;
+  uint32_t carry = 0;
+  for (uint32_t base = 0; base < job.n; base += kPairScanThreads * kPairScanItems) {
+    const uint32_t at = base + threadIdx.x * kPairScanItems;
+    uint32_t v[kPairScanItems];
+    for (uint32_t k = 0; k < kPairScanItems; ++k) v[k] = at + k < job.n ? job.in[at + k] : 0u;
+    uint32_t total = 0;
+    Scan(storage).ExclusiveSum(v, v, total);
+    for (uint32_t k = 0; k < kPairScanItems; ++k)
+      if (at + k < job.n) job.out[at + k] = carry + v[k];
+    carry += total;
+    __syncthreads();  // the storage is used again by the next tile
+  }
+}
+
+}  // namespace
+
+void CudaExec::exclusive_scan_pair(const uint32_t* in0, uint32_t* out0, size_t n0, const uint32_t* in1,
+                                   uint32_t* out1, size_t n1, void* temp, size_t temp_bytes) const {
+  if (std::max(n0, n1) > kPairScanBlockMax) {
+    exclusive_scan(in0, out0, n0, temp, temp_bytes);
+    exclusive_scan(in1, out1, n1, temp, temp_bytes);
+    return;
+  }
+  if (n0 + n1 == 0) return;
+  launch(pair_scan_kernel, 2, kPairScanThreads, 0, ScanJob{in0, out0, uint32_t(n0)}, ScanJob{in1, out1, uint32_t(n1)});
 }
 
 size_t CudaExec::sort_temp_bytes(size_t n) const {

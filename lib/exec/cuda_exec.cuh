@@ -225,6 +225,14 @@ class CudaExec {
   }
 
   size_t scan_temp_bytes(size_t n) const;
+  // Two exclusive scans at once (the count logs of a front's two kinds): while both have at
+  // most kPairScanBlockMax values, one launch with one block per array; past it, one device
+  // scan each. temp holds scan_temp_bytes of the longer. A device scan is two launches of
+  // 2 to 5 us each however short the array (Nsight Compute, H100), and a front's ordering
+  // scanned both kinds' count logs that way: four launches a produced front.
+  static constexpr size_t kPairScanBlockMax = size_t(1) << 14;
+  void exclusive_scan_pair(const uint32_t* in0, uint32_t* out0, size_t n0, const uint32_t* in1, uint32_t* out1,
+                           size_t n1, void* temp, size_t temp_bytes) const;
   void exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void* temp,
                       size_t temp_bytes) const;
 

@@ -92,6 +92,12 @@ class HostExec {
   size_t scan_temp_bytes(size_t) const { return kScanChunks * sizeof(uint32_t); }
   // out[i] = in[0] + ... + in[i - 1] (mod 2^32); in and out may be the same array.
   void exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void* temp, size_t temp_bytes) const;
+  // Two scans, as CudaExec::exclusive_scan_pair; temp holds scan_temp_bytes of the longer.
+  void exclusive_scan_pair(const uint32_t* in0, uint32_t* out0, size_t n0, const uint32_t* in1, uint32_t* out1,
+                           size_t n1, void* temp, size_t temp_bytes) const {
+    exclusive_scan(in0, out0, n0, temp, temp_bytes);
+    exclusive_scan(in1, out1, n1, temp, temp_bytes);
+  }
 
   // Radix sort in digits of kSortDigitBits over chunks of consecutive keys: each chunk
   // counts its digits, then scatters its keys in order behind the earlier chunks' keys of

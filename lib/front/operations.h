@@ -48,6 +48,11 @@ struct FrontView {
   CDB_HD_INLINE uint32_t start(const vec4f& lo) const { return cross ? tree.bvh.root() : lane_link(lo.w); }
 };
 
+// A traversal task whose query carries this bit records no stop nodes: a front node kept as
+// it is (restructure's valid nodes) is traversed for its pairs only. Leaf indices stay below
+// kMaxLeaves (node_ref.h), so the top bit is free.
+inline constexpr uint32_t kKeptQuery = kLeafBit;
+
 // The traversal (bvh/traverse.h) of the nodes from `node` up to (not including) `end` for
 // query leaf i: leaves that overlap are pairs, and its stop nodes are pushed to the front
 // (a FrontSink, or a PatchSink) when kRecord.
@@ -125,6 +130,16 @@ CDB_HD_INLINE void add_to_slots(unsigned long long* slots, const uint32_t (&n)[2
 #endif
 }
 
+// Front node (i, j)'s own test as preserve makes it: its pair if j is a leaf that overlaps,
+// and the traversal left below j (query i | tag).
+CDB_HD_INLINE TraversalTask front_node_step(const FrontView& view, const PairSink& pairs, uint32_t i, uint32_t j,
+                                            uint32_t tag) {
+  const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
+  const uint32_t q = lane_link(hi.w);
+  const NextNode step = visit(view.tree.bvh, j, lo, hi, [&](uint32_t other) { pairs.emit(q, other); });
+  return {lo, hi, i | tag, step.next, step.escape, !step.stop};
+}
+
 // (2) Preserve: traverse from every stored front node; the front is not rewritten. On the
 // GPU the traversals left after the first step are shared out within each warp
 // (front/warp_traversal.h). kCountStops (a probe before an update): also count, per kind,
@@ -143,13 +158,9 @@ struct PreserveFrontFn {
   CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage); }
   // Front node e's own test: its pair if it is a leaf that overlaps, and the rest.
   CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
-    const uint32_t i = prim[e], j = node[e];
+    const uint32_t j = node[e];
     if (j == kFrontDropped) return {};
-    const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-    const uint32_t q = lane_link(hi.w);
-    const PairSink sink = pair_sink(stage);
-    const NextNode step = visit(view.tree.bvh, j, lo, hi, [&](uint32_t other) { sink.emit(q, other); });
-    return {lo, hi, i, step.next, step.escape, !step.stop};
+    return front_node_step(view, pair_sink(stage), prim[e], j, 0);
   }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
     const TraversalTask t = first_step(e, stage);

@@ -14,7 +14,7 @@ namespace cdb {
 // segment, sprout-marked from its back and prune-marked from its front (the cursors count
 // the places taken on each side; zero before the pass).
 struct SegmentScatter {
-  uint32_t* offset_log;  // written by the scan before the scatter (histogram_scatter)
+  uint32_t* offset_log;  // the count log's exclusive scan, written before the scatter
   uint32_t* cursor_front;
   uint32_t* cursor_back;
   uint32_t* out_prim;
@@ -42,6 +42,22 @@ struct ScatterFrontFn {
   }
 };
 
+// One launch over both kinds of a front: index e < n0 runs `internal`, the rest `external`,
+// each pass launched over its own kind's size or capacity. A front's ordering passes are
+// short (2 to 6 us each on the H100 for fronts of 10^5 nodes), so a launch each for the
+// two kinds cost as much again as the work.
+template <class F>
+struct BothKinds {
+  F internal, external;
+  uint32_t n0;
+  CDB_HD void operator()(uint32_t e) const {
+    if (e < n0)
+      internal(e);
+    else
+      external(e - n0);
+  }
+};
+
 // A scatter of front f into its sorted arrays by f's offset log. Its cursors must be zero:
 // the fill of f's order counts before the front was produced zeroed them with the count log
 // (FrontQuery::produce_sink), or zero_cursors did.
@@ -55,34 +71,6 @@ SegmentScatter segment_scatter(FrontArrays<Exec>& f) {
 template <class Exec>
 void zero_cursors(Exec& exec, FrontArrays<Exec>& f) {
   exec.fill(f.cursor_front(), 2 * f.segments(), 0u);
-}
-
-// The offset log of a produced front: its count log's exclusive scan (`segments` + 1 entries).
-template <class Exec>
-void scan_count_log(Exec& exec, FrontArrays<Exec>& f, size_t segments, void* temp, size_t temp_bytes) {
-  exec.exclusive_scan(f.count_log(), f.offset_log.data(), segments + 1, temp, temp_bytes);
-}
-
-// Histogram sort of produced nodes (size on the device in *count, at most `launch`)
-// counted in `count_log` (`segments` + 1 entries): the count log's exclusive scan into
-// to.offset_log, then one scatter by `to`.
-template <class Exec>
-void histogram_scatter(Exec& exec, const uint32_t* count_log, const SegmentScatter& to, size_t segments,
-                       const unsigned long long* count, const uint32_t* prim, const uint32_t* node,
-                       const uint8_t* mark, size_t launch, void* temp, size_t temp_bytes) {
-  exec.exclusive_scan(count_log, to.offset_log, segments + 1, temp, temp_bytes);
-  exec.for_each_n(launch, ScatterFrontFn{count, launch, prim, node, mark, to});
-}
-
-// Orders a produced front (raw arrays, size on the device in *count, at most the raw
-// capacity, `launch`) into the sorted arrays, using its filled count log with `segments`
-// entries.
-template <class Exec>
-void order_front(Exec& exec, FrontArrays<Exec>& f, size_t segments, const unsigned long long* count,
-                 const uint32_t* prim, const uint32_t* node, const uint8_t* mark, size_t launch,
-                 void* temp, size_t temp_bytes) {
-  histogram_scatter(exec, f.count_log(), segment_scatter(f), segments, count, prim, node, mark, launch, temp,
-                    temp_bytes);
 }
 
 }  // namespace cdb

@@ -60,12 +60,11 @@ struct ClassifyFrontFn {
 // kept nodes are left to the next update (Algorithm 1) to sprout or prune: this pass costs
 // about a preserve plus the front's write, not an update. On the GPU the traversals are
 // shared out within each warp (front/warp_traversal.h) when share_in_warp; a kept node's
-// traversal records nothing, which its task carries in its query's top bit (kKeptQuery).
+// traversal records nothing, which its task carries in its query's top bit (kKeptQuery,
+// front/operations.h).
 struct RestructureFrontFn {
   using Stage = PairFrontStage;  // unstaged: the pass runs rarely, its sinks append directly
   static constexpr bool kWarpTraversal = true;
-  // Leaf indices stay below kMaxLeaves (node_ref.h), so the top bit is free.
-  static constexpr uint32_t kKeptQuery = kLeafBit;
   FrontView view;  // a self front: restructuring renumbers the leaves cross fronts query from
   PairSink pairs;
   FrontSink front;
@@ -78,19 +77,15 @@ struct RestructureFrontFn {
   CDB_HD TraversalTask first_step(uint32_t e, Stage*) const {
     const uint32_t i = prim[e], j = node[e];
     if (j == kFrontDropped) return {};
-    const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
     if (j == kFrontRegenerate) {
+      const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
       const uint32_t c = cand.slot_of_leaf(i) - 1;
       // From leaf i's escape, which rides in its box (node_ref.h), to the subtree's.
       const uint32_t from = lane_link(lo.w), to = cand.escape[c];
       return {lo, hi, i, from, to, from != to};
     }
     front.push(i, j, 0);
-    // Node j's links and a leaf's primitive come with its box (bvh/traverse.h); if it is a
-    // stop node, next is its escape and nothing is left.
-    const uint32_t q = lane_link(hi.w);
-    const NextNode step = visit(view.tree.bvh, j, lo, hi, [&](uint32_t other) { pairs.emit(q, other); });
-    return {lo, hi, i | kKeptQuery, step.next, step.escape, step.next != step.escape};
+    return front_node_step(view, pairs, i, j, kKeptQuery);
   }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
     const TraversalTask t = first_step(e, stage);

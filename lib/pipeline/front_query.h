@@ -187,13 +187,20 @@ class FrontQuery {
   // counters) histogram-sorted onto the front's end.
   void sort_tails(Exec& exec, Pairs& pairs) {
     if (!active_) return;
-    for (int k = 0; k < 2; ++k) {
+    FrontArrays<Exec>&fi = front_[kInternalFront], &fe = front_[kExternalFront];
+    exec.exclusive_scan_pair(fi.tail_count_log(), fi.tail_offset_log.data(), segments(kInternalFront) + 1,
+                             fe.tail_count_log(), fe.tail_offset_log.data(), segments(kExternalFront) + 1,
+                             tree_->temp.data(), tree_->temp.size());
+    auto scatter = [&](int k) {
       FrontArrays<Exec>& f = front_[k];
       const SegmentScatter to{f.tail_offset_log.data(), f.tail_cursor_front(), f.tail_cursor_back(),
                               f.prim.data() + f.size, f.node.data() + f.size};
-      histogram_scatter(exec, f.tail_count_log(), to, segments(k), &counters(pairs)->produced[k], f.raw_prim.data(),
-                        f.raw_node.data(), f.raw_mark.data(), append_room(k), tree_->temp.data(), tree_->temp.size());
-    }
+      return ScatterFrontFn{&counters(pairs)->produced[k], append_room(k), f.raw_prim.data(), f.raw_node.data(),
+                            f.raw_mark.data(), to};
+    };
+    const size_t n0 = append_room(kInternalFront);
+    exec.for_each_n(n0 + append_room(kExternalFront),
+                    BothKinds<ScatterFrontFn>{scatter(kInternalFront), scatter(kExternalFront), uint32_t(n0)});
   }
 
   // After an update in place's read-back (`c`): true if its appends fit, and the front then
@@ -238,21 +245,29 @@ class FrontQuery {
                     Balance::uneven);
   }
 
-  // Histogram sort of the produced fronts (sizes on the device in the counters).
+  // Histogram sort of the produced fronts (sizes on the device in the counters): both
+  // kinds' count logs scanned together, then one scatter launch for both.
   void order(Exec& exec, Pairs& pairs) {
     if (!active_) return;
-    for (int k = 0; k < 2; ++k) {
+    offsets(exec);
+    auto scatter = [&](int k) {
       FrontArrays<Exec>& f = front_[k];
-      order_front(exec, f, segments(k), &counters(pairs)->produced[k], f.raw_prim.data(), f.raw_node.data(),
-                  f.raw_mark.data(), f.raw_prim.capacity(), tree_->temp.data(), tree_->temp.size());
-    }
+      return ScatterFrontFn{&counters(pairs)->produced[k], f.raw_prim.capacity(), f.raw_prim.data(),
+                            f.raw_node.data(), f.raw_mark.data(), segment_scatter(f)};
+    };
+    const size_t n0 = front_[kInternalFront].raw_prim.capacity();
+    exec.for_each_n(n0 + front_[kExternalFront].raw_prim.capacity(),
+                    BothKinds<ScatterFrontFn>{scatter(kInternalFront), scatter(kExternalFront), uint32_t(n0)});
   }
 
-  // The produced fronts' offset logs alone (the count log's scan), for fronts kept in the
+  // The produced fronts' offset logs alone (the count logs' scans), for fronts kept in the
   // order they were produced: balance scatters by them and the inspection reads them.
   void offsets(Exec& exec) {
     if (!active_) return;
-    for (int k = 0; k < 2; ++k) scan_count_log(exec, front_[k], segments(k), tree_->temp.data(), tree_->temp.size());
+    FrontArrays<Exec>&fi = front_[kInternalFront], &fe = front_[kExternalFront];
+    exec.exclusive_scan_pair(fi.count_log(), fi.offset_log.data(), segments(kInternalFront) + 1, fe.count_log(),
+                             fe.offset_log.data(), segments(kExternalFront) + 1, tree_->temp.data(),
+                             tree_->temp.size());
   }
 
   // Radix sort of the produced fronts, with their sizes read back (`c`).
@@ -273,15 +288,22 @@ class FrontQuery {
   // scatters.
   void balance(Exec& exec, RadixScratch<Exec>* radix) {
     if (!active_) return;
+    if (!radix) {
+      auto mark = [&](int k) {
+        FrontArrays<Exec>& f = front_[k];
+        zero_cursors(exec, f);
+        return MarkScatterFrontFn{view(), f.prim.data(), f.node.data(), segment_scatter(f)};
+      };
+      const size_t n0 = front_[kInternalFront].size;
+      exec.for_each_n(n0 + front_[kExternalFront].size,
+                      BothKinds<MarkScatterFrontFn>{mark(kInternalFront), mark(kExternalFront), uint32_t(n0)});
+    }
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
       if (radix) {
         exec.for_each_n(f.size, MarkFrontFn{view(), f.prim.data(), f.node.data(), f.raw_mark.data()});
         radix_order_front(exec, f, *radix, f.size, key_bits(k), f.prim.data(), f.node.data(),
                           f.raw_mark.data());
-      } else {
-        zero_cursors(exec, f);
-        exec.for_each_n(f.size, MarkScatterFrontFn{view(), f.prim.data(), f.node.data(), segment_scatter(f)});
       }
       std::swap(f.prim, f.sorted_prim);
       std::swap(f.node, f.sorted_node);
