@@ -155,6 +155,11 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       ->group(kTuningGroup)
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  add_switch(cmd, "--regenerate", c.regenerate,
+             "front pipelines with --front-cycle auto: each maintenance runs an update of the fronts or a generate "
+             "of new ones, whichever measured cheaper per front node last (one generate is tried after the first "
+             "update); off: always an update (the paper)")
+      ->group(kTuningGroup);
   add_switch(cmd, "--update-probe", c.update_probe,
              "front pipelines: the preserves before an update count what it can produce, and the front buffers "
              "grow to that between frames; off: an update that outgrows them grows them inside its frame and runs "

@@ -29,6 +29,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"order_updates", c.order_updates},
       {"update_in_place", c.update_in_place},
       {"compact_share", c.compact_share},
+      {"regenerate", c.regenerate},
       {"update_probe", c.update_probe},
       {"refit_top_leaves", c.refit_top_leaves},
       {"conservative", config_conservative(c)},

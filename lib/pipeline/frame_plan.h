@@ -71,7 +71,7 @@ struct FramePlan {
 class FramePlanner {
  public:
   FramePlanner(FrontStrategy strategy, const PipelineConfig& config)
-      : strategy_(strategy), config_(config), maintenance_(config.front_cycle) {}
+      : strategy_(strategy), config_(config), maintenance_(config.front_cycle, config.regenerate) {}
 
   const FrontStrategy& strategy() const { return strategy_; }
   const FrontMaintenance& maintenance() const { return maintenance_; }
@@ -111,9 +111,11 @@ class FramePlanner {
     // Balance orders a front by the offsets of the sort that produced it: not one with holes
     // and an appended tail.
     p.balance = strategy_.balance && updates && !p.in_place && disorder == 0.0;
-    // Inspected after an update (the paper's circle 3) only: right after a rebuild Q is the
-    // reference, and a restructure keeps the stale front for the next update to refresh.
-    p.inspect = strategy_.restructure && q_ref_ > 0.0 && p.self == FrontOp::update;
+    // Inspected after a maintenance (the paper's circle 3: an update, or a generate chosen
+    // instead) only: right after a rebuild Q is the reference, and a restructure keeps the
+    // stale front for the next maintenance to refresh.
+    p.inspect = strategy_.restructure && q_ref_ > 0.0 &&
+                (p.self == FrontOp::update || (p.self == FrontOp::generate && !p.rebuild));
     p.probe = config_.update_probe && !p.rebuild && cycle == FrontOp::preserve &&
               maintenance_.update_near(frame_, generated_, produced_, front_nodes);
     return p;
@@ -130,8 +132,8 @@ class FramePlanner {
   };
   void finish(const FramePlan& p, const Outcome& o) {
     maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild,
-                         o.ran_once && !o.recorded,
-                         o.ms, o.front_nodes);
+                         o.ran_once && !o.recorded, o.ms, o.front_nodes,
+                         !p.rebuild && p.self == FrontOp::generate);
     if (p.rebuild || p.self == FrontOp::generate) generated_ = frame_;
     if (p.produces()) {
       produced_ = frame_;
@@ -163,10 +165,13 @@ class FramePlanner {
     if (!maintenance_.update_due(frame_, generated_, produced_, front_nodes)) return FrontOp::preserve;
     // periodic: every second maintenance generates. With a fixed cycle that is every second
     // cycle since the last generate; adaptively, the maintenance after an update.
-    if (strategy_.periodic && (maintenance_.adaptive() ? produced_ > generated_
-                                                       : ((frame_ - generated_) / config_.front_cycle) % 2 == 0))
-      return FrontOp::generate;
-    return FrontOp::update;
+    if (strategy_.periodic) {
+      if (maintenance_.adaptive() ? produced_ > generated_ : ((frame_ - generated_) / config_.front_cycle) % 2 == 0)
+        return FrontOp::generate;
+      return FrontOp::update;
+    }
+    // Adaptive: a generate where one measured cheaper than an update (FrontMaintenance).
+    return maintenance_.generate_due() ? FrontOp::generate : FrontOp::update;
   }
 
   FrontStrategy strategy_;

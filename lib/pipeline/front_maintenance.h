@@ -29,6 +29,14 @@
 // ratio measured between the two on the anchor scenes, so fronts that degrade fast get a
 // first update soon and fronts that barely degrade none in a short run. Figures and what
 // was tried: docs/front-maintenance.md.
+//
+// What a maintenance runs (regenerate): an update, or a generate of new fronts from the
+// current tree, whichever its last measured cost per front node says is cheaper. A generate
+// costs what the geometry costs, however stale the fronts; an update of stale fronts can
+// cost more (sphere: 4.1-4.3 median frames against a generate's 2.2-2.7) or less (the
+// falling spheres: 3.0 against 7.5). Once an update was measured, the next maintenance
+// tries a generate; from then on each runs the one measured cheaper last, which re-measures
+// it, so a choice that grew dear gives way.
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -44,12 +52,19 @@ class FrontMaintenance {
   static constexpr double kProbeShare = 0.5;
 
   // cycle: frames per fixed cycle, or kAuto.
-  explicit FrontMaintenance(uint32_t cycle = kAuto) : cycle_(cycle) {}
+  // regenerate: adaptive maintenances may generate instead of update.
+  explicit FrontMaintenance(uint32_t cycle = kAuto, bool regenerate = false) : cycle_(cycle), regenerate_(regenerate) {}
 
   bool adaptive() const { return cycle_ == kAuto; }
 
   // Forget every measurement (a new run over the frames).
-  void reset() { *this = FrontMaintenance(cycle_); }
+  void reset() { *this = FrontMaintenance(cycle_, regenerate_); }
+
+  // Whether an adaptive maintenance due now generates new fronts instead of updating them.
+  bool generate_due() const {
+    if (!adaptive() || !regenerate_ || update_last_ < 0.0) return false;
+    return generate_last_ < 0.0 || generate_last_ < update_last_;
+  }
 
   // Whether the frame `frame` should update fronts of `front_nodes` nodes generated at
   // `generated` and last produced (generated, updated or restructured) at `produced`.
@@ -79,18 +94,21 @@ class FrontMaintenance {
   // measured, or before any update was, guessed from the build frame (0 before a steady
   // frame was measured).
   double price_ms(uint64_t front_nodes) const {
+    if (generate_due() && generate_last_ >= 0.0) return generate_last_ * double(std::max<uint64_t>(front_nodes, 1));
     if (priced()) return price_per_node_ms_ * double(std::max<uint64_t>(front_nodes, 1));
     return steady_ > 0 ? std::max(0.0, build_ms_ - steady_min_) / kBuildPerUpdate : 0.0;
   }
 
   // A frame's measured cost: `steady` for refit + preserve frames, `updated` for frames
-  // whose fronts were updated (and nothing heavier ran with it), `built` for frames that
-  // built the tree and generated the fronts; `once` when it ran its operations once (no
-  // buffer grew) and recorded no frame graph; `front_nodes`: the fronts it started from. A
-  // steady frame that grew a buffer or recorded its graph paid a one-off cost, not rent for
-  // stale fronts: it is left out (counted, such frames brought updates frames early:
+  // whose fronts were updated (and nothing heavier ran with it), `generated` for frames that
+  // generated them on a refitted tree (a maintenance), `built` for frames that built the
+  // tree and generated the fronts; `once` when it ran its operations once (no buffer grew)
+  // and recorded no frame graph; `front_nodes`: the fronts it started from. A steady frame
+  // that grew a buffer or recorded its graph paid a one-off cost, not rent for stale fronts:
+  // it is left out (counted, such frames brought updates frames early:
   // docs/front-maintenance.md).
-  void observe(bool steady, bool updated, bool built, bool once, double ms, uint64_t front_nodes) {
+  void observe(bool steady, bool updated, bool built, bool once, double ms, uint64_t front_nodes,
+               bool generated = false) {
     if (built) build_ms_ = ms;
     if (steady) {
       if (!once) return;
@@ -99,9 +117,15 @@ class FrontMaintenance {
       ++steady_;
       return;
     }
-    if (!updated || steady_ == 0 || (!once && clean_)) return;
+    if (!(updated || generated) || steady_ == 0) return;
     // Over the cheapest steady frame before it: the cost of a steady frame on fresh fronts.
     const double per_node = std::max(0.0, ms - steady_min_) / double(std::max<uint64_t>(front_nodes, 1));
+    if (generated) {
+      if (once) generate_last_ = per_node;
+      return;
+    }
+    if (once) update_last_ = per_node;
+    if (!once && clean_) return;
     price_per_node_ms_ = priced() && (clean_ || !once) ? std::min(price_per_node_ms_, per_node) : per_node;
     clean_ = clean_ || once;
   }
@@ -115,7 +139,10 @@ class FrontMaintenance {
 
  private:
   uint32_t cycle_;
+  bool regenerate_;
   double price_per_node_ms_ = -1.0;  // the cheapest measured update per front node
+  double update_last_ = -1.0;        // the last update per front node that ran once
+  double generate_last_ = -1.0;      // the last maintenance generate per front node that ran once
   double build_ms_ = 0.0;            // the last frame that built the tree
   bool clean_ = false;               // that price comes from updates that ran once
   double steady_sum_ = 0.0;

@@ -55,6 +55,10 @@ struct PipelineConfig {
   // since the last update has paid for one (pipeline/front_maintenance.h); K: every K-th
   // frame since the fronts were generated, the paper's fixed cycle.
   uint32_t front_cycle = 0;
+  // --front-cycle auto: each maintenance runs an update or a generate of new fronts,
+  // whichever measured cheaper last (pipeline/front_maintenance.h); off: always an update
+  // (the paper). The periodic strategy keeps its own alternation.
+  bool regenerate = true;
   // Co-vertex filtering: pairs of triangles sharing a vertex are not reported.
   bool skip_adjacent = false;
   // Pipeline c / restructure (paper §4.1-4.2, docs/design.md "Quality and restructuring").
