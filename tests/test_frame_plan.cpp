@@ -343,14 +343,18 @@ TEST(FramePlan, UpdatesInPlaceUntilTheOrderDecays) {
   }
 }
 
-// --regenerate: after the first update, one maintenance generates; from then on each runs
-// whichever of the two measured cheaper last (off: every maintenance updates). Steady frames grow dearer by 0.5 a frame since
-// the fronts were produced; an update costs 2 over a steady frame, a generate `extra`.
-// Pipeline c inspects after a generate chosen so as after an update.
+// --regenerate: once an update was measured, a maintenance generates if the build frame's
+// generate (per front node made) cost less than that update; from then on each runs
+// whichever of the two measured cheaper last (off: every maintenance updates). Steady frames
+// grow dearer by 0.5 a frame since the fronts were produced; an update costs 2 over a
+// steady frame (0.02 per front node), a generate `extra`; the build frame's generate costs
+// `bound` per node (-1: not timed). Pipeline c inspects after a generate chosen as after an
+// update.
 TEST(FramePlan, AdaptiveMaintenanceRunsWhicheverMeasuredCheaper) {
   FrontStrategy c;
   c.restructure = true;
   for (const bool regenerate : {true, false})
+  for (const double bound : {0.01, 0.03, -1.0})
   for (const double extra : {1.0, 3.0}) {
     PipelineConfig cfg = cycle_config(0);
     cfg.regenerate = regenerate;
@@ -368,12 +372,14 @@ TEST(FramePlan, AdaptiveMaintenanceRunsWhicheverMeasuredCheaper) {
       } else if (!p.rebuild) {
         ms = 1.0 + 0.5 * since++;
       }
-      planner.finish(p, {ms, true, 100, 1.0, {}});
+      planner.finish(p, {ms, true, 100, 1.0, {}, false, p.rebuild ? bound : -1.0});
     }
     ASSERT_GE(maintenances.size(), 5u) << extra;
-    // Off, every maintenance updates.
-    EXPECT_EQ(maintenances.substr(0, 5), !regenerate ? "uuuuu" : extra < 2.0 ? "ugggg" : "uguuu")
-        << extra << (regenerate ? " regenerate" : " update only");
+    const std::string expected = !regenerate || bound < 0.0 || bound >= 0.02 ? "uuuuu"
+                                 : extra < 2.0                               ? "ugggg"
+                                                                             : "uguuu";
+    EXPECT_EQ(maintenances.substr(0, 5), expected)
+        << "generate " << extra << ", bound " << bound << (regenerate ? ", regenerate" : ", update only");
   }
 }
 

@@ -329,6 +329,9 @@ class CudaPhaseTimer {
   void stop(Phase p);
   void start_frame();
   void stop_frame();
+  // Times every phase from here until force_phases(false), phases off or not: the build
+  // frame's generate, which prices a maintenance generate (pipeline/front_maintenance.h).
+  void force_phases(bool on) { forced_ = on; }
   double phase_ms(Phase p) const;
   double frame_ms() const;
   // Synchronizations of the executor since start_frame(), the frame's read-back included.
@@ -354,9 +357,10 @@ class CudaPhaseTimer {
  private:
   cudaEvent_t next_event();
   void record(cudaEvent_t e);
-  bool timed(Phase p) const { return phases_ || p == Phase::upload; }
+  bool timed(Phase p) const { return phases_ || forced_ || p == Phase::upload; }
   const CudaExec* exec_;
   bool phases_;
+  bool forced_ = false;
   uint64_t syncs_at_start_ = 0;
   cudaStream_t stream_;
   std::vector<cudaEvent_t> pool_;

@@ -220,6 +220,8 @@ class HostPhaseTimer {
   void stop_frame() {
     frame_ms_ = std::chrono::duration<double, std::milli>(clock::now() - frame_begin_).count();
   }
+  // As CudaPhaseTimer::force_phases.
+  void force_phases(bool on) { forced_ = on; }
   // Valid once the executor has synchronized after stop_frame().
   double phase_ms(Phase p) const { return ms_[size_t(p)]; }
   double frame_ms() const { return frame_ms_; }
@@ -227,9 +229,10 @@ class HostPhaseTimer {
   uint64_t frame_syncs() const { return exec_->host_syncs() - syncs_at_start_; }
 
  private:
-  bool timed(Phase p) const { return phases_ || p == Phase::upload; }
+  bool timed(Phase p) const { return phases_ || forced_ || p == Phase::upload; }
   const HostExec* exec_;
   bool phases_;
+  bool forced_ = false;
   uint64_t syncs_at_start_ = 0;
   using clock = std::chrono::steady_clock;
   std::array<clock::time_point, kPhaseCount> begin_{};

@@ -129,11 +129,13 @@ class FramePlanner {
     double q_root = 0.0;      // internal over external self-front nodes after it
     Candidates found;         // what its inspection found (capped at the candidates' buffer)
     bool recorded = false;    // it recorded its frame graph (a one-off cost)
+    double generate_per_node_ms = -1.0;  // a build frame: its generate and ordering per front node made
   };
   void finish(const FramePlan& p, const Outcome& o) {
     maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild,
                          o.ran_once && !o.recorded, o.ms, o.front_nodes,
                          !p.rebuild && p.self == FrontOp::generate);
+    if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
     if (p.rebuild || p.self == FrontOp::generate) generated_ = frame_;
     if (p.produces()) {
       produced_ = frame_;

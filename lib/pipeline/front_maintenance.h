@@ -34,9 +34,14 @@
 // current tree, whichever its last measured cost per front node says is cheaper. A generate
 // costs what the geometry costs, however stale the fronts; an update of stale fronts can
 // cost more (sphere: 4.1-4.3 median frames against a generate's 2.2-2.7) or less (the
-// falling spheres: 3.0 against 7.5). Once an update was measured, the next maintenance
-// tries a generate; from then on each runs the one measured cheaper last, which re-measures
-// it, so a choice that grew dear gives way.
+// falling spheres: 3.0 against 7.5). Before a maintenance generate ran, the build frame's
+// generate and ordering (timed alone) per front node made stand for it: a bound, since a
+// maintenance generate's cost over a steady frame leaves out the preserve it replaces. A
+// generate is tried once that bound is below the last update's cost; from then on each
+// maintenance runs the one measured cheaper last, which re-measures it, so a choice that
+// grew dear gives way. (Trying a generate after the first update whatever the bound cost
+// the scenes where it lost one dear frame a run: 5-8% of the mean on cloth-ball and the
+// falling spheres, docs/experiments.md.)
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -63,8 +68,15 @@ class FrontMaintenance {
   // Whether an adaptive maintenance due now generates new fronts instead of updating them.
   bool generate_due() const {
     if (!adaptive() || !regenerate_ || update_last_ < 0.0) return false;
-    return generate_last_ < 0.0 || generate_last_ < update_last_;
+    const double generate = generate_last_ >= 0.0 ? generate_last_ : build_generate_;
+    return generate >= 0.0 && generate < update_last_;
   }
+
+  // Whether maintenances may generate (adaptive, regenerate on).
+  bool regenerates() const { return adaptive() && regenerate_; }
+
+  // A build frame's generate and ordering per front node made (see generate_due).
+  void observe_build_generate(double per_node_ms) { build_generate_ = per_node_ms; }
 
   // Whether the frame `frame` should update fronts of `front_nodes` nodes generated at
   // `generated` and last produced (generated, updated or restructured) at `produced`.
@@ -143,6 +155,7 @@ class FrontMaintenance {
   double price_per_node_ms_ = -1.0;  // the cheapest measured update per front node
   double update_last_ = -1.0;        // the last update per front node that ran once
   double generate_last_ = -1.0;      // the last maintenance generate per front node that ran once
+  double build_generate_ = -1.0;     // the last build frame's generate per front node made
   double build_ms_ = 0.0;            // the last frame that built the tree
   bool clean_ = false;               // that price comes from updates that ran once
   double steady_sum_ = 0.0;
