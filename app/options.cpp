@@ -157,8 +157,9 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       ->capture_default_str();
   add_switch(cmd, "--regenerate", c.regenerate,
              "front pipelines with --front-cycle auto: each maintenance runs an update of the fronts or a generate "
-             "of new ones, whichever measured cheaper per front node last (one generate is tried after the first "
-             "update); off: always an update (the paper)")
+             "of new ones, whichever measured cheaper per front node last (a generate is tried once the first "
+             "frame's generate costs less than the last update); off: always an update (the paper). On pays on "
+             "scenes whose fronts go stale fast (sphere) and costs a few percent elsewhere")
       ->group(kTuningGroup);
   add_switch(cmd, "--update-probe", c.update_probe,
              "front pipelines: the preserves before an update count what it can produce, and the front buffers "

@@ -237,7 +237,8 @@ struct UpdateKnobs {
 // --order-updates off (updates keep their output in the order produced), --update-warp on
 // and off (sprouts shared out in warps, on CUDA) and --update-in-place (updates write into
 // the current front; compacted at once, now and then, or never), on every front pipeline
-// with fixed cycles and auto, and fronts and pairs that start too small: exactly the
+// with fixed cycles and auto (with --regenerate on: maintenances may generate), and fronts
+// and pairs that start too small: exactly the
 // oracle's pairs every frame, and under a fixed cycle fronts of the same sizes as the
 // paper's sorted whole updates (the same nodes in another order).
 inline void check_update_knobs(const std::string& device) {
@@ -263,6 +264,7 @@ inline void check_update_knobs(const std::string& device) {
           cfg.update_warp = knobs.warp;
           cfg.update_in_place = knobs.in_place;
           cfg.compact_share = knobs.compact_share;
+          cfg.regenerate = cycle == 0;  // adaptive maintenances may generate where measured cheaper
           auto p = make_pipeline(cfg);
           p->set_topology(scene->topology);
           for (uint32_t f = 0; f < scene->num_frames(); ++f) {

@@ -57,8 +57,11 @@ struct PipelineConfig {
   uint32_t front_cycle = 0;
   // --front-cycle auto: each maintenance runs an update or a generate of new fronts,
   // whichever measured cheaper last (pipeline/front_maintenance.h); off: always an update
-  // (the paper). The periodic strategy keeps its own alternation.
-  bool regenerate = true;
+  // (the paper). The periodic strategy keeps its own alternation. Off by default: on made
+  // sphere's mean frame 1.04-1.25x faster and its p95 over median 2.6-2.9 from 3.0-3.5, but
+  // cloth-ball, the falling spheres (a, b) and the 32K cloth 0.87-1.00x (H100,
+  // docs/front-maintenance.md "Update or generate").
+  bool regenerate = false;
   // Co-vertex filtering: pairs of triangles sharing a vertex are not reported.
   bool skip_adjacent = false;
   // Pipeline c / restructure (paper §4.1-4.2, docs/design.md "Quality and restructuring").
