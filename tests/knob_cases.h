@@ -238,9 +238,9 @@ struct UpdateKnobs {
 // and off (sprouts shared out in warps, on CUDA) and --update-in-place (updates write into
 // the current front; compacted at once, now and then, or never), on every front pipeline
 // with fixed cycles and auto (with --regenerate on: maintenances may generate), and fronts
-// and pairs that start too small: exactly the
-// oracle's pairs every frame, and under a fixed cycle fronts of the same sizes as the
-// paper's sorted whole updates (the same nodes in another order).
+// and pairs that start too small: exactly the oracle's pairs every frame, and under a fixed
+// cycle fronts of the same sizes as the paper's sorted whole updates (the same nodes in
+// another order).
 inline void check_update_knobs(const std::string& device) {
   const ExactFrames funnel =
       exact_frames(*make_generator("funnel", {{"res", 40}, {"frames", 12}, {"segments", 16}, {"ball_level", 1}}));

@@ -58,9 +58,9 @@ struct PipelineConfig {
   // --front-cycle auto: each maintenance runs an update or a generate of new fronts,
   // whichever measured cheaper last (pipeline/front_maintenance.h); off: always an update
   // (the paper). The periodic strategy keeps its own alternation. Off by default: on made
-  // sphere's mean frame 1.04-1.25x faster and its p95 over median 2.6-2.9 from 3.0-3.5, but
-  // cloth-ball, the falling spheres (a, b) and the 32K cloth 0.87-1.00x (H100,
-  // docs/front-maintenance.md "Update or generate").
+  // sphere's mean frame 1.09-1.12x faster and its p95 over median 2.6-2.9 from 3.0-3.5, but
+  // cloth-ball 0.94-0.97x, the falling spheres 0.91-1.00x and the 32K cloth 0.94-0.98x
+  // (H100, docs/front-maintenance.md "Update or generate").
   bool regenerate = false;
   // Co-vertex filtering: pairs of triangles sharing a vertex are not reported.
   bool skip_adjacent = false;
