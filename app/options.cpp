@@ -158,8 +158,7 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
   add_switch(cmd, "--regenerate", c.regenerate,
              "front pipelines with --front-cycle auto: each maintenance runs an update of the fronts or a generate "
              "of new ones, whichever measured cheaper per front node last (a generate is tried once the first "
-             "frame's generate costs less than the last update); off: always an update (the paper). On pays on "
-             "scenes whose fronts go stale fast (sphere) and costs a few percent elsewhere")
+             "frame's generate costs less than an update after the first); off: always an update (the paper)")
       ->group(kTuningGroup);
   add_switch(cmd, "--update-probe", c.update_probe,
              "front pipelines: the preserves before an update count what it can produce, and the front buffers "

@@ -343,8 +343,8 @@ TEST(FramePlan, UpdatesInPlaceUntilTheOrderDecays) {
   }
 }
 
-// --regenerate: once an update was measured, a maintenance generates if the build frame's
-// generate (per front node made) cost less than that update; from then on each runs
+// --regenerate: once a second update was measured, a maintenance generates if the build
+// frame's generate (per front node made) cost less than that update; from then on each runs
 // whichever of the two measured cheaper last (off: every maintenance updates). Steady frames
 // grow dearer by 0.5 a frame since the fronts were produced; an update costs 2 over a
 // steady frame (0.02 per front node), a generate `extra`; the build frame's generate costs
@@ -376,8 +376,8 @@ TEST(FramePlan, AdaptiveMaintenanceRunsWhicheverMeasuredCheaper) {
     }
     ASSERT_GE(maintenances.size(), 5u) << extra;
     const std::string expected = !regenerate || bound < 0.0 || bound >= 0.02 ? "uuuuu"
-                                 : extra < 2.0                               ? "ugggg"
-                                                                             : "uguuu";
+                                 : extra < 2.0                               ? "uuggg"
+                                                                             : "uuguu";
     EXPECT_EQ(maintenances.substr(0, 5), expected)
         << "generate " << extra << ", bound " << bound << (regenerate ? ", regenerate" : ", update only");
   }

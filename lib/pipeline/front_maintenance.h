@@ -37,11 +37,12 @@
 // falling spheres: 3.0 against 7.5). Before a maintenance generate ran, the build frame's
 // generate and ordering (timed alone) per front node made stand for it: a bound, since a
 // maintenance generate's cost over a steady frame leaves out the preserve it replaces. A
-// generate is tried once that bound is below the last update's cost; from then on each
-// maintenance runs the one measured cheaper last, which re-measures it, so a choice that
-// grew dear gives way. (Trying a generate after the first update whatever the bound cost
-// the scenes where it lost one dear frame a run: 5-8% of the mean on cloth-ball and the
-// falling spheres, docs/experiments.md.)
+// generate is tried once that bound is below the cost of an update after the first (the
+// first update of a run is its dearest: against it the bound let the generate be tried on
+// every scene); from then on each maintenance runs the one measured cheaper last, which
+// re-measures it, so a choice that grew dear gives way. Trying it where it lost cost one
+// dear frame a run: 3-10% of the mean on cloth-ball, the falling spheres and the 32K cloth
+// (docs/experiments.md).
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -68,8 +69,9 @@ class FrontMaintenance {
   // Whether an adaptive maintenance due now generates new fronts instead of updating them.
   bool generate_due() const {
     if (!adaptive() || !regenerate_ || update_last_ < 0.0) return false;
-    const double generate = generate_last_ >= 0.0 ? generate_last_ : build_generate_;
-    return generate >= 0.0 && generate < update_last_;
+    if (generate_last_ >= 0.0) return generate_last_ < update_last_;
+    // Not tried yet: against an update after the first, the dearest of a run.
+    return updates_once_ >= 2 && build_generate_ >= 0.0 && build_generate_ < update_last_;
   }
 
   // Whether maintenances may generate (adaptive, regenerate on).
@@ -136,7 +138,10 @@ class FrontMaintenance {
       if (once) generate_last_ = per_node;
       return;
     }
-    if (once) update_last_ = per_node;
+    if (once) {
+      update_last_ = per_node;
+      ++updates_once_;
+    }
     if (!once && clean_) return;
     price_per_node_ms_ = priced() && (clean_ || !once) ? std::min(price_per_node_ms_, per_node) : per_node;
     clean_ = clean_ || once;
@@ -156,6 +161,7 @@ class FrontMaintenance {
   double update_last_ = -1.0;        // the last update per front node that ran once
   double generate_last_ = -1.0;      // the last maintenance generate per front node that ran once
   double build_generate_ = -1.0;     // the last build frame's generate per front node made
+  uint32_t updates_once_ = 0;        // updates measured (ran once)
   double build_ms_ = 0.0;            // the last frame that built the tree
   bool clean_ = false;               // that price comes from updates that ran once
   double steady_sum_ = 0.0;

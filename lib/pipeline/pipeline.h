@@ -57,11 +57,10 @@ struct PipelineConfig {
   uint32_t front_cycle = 0;
   // --front-cycle auto: each maintenance runs an update or a generate of new fronts,
   // whichever measured cheaper last (pipeline/front_maintenance.h); off: always an update
-  // (the paper). The periodic strategy keeps its own alternation. Off by default: on made
-  // sphere's mean frame 1.09-1.12x faster and its p95 over median 2.6-2.9 from 3.0-3.5, but
-  // cloth-ball 0.94-0.97x, the falling spheres 0.91-1.00x and the 32K cloth 0.94-0.98x
-  // (H100, docs/front-maintenance.md "Update or generate").
-  bool regenerate = false;
+  // (the paper). The periodic strategy keeps its own alternation. On made sphere's mean
+  // frame 1.12-1.18x faster than off, with a lower p95, and the other anchors 0.97-1.06x
+  // (H200, docs/front-maintenance.md "Update or generate").
+  bool regenerate = true;
   // Co-vertex filtering: pairs of triangles sharing a vertex are not reported.
   bool skip_adjacent = false;
   // Pipeline c / restructure (paper §4.1-4.2, docs/design.md "Quality and restructuring").
