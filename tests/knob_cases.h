@@ -370,7 +370,9 @@ inline void check_pairs_grown_ahead(const std::string& device) {
       // Updates and generates may also grow fronts, and the grid its cells ("regrid").
       const bool others_grow = s.op.find("+update") != std::string::npos ||
                                s.op.find("+generate") != std::string::npos || s.op == "regrid";
-      if (f > 0 && !others_grow) EXPECT_EQ(s.query_reruns, 0u) << name << " frame " << f << " (" << s.op << ")";
+      if (f > 0 && !others_grow) {
+        EXPECT_EQ(s.query_reruns, 0u) << name << " frame " << f << " (" << s.op << ")";
+      }
     }
   }
 }

@@ -126,7 +126,9 @@ inline void check_fp32_offset(const std::string& device, double offset) {
   const auto sheet = millimetre_sheet(offset);
   EXPECT_FALSE(float_spacing_warning(*sheet, 0, false).empty()) << "offset " << offset;
   EXPECT_TRUE(float_spacing_warning(*sheet, 0, true).empty()) << "offset " << offset;
-  if (offset >= 1e6) EXPECT_GT(d.extra, d.pairs) << "offset " << offset;
+  if (offset >= 1e6) {
+    EXPECT_GT(d.extra, d.pairs) << "offset " << offset;
+  }
 }
 
 }  // namespace cdb::test

@@ -416,9 +416,12 @@ TEST(FramePlan, AdaptiveProbesOnceTheRentNearsThePrice) {
     const double rent_before = rent;
     s += p.probe ? 'P' : letter(p);
     const double price = planner.maintenance().price_ms(100);
-    if (p.probe) EXPECT_GE(rent_before, FrontMaintenance::kProbeShare * price - 1e-9) << "frame " << f;
-    if (p.self == FrontOp::preserve && !p.rebuild && !p.probe && f > 0)
+    if (p.probe) {
+      EXPECT_GE(rent_before, FrontMaintenance::kProbeShare * price - 1e-9) << "frame " << f;
+    }
+    if (p.self == FrontOp::preserve && !p.rebuild && !p.probe && f > 0) {
       EXPECT_LT(rent_before, FrontMaintenance::kProbeShare * price + 1e-9) << "frame " << f;
+    }
     planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
   }
   ASSERT_NE(s.find('u'), std::string::npos) << s;
