@@ -3,6 +3,7 @@
 // front was produced) -> exclusive scan -> offset log -> one scatter. Within the segment of
 // node j, sprout-marked nodes (1) fill from the back and prune-marked (0) from the front, so
 // nodes that will take the same branch sit together. No comparison sort.
+#include <cstddef>
 #include <cstdint>
 
 #include "core/atomics.h"
@@ -57,6 +58,12 @@ struct BothKinds {
       external(e - n0);
   }
 };
+
+// Runs `internal` over n_internal indices and `external` over n_external in one launch.
+template <class Exec, class F>
+void for_both_kinds(Exec& exec, const F& internal, size_t n_internal, const F& external, size_t n_external) {
+  exec.for_each_n(n_internal + n_external, BothKinds<F>{internal, external, uint32_t(n_internal)});
+}
 
 // A scatter of front f into its sorted arrays by f's offset log. Its cursors must be zero:
 // the fill of f's order counts before the front was produced zeroed them with the count log

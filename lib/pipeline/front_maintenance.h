@@ -68,7 +68,7 @@ class FrontMaintenance {
 
   // Whether an adaptive maintenance due now generates new fronts instead of updating them.
   bool generate_due() const {
-    if (!adaptive() || !regenerate_ || update_last_ < 0.0) return false;
+    if (!regenerates() || update_last_ < 0.0) return false;
     if (generate_last_ >= 0.0) return generate_last_ < update_last_;
     // Not tried yet: against an update after the first, the dearest of a run.
     return updates_once_ >= 2 && build_generate_ >= 0.0 && build_generate_ < update_last_;

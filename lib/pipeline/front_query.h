@@ -198,9 +198,8 @@ class FrontQuery {
       return ScatterFrontFn{&counters(pairs)->produced[k], append_room(k), f.raw_prim.data(), f.raw_node.data(),
                             f.raw_mark.data(), to};
     };
-    const size_t n0 = append_room(kInternalFront);
-    exec.for_each_n(n0 + append_room(kExternalFront),
-                    BothKinds<ScatterFrontFn>{scatter(kInternalFront), scatter(kExternalFront), uint32_t(n0)});
+    for_both_kinds(exec, scatter(kInternalFront), append_room(kInternalFront), scatter(kExternalFront),
+                   append_room(kExternalFront));
   }
 
   // After an update in place's read-back (`c`): true if its appends fit, and the front then
@@ -255,9 +254,8 @@ class FrontQuery {
       return ScatterFrontFn{&counters(pairs)->produced[k], f.raw_prim.capacity(), f.raw_prim.data(),
                             f.raw_node.data(), f.raw_mark.data(), segment_scatter(f)};
     };
-    const size_t n0 = front_[kInternalFront].raw_prim.capacity();
-    exec.for_each_n(n0 + front_[kExternalFront].raw_prim.capacity(),
-                    BothKinds<ScatterFrontFn>{scatter(kInternalFront), scatter(kExternalFront), uint32_t(n0)});
+    for_both_kinds(exec, scatter(kInternalFront), front_[kInternalFront].raw_prim.capacity(), scatter(kExternalFront),
+                   front_[kExternalFront].raw_prim.capacity());
   }
 
   // The produced fronts' offset logs alone (the count logs' scans), for fronts kept in the
@@ -294,9 +292,8 @@ class FrontQuery {
         zero_cursors(exec, f);
         return MarkScatterFrontFn{view(), f.prim.data(), f.node.data(), segment_scatter(f)};
       };
-      const size_t n0 = front_[kInternalFront].size;
-      exec.for_each_n(n0 + front_[kExternalFront].size,
-                      BothKinds<MarkScatterFrontFn>{mark(kInternalFront), mark(kExternalFront), uint32_t(n0)});
+      for_both_kinds(exec, mark(kInternalFront), front_[kInternalFront].size, mark(kExternalFront),
+                     front_[kExternalFront].size);
     }
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
