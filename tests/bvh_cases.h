@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <utility>
 #include <cstring>
 #include <set>
 #include <string>
@@ -122,6 +123,42 @@ inline bool same_boxes(const HostBvh& a, const HostBvh& b) {
          same(a.node_hi, b.node_hi);
 }
 
+// The refit's tiles (bvh/treelets.h) are the treelets: they cut [0, n) into consecutive
+// ranges, each the leaves of a subtree of at most kRefitTile leaves whose parent has more
+// (or of the root), one tile per such subtree.
+template <class Exec>
+void expect_treelet_tiles(Exec& exec, const Lbvh<Exec>& bvh, const HostBvh& h, const std::string& where) {
+  if (h.n == 0) return;
+  uint32_t count = 0;
+  exec.copy_to_host(&count, bvh.tile_count.data(), 1);
+  ASSERT_GE(count, 1u) << where;
+  ASSERT_LE(count, h.n) << where;
+  std::vector<uint32_t> first(count + 1);
+  exec.copy_to_host(first.data(), bvh.tile_first.data(), first.size());
+  EXPECT_EQ(first.front(), 0u) << where;
+  EXPECT_EQ(first.back(), h.n) << where;
+  const auto size = [&](uint32_t k) { return h.node_last[k] - h.node_first[k] + 1; };
+  // [first, last] of every treelet root: internal nodes within a tile's size whose parent
+  // is not, and leaves hanging from nodes larger than a tile.
+  std::vector<std::pair<uint32_t, uint32_t>> treelets;
+  if (h.n == 1) treelets.push_back({0, 0});
+  for (uint32_t k = 0; k + 1 < h.n; ++k) {
+    const uint32_t p = h.node_parent[k];
+    if (size(k) <= kRefitTile && (p == kNoNode || size(p) > kRefitTile)) treelets.push_back({h.node_first[k], h.node_last[k]});
+    if (size(k) > kRefitTile)
+      for (uint32_t c : {h.node_left[k], h.node_right[k]})
+        if (is_leaf(c)) treelets.push_back({ref_index(c), ref_index(c)});
+  }
+  std::sort(treelets.begin(), treelets.end());
+  ASSERT_EQ(treelets.size(), count) << where << ": tiles against treelets";
+  for (uint32_t t = 0; t < count; ++t) {
+    EXPECT_LT(first[t], first[t + 1]) << where << ", tile " << t;
+    EXPECT_LE(first[t + 1] - first[t], kRefitTile) << where << ", tile " << t;
+    EXPECT_EQ(first[t], treelets[t].first) << where << ", tile " << t;
+    EXPECT_EQ(first[t + 1] - 1, treelets[t].second) << where << ", tile " << t;
+  }
+}
+
 // Both refits of the spanning top (one block, bvh/refit_top.h; hand-overs between blocks)
 // give the same boxes, bit for bit: a box is a min/max merge whatever the order of arrivals.
 template <class Exec>
@@ -170,6 +207,7 @@ void check_soup_case(const SoupCase& c, uint32_t shared_slots = kRefitTopSharedS
     }
     const HostBvh h = download(exec, bvh);
     ASSERT_EQ(check_bvh(h, topo, v), "") << "frame " << f;
+    if (f == 0) expect_treelet_tiles(exec, bvh, h, "frame 0");
 
     expect_self_query_exact(exec, bvh, topo, v, m.pairs, m.count, f);
     if (testing::Test::HasFatalFailure()) return;
@@ -425,6 +463,7 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
     HostBvh after = download(exec, bvh);
     after.count_log.clear();
     ASSERT_EQ(check_bvh(after, topo, v), "") << "frame " << f;
+    expect_treelet_tiles(exec, bvh, after, "restructured, frame " + std::to_string(f));
     for (uint32_t k : picked) {
       EXPECT_EQ(after.node_first[k], before.node_first[k]);
       EXPECT_EQ(after.node_last[k], before.node_last[k]);
@@ -433,7 +472,7 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
     }
     expect_self_query_exact(exec, bvh, topo, v, m.pairs, m.count, f);
     if (testing::Test::HasFatalFailure()) return;
-    // The restructured tree's spanning nodes are indexed anew: both refits of its top agree
+    // The restructured tree's tiles and spanning nodes are indexed anew: both refits of its top agree
     // and keep it valid.
     expect_refits_agree(exec, bvh, mesh, "restructured, frame " + std::to_string(f));
     HostBvh refitted = download(exec, bvh);
@@ -447,11 +486,11 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
 // the tree valid and the query exact, frame after frame.
 template <class Exec>
 void check_refit_top_spill() {
-  check_soup_case<Exec>({kRefitTopMaxLeaves, "clustered", 1.0, 0.0, MortonBits::b63}, 64);
+  check_soup_case<Exec>({kRefitTopMaxLeaves, "clustered", 1.0, 0.0, MortonBits::b63}, 16);
 }
 
-// A tree past the default size with its top in one block anyway (--refit-top-leaves): some
-// thousands of spanning nodes, about as many as shared memory holds.
+// A tree past the default size with its top in one block anyway (--refit-top-leaves):
+// hundreds of spanning nodes, every one in shared memory.
 template <class Exec>
 void check_refit_top_large_tree() {
   check_soup_case<Exec>({100000, "clustered", 1.0, 0.0, MortonBits::b63}, kRefitTopSharedSlots, kRefitTopLeavesLimit);

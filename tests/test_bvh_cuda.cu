@@ -8,6 +8,7 @@
 #include "precision_cases.h"
 #include "offset_cases.h"
 #include "scan_cases.h"
+#include "tile_cases.h"
 #include "io/scene.h"
 #include "exec/cuda_exec.cuh"
 
@@ -66,6 +67,11 @@ TEST_F(CudaCells, SceneStatsReduction) { check_scene_stats_reduction<CudaExec>()
 TEST(CudaExecScan, PairMatchesTheSerialScans) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   check_exclusive_scan_pair<CudaExec>();
+}
+
+TEST(CudaExecTiles, EveryIndexOnceInItsTile) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_for_each_tile<CudaExec>();
 }
 
 TEST(CudaHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {

@@ -14,6 +14,7 @@
 #include "core/pair_set.h"
 #include "exec/host_exec.h"
 #include "scan_cases.h"
+#include "tile_cases.h"
 
 namespace cdb {
 namespace {
@@ -79,6 +80,8 @@ TEST(HostExecScan, MatchesTheSerialScan) {
 }
 
 TEST(HostExecScan, PairMatchesTheSerialScans) { check_exclusive_scan_pair<HostExec>(); }
+
+TEST(HostExecTiles, EveryIndexOnceInItsTile) { check_for_each_tile<HostExec>(); }
 
 TEST(HostExecScan, RefusesTooLittleTemporaryStorage) {
   HostExec exec;

@@ -50,12 +50,17 @@ struct Lbvh {
     other_bound.bind(mr, name + ".other_bound");
     new_index.bind(mr, name + ".new_index");
     refit_flag.bind(mr, name + ".refit_flag");
+    tile_start.bind(mr, name + ".tile_start");
+    tile_scan.bind(mr, name + ".tile_scan");
+    tile_first.bind(mr, name + ".tile_first");
+    tile_count.bind(mr, name + ".tile_count");
     span_flag.bind(mr, name + ".span_flag");
     span_scan.bind(mr, name + ".span_scan");
     span_count.bind(mr, name + ".span_count");
     span_node.bind(mr, name + ".span_node");
     span_parent.bind(mr, name + ".span_parent");
     span_child.bind(mr, name + ".span_child");
+    span_depth.bind(mr, name + ".span_depth");
     span_lo.bind(mr, name + ".span_lo");
     span_hi.bind(mr, name + ".span_hi");
     temp.bind(mr, name + ".temp");
@@ -73,12 +78,16 @@ struct Lbvh {
       a->reserve(internal);
     // refit.h counts arrivals without resetting them: every build zeroes them here.
     exec.fill(refit_flag.data(), internal, 0u);
+    tile_start.reserve(n);
+    tile_scan.reserve(n);
+    tile_first.reserve(size_t(n) + 1);
+    tile_count.reserve(1);
     if (refit_top_fits()) {
-      for (auto* a : {&span_flag, &span_scan, &span_node, &span_parent}) a->reserve(internal);
+      for (auto* a : {&span_flag, &span_scan, &span_node, &span_parent, &span_depth}) a->reserve(internal);
       span_child.reserve(2 * internal);
       span_lo.reserve(2 * internal);
       span_hi.reserve(2 * internal);
-      span_count.reserve(1);
+      span_count.reserve(2);
     }
     count_log.reserve(size_t(n) + 1);
     offset_log.reserve(size_t(n) + 1);
@@ -125,8 +134,18 @@ struct Lbvh {
   Array<vec4f> build_lo, build_hi;
   Array<uint32_t> build_left, build_right, build_parent, build_first, build_last;
   Array<uint32_t> other_bound, new_index, refit_flag;
+  // The refit's tiles (bvh/treelets.h): treelet marks per leaf, their scan, each tile's
+  // first leaf (and n after the last), the number of tiles.
+  Array<uint32_t> tile_start, tile_scan, tile_first, tile_count;
+  // Blocks of the refit's tile kernel: twice the tiles of kRefitTile leaves (treelets were
+  // 1.6 times as many on the 32K cloth); a block refits its tile and every tile that many
+  // further on, so a tree with more treelets refits more slowly, never wrongly.
+  uint32_t refit_tile_blocks() const {
+    const uint32_t blocks = 2 * ((num_leaves + kRefitTile - 1) / kRefitTile) + 2;
+    return blocks < num_leaves ? blocks : num_leaves;
+  }
   // The spanning nodes' index for refit_top.h (only for trees where refit_top_fits()).
-  Array<uint32_t> span_flag, span_scan, span_count, span_node, span_parent, span_child;
+  Array<uint32_t> span_flag, span_scan, span_count, span_node, span_parent, span_child, span_depth;
   Array<vec4f> span_lo, span_hi;
   Array<std::byte> temp;
 };

@@ -10,7 +10,7 @@
 #include "exec/balance.h"
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
-#include "bvh/refit_top.h"
+#include "bvh/treelets.h"
 
 namespace cdb {
 
@@ -140,6 +140,7 @@ void order_depth_first(Exec& exec, Lbvh<Exec>& bvh) {
   if (n == 0) return;
   if (n == 1) {
     link_single_leaf(exec, bvh);
+    index_refit(exec, bvh);
     return;
   }
   exec.exclusive_scan(bvh.count_log.data(), bvh.offset_log.data(), size_t(n) + 1,
@@ -148,7 +149,7 @@ void order_depth_first(Exec& exec, Lbvh<Exec>& bvh) {
   exec.for_each_n(n, NumberChainFn{layout}, Balance::uneven);
   exec.for_each_n(n - 1, ScatterNodesFn{layout, n});
   exec.for_each_n(n, LinkLeavesFn{layout, n});
-  index_spanning_nodes(exec, bvh);
+  index_refit(exec, bvh);
 }
 
 // The radix-sort baseline of the same layout (for the paper's Fig. 6 comparison, issue
@@ -178,6 +179,7 @@ void order_depth_first_radix(Exec& exec, Lbvh<Exec>& bvh) {
   if (n == 0) return;
   if (n == 1) {
     link_single_leaf(exec, bvh);
+    index_refit(exec, bvh);
     return;
   }
   // Build scratch that is free once the climb is done: keys in morton/morton_sorted, node
@@ -192,7 +194,7 @@ void order_depth_first_radix(Exec& exec, Lbvh<Exec>& bvh) {
   const DepthFirstLayout layout = depth_first_layout(bvh);
   exec.for_each_n(n - 1, ScatterNodesFn{layout, n});
   exec.for_each_n(n, LinkLeavesFn{layout, n});
-  index_spanning_nodes(exec, bvh);
+  index_refit(exec, bvh);
 }
 
 }  // namespace cdb

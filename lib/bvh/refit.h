@@ -4,14 +4,15 @@
 // order are kept.
 //
 // The climb is latency bound: each level is an atomic hand-over plus a load of the
-// sibling's box, and an LBVH over a cloth is 30 to 60 levels deep. Leaves run in tiles of
-// kTile consecutive leaves (one block on the GPU). A node whose leaves all lie in the
-// climbing thread's tile is handed over in the tile's shared memory with block-scope
-// atomics; only nodes spanning tiles (the top ~log2(N / kTile) levels of each path) pay for
-// a device-scope atomic and an L2 load.
+// sibling's box, and an LBVH over a cloth is 20 to 60 levels deep. Leaves run in tiles, the
+// treelets of at most kTile leaves (bvh/treelets.h; one block on the GPU). A node whose
+// leaves all lie in the climbing thread's tile is handed over in the tile's shared memory
+// with block-scope atomics; only nodes spanning tiles (the top of the tree, above the
+// treelets) pay for a device-scope atomic and an L2 load, or are left to RefitTopFn.
 //
 // In-tile slots: an internal node is identified by its split, the last leaf of its left
-// child, unique among internal nodes; in-tile nodes have splits in [tile_first, tile_last).
+// child, unique among internal nodes; in-tile nodes have splits in [tile_first, tile_last),
+// fewer than kTile.
 //
 // Spanning nodes count arrivals in refit_flag without a reset: every refit brings exactly
 // two arrivals to each spanning node (a node's tile-spanning is fixed by the topology), so
@@ -24,6 +25,7 @@
 #include "bvh/node_ref.h"
 #include "bvh/refit_top.h"
 #include "core/atomics.h"
+#include "exec/tiles.h"
 #include "geometry/mesh.h"
 
 namespace cdb {
@@ -129,14 +131,15 @@ bool refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, CounterReset reset
   if (n < reset.count) reset = {};
   if (n == 0) return false;
   const bool top_in_block = bvh.refit_top_fits();
-  exec.for_each_tile(n, RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
+  exec.for_each_tile(Tiles{bvh.tile_first.data(), bvh.tile_count.data(), bvh.refit_tile_blocks()},
+                     RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
                                 bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
                                 bvh.node_last.data(), bvh.node_escape.data(), bvh.leaf_escape.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
                                 bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data(), top_in_block, reset});
   if (top_in_block)
     exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots),
                                  bvh.span_count.data(), bvh.span_node.data(), bvh.span_parent.data(),
-                                 bvh.span_child.data(), bvh.span_flag.data(), bvh.span_lo.data(), bvh.span_hi.data(),
+                                 bvh.span_child.data(), bvh.span_depth.data(), bvh.span_lo.data(), bvh.span_hi.data(),
                                  bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_left.data(), bvh.node_escape.data(),
                                  bvh.node_lo.data(), bvh.node_hi.data()});
   return reset.count > 0;

@@ -1,11 +1,15 @@
 #pragma once
-// The refit's tiling (bvh/refit.h, bvh/refit_top.h): leaves per tile, and how large a
-// tree refits its top (the nodes spanning tiles) in one block.
+// The refit's tiling (bvh/refit.h, bvh/refit_top.h, bvh/treelets.h): leaves per tile, which
+// nodes span tiles, and how large a tree refits its top (the nodes spanning tiles) in one
+// block.
 #include <cstdint>
+
+#include "core/hd.h"
 
 namespace cdb {
 
-// Leaves per refit tile: one block of the tile kernel. 512 refits faster than 256 (docs/design.md
+// Most leaves a refit tile holds: one block of the tile kernel. The tiles are treelets, the
+// largest subtrees of at most kRefitTile leaves (bvh/treelets.h). 512 refits faster than 256 (docs/design.md
 // "Constants and their measurements"); the tile's shared memory (34 KB) stays under the
 // static limit, 1024 would not.
 inline constexpr uint32_t kRefitTile = 512;
@@ -18,5 +22,9 @@ inline constexpr uint32_t kRefitTopLeavesLimit = 1u << 24;
 // Spanning nodes the block keeps in shared memory (a few percent of the internal nodes span
 // tiles); the rest live in global memory.
 inline constexpr uint32_t kRefitTopSharedSlots = 1536;
+
+// Whether node [first, last] spans tiles: with treelet tiles, whether it has more leaves than
+// a tile holds (a node with fewer lies inside the treelet that holds it).
+CDB_HD_INLINE bool spans_tiles(uint32_t first, uint32_t last) { return last - first >= kRefitTile; }
 
 }  // namespace cdb

@@ -3,15 +3,22 @@
 // whose leaves span tiles ("spanning nodes", the top of the tree) cost a device-scope atomic
 // and an L2 load each in the tile kernel, and they are most of the deepest path
 // (docs/design.md "Constants and their measurements"). With the top in one block the
-// tile kernel stops below them and one block of threads refits all of them, with their
-// boxes, arrival bits and parent links in shared memory: a level is a shared-memory atomic
-// and a shared-memory load.
+// tile kernel stops below them and one block of threads refits all of them, their boxes,
+// parent links and depths in shared memory.
 //
-// The spanning nodes are indexed once per topology (index_spanning_nodes, after every
-// build, order and restructure): compact slots 0..S-1, each slot's node, its parent's slot
-// (with the side it hangs on), and its children that do not span, where the block's climbs
-// start. Slots from Lbvh::refit_top_shared_slots on keep their boxes and arrival bits in global
-// memory instead, still with block-scope hand-overs: slower, never wrong.
+// The block refits the top level by level, deepest first, one block barrier between
+// levels: every spanning node at depth d merges both sides of its slot (its children, at
+// depth d + 1 or below the top, are final) and puts the merge on its side of the parent.
+// No atomics, no arrival bits: the barrier orders every hand-over, and a level costs a
+// barrier and a few shared-memory accesses (a climb with acquire-release arrivals paid a
+// fence and a generic atomic a level, and a level of its deepest chain cost about 1 us).
+//
+// The spanning nodes are indexed once per topology (index_spanning_nodes, by index_refit
+// after every build, order and restructure): compact slots 0..S-1, each slot's node, its depth (every
+// ancestor of a spanning node spans, so its depth in the tree is its depth in the top), its
+// parent's slot with the side it hangs on, and its children that do not span, whose boxes
+// the tile kernel wrote. Slots from Lbvh::refit_top_shared_slots on keep their boxes and
+// links in global memory instead (the barrier orders those too): slower, never wrong.
 #include <cstdint>
 
 #include "bvh/lbvh.h"
@@ -19,9 +26,6 @@
 #include "core/atomics.h"
 
 namespace cdb {
-
-// Whether node [first, last] has leaves in two tiles.
-CDB_HD_INLINE bool spans_tiles(uint32_t first, uint32_t last) { return first / kRefitTile != last / kRefitTile; }
 
 struct SpanFlagFn {
   const uint32_t* node_first;
@@ -41,11 +45,17 @@ struct SpanSlotsFn {
   uint32_t* span_node;    // per slot: its node
   uint32_t* span_parent;  // per slot: parent slot | side << 31 (1: right child), kNoNode at the root
   uint32_t* span_child;   // per slot, left and right: the child if it does not span, else kNoNode
+  uint32_t* span_depth;   // per slot: its node's depth, the root's 0
+  uint32_t* max_depth;    // zeroed by SpanCountFn
   CDB_HD void operator()(uint32_t k) const {
     if (!spans_tiles(node_first[k], node_last[k])) return;
     const uint32_t s = scan[k];
     span_node[s] = k;
     const uint32_t p = node_parent[k];
+    uint32_t depth = 0;
+    for (uint32_t a = p; a != kNoNode; a = node_parent[a]) ++depth;
+    span_depth[s] = depth;
+    atomic_max_relaxed(max_depth, depth);
     span_parent[s] = p == kNoNode ? kNoNode : scan[p] | (node_left[p] == k ? 0u : kLeafBit);
     const uint32_t child[2] = {node_left[k], node_right[k]};
     for (int side = 0; side < 2; ++side) {
@@ -55,13 +65,17 @@ struct SpanSlotsFn {
   }
 };
 
-// S: the last node's slot plus its flag.
+// span_count[0] = S, the last node's slot plus its flag; span_count[1], the deepest slot's
+// depth, zeroed for SpanSlotsFn to raise.
 struct SpanCountFn {
   const uint32_t* scan;
   const uint32_t* flag;
   uint32_t last;
   uint32_t* count;
-  CDB_HD void operator()(uint32_t) const { *count = scan[last] + flag[last]; }
+  CDB_HD void operator()(uint32_t) const {
+    count[0] = scan[last] + flag[last];
+    count[1] = 0;
+  }
 };
 
 template <class Exec>
@@ -73,49 +87,61 @@ void index_spanning_nodes(Exec& exec, Lbvh<Exec>& bvh) {
   exec.for_each_n(1, SpanCountFn{bvh.span_scan.data(), bvh.span_flag.data(), internal - 1, bvh.span_count.data()});
   exec.for_each_n(internal, SpanSlotsFn{bvh.node_first.data(), bvh.node_last.data(), bvh.node_left.data(),
                                         bvh.node_right.data(), bvh.node_parent.data(), bvh.span_scan.data(),
-                                        bvh.span_node.data(), bvh.span_parent.data(), bvh.span_child.data()});
-  // From here on span_flag holds the arrival bits of the slots kept in global memory: zero
-  // now, and every refit toggles each bit twice, so it is zero between refits.
-  exec.fill(bvh.span_flag.data(), internal, 0u);
+                                        bvh.span_node.data(), bvh.span_parent.data(), bvh.span_child.data(),
+                                        bvh.span_depth.data(), bvh.span_count.data() + 1});
 }
 
-// One block, three phases separated by block barriers (Exec::in_one_block): parent links
-// into shared memory; the climbs; the write-back of every spanning node's box.
+// One block: phase 0 loads the slots' links and depths into shared memory and the
+// non-spanning children's boxes onto their sides; phase 1 + i merges the slots at depth
+// D - i (D the deepest), keeps each merge on side 0 of its slot and puts it on its side of
+// the parent; the last phase writes every slot's box.
 struct RefitTopFn {
-  // 52 bytes a slot (funnel's 8.7K leaves have 313 spanning nodes, cloth-wave's 32K 995).
+  // 84 bytes a slot (funnel's 8.7K leaves have 313 spanning nodes, cloth-wave's 32K 995).
   static constexpr uint32_t kSharedSlots = kRefitTopSharedSlots;
-  static constexpr int kPhases = 3;
   struct Shared {
-    float box[kSharedSlots][2][6];  // [slot][side]: lo xyz, hi xyz; after both arrivals [0] is the merge
+    vec4f lo[kSharedSlots][2];  // [slot][side]: the child's box on that side (lanes x, y, z)
+    vec4f hi[kSharedSlots][2];
     uint32_t parent[kSharedSlots];
-    uint32_t arrived[kSharedSlots / 32];
+    uint32_t depth[kSharedSlots];
+    uint32_t node[kSharedSlots];
+    float left_lane[kSharedSlots];  // link lanes of the node's box (node_ref.h)
+    float escape_lane[kSharedSlots];
+    uint32_t count, deepest;  // span_count, read once
   };
 
   static_assert(sizeof(Shared) <= 227 * 1024, "more shared memory than a Hopper block can take");
 
-  uint32_t shared_slots;  // slots below this are in shared memory (at most kSharedSlots)
-  const uint32_t* span_count;
+  uint32_t shared_slots;     // slots below this are in shared memory (at most kSharedSlots)
+  const uint32_t* span_count;  // [0]: slots, [1]: the deepest slot's depth
   const uint32_t* span_node;
   const uint32_t* span_parent;
   const uint32_t* span_child;
-  uint32_t* span_arrived;  // arrival bits of the slots past shared_slots
-  vec4f* span_lo;          // their boxes, [2 * slot + side]
+  const uint32_t* span_depth;
+  vec4f* span_lo;  // boxes of the slots past shared_slots, [2 * slot + side]
   vec4f* span_hi;
   const vec4f* leaf_lo;
   const vec4f* leaf_hi;
-  const uint32_t* node_left;  // link lanes of the written boxes (node_ref.h)
+  const uint32_t* node_left;
   const uint32_t* node_escape;
   vec4f* node_lo;
   vec4f* node_hi;
 
-  CDB_HD void phase(int p, uint32_t t, uint32_t threads, Shared& sh) const {
-    const uint32_t count = *span_count;
-    const uint32_t in_shared = count < shared_slots ? count : shared_slots;
+  CDB_HD uint32_t phases() const { return span_count[1] + 3; }
+
+  CDB_HD void phase(uint32_t p, uint32_t t, uint32_t threads, Shared& sh) const {
     if (p == 0) {
-      // Loads only, independent of each other, so many are in flight at once: the parent
-      // links and the boxes of the non-spanning children, put on their sides of the slots.
-      for (uint32_t s = t; s < in_shared; s += threads) sh.parent[s] = span_parent[s];
-      for (uint32_t w = t; w < kSharedSlots / 32; w += threads) sh.arrived[w] = 0u;
+      const uint32_t count = span_count[0];
+      const uint32_t in_shared = count < shared_slots ? count : shared_slots;
+      if (t == 0) sh.count = count, sh.deepest = span_count[1];
+      // Loads only, independent of each other, so many are in flight at once.
+      for (uint32_t s = t; s < in_shared; s += threads) {
+        const uint32_t k = span_node[s];
+        sh.parent[s] = span_parent[s];
+        sh.depth[s] = span_depth[s];
+        sh.node[s] = k;
+        sh.left_lane[s] = link_lane(node_left[k]);
+        sh.escape_lane[s] = link_lane(node_escape[k]);
+      }
 #if defined(__CUDA_ARCH__)
 #pragma unroll 4
 #endif
@@ -126,67 +152,54 @@ struct RefitTopFn {
         const vec4f hi = is_leaf(c) ? leaf_hi[ref_index(c)] : node_hi[c];
         put(e / 2, e % 2, lo, hi, sh);
       }
-    } else if (p == 1) {
-      for (uint32_t e = t; e < 2 * count; e += threads)
-        if (span_child[e] != kNoNode) climb(e / 2, e % 2, sh);
-    } else {
+      return;
+    }
+    const uint32_t count = sh.count;
+    if (p == sh.deepest + 2) {
+      // The write-back, from side 0 of every slot. Writing each box in its level instead
+      // cost about 50 cycles a level (H100): the barrier after waited for the stores.
       for (uint32_t s = t; s < count; s += threads) {
-        const uint32_t k = span_node[s];
-        const float left = link_lane(node_left[k]), escape = link_lane(node_escape[k]);
-        if (s < shared_slots) {
-          const float* b = sh.box[s][0];
-          node_lo[k] = {b[0], b[1], b[2], left};
-          node_hi[k] = {b[3], b[4], b[5], escape};
-        } else {
-          const vec4f lo = span_lo[2 * size_t(s)], hi = span_hi[2 * size_t(s)];
-          node_lo[k] = {lo.x, lo.y, lo.z, left};
-          node_hi[k] = {hi.x, hi.y, hi.z, escape};
-        }
+        const bool local = s < shared_slots;
+        vec4f lo, hi;
+        get(s, 0, lo, hi, sh);
+        const uint32_t k = local ? sh.node[s] : span_node[s];
+        node_lo[k] = {lo.x, lo.y, lo.z, local ? sh.left_lane[s] : link_lane(node_left[k])};
+        node_hi[k] = {hi.x, hi.y, hi.z, local ? sh.escape_lane[s] : link_lane(node_escape[k])};
       }
+      return;
     }
-  }
-
-  // A box on side `side` of slot s.
-  CDB_HD void put(uint32_t s, uint32_t side, const vec4f& lo, const vec4f& hi, Shared& sh) const {
-    if (s < shared_slots) {
-      float* b = sh.box[s][side];
-      handover_store(&b[0], lo.x), handover_store(&b[1], lo.y), handover_store(&b[2], lo.z);
-      handover_store(&b[3], hi.x), handover_store(&b[4], hi.y), handover_store(&b[5], hi.z);
-    } else {
-      span_lo[2 * size_t(s) + side] = lo;
-      span_hi[2 * size_t(s) + side] = hi;
-    }
-  }
-  CDB_HD void get(uint32_t s, uint32_t side, vec4f& lo, vec4f& hi, Shared& sh) const {
-    if (s < shared_slots) {
-      float* b = sh.box[s][side];
-      lo = {handover_load(&b[0]), handover_load(&b[1]), handover_load(&b[2]), 0};
-      hi = {handover_load(&b[3]), handover_load(&b[4]), handover_load(&b[5]), 0};
-    } else {
-      lo = span_lo[2 * size_t(s) + side];
-      hi = span_hi[2 * size_t(s) + side];
-    }
-  }
-
-  // From slot s, whose box on side `side` is in place (put there in phase 0): arrive; the
-  // first arrival at a slot stops, the second merges both sides, keeps the merge on side 0
-  // for the write-back, and puts it on its side of the parent before arriving there.
-  CDB_HD void climb(uint32_t s, uint32_t side, Shared& sh) const {
-    for (;;) {
-      uint32_t* word = s < shared_slots ? &sh.arrived[s / 32] : &span_arrived[s / 32];
-      const uint32_t bit = 1u << (s % 32);
-      if ((atomic_xor_acq_rel_block(word, bit) & bit) == 0) return;  // the sibling finishes s
+    const uint32_t depth = sh.deepest - (p - 1);
+    for (uint32_t s = t; s < count; s += threads) {
+      const bool local = s < shared_slots;
+      if ((local ? sh.depth[s] : span_depth[s]) != depth) continue;
       vec4f lo, hi, olo, ohi;
       get(s, 0, lo, hi, sh);
       get(s, 1, olo, ohi, sh);
       lo = {min_of(lo.x, olo.x), min_of(lo.y, olo.y), min_of(lo.z, olo.z), 0};
       hi = {max_of(hi.x, ohi.x), max_of(hi.y, ohi.y), max_of(hi.z, ohi.z), 0};
       put(s, 0, lo, hi, sh);
-      const uint32_t up = s < shared_slots ? sh.parent[s] : span_parent[s];
-      if (up == kNoNode) return;
-      s = ref_index(up);
-      side = is_leaf(up) ? 1u : 0u;
-      put(s, side, lo, hi, sh);
+      const uint32_t up = local ? sh.parent[s] : span_parent[s];
+      if (up != kNoNode) put(ref_index(up), is_leaf(up) ? 1u : 0u, lo, hi, sh);
+    }
+  }
+
+  // A box on side `side` of slot s.
+  CDB_HD void put(uint32_t s, uint32_t side, const vec4f& lo, const vec4f& hi, Shared& sh) const {
+    if (s < shared_slots) {
+      sh.lo[s][side] = lo;
+      sh.hi[s][side] = hi;
+    } else {
+      span_lo[2 * size_t(s) + side] = lo;
+      span_hi[2 * size_t(s) + side] = hi;
+    }
+  }
+  CDB_HD void get(uint32_t s, uint32_t side, vec4f& lo, vec4f& hi, const Shared& sh) const {
+    if (s < shared_slots) {
+      lo = sh.lo[s][side];
+      hi = sh.hi[s][side];
+    } else {
+      lo = span_lo[2 * size_t(s) + side];
+      hi = span_hi[2 * size_t(s) + side];
     }
   }
 };

@@ -18,7 +18,7 @@
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
 #include "bvh/order.h"
-#include "bvh/refit_top.h"
+#include "bvh/treelets.h"
 #include "core/atomics.h"
 #include "core/morton.h"
 #include "exec/balance.h"
@@ -301,7 +301,7 @@ void restructure_subtrees(Exec& exec, Lbvh<Exec>& bvh, RestructureScratch<Exec>&
   exec.for_each_n(leaves, SubtreePlaceFn{layout, cand, rs.parent.data(), rs.keys_sorted.data(),
                                          rs.new_leaf.data()});
   // Node ranges inside the candidates changed: so may which of them span refit tiles.
-  index_spanning_nodes(exec, bvh);
+  index_refit(exec, bvh);
 }
 
 }  // namespace cdb

@@ -70,13 +70,15 @@ CDB_HD_INLINE float handover_load(float* p) {
 #endif
 }
 
-// Toggles bits of a word between threads of one block, acquire-release: arrival bits of the
-// refit's top (bvh/refit_top.h), one bit per node, whose second arrival sees its bit set.
-CDB_HD_INLINE uint32_t atomic_xor_acq_rel_block(uint32_t* p, uint32_t v) {
+// Raises *p to v if v is larger (the refit top's deepest slot, bvh/refit_top.h).
+CDB_HD_INLINE void atomic_max_relaxed(uint32_t* p, uint32_t v) {
 #if defined(__CUDA_ARCH__)
-  return cuda::atomic_ref<uint32_t, cuda::thread_scope_block>(*p).fetch_xor(v, cuda::memory_order_acq_rel);
+  atomicMax(p, v);
 #else
-  return std::atomic_ref<uint32_t>(*p).fetch_xor(v, std::memory_order_acq_rel);
+  std::atomic_ref<uint32_t> a(*p);
+  uint32_t seen = a.load(std::memory_order_relaxed);
+  while (seen < v && !a.compare_exchange_weak(seen, v, std::memory_order_relaxed)) {
+  }
 #endif
 }
 

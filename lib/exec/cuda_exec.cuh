@@ -15,6 +15,7 @@
 #include "core/append_stage.h"
 #include "core/phase.h"
 #include "exec/balance.h"
+#include "exec/tiles.h"
 #include "exec/exec_options.h"
 #include "exec/frame_graph.h"
 #include "exec/memory.h"
@@ -60,18 +61,22 @@ __global__ void for_each_kernel(uint32_t n, F f) {
     f(i);
 }
 
-// One block per tile of F::kTile consecutive indices; the block's threads share one
-// F::Shared in shared memory, initialized lane by lane before any index runs.
+// Tiles of at most F::kTile consecutive indices (exec/tiles.h), taken in turn by the blocks;
+// a tile's threads share one F::Shared in shared memory, initialized lane by lane before any
+// index runs.
 template <class F>
-__global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(uint32_t n, F f) {
+__global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(Tiles tiles, F f) {
   dependent_launch_entry();
   __shared__ typename F::Shared shared;
-  f.init(shared, threadIdx.x);
-  __syncthreads();
-  const uint32_t first = blockIdx.x * F::kTile;
-  const uint32_t last = min(n, first + F::kTile) - 1;
-  const uint32_t i = first + threadIdx.x;
-  if (i < n) f(i, first, last, shared);
+  const uint32_t count = *tiles.count;
+  for (uint32_t t = blockIdx.x; t < count; t += gridDim.x) {
+    if (t != blockIdx.x) __syncthreads();  // the block's previous tile is done with `shared`
+    f.init(shared, threadIdx.x);
+    __syncthreads();
+    const uint32_t first = tiles.first[t], end = tiles.first[t + 1];
+    const uint32_t i = first + threadIdx.x;
+    if (i < end) f(i, first, end - 1, shared);
+  }
 }
 
 // One thread per index; the block shares one F::Stage (core/append_stage.h) that its indices
@@ -91,8 +96,9 @@ __global__ void for_each_staged_kernel(uint32_t n, F f) {
   f.flush(stage);
 }
 
-// One block of kOneBlockThreads threads running F's kPhases phases with a block barrier
-// between them, sharing one F::Shared in dynamic shared memory.
+// One block of kOneBlockThreads threads running F's phases (f.phases(), read from device
+// memory by every thread alike) with a block barrier between them, sharing one F::Shared in
+// dynamic shared memory.
 inline constexpr uint32_t kOneBlockThreads = 1024;
 
 template <class F>
@@ -100,7 +106,8 @@ __global__ void __launch_bounds__(kOneBlockThreads) in_one_block_kernel(F f) {
   dependent_launch_entry();
   extern __shared__ __align__(16) unsigned char shared_bytes[];
   auto& shared = *reinterpret_cast<typename F::Shared*>(shared_bytes);
-  for (int p = 0; p < F::kPhases; ++p) {
+  const uint32_t phases = f.phases();
+  for (uint32_t p = 0; p < phases; ++p) {
     if (p > 0) __syncthreads();
     f.phase(p, threadIdx.x, blockDim.x, shared);
   }
@@ -215,13 +222,12 @@ class CudaExec {
     launch(for_each_staged_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
   }
 
-  // Indices in tiles of F::kTile that share an F::Shared: threads of one block here, so
-  // hand-overs inside a tile need only block-scope atomics (refit.h).
+  // Indices in tiles (exec/tiles.h) whose indices share an F::Shared: threads of one block
+  // here, so hand-overs inside a tile need only block-scope atomics (refit.h).
   template <class F>
-  void for_each_tile(size_t n, const F& f) const {
-    if (n == 0) return;
-    const uint32_t blocks = static_cast<uint32_t>((n + F::kTile - 1) / F::kTile);
-    launch(for_each_tile_kernel<F>, blocks, F::kTile, 0, static_cast<uint32_t>(n), f);
+  void for_each_tile(const Tiles& tiles, const F& f) const {
+    if (tiles.blocks == 0) return;
+    launch(for_each_tile_kernel<F>, tiles.blocks, F::kTile, 0, tiles, f);
   }
 
   size_t scan_temp_bytes(size_t n) const;

@@ -13,6 +13,7 @@
 #include "core/aabb.h"
 #include "core/phase.h"
 #include "exec/balance.h"
+#include "exec/tiles.h"
 #include "exec/exec_options.h"
 #include "exec/frame_graph.h"
 #include "exec/memory.h"
@@ -67,21 +68,21 @@ class HostExec {
   template <class F>
   void in_one_block(const F& f) const {
     const auto shared = std::make_unique<typename F::Shared>();
-    for (int p = 0; p < F::kPhases; ++p) f.phase(p, 0, 1, *shared);
+    const uint32_t phases = f.phases();
+    for (uint32_t p = 0; p < phases; ++p) f.phase(p, 0, 1, *shared);
   }
 
-  // Tiles of F::kTile consecutive indices sharing one F::Shared (see CudaExec): each tile
-  // runs its indices in order on one thread, after f.init for every lane.
+  // Tiles (exec/tiles.h) whose indices share one F::Shared (see CudaExec): each tile runs
+  // its indices in order on one thread, after f.init for every lane.
   template <class F>
-  void for_each_tile(size_t n, const F& f) const {
-    constexpr uint32_t tile = F::kTile;
-    const int64_t tiles = static_cast<int64_t>((n + tile - 1) / tile);
+  void for_each_tile(const Tiles& tiles, const F& f) const {
+    const int64_t count = *tiles.count;
 #pragma omp parallel for schedule(dynamic, 1)
-    for (int64_t t = 0; t < tiles; ++t) {
+    for (int64_t t = 0; t < count; ++t) {
       typename F::Shared shared;
-      for (uint32_t lane = 0; lane < tile; ++lane) f.init(shared, lane);
-      const uint32_t first = static_cast<uint32_t>(t) * tile;
-      const uint32_t last = static_cast<uint32_t>(std::min<size_t>(n, size_t(first) + tile) - 1);
+      for (uint32_t lane = 0; lane < F::kTile; ++lane) f.init(shared, lane);
+      const uint32_t first = tiles.first[t];
+      const uint32_t last = tiles.first[t + 1] - 1;
       for (uint32_t i = first; i <= last; ++i) f(i, first, last, shared);
     }
   }
