@@ -123,7 +123,7 @@ inline bool same_boxes(const HostBvh& a, const HostBvh& b) {
          same(a.node_hi, b.node_hi);
 }
 
-// The refit's tiles (bvh/treelets.h) are the treelets: they cut [0, n) into consecutive
+// The refit's tiles (bvh/refit_index.h) are the treelets: they cut [0, n) into consecutive
 // ranges, each the leaves of a subtree of at most kRefitTile leaves whose parent has more
 // (or of the root), one tile per such subtree.
 template <class Exec>

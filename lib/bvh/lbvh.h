@@ -134,7 +134,7 @@ struct Lbvh {
   Array<vec4f> build_lo, build_hi;
   Array<uint32_t> build_left, build_right, build_parent, build_first, build_last;
   Array<uint32_t> other_bound, new_index, refit_flag;
-  // The refit's tiles (bvh/treelets.h): treelet marks per leaf, their scan, each tile's
+  // The refit's tiles (bvh/refit_index.h): treelet marks per leaf, their scan, each tile's
   // first leaf (and n after the last), the number of tiles.
   Array<uint32_t> tile_start, tile_scan, tile_first, tile_count;
   // Blocks of the refit's tile kernel: twice the tiles of kRefitTile leaves (treelets were

@@ -10,7 +10,7 @@
 #include "exec/balance.h"
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
-#include "bvh/treelets.h"
+#include "bvh/refit_index.h"
 
 namespace cdb {
 

@@ -5,7 +5,7 @@
 //
 // The climb is latency bound: each level is an atomic hand-over plus a load of the
 // sibling's box, and an LBVH over a cloth is 20 to 60 levels deep. Leaves run in tiles, the
-// treelets of at most kTile leaves (bvh/treelets.h; one block on the GPU). A node whose
+// treelets of at most kTile leaves (bvh/refit_index.h; one block on the GPU). A node whose
 // leaves all lie in the climbing thread's tile is handed over in the tile's shared memory
 // with block-scope atomics; only nodes spanning tiles (the top of the tree, above the
 // treelets) pay for a device-scope atomic and an L2 load, or are left to RefitTopFn.

@@ -1,5 +1,5 @@
 #pragma once
-// The refit's tiling (bvh/refit.h, bvh/refit_top.h, bvh/treelets.h): leaves per tile, which
+// The refit's tiling (bvh/refit.h, bvh/refit_top.h, bvh/refit_index.h): leaves per tile, which
 // nodes span tiles, and how large a tree refits its top (the nodes spanning tiles) in one
 // block.
 #include <cstdint>
@@ -9,7 +9,7 @@
 namespace cdb {
 
 // Most leaves a refit tile holds: one block of the tile kernel. The tiles are treelets, the
-// largest subtrees of at most kRefitTile leaves (bvh/treelets.h). 512 refits faster than 256 (docs/design.md
+// largest subtrees of at most kRefitTile leaves (bvh/refit_index.h). 512 refits faster than 256 (docs/design.md
 // "Constants and their measurements"); the tile's shared memory (34 KB) stays under the
 // static limit, 1024 would not.
 inline constexpr uint32_t kRefitTile = 512;

@@ -1,20 +1,22 @@
 #pragma once
-// The top of the refit in one block. refit.h climbs in tiles of kRefitTile leaves; nodes
-// whose leaves span tiles ("spanning nodes", the top of the tree) cost a device-scope atomic
-// and an L2 load each in the tile kernel, and they are most of the deepest path
-// (docs/design.md "Constants and their measurements"). With the top in one block the
-// tile kernel stops below them and one block of threads refits all of them, their boxes,
-// parent links and depths in shared memory.
+// The top of the refit in one block. refit.h climbs in tiles, the treelets
+// (bvh/refit_index.h); nodes above them ("spanning nodes", the top of the tree) cost a
+// device-scope atomic and an L2 load each in the tile kernel (docs/design.md "Constants
+// and their measurements"). With the top in one block the tile kernel stops below them and
+// one block of threads refits all of them, their boxes, parent links and depths in shared
+// memory.
 //
 // The block refits the top level by level, deepest first, one block barrier between
 // levels: every spanning node at depth d merges both sides of its slot (its children, at
 // depth d + 1 or below the top, are final) and puts the merge on its side of the parent.
-// No atomics, no arrival bits: the barrier orders every hand-over, and a level costs a
-// barrier and a few shared-memory accesses (a climb with acquire-release arrivals paid a
-// fence and a generic atomic a level, and a level of its deepest chain cost about 1 us).
+// No atomics and no arrival bits: the barriers order every hand-over, which
+// compute-sanitizer's racecheck follows. A level costs about 1,000 cycles either way
+// (H100, clock64 between the barriers, and the climb with acquire-release arrivals it
+// replaced took as long); what made the top cheap is having fewer levels, 5 to 8 over
+// treelets against 17 to 19 over fixed tiles.
 //
-// The spanning nodes are indexed once per topology (index_spanning_nodes, by index_refit
-// after every build, order and restructure): compact slots 0..S-1, each slot's node, its depth (every
+// The spanning nodes are indexed once per topology (bvh/refit_index.h, after every build,
+// order and restructure): compact slots 0..S-1, each slot's node, its depth (every
 // ancestor of a spanning node spans, so its depth in the tree is its depth in the top), its
 // parent's slot with the side it hangs on, and its children that do not span, whose boxes
 // the tile kernel wrote. Slots from Lbvh::refit_top_shared_slots on keep their boxes and
@@ -23,73 +25,8 @@
 
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
-#include "core/atomics.h"
 
 namespace cdb {
-
-struct SpanFlagFn {
-  const uint32_t* node_first;
-  const uint32_t* node_last;
-  uint32_t* flag;
-  CDB_HD void operator()(uint32_t k) const { flag[k] = spans_tiles(node_first[k], node_last[k]) ? 1u : 0u; }
-};
-
-// After the exclusive scan of the flags: the slot of node k is scan[k].
-struct SpanSlotsFn {
-  const uint32_t* node_first;
-  const uint32_t* node_last;
-  const uint32_t* node_left;
-  const uint32_t* node_right;
-  const uint32_t* node_parent;
-  const uint32_t* scan;
-  uint32_t* span_node;    // per slot: its node
-  uint32_t* span_parent;  // per slot: parent slot | side << 31 (1: right child), kNoNode at the root
-  uint32_t* span_child;   // per slot, left and right: the child if it does not span, else kNoNode
-  uint32_t* span_depth;   // per slot: its node's depth, the root's 0
-  uint32_t* max_depth;    // zeroed by SpanCountFn
-  CDB_HD void operator()(uint32_t k) const {
-    if (!spans_tiles(node_first[k], node_last[k])) return;
-    const uint32_t s = scan[k];
-    span_node[s] = k;
-    const uint32_t p = node_parent[k];
-    uint32_t depth = 0;
-    for (uint32_t a = p; a != kNoNode; a = node_parent[a]) ++depth;
-    span_depth[s] = depth;
-    atomic_max_relaxed(max_depth, depth);
-    span_parent[s] = p == kNoNode ? kNoNode : scan[p] | (node_left[p] == k ? 0u : kLeafBit);
-    const uint32_t child[2] = {node_left[k], node_right[k]};
-    for (int side = 0; side < 2; ++side) {
-      const uint32_t c = child[side];
-      span_child[2 * s + side] = !is_leaf(c) && spans_tiles(node_first[c], node_last[c]) ? kNoNode : c;
-    }
-  }
-};
-
-// span_count[0] = S, the last node's slot plus its flag; span_count[1], the deepest slot's
-// depth, zeroed for SpanSlotsFn to raise.
-struct SpanCountFn {
-  const uint32_t* scan;
-  const uint32_t* flag;
-  uint32_t last;
-  uint32_t* count;
-  CDB_HD void operator()(uint32_t) const {
-    count[0] = scan[last] + flag[last];
-    count[1] = 0;
-  }
-};
-
-template <class Exec>
-void index_spanning_nodes(Exec& exec, Lbvh<Exec>& bvh) {
-  if (!bvh.refit_top_fits()) return;
-  const uint32_t internal = bvh.num_leaves - 1;
-  exec.for_each_n(internal, SpanFlagFn{bvh.node_first.data(), bvh.node_last.data(), bvh.span_flag.data()});
-  exec.exclusive_scan(bvh.span_flag.data(), bvh.span_scan.data(), internal, bvh.temp.data(), bvh.temp.size());
-  exec.for_each_n(1, SpanCountFn{bvh.span_scan.data(), bvh.span_flag.data(), internal - 1, bvh.span_count.data()});
-  exec.for_each_n(internal, SpanSlotsFn{bvh.node_first.data(), bvh.node_last.data(), bvh.node_left.data(),
-                                        bvh.node_right.data(), bvh.node_parent.data(), bvh.span_scan.data(),
-                                        bvh.span_node.data(), bvh.span_parent.data(), bvh.span_child.data(),
-                                        bvh.span_depth.data(), bvh.span_count.data() + 1});
-}
 
 // One block: phase 0 loads the slots' links and depths into shared memory and the
 // non-spanning children's boxes onto their sides; phase 1 + i merges the slots at depth
@@ -156,8 +93,8 @@ struct RefitTopFn {
     }
     const uint32_t count = sh.count;
     if (p == sh.deepest + 2) {
-      // The write-back, from side 0 of every slot. Writing each box in its level instead
-      // cost about 50 cycles a level (H100): the barrier after waited for the stores.
+      // The write-back, from side 0 of every slot: writing each box in its level instead
+      // took about 1 us longer on funnel and the 32K cloth (H100).
       for (uint32_t s = t; s < count; s += threads) {
         const bool local = s < shared_slots;
         vec4f lo, hi;

@@ -18,7 +18,7 @@
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
 #include "bvh/order.h"
-#include "bvh/treelets.h"
+#include "bvh/refit_index.h"
 #include "core/atomics.h"
 #include "core/morton.h"
 #include "exec/balance.h"
