@@ -33,7 +33,8 @@ namespace cdb {
 // D - i (D the deepest), keeps each merge on side 0 of its slot and puts it on its side of
 // the parent; the last phase writes every slot's box.
 struct RefitTopFn {
-  // 84 bytes a slot (funnel's 8.7K leaves have 313 spanning nodes, cloth-wave's 32K 995).
+  // 84 bytes a slot (over treelets funnel's 8.7K leaves have 26 spanning nodes, cloth-wave's
+  // 32K 103).
   static constexpr uint32_t kSharedSlots = kRefitTopSharedSlots;
   struct Shared {
     vec4f lo[kSharedSlots][2];  // [slot][side]: the child's box on that side (lanes x, y, z)
