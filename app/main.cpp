@@ -6,12 +6,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "cli_params.h"
 #include "core/error.h"
 #include "exit_codes.h"
+#include "help_format.h"
 #include "options.h"
 #include "results_table.h"
 #include "run_command.h"
@@ -30,6 +32,8 @@ int main(int argc, char** argv) {
   // its choice; sweep cells inherit this one.
   setenv("CUDA_MODULE_LOADING", "EAGER", 0);
   CLI::App app{"cdbench: GPU broad-phase collision detection benchmark for deforming meshes"};
+  // Set before the subcommands are added: each takes its parent's formatter.
+  app.formatter(std::make_shared<WrappedHelp>(help_width()));
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text());
 

@@ -33,7 +33,8 @@ inline constexpr const char* kPipelineGroup = "Pipeline";
 inline constexpr const char* kAccuracyGroup = "Accuracy";
 inline constexpr const char* kMeasurementGroup = "Measurement";
 inline constexpr const char* kOutputGroup = "Output";
-inline constexpr const char* kTuningGroup = "GPU tuning";
+// Speed knobs: none changes a pair; each option's help says which devices it applies to.
+inline constexpr const char* kTuningGroup = "Tuning (speed only)";
 
 // Scene, pipeline and accuracy options.
 void add_common(CLI::App* cmd, CommonOptions& o);

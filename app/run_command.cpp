@@ -201,6 +201,8 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   const std::string spacing_warning =
       range.last > range.first ? float_spacing_warning(*scene.source, range.first, fp64) : "";
   if (!spacing_warning.empty()) std::printf("warning: %s\n", spacing_warning.c_str());
+  const std::string short_warning = warmup_warning(range, r.warmup, o.frames);
+  if (!short_warning.empty()) std::printf("warning: %s\n", short_warning.c_str());
   // Measured once, before any frame: the yardstick of the bandwidth floor; and the cache
   // flush of --cold, allocated here rather than in the frame loop.
   const std::unique_ptr<DeviceProbe> probe = make_device_probe(device);

@@ -1,5 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages cdbench needs, only those missing; no prompts; safe to re-run.
+# Without options: what building and running cdbench needs (the compilers' packages and the
+# libraries, GoogleTest's headers included so the one build directory also configures the
+# tests). --python adds the Python tools the tests and the report scripts run with
+# /usr/bin/python3 (h5py, numpy, matplotlib: about half the download, so the first
+# `scripts/cdbench run` does without them).
 # --scenes also installs assimp-testmodels (BSD-3; 21 MB download, 74 MB installed), whose
 # models the scenes bcn-jump, wuson-walk, skeleton-fbx, sydney-md2, crowd and crowd-large read.
 # --scenes-extra installs the static scans: glmark2-data (bunny.obj, GPL-3+; 7 MB download)
@@ -14,14 +19,14 @@ packages=(
   cmake ninja-build g++ pkg-config
   libcli11-dev nlohmann-json3-dev libhdf5-dev libassimp-dev libomp-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3-h5py python3-numpy python3-matplotlib
 )
 for arg in "$@"; do
   case $arg in
+    --python) packages+=(python3-h5py python3-numpy python3-matplotlib) ;;
     --scenes) packages+=(assimp-testmodels) ;;
     --scenes-extra) packages+=(glmark2-data libcgal-demo) ;;
     --slurm) packages+=(slurmctld slurmd slurm-client munge) ;;
-    *) echo "install-deps: unknown option $arg (known: --scenes, --scenes-extra, --slurm)" >&2; exit 2 ;;
+    *) echo "install-deps: unknown option $arg (known: --python, --scenes, --scenes-extra, --slurm)" >&2; exit 2 ;;
   esac
 done
 missing=()

@@ -11,15 +11,21 @@
 # DIR/pareto/*.h5, when present, else the runs in DIR checked against the oracle (run
 # --check): the speed/accuracy knobs, one Pareto plot and table per scene.
 set -euo pipefail
+usage="usage: scripts/make_report.sh DIR OUTDIR  (DIR: a directory of cdbench *.h5 results)"
+if [[ $# -ge 1 && ( $1 == -h || $1 == --help ) ]]; then
+  echo "$usage"
+  exit 0
+fi
 if [[ $# -ne 2 || ! -d $1 ]]; then
-  echo "usage: scripts/make_report.sh DIR OUTDIR  (DIR: a directory of cdbench *.h5 results)" >&2
+  echo "$usage" >&2
   exit 2
 fi
 dir=${1%/}
 outdir=${2%/}
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+# The plots and tables need h5py, numpy and matplotlib (Debian's python3-* packages).
+bash "$here/install-deps.sh" --python
 python=/usr/bin/python3
-[[ -x $python ]] || python=python3
 py() { "$python" "$here/$1" "${@:2}"; }
 
 mkdir -p "$outdir"
@@ -53,7 +59,7 @@ strategies=unordered,static,b,periodic,restructure,c,reference
     [[ -n $scene ]] || continue
     png="curves-$(printf '%s' "$scene" | tr -c 'A-Za-z0-9._-' '_').png"
     drawn=$(py plot_curves.py "$dir" --scene "$scene" --pipelines "$strategies" --out "$outdir/$png")
-    echo "- $scene: [$png]($png): ${drawn#*: $scene, }"
+    echo "- $scene: [$png]($png): ${drawn#*": $scene, "}"
     echo
     echo "  ![$scene curves]($png)"
   done <<<"$scenes"

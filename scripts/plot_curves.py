@@ -42,8 +42,12 @@ def main():
         left_out = [r for r in incomplete if r.scene == args.scene and r.pipeline in wanted]
         cdb_results.report_incomplete(left_out, "plot_curves")
         if not runs:
+            # A scene run with --set is labelled name[key=value]: name those the user may mean.
+            near = sorted({r.scene for r in complete if r.scene.split("[")[0] == args.scene.split("[")[0]}
+                          - {args.scene})
+            hint = f" (runs of {', '.join(repr(n) for n in near)} are there: pass one to --scene)" if near else ""
             raise cdb_results.ResultsError(f"{', '.join(args.paths)}: no complete run of scene "
-                                           f"'{args.scene}' with pipelines {args.pipelines}")
+                                           f"'{args.scene}' with pipelines {args.pipelines}{hint}")
 
         fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(9, 6.5))
         marked = 0

@@ -115,11 +115,20 @@ def main():
             ax.grid(alpha=0.3)
         for name in pipelines:
             axes[0].scatter([], [], color=colors[name], label=name)
-        axes[0].scatter([], [], marker="o", color="gray", label="discrete, refit every frame")
-        axes[0].scatter([], [], marker="s", color="gray", label="swept, refit every frame")
-        axes[0].scatter([], [], marker="v", color="gray", label="lazy refit (not conservative)")
-        axes[0].scatter([], [], marker="o", color="gray", edgecolors="black", linewidths=1.5, label="q16 boxes")
-        axes[0].scatter([], [], marker="o", color="gray", edgecolors="magenta", linewidths=1.5, label="fp64 (rebased) boxes")
+        # The legend lists only the marker kinds and edges some point of the plot has.
+        kinds = {(p.boxes, p.refit_every == 1) for p in points}
+        shape_labels = ((("discrete", True), "discrete, refit every frame"),
+                        (("swept", True), "swept, refit every frame"),
+                        (("discrete", False), "lazy refit (not conservative)"),
+                        (("swept", False), "swept, lazy refit (not conservative)"))
+        for kind, label in shape_labels:
+            if kind in kinds:
+                axes[0].scatter([], [], marker=markers[kind], color="gray", label=label)
+        precisions = {p.precision for p in points}
+        for precision, label in (("q16", "q16 boxes"), ("fp64", "fp64 (rebased) boxes")):
+            if precision in precisions:
+                axes[0].scatter([], [], marker="o", color="gray", edgecolors=edge_of[precision], linewidths=1.5,
+                                label=label)
         axes[0].scatter([], [], s=140, facecolors="none", edgecolors="black", label="Pareto front")
         axes[0].legend(fontsize=7)
         fig.suptitle(f"{args.scene}: speed/accuracy knobs ({points[0].run.device}); "

@@ -29,7 +29,27 @@ void* CudaMemory::do_allocate(size_t bytes) {
 
 void CudaMemory::do_deallocate(void* p, size_t) { cudaFree(p); }
 
+namespace {
+
+// Compiled like every kernel of this build; its attributes say which of the build's code
+// variants the driver loaded for this GPU.
+__global__ void code_variant_kernel() {}
+
+// The virtual architecture (PTX version x 10, e.g. 90) the loaded kernels were compiled
+// from: below 90 they lack the griddepcontrol wait (dependent_launch_entry).
+int loaded_ptx_version() {
+  cudaFuncAttributes attributes{};
+  cuda_check(cudaFuncGetAttributes(&attributes, code_variant_kernel), "kernel attribute query");
+  return attributes.ptxVersion;
+}
+
+}  // namespace
+
 CudaExec::CudaExec(const ExecOptions& options) : options_(options) {
+  // A build without a visible GPU embeds compute_75 PTX (cmake/cuda_architectures.cmake),
+  // which a Hopper card may be handed when it has no sm_90 code: launched with programmatic
+  // serialization, kernels without the wait would overlap their predecessors.
+  if (loaded_ptx_version() < 90) options_.dependent_launch = false;
   int device = 0, sms = 0, per_sm = 0;
   cuda_check(cudaGetDevice(&device), "device query");
   cuda_check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "SM count query");

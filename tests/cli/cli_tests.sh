@@ -19,6 +19,9 @@ check "front cycle neither auto nor K" 2 "auto or a positive whole number of fra
 check "unknown scene" 2 "unknown scene 'nowhere'" -- "$cdbench" run --device cpu --scene nowhere
 check "frame range past the end" 2 "only 20 frames" -- "$cdbench" run --device cpu --frames 0:99
 check "bad frame range" 2 "expected A:B" -- "$cdbench" run --device cpu --frames x:y
+check "frame index past uint32" 2 "beyond the largest frame index" -- "$cdbench" run --device cpu --frames 0:99999999999999999999
+check "one frame left to the warm-up, said" 0 "^warning: --frames '2' gives 1 frame, none after --warmup 1: the summary takes in the first frame" -- "$cdbench" run --device cpu --quiet --frames 2
+check "one frame with --warmup 0" 0 "summary: 1 frames measured \\(first 0 left out" -- "$cdbench" run --device cpu --quiet --frames 2 --warmup 0
 
 # Exit codes (docs/usage.md): 0 ok, 1 failure, 2 usage.
 check "version names the release" 0 "^cdbench [0-9]+\.[0-9]+\.[0-9]+$" -- "$cdbench" --version
@@ -32,9 +35,14 @@ check "unknown pipeline in a list: usage, before any run" 2 "unknown pipeline 'f
 if grep -qE "^(scene|pipeline|frame) " "$tmp/out"; then fail "pipeline b ran before foo was rejected"; else echo "ok   nothing ran before the bad name was found"; fi
 check "verify rejects an unknown pipeline first" 2 "unknown pipeline 'foo'" -- "$cdbench" verify --device cpu --pipelines b foo
 check "default pipeline is c" 0 "^pipeline: c on cpu" -- "$cdbench" run --device cpu --quiet --frames 0:2
-check "help groups the options" 0 "^GPU tuning:" -- "$cdbench" run --help
+check "help groups the options" 0 "^Tuning \\(speed only\\):" -- "$cdbench" run --help
 has "help has a scene group" "$tmp/out" "^Scene:"
 has "help has a pipeline group" "$tmp/out" "^Pipeline:"
+for cmd in "" run verify scenes sweep report; do
+  COLUMNS=100 "$cdbench" $cmd --help >"$tmp/help.txt" 2>&1
+  long=$(awk 'length > 100' "$tmp/help.txt" | wc -l)
+  if [[ $long -eq 0 ]]; then echo "ok   ${cmd:-cdbench} --help fits 100 columns"; else fail "${cmd:-cdbench} --help: $long lines over 100 columns"; awk 'length > 100' "$tmp/help.txt" | head -3; fi
+done
 check "out names a directory" 2 "--out $tmp/outdir/: names a directory" -- "$cdbench" run --device cpu --frames 0:2 --out "$tmp/outdir/"
 touch "$tmp/plainfile"
 check "out under a file" 1 "--out $tmp/plainfile/r.h5: cannot create directory" -- "$cdbench" run --device cpu --frames 0:2 --out "$tmp/plainfile/r.h5"
@@ -80,7 +88,7 @@ far=(--scene cloth-wave --set res=24 --set frames=3 --set placement.scale=0.025 
 check "fp32 far out: warned before the run" 0 "^warning: float spacing 1 at the largest coordinate 1e\\+07 .*--box-precision fp64" -- "$cdbench" run --device cpu --quiet --pipeline c --frames 0:2 "${far[@]}"
 check "fp32 far out: recall 1, blurred" 0 "check +2 frames against the oracle: recall min 1.000000, precision min 0\\.0[0-9]+, 0 missed" -- "$cdbench" run --device cpu --quiet --pipeline c --frames 0:2 --check every "${far[@]}"
 check "fp64 far out: the double geometry's pairs" 0 "check +2 frames against the oracle: recall min 1.000000, precision min 1.000000, 0 missed, 0 false positives" -- "$cdbench" run --device cpu --quiet --pipeline c --frames 0:2 --check every "${far[@]}" --box-precision fp64
-"$cdbench" run --device cpu --quiet --pipeline grid --frames 0:1 "${far[@]}" --box-precision fp64 >"$tmp/fp64.out" 2>&1
+"$cdbench" run --device cpu --quiet --pipeline grid --frames 0:1 --warmup 0 "${far[@]}" --box-precision fp64 >"$tmp/fp64.out" 2>&1
 if grep -q "warning" "$tmp/fp64.out"; then fail "fp64 far out: no warning"; else echo "ok   fp64 far out: no warning"; fi
 check "check every 5th frame, co-vertex filtered" 0 "check +4 frames against the oracle: recall min 1.000000" -- "$cdbench" run --device cpu --quiet --pipeline grid --check 5 --skip-adjacent
 check "check with declared queries" 0 "check +3 frames against the oracle: recall min 1.000000, precision min 1.000000" -- "$cdbench" run --device cpu --quiet --scene funnel-inter --frames 0:3 --pipeline static --check every
