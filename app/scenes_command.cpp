@@ -62,6 +62,11 @@ int scenes_info(const ScenesOptions& opts) {
   std::printf("            %s\n", s.description.c_str());
   std::printf("triangles   %zu\nvertices    %u\nframes      %u\n", topo.faces.size(), topo.num_vertices,
               s.source->num_frames());
+  // What --set can change, so a user need not read the generator's source.
+  for (const GeneratorParameter& p : s.parameters)
+    std::printf("parameter   %-14s %-8s %s%s%s\n", p.key.c_str(), p.kind.c_str(), p.value.c_str(),
+                p.value == p.fallback ? "" : (" (default " + p.fallback + ")").c_str(),
+                p.range.empty() ? "" : ("  range " + p.range).c_str());
   for (const auto& ob : topo.objects)
     std::printf("object      %-10s faces %u..%u  %s\n", ob.name.c_str(), ob.first_face,
                 ob.first_face + ob.num_faces, ob.rigid ? "rigid" : "deformable");

@@ -68,11 +68,11 @@ void cloth_grid(uint32_t nu, uint32_t nv, dvec3 origin, dvec3 du, dvec3 dv, std:
 
 ClothCommon read_cloth_common(Params& p, uint32_t res, uint32_t frames, uint32_t warmup, uint32_t substeps) {
   ClothCommon c;
-  c.res = p.count_in("res", res, 2, 20000);
-  c.frames = p.count_in("frames", frames, 1, 100000);
-  c.warmup = p.count_in("warmup", warmup, 0, 100000);
-  c.substeps = p.count_in("substeps", substeps, 1, 1000);
-  c.seed = p.count("seed", 1);
+  c.res = p.count32("res", res, 2, 20000);
+  c.frames = p.count32("frames", frames, 1, 100000);
+  c.warmup = p.count32("warmup", warmup, 0, 100000);
+  c.substeps = p.count32("substeps", substeps, 1, 1000);
+  c.seed = p.count_in("seed", 1, 0, scene::kLargestExactCount);
   return c;
 }
 

@@ -46,8 +46,8 @@ Pose translation(dvec3 t) {
 // the funnel and the cloth folded around it.
 std::unique_ptr<FrameSource> make_funnel(Params& p) {
   const ClothCommon c = read_cloth_common(p, 56, 20, 30, 12);
-  const uint32_t segments = p.count_in("segments", 48, 3, 100000);
-  const uint32_t level = p.count_in("ball_level", 3, 0, 8);
+  const uint32_t segments = p.count32("segments", 48, 3, 100000);
+  const uint32_t level = p.count32("ball_level", 3, 0, 8);
   const double speed = p.number("ball_speed", 0.9);
   p.finish();
   const double size = 1.6, radius = 0.22;
@@ -81,7 +81,7 @@ std::unique_ptr<FrameSource> make_funnel(Params& p) {
 // spins up so that friction twists the cloth around it.
 std::unique_ptr<FrameSource> make_cloth_ball(Params& p) {
   const ClothCommon c = read_cloth_common(p, 64, 40, 20, 12);
-  const uint32_t level = p.count_in("ball_level", 3, 0, 8);
+  const uint32_t level = p.count32("ball_level", 3, 0, 8);
   const double spin = p.number("spin", 0.5), twist = p.number("twist_spin", 5.0);
   p.finish();
   const double size = 3.0, radius = 0.5;
@@ -119,7 +119,7 @@ std::unique_ptr<FrameSource> make_cloth_ball(Params& p) {
 std::unique_ptr<FrameSource> make_flag(Params& p) {
   const ClothCommon c = read_cloth_common(p, 48, 40, 30, 12);
   const double wind = p.number("wind", 10.0);
-  const uint32_t segments = p.count_in("segments", 12, 3, 100000);
+  const uint32_t segments = p.count32("segments", 12, 3, 100000);
   p.finish();
   const double width = 1.5, height = 1.0, pole = 0.03;
   ClothSceneSpec s;
@@ -152,7 +152,7 @@ std::unique_ptr<FrameSource> make_flag(Params& p) {
 // the folds together and wraps the curtain around itself, and the curtain swings back.
 std::unique_ptr<FrameSource> make_sphere_hit(Params& p) {
   const ClothCommon c = read_cloth_common(p, 48, 40, 20, 12);
-  const uint32_t level = p.count_in("ball_level", 3, 0, 8);
+  const uint32_t level = p.count32("ball_level", 3, 0, 8);
   p.finish();
   const double size = 1.6, radius = 0.3, period = 2.4;
   ClothSceneSpec s;

@@ -1,5 +1,7 @@
 #include "generators.h"
 
+#include <new>
+
 #include <cmath>
 
 #include "cloth_scenes.h"
@@ -41,14 +43,15 @@ void add_grid_faces(Topology& t, uint32_t base, uint32_t nu, uint32_t nv) {
 class SoupSource final : public GeneratedSource {
  public:
   explicit SoupSource(Params& p) {
-    n_ = p.count("triangles", 1000);
+    // Three vertices a triangle, indexed by 32 bits.
+    n_ = p.count32("triangles", 1000, 0, UINT32_MAX / 3);
     const std::string dist = p.text("distribution", "uniform");
     scale_ = p.number("scale", 1.0);
     const double size = p.number("size", 0.5 / std::cbrt(double(std::max<uint64_t>(n_, 1))));
     const double duplicates = p.number("duplicates", 0.0);
     jitter_ = p.number("jitter", 0.1) * size;
-    seed_ = p.count("seed", 1);
-    frames_ = uint32_t(p.count("frames", 1));
+    seed_ = p.count_in("seed", 1, 0, scene::kLargestExactCount);
+    frames_ = p.count32("frames", 1, 1, UINT32_MAX);
     p.finish();
     if (dist != "uniform" && dist != "clustered" && dist != "identical")
       fail("generator 'soup', parameter 'distribution': unknown value '" + dist +
@@ -107,11 +110,9 @@ class SoupSource final : public GeneratedSource {
 class ClothWaveSource final : public GeneratedSource {
  public:
   explicit ClothWaveSource(Params& p) {
-    res_ = uint32_t(p.count("res", 64));
-    frames_ = uint32_t(p.count("frames", 20));
+    res_ = p.count32("res", 64, 2, 20000);
+    frames_ = p.count32("frames", 20, 1, UINT32_MAX);
     p.finish();
-    if (res_ < 2) fail("generator 'cloth-wave', parameter 'res': must be at least 2");
-    if (frames_ == 0) fail("generator 'cloth-wave', parameter 'frames': must be at least 1");
     add_grid_faces(topology_, 0, res_, res_);
     topology_.num_vertices = res_ * res_;
     description_ = "cloth-wave: " + std::to_string(res_) + "x" + std::to_string(res_) + " cloth";
@@ -147,8 +148,9 @@ const std::vector<std::string>& generator_names() {
   return names;
 }
 
-std::unique_ptr<FrameSource> make_generator(const std::string& name, const nlohmann::json& params) {
-  Params p(name, params);
+namespace {
+
+std::unique_ptr<FrameSource> make_named(const std::string& name, Params& p) {
   if (name == "soup") return std::make_unique<SoupSource>(p);
   if (name == "cloth-wave") return std::make_unique<ClothWaveSource>(p);
   if (name == "funnel") return scene::make_funnel(p);
@@ -159,6 +161,25 @@ std::unique_ptr<FrameSource> make_generator(const std::string& name, const nlohm
   std::string list;
   for (const auto& n : generator_names()) list += (list.empty() ? "" : ", ") + n;
   fail("unknown generator '" + name + "' (known: " + list + ")");
+}
+
+}  // namespace
+
+std::unique_ptr<FrameSource> make_generator(const std::string& name, const nlohmann::json& params,
+                                            std::vector<GeneratorParameter>* described) {
+  Params p(name, params);
+  try {
+    std::unique_ptr<FrameSource> source = make_named(name, p);
+    if (described) *described = p.described();
+    return source;
+  } catch (const std::bad_alloc&) {
+    // The sizes are the parameters: name them, with what they were.
+    std::string sizes;
+    for (const auto& d : p.described())
+      if (d.kind == "integer" && d.value != d.fallback) sizes += (sizes.empty() ? "" : ", ") + d.key + "=" + d.value;
+    fail("generator '" + name + "': out of host memory building the scene" +
+         (sizes.empty() ? std::string() : " with " + sizes) + "; lower its size parameters");
+  }
 }
 
 }  // namespace cdb

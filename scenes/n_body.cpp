@@ -135,15 +135,15 @@ class NBody {
 class NBodySource final : public FrameSource {
  public:
   explicit NBodySource(Params& p) {
-    const uint32_t balls = p.count_in("spheres", 460, 0, 10000000);
-    const uint32_t cones = p.count_in("cones", 5, 0, 10000000);
-    const uint32_t level = p.count_in("sphere_level", 2, 0, 8);
-    const uint32_t segments = p.count_in("cone_segments", 32, 3, 100000);
-    frames_ = p.count_in("frames", 76, 1, 100000);
-    warmup_ = p.count_in("warmup", 10, 0, 100000);
-    substeps_ = p.count_in("substeps", 8, 1, 1000);
+    const uint32_t balls = p.count32("spheres", 460, 0, 10000000);
+    const uint32_t cones = p.count32("cones", 5, 0, 10000000);
+    const uint32_t level = p.count32("sphere_level", 2, 0, 8);
+    const uint32_t segments = p.count32("cone_segments", 32, 3, 100000);
+    frames_ = p.count32("frames", 76, 1, 100000);
+    warmup_ = p.count32("warmup", 10, 0, 100000);
+    substeps_ = p.count32("substeps", 8, 1, 1000);
     const double speed = p.number("speed", 1.5);
-    const uint64_t seed = p.count("seed", 1);
+    const uint64_t seed = p.count_in("seed", 1, 0, scene::kLargestExactCount);
     p.finish();
 
     // Ball radii 0.04..0.06; cones of base radius 0.06 and height 0.12. A cone's body origin

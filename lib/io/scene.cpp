@@ -347,7 +347,8 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
     if (!params.is_object()) fail(file.string() + ": /params: must be an object");
     for (auto it = overrides.begin(); it != overrides.end(); ++it) params[it.key()] = it.value();
     s.source = opened_at(file.string(), [&] {
-      return cache_frames(make_generator(generator, params), generator + " " + params.dump(), frame_cache_dir());
+      return cache_frames(make_generator(generator, params, &s.parameters), generator + " " + params.dump(),
+                          frame_cache_dir());
     });
   } else if (root.has("animation")) {
     s.source = open_animation(root.object("animation", animation_keys()), file);

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generator_parameter.h"
 #include "geometry/frame_source.h"
 
 namespace cdb {
@@ -18,6 +19,8 @@ struct Scene {
   // The generator parameters `--set` overrode (an object, empty when none): part of the
   // scene's identity in results (io/scene_label.h).
   nlohmann::json overrides = nlohmann::json::object();
+  // A procedural scene's generator parameters: defaults, ranges and the values used.
+  std::vector<GeneratorParameter> parameters;
   std::unique_ptr<FrameSource> source;
 };
 

@@ -104,7 +104,10 @@ check "bad threshold order" 2 "threshold" -- "$cdbench" run --device cpu --quiet
 check "scenes info" 0 "vertex motion mean" -- "$cdbench" scenes info funnel --set frames=3
 check "scenes generate" 0 "wrote 2 frames" -- "$cdbench" scenes generate funnel --set frames=2 --out "$tmp/gen"
 check "generated scene runs" 0 "frames 0:2" -- "$cdbench" run --device cpu --scene "$tmp/gen"
-check "unknown generator parameter" 1 "nope" -- "$cdbench" scenes info funnel --set nope=1
+check "unknown generator parameter lists the known" 1 "parameter 'nope': unknown parameter \\(known: res, frames, warmup, substeps, seed, segments, ball_level, ball_speed\\)" -- "$cdbench" scenes info funnel --set nope=1
+check "scenes info lists the parameters" 0 "^parameter +res +integer +16 \\(default 56\\) +range 2\\.\\.20000" -- "$cdbench" scenes info funnel --set res=16 --set frames=2
+check "a count past its range is refused, not wrapped" 1 "parameter 'res': 4294967312 is out of range: must be between 2 and 20000" -- "$cdbench" run --device cpu --scene funnel --set res=4294967312
+check "frames past uint32 is refused, not wrapped" 1 "parameter 'frames': 4294967297 is out of range" -- "$cdbench" run --device cpu --scene funnel --set frames=4294967297
 check "set on a mesh sequence" 2 "procedural" -- "$cdbench" scenes info "$tmp/gen" --set res=4
 
 mkdir -p "$tmp/seq"
