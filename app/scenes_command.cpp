@@ -62,6 +62,8 @@ int scenes_info(const ScenesOptions& opts) {
   std::printf("            %s\n", s.description.c_str());
   std::printf("triangles   %zu\nvertices    %u\nframes      %u\n", topo.faces.size(), topo.num_vertices,
               s.source->num_frames());
+  if (topo.box_faces)
+    std::printf("boxes       %u of the triangles are boxes of a box stream (min, max, max)\n", topo.box_faces);
   for (const auto& ob : topo.objects)
     std::printf("object      %-10s faces %u..%u  %s\n", ob.name.c_str(), ob.first_face,
                 ob.first_face + ob.num_faces, ob.rigid ? "rigid" : "deformable");
