@@ -187,19 +187,18 @@ std::unique_ptr<FrameSource> open_crowd(const DescriptorObject& c, const std::fi
   return opened_at(c.where(), [&] { return cdb::open_crowd(o); });
 }
 
-// A directory of frames: box frames (io/box_stream.h) or mesh frames (io/obj_sequence.h),
-// told apart by the files' extensions; a directory of both is refused rather than read as
-// either, which would silently drop the other's files.
+// An existing directory of frames: box frames (io/box_stream.h) or mesh frames
+// (io/obj_sequence.h), told apart by the files' extensions; a directory of both is refused
+// rather than read as either, which would silently drop the other's files.
 std::unique_ptr<FrameSource> open_frame_directory(const std::filesystem::path& dir) {
   std::filesystem::path box_file, mesh_file;
-  if (std::filesystem::is_directory(dir))
-    for (const auto& e : std::filesystem::directory_iterator(dir)) {
-      if (!e.is_regular_file()) continue;
-      std::string ext = e.path().extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-      if (is_box_frame_file(e.path())) box_file = e.path();
-      else if (ext == ".obj") mesh_file = e.path();
-    }
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    std::string ext = e.path().extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+    if (is_box_frame_file(e.path())) box_file = e.path();
+    else if (ext == ".obj") mesh_file = e.path();
+  }
   if (!box_file.empty() && !mesh_file.empty())
     fail(dir.string() + ": mixes box frames (" + box_file.filename().string() + ") and mesh frames (" +
          mesh_file.filename().string() + "): a frame directory holds one kind");
