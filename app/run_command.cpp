@@ -193,6 +193,12 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   print_environment(device);
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
+  // A box's face is the box's diagonal (io/box_stream.h), so --check's exact triangle
+  // contact counts would be counts of segments: refused rather than silently wrong.
+  if (topo.box_faces && check_interval(r.check))
+    fail_usage("--check " + r.check + ": scene " + scene.name + " has " + std::to_string(topo.box_faces) +
+               " boxes (a box stream), and --check counts contacts of triangles; use `cdbench verify` to compare "
+               "with the oracle");
   const FrameRange range = parse_frame_range(o.frames, scene.source->num_frames());
   std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
               scene.name.c_str(), scene.description.c_str(), topo.faces.size(),

@@ -67,6 +67,8 @@ int scenes_info(const ScenesOptions& opts) {
     std::printf("parameter   %-14s %-8s %s%s%s\n", p.key.c_str(), p.kind.c_str(), p.value.c_str(),
                 p.value == p.fallback ? "" : (" (default " + p.fallback + ")").c_str(),
                 p.range.empty() ? "" : ("  range " + p.range).c_str());
+  if (topo.box_faces)
+    std::printf("boxes       %u of the triangles are boxes of a box stream (min, max, max)\n", topo.box_faces);
   for (const auto& ob : topo.objects)
     std::printf("object      %-10s faces %u..%u  %s\n", ob.name.c_str(), ob.first_face,
                 ob.first_face + ob.num_faces, ob.rigid ? "rigid" : "deformable");

@@ -26,6 +26,10 @@ struct Topology {
   uint32_t num_vertices = 0;
   std::vector<SceneObject> objects;  // empty: one unnamed object
   ObjectQueries queries;             // not declared: every pair
+  // Faces that stand for input boxes rather than triangles (io/box_stream.h): degenerate
+  // (min, max, max) faces whose box is the input box, but whose "triangle" is only the box's
+  // diagonal, so contact tests on real triangles must not run on them.
+  uint32_t box_faces = 0;
 };
 
 // What kernels see of a mesh frame: plain pointers, passed by value.

@@ -22,6 +22,7 @@ class ComposedScene final : public FrameSource {
       first_vertex_.push_back(base);
       for (const Tri& f : t.faces) topology_.faces.push_back({base + f.v0, base + f.v1, base + f.v2});
       topology_.num_vertices += t.num_vertices;
+      topology_.box_faces += t.box_faces;
       topology_.objects.push_back({p.name, first_face, uint32_t(t.faces.size()), p.rigid});
     }
   }

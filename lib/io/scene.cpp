@@ -1,5 +1,6 @@
 #include "io/scene.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "generators.h"
 #include "io/animated_mesh.h"
 #include "io/archive_cache.h"
+#include "io/box_stream.h"
 #include "io/composed_scene.h"
 #include "io/descriptor_object.h"
 #include "io/frame_cache.h"
@@ -185,6 +187,37 @@ std::unique_ptr<FrameSource> open_crowd(const DescriptorObject& c, const std::fi
   return opened_at(c.where(), [&] { return cdb::open_crowd(o); });
 }
 
+// An existing directory of frames: box frames (io/box_stream.h) or mesh frames
+// (io/obj_sequence.h), told apart by the files' extensions; a directory of both is refused
+// rather than read as either, which would silently drop the other's files.
+std::unique_ptr<FrameSource> open_frame_directory(const std::filesystem::path& dir) {
+  std::filesystem::path box_file, mesh_file;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    std::string ext = e.path().extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+    if (is_box_frame_file(e.path())) box_file = e.path();
+    else if (ext == ".obj") mesh_file = e.path();
+  }
+  if (!box_file.empty() && !mesh_file.empty())
+    fail(dir.string() + ": mixes box frames (" + box_file.filename().string() + ") and mesh frames (" +
+         mesh_file.filename().string() + "): a frame directory holds one kind");
+  return box_file.empty() ? open_mesh_sequence(dir) : open_box_stream(dir);
+}
+
+// "frames": DIR (box or mesh frames) or "boxes": DIR (box frames only), relative to the
+// descriptor's directory.
+std::unique_ptr<FrameSource> open_directory_key(const DescriptorObject& o, const char* key,
+                                                const std::filesystem::path& descriptor) {
+  if (!o.raw(key).is_string()) fail(o.at(key) + ": must be a string (a directory)");
+  std::filesystem::path dir = o.raw(key).get<std::string>();
+  if (dir.is_relative()) dir = descriptor.parent_path() / dir;
+  if (!std::filesystem::is_directory(dir)) fail(o.at(key) + ": " + dir.string() + " is not a directory");
+  return opened_at(o.at(key), [&] {
+    return std::string(key) == "boxes" ? open_box_stream(dir) : open_frame_directory(dir);
+  });
+}
+
 scene::dvec3 dvec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 
 // "motion": parametric {"fps", "position", "velocity", "axis", "angle", "angular_velocity",
@@ -241,8 +274,8 @@ StaticMesh static_mesh(const DescriptorObject& m, const std::filesystem::path& d
   return opened_at(m.where(), [&] { return load_static_mesh(file, scale, center); });
 }
 
-// "parts": [{"name", one of generator (+ params), animation, keyframes, crowd, mesh (+ motion)}]
-// with "frame_count".
+// "parts": [{"name", one of generator (+ params), animation, keyframes, crowd, frames, boxes,
+// mesh (+ motion)}] with "frame_count".
 std::unique_ptr<FrameSource> open_parts(const DescriptorObject& root, const std::filesystem::path& descriptor) {
   const auto& parts = root.raw("parts");
   if (!parts.is_array() || parts.empty()) fail(root.at("parts") + ": must be a non-empty array of parts");
@@ -257,14 +290,17 @@ std::unique_ptr<FrameSource> open_parts(const DescriptorObject& root, const std:
   std::set<std::string> names;
   for (size_t i = 0; i < parts.size(); ++i) {
     const DescriptorObject p(parts[i], root.at("parts") + "/" + std::to_string(i),
-                             {"name", "generator", "params", "animation", "keyframes", "crowd", "mesh", "motion"});
+                             {"name", "generator", "params", "animation", "keyframes", "crowd", "frames", "boxes",
+                              "mesh", "motion"});
     Pending part;
     part.where = p.where();
     part.name = p.text("name");
     if (!names.insert(part.name).second) fail(p.at("name") + ": '" + part.name + "' names an earlier part too");
     int kinds = 0;
-    for (const char* kind : {"generator", "animation", "keyframes", "crowd", "mesh"}) kinds += p.has(kind);
-    if (kinds != 1) fail(p.where() + ": needs exactly one of generator, animation, keyframes, crowd, mesh");
+    for (const char* kind : {"generator", "animation", "keyframes", "crowd", "frames", "boxes", "mesh"})
+      kinds += p.has(kind);
+    if (kinds != 1)
+      fail(p.where() + ": needs exactly one of generator, animation, keyframes, crowd, frames, boxes, mesh");
     if (p.has("params") && !p.has("generator")) fail(p.at("params") + ": only with generator");
     if (p.has("motion") && !p.has("mesh")) fail(p.at("motion") + ": only with mesh");
     if (p.has("generator")) {
@@ -278,6 +314,8 @@ std::unique_ptr<FrameSource> open_parts(const DescriptorObject& root, const std:
       part.source = open_keyframes(p.object("keyframes", keyframe_keys()), descriptor);
     } else if (p.has("crowd")) {
       part.source = open_crowd(p.object("crowd", crowd_keys()), descriptor, part.name);
+    } else if (p.has("frames") || p.has("boxes")) {
+      part.source = open_directory_key(p, p.has("frames") ? "frames" : "boxes", descriptor);
     } else {
       part.mesh = static_mesh(p.object("mesh", {"file", "archive", "member", "scale", "center"}), descriptor,
                               part.origin);
@@ -326,17 +364,19 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   }
   if (!j.is_object()) fail(file.string() + ": a scene descriptor must be a JSON object");
   const DescriptorObject root(j, file.string() + ": ",
-                              {"description", "generator", "params", "frames", "animation", "keyframes", "crowd",
-                               "parts", "frame_count", "objects", "queries", "placement"});
+                              {"description", "generator", "params", "frames", "boxes", "animation", "keyframes",
+                               "crowd", "parts", "frame_count", "objects", "queries", "placement"});
   Scene s;
   s.name = file.stem().string();
   if (j.contains("description")) s.description = root.text("description");
   int kinds = 0;
-  for (const char* kind : {"generator", "frames", "animation", "keyframes", "crowd", "parts"}) kinds += root.has(kind);
+  for (const char* kind : {"generator", "frames", "boxes", "animation", "keyframes", "crowd", "parts"})
+    kinds += root.has(kind);
   if (kinds != 1)
     fail(file.string() +
-         ": needs exactly one of /generator (procedural), /frames (mesh directory), /animation (animated file), "
-         "/keyframes (per-vertex keyframe file), /crowd (instances of an animated file) or /parts (a scene of parts)");
+         ": needs exactly one of /generator (procedural), /frames (mesh or box frame directory), /boxes (box "
+         "frame directory), /animation (animated file), /keyframes (per-vertex keyframe file), /crowd (instances "
+         "of an animated file) or /parts (a scene of parts)");
   if (root.has("params") && !root.has("generator")) fail(file.string() + ": /params: only valid with /generator");
   if (root.has("frame_count") && !root.has("parts")) fail(file.string() + ": /frame_count: only valid with /parts");
   if (!overrides.empty() && !root.has("generator") && !root.has("crowd"))
@@ -364,10 +404,7 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   } else if (root.has("parts")) {
     s.source = open_parts(root, file);
   } else {
-    if (!j["frames"].is_string()) fail(file.string() + ": /frames: must be a string (a directory)");
-    std::filesystem::path dir = j["frames"].get<std::string>();
-    if (dir.is_relative()) dir = file.parent_path() / dir;
-    s.source = open_mesh_sequence(dir);
+    s.source = open_directory_key(root, root.has("frames") ? "frames" : "boxes", file);
   }
   if (j.contains("objects") || j.contains("queries"))
     s.source = declare_queries(std::move(s.source), j, file.string());
@@ -415,7 +452,7 @@ Scene open_unplaced(const std::string& spec, const std::filesystem::path& scenes
     // "frames/" names the directory "frames", not "".
     const std::filesystem::path named = p.has_filename() ? p : p.parent_path();
     s.name = named.filename().string();
-    s.source = open_mesh_sequence(p);
+    s.source = open_frame_directory(p);
     s.description = s.source->describe();
     return s;
   }
@@ -424,7 +461,7 @@ Scene open_unplaced(const std::string& spec, const std::filesystem::path& scenes
   if (std::filesystem::is_regular_file(named)) return open_descriptor(named, overrides);
   std::string known;
   for (const auto& n : list_scenes(scenes_dir)) known += (known.empty() ? "" : ", ") + n;
-  fail_usage("unknown scene '" + spec + "': not a directory of mesh frames, not a .json descriptor, and not in " +
+  fail_usage("unknown scene '" + spec + "': not a directory of mesh or box frames, not a .json descriptor, and not in " +
        scenes_dir.string() + " (known: " + known + ")");
 }
 

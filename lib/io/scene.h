@@ -1,6 +1,7 @@
 #pragma once
-// Resolves what --scene names: a directory of mesh frames, a scene descriptor (.json), or
-// the name of a descriptor in the scenes directory.
+// Resolves what --scene names: a directory of mesh frames (io/obj_sequence.h) or of box
+// frames (io/box_stream.h), a scene descriptor (.json), or the name of a descriptor in the
+// scenes directory.
 #include <filesystem>
 #include <memory>
 #include <string>
