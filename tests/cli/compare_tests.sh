@@ -65,7 +65,7 @@ if [[ "$(head -1 "$tmp/csv1")" == "$(head -1 "$tmp/csv2")" ]] && grep -q "^scene
 else
   fail "compare CSV headers differ: $(head -1 "$tmp/csv1") / $(head -1 "$tmp/csv2")"
 fi
-has "CSV row of the regression" "$tmp/csv2" ",REGRESSION,6,0,same,pipeline: 'c' in A"
+has "CSV row of the regression" "$tmp/csv2" ",REGRESSION,6,0,same,\"pipeline: 'c' in A, 'brute' in B\","
 check "JSON parses" 0 '"verdict": "REGRESSION"' -- \
   bash -c "'$cdbench' compare '$tmp/c3.h5' '$tmp/brute3.h5' --json --allow-mismatch 2>/dev/null | $python -m json.tool"
 has "JSON has the input hash comparison" "$tmp/out" '"input_hash": "same"'
