@@ -1,6 +1,6 @@
 // cdbench command line: builds the commands' options and runs the one given. Each command
-// lives in its own file (run_command, verify_command, scenes_command, sweep_command; report
-// in results_table); the options they share in options.h. Nothing algorithmic lives here.
+// lives in its own file (run_command, verify_command, scenes_command, sweep_command,
+// compare_command; report in results_table); the options they share in options.h. Nothing algorithmic lives here.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli_params.h"
+#include "compare_command.h"
 #include "core/error.h"
 #include "exit_codes.h"
 #include "help_format.h"
@@ -55,6 +56,8 @@ int main(int argc, char** argv) {
 
   SweepOptions w;
   CLI::App* sweep = add_sweep_command(app, w);
+  CompareOptions cmp;
+  CLI::App* compare = add_compare_command(app, cmp);
 
   try {
     app.parse(argc, argv);
@@ -70,6 +73,7 @@ int main(int argc, char** argv) {
     if (*scenes.generate) return scenes_generate(s);
     if (*report) return print_results_table(report_files, csv);
     if (*sweep) return sweep_command(w, *run);
+    if (*compare) return compare_command(cmp);
   } catch (const UsageError& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "cdbench: error: %s\n", e.what());

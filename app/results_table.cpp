@@ -86,10 +86,11 @@ std::vector<std::string> phases_that_ran(const std::vector<Row>& rows) {
   return phases;
 }
 
-// Options shown by their own columns already (scene and --set make the scene label), or
-// different in every file by construction (--out).
+// Options shown by their own columns already (scene and --set make the scene label, --label
+// its column), different in every file by construction (--out), or about the console only
+// (--json).
 bool shown_elsewhere(const std::string& option) {
-  for (const char* name : {"out", "scene", "set", "pipeline", "device"})
+  for (const char* name : {"out", "scene", "set", "pipeline", "device", "label", "json"})
     if (option == name) return true;
   return false;
 }
@@ -207,28 +208,53 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     row.process = s;
     rows.push_back(std::move(row));
   }
-  const std::vector<std::string> phases = phases_that_ran(rows);
-  const std::vector<std::string> options = options_that_differ(rows);
-  const bool checked = std::any_of(rows.begin(), rows.end(), [](const Row& row) {
-    return row.unreadable.empty() && row.r.checked_frames > 0;
-  });
+  // CSV has the same columns for any set of files (every phase this build knows, the check
+  // columns, the options as one JSON cell), so scripts can concatenate and index tables;
+  // Markdown, for reading, shows only the phases that ran and the options that differ.
+  std::vector<std::string> phases;
+  if (csv)
+    phases.assign(kPhaseNames.begin(), kPhaseNames.end());
+  else
+    phases = phases_that_ran(rows);
+  const std::vector<std::string> options = csv ? std::vector<std::string>{} : options_that_differ(rows);
+  const auto any = [&rows](auto has) {
+    return std::any_of(rows.begin(), rows.end(), [&](const Row& row) { return row.unreadable.empty() && has(row.r); });
+  };
+  const bool checked = csv || any([](const ResultsOverview& r) { return r.checked_frames > 0; });
+  const bool labels = csv || any([](const ResultsOverview& r) { return !r.label.empty(); });
+  const bool hashes = csv || any([](const ResultsOverview& r) { return !r.input_hash.empty(); });
+  const bool warnings = csv || any([](const ResultsOverview& r) { return !r.noise_warning.empty(); });
 
-  std::vector<std::string> header = {"file", "scene", "pipeline", "device", "triangles"};
+  std::vector<std::string> header = {"file", "scene", "pipeline", "device"};
+  if (csv) header.insert(header.end(), {"label", "commit", "input_path", "input_hash"});
+  header.push_back("triangles");
   for (const auto& o : options) header.push_back("--" + o);
   header.insert(header.end(), {"frames", "mean_ms", "noise_%", "median_ms", "p95_ms"});
   for (const auto& p : phases) header.push_back(p + "_ms");
   header.push_back("pairs");
   if (checked) header.insert(header.end(), {"recall_min", "precision_min", "contacts", "contact_precision"});
-  header.insert(header.end(), {"syncs", csv ? "peak_bytes" : "peak_MiB", "status"});
-  const size_t text_columns = 5 + options.size();  // left-aligned in Markdown
+  header.insert(header.end(), {"syncs", csv ? "peak_bytes" : "peak_MiB"});
+  if (csv) {
+    header.insert(header.end(), {"noise_warning", "options_json"});
+  } else {
+    if (labels) header.push_back("label");
+    header.push_back("commit");
+    if (hashes) header.push_back("input");
+    if (warnings) header.push_back("warning");
+  }
+  header.push_back("status");
+  // Left-aligned in Markdown: the leading names and options, and label to status at the end.
+  const size_t text_columns = 5 + options.size();
+  const size_t trailing_text = size_t(labels) + 1 + size_t(hashes) + size_t(warnings) + 1;
 
   std::vector<std::vector<std::string>> table;
   for (const Row& row : rows) {
     const ResultsOverview& r = row.r;
     const bool read = row.unreadable.empty() && !r.status.empty();
     std::vector<std::string> cells = {r.path, r.scene_label.empty() ? r.scene : r.scene_label, r.pipeline,
-                                      r.device_name.empty() ? r.backend : r.backend + ": " + r.device_name,
-                                      read ? std::to_string(r.triangles) : ""};
+                                      r.device_name.empty() ? r.backend : r.backend + ": " + r.device_name};
+    if (csv) cells.insert(cells.end(), {r.label, r.git_sha, r.input_path, r.input_hash});
+    cells.push_back(read ? std::to_string(r.triangles) : "");
     for (const auto& o : options) cells.push_back(read ? option_text(r.options, o) : "");
     cells.push_back(read ? std::to_string(r.frames_written) : "");
     const bool stats = row.unreadable.empty() && r.has_summary && r.measured_frames > 0;
@@ -254,6 +280,19 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     }
     cells.push_back(number(stats ? r.host_syncs_mean : none, "%.2f"));
     cells.push_back(!r.has_summary ? "" : csv ? std::to_string(r.peak_bytes) : number(double(r.peak_bytes) / (1 << 20), "%.2f"));
+    if (csv) {
+      nlohmann::json shown = nlohmann::json::object();
+      for (auto it = r.options.begin(); it != r.options.end(); ++it)
+        if (!shown_elsewhere(it.key())) shown[it.key()] = it.value();
+      cells.insert(cells.end(), {r.noise_warning, read ? shown.dump() : ""});
+    } else {
+      if (labels) cells.push_back(r.label);
+      // Twelve digits of the commit (and -dirty) are as many as `git log` needs.
+      cells.push_back(r.git_sha);
+      // The hash's first 8 digits tell inputs apart at a glance; CSV has all 16.
+      if (hashes) cells.push_back(r.input_hash.substr(0, 8));
+      if (warnings) cells.push_back(r.noise_warning.empty() ? "" : "noisy");
+    }
     cells.push_back(status_text(row, csv));
     table.push_back(std::move(cells));
   }
@@ -283,7 +322,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   line(header);
   std::string rule = "|";
   for (size_t i = 0; i < header.size(); ++i)
-    rule += (i < text_columns && i != 4) || i + 1 == header.size() ? " --- |" : " ---: |";
+    rule += (i < text_columns && i != 4) || i + trailing_text >= header.size() ? " --- |" : " ---: |";
   std::printf("%s\n", rule.c_str());
   for (const auto& cells : table) line(cells);
   return rc;

@@ -1,5 +1,7 @@
 #include "run_command.h"
 
+#include <unistd.h>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -9,11 +11,14 @@
 #include <vector>
 
 #include "bruteforce/sweep_oracle.h"
+#include "core/build_info.h"
 #include "core/error.h"
 #include "frame_range.h"
 #include "geometry/cached_frames.h"
 #include "geometry/float_spacing.h"
+#include "geometry/hashed_frames.h"
 #include "io/results_file.h"
+#include "io/scene_label.h"
 #include "output_path.h"
 #include "pipeline/config_json.h"
 #include "pipeline/device_probe.h"
@@ -60,6 +65,68 @@ uint32_t check_interval(const std::string& check) {
   return n;
 }
 
+// The input --scene names, as an absolute path: the directory or .json descriptor given, or
+// the named scene's descriptor in the scenes directory (the order io/scene.cpp resolves
+// them in).
+std::string input_path(const std::string& spec, const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  const fs::path p(spec);
+  std::error_code ec;
+  const fs::path chosen = fs::is_directory(p) || p.extension() == ".json" ? p : dir / (spec + ".json");
+  const fs::path absolute = fs::absolute(chosen, ec);
+  return (ec ? chosen : absolute).lexically_normal().string();
+}
+
+// --json: while it lives, what the commands print on stdout goes to stderr, so stdout
+// carries the JSON summary alone (a pipe into a JSON reader needs nothing else there).
+class StdoutToStderr {
+ public:
+  StdoutToStderr() {
+    std::fflush(stdout);
+    saved_ = dup(STDOUT_FILENO);
+    if (saved_ < 0 || dup2(STDERR_FILENO, STDOUT_FILENO) < 0) fail("--json: cannot redirect stdout to stderr");
+  }
+  ~StdoutToStderr() {
+    std::fflush(stdout);
+    dup2(saved_, STDOUT_FILENO);
+    close(saved_);
+  }
+  StdoutToStderr(const StdoutToStderr&) = delete;
+  StdoutToStderr& operator=(const StdoutToStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
+// One pipeline's entry of run --json.
+nlohmann::json run_json(const Scene& scene, const RunOptions& r, const std::string& pipeline,
+                        const std::string& device, FrameRange range, const RunResult& res, const std::string& out) {
+  const RunSummary& s = res.summary;
+  const auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+  return {{"scene", scene.name},
+          {"scene_label", scene_label(scene.name, scene.overrides)},
+          {"label", r.label},
+          {"pipeline", pipeline},
+          {"device", device},
+          {"frame_first", range.first},
+          {"frame_last", range.last},
+          {"frames", s.frames},
+          {"measured_frames", s.total.count},
+          {"warmup", s.warmup},
+          {"mean_ms", number(s.total.mean)},
+          {"median_ms", number(s.total.median)},
+          {"p95_ms", number(s.total.p95)},
+          {"min_ms", number(s.total.min)},
+          {"repeats", s.repeats},
+          {"noise", number(s.noise_median)},
+          {"noise_warning", res.noise_warning},
+          {"pairs_mean", number(s.pairs_mean)},
+          {"peak_bytes", res.memory.peak_bytes},
+          {"commit", build_info().git_sha},
+          {"input_hash", res.input_hash},
+          {"out", out.empty() ? nlohmann::json(nullptr) : nlohmann::json(out)}};
+}
+
 // What the results file records about the run besides its frames.
 RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene, const PipelineConfig& config,
                  FrameRange range, const nlohmann::json& cli_options) {
@@ -70,6 +137,8 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.scene_description = scene.description;
   run.scene_overrides = scene.overrides;
   run.pipeline = r.pipeline;
+  run.label = r.label;
+  run.input_path = input_path(o.scene, scenes_dir(o.scenes_dir));
   run.backend = config.device;
   run.device_name = gpu ? info.name : cpu_model() + " (" + std::to_string(omp_threads()) + " OpenMP threads)";
   run.driver_version = info.driver_version;
@@ -172,6 +241,14 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
   run->add_flag("--save-pairs", r.save_pairs, "also store each frame's sorted pairs in the results file")
       ->group(kOutputGroup)
       ->needs(out_option);
+  run->add_option("--label", r.label,
+                  "a name for the run, stored in the results file and shown by report and compare (e.g. a "
+                  "branch or a machine)")
+      ->group(kOutputGroup);
+  run->add_flag("--json", r.json,
+                "print a JSON summary of each pipeline's run on stdout at the end; the human output goes to "
+                "stderr instead")
+      ->group(kOutputGroup);
   run->add_flag("--quiet", r.quiet,
                 "no per-frame lines and no list of the buffers that grew (the summary keeps their count); no "
                 "progress lines when stderr is not a terminal")
@@ -182,6 +259,9 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
 }
 
 int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options) {
+  std::optional<StdoutToStderr> redirect;
+  if (r.json) redirect.emplace();
+  nlohmann::json runs = nlohmann::json::array();
   const std::string device = resolve_device(o.device);
   const std::vector<std::string> names = split_pipelines(r.pipeline);
   const ContactCheck contact = contact_check(r, check_interval(r.check));
@@ -216,7 +296,8 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::printf("copy bandwidth: %.0f GB/s (%s, measured; read + written)\n", copy_gbps, device.c_str());
   std::unique_ptr<FrameSource> cached;
   if (names.size() > 1 || r.repeat > 1) cached = std::make_unique<CachedFrames>(*scene.source);
-  const FrameSource& frames = cached ? *cached : *scene.source;
+  // Above the cache: each frame is hashed once, as it is first loaded.
+  const HashedFrames frames(cached ? *cached : *scene.source);
   for (size_t p = 0; p < names.size(); ++p) {
     const std::string& name = names[p];
     const PipelineConfig config = make_config(o, name, device);
@@ -254,7 +335,17 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     if (!config_conservative(config))
       loop.accuracy_warning = "--refit-every " + std::to_string(config.refit_every) +
                               " keeps stale boxes between refits: NOT conservative, pairs can be missed";
-    if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, loop)) return rc;
+    loop.input_hash = [&frames, range] {
+      const std::optional<uint64_t> h = frames.input_hash(range.first, range.last);
+      return h ? hash_hex(*h) : std::string();
+    };
+    RunResult result;
+    if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, loop, &result)) return rc;
+    runs.push_back(run_json(scene, r, name, device, range, result, one.out));
+  }
+  if (redirect) {
+    redirect.reset();
+    std::printf("%s\n", nlohmann::json{{"command", "run"}, {"runs", runs}}.dump(2).c_str());
   }
   return 0;
 }

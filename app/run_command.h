@@ -17,6 +17,8 @@ struct RunOptions {
   uint32_t warmup = 1;
   bool quiet = false;
   std::string out;
+  std::string label;  // --label: stored in the results file, shown by report and compare
+  bool json = false;  // --json: a JSON summary on stdout, the human output on stderr
   bool save_pairs = false;
   std::string check = "off";
   uint32_t repeat = 1;

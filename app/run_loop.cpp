@@ -11,6 +11,7 @@
 #include "core/pair_set.h"
 #include "geometry/position_rounding.h"
 #include "interrupt.h"
+#include "noise_check.h"
 #include "narrow/contacts.h"
 #include "pipeline/run_summary.h"
 #include "report.h"
@@ -104,7 +105,7 @@ void print_accuracy_warning(const std::string& why, const std::vector<FrameStats
 }  // namespace
 
 int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
-               const RunLoopOptions& options) {
+               const RunLoopOptions& options, RunResult* result) {
   if (options.repeat == 0) fail("--repeat must be at least 1");
   if (options.cold && !options.probe) fail("--cold needs the device's cache flush");
   const InterruptScope interrupts;
@@ -212,8 +213,19 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     }
     return 128 + signal;
   }
+  // After the summary it qualifies; stored so `compare` can flag the run.
+  RunFindings findings;
+  findings.noise_warning = noise_warning(measure_noise(frames, options.warmup));
+  if (!findings.noise_warning.empty()) std::printf("  warning     %s\n", findings.noise_warning.c_str());
+  if (options.input_hash) findings.input_hash = options.input_hash();
+  if (result) {
+    result->summary = summarize_run(frames, options.warmup);
+    result->memory = pipeline.memory();
+    result->noise_warning = findings.noise_warning;
+    result->input_hash = findings.input_hash;
+  }
   if (out) {
-    out->finish(summarize_run(frames, options.warmup), pipeline.memory());
+    out->finish(summarize_run(frames, options.warmup), pipeline.memory(), findings);
     std::printf("results: %s (%llu frames)\n", out->path().c_str(), static_cast<unsigned long long>(out->rows()));
   }
   return 0;

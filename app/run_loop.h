@@ -12,6 +12,7 @@
 #include "narrow/contacts.h"
 #include "pipeline/device_probe.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/run_summary.h"
 #include "progress.h"
 
 namespace cdb {
@@ -45,13 +46,25 @@ struct RunLoopOptions {
   // Set when the configuration can miss pairs (--refit-every): printed after the summary,
   // with the measured recall when frames were checked.
   std::string accuracy_warning;
+  // The input's content hash once every frame has run (io/results_file.h RunFindings);
+  // unset: none recorded.
+  std::function<std::string()> input_hash;
+};
+
+// What a finished run reports beyond its exit status (run --json).
+struct RunResult {
+  RunSummary summary;
+  MemoryStats memory;
+  std::string noise_warning;  // "" when the noise is within kNoiseWarningLimit
+  std::string input_hash;
 };
 
 // Runs the frames of `range` (repeat passes of them), prints the summary and, given a results file, records every
 // frame and marks it complete. On an error the file is closed as incomplete with the
 // message and the error is rethrown; on SIGINT/SIGTERM (checked between frames) the same,
 // and the return value is 128 + the signal. Returns 0 otherwise.
+// `result`, when given, receives the summary of a run that ended without error or signal.
 int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
-               const RunLoopOptions& options);
+               const RunLoopOptions& options, RunResult* result = nullptr);
 
 }  // namespace cdb

@@ -18,7 +18,12 @@ import sys
 import h5py
 import numpy as np
 
-SUPPORTED_SCHEMA = 2
+# 3: label, input_path, input_hash, noise_warning (optional: older files lack them).
+SUPPORTED_SCHEMA = 3
+# What `cdbench compare` matches runs on besides the pipeline (app/compare_command.cpp):
+# the options that change the pair set or how time is measured.
+IDENTITY_OPTIONS = ["skip-adjacent", "box-precision", "box-margin", "boxes", "refit-every", "check",
+                    "contact-distance", "contact-substeps", "cold", "phase-timing"]
 # Root attributes every file has from its creation (schema 1 on); a file without them is not ours.
 REQUIRED_ATTRS = ["status", "schema_version", "scene", "pipeline", "device_name", "git_sha",
                   "triangles", "frame_first", "frame_last", "warmup"]
@@ -123,6 +128,24 @@ class Run:
         self.asked = int(attrs["frame_last"]) - int(attrs["frame_first"])
         self.complete = attrs["status"] == "complete" and self.summary is not None
         self.label = self.pipeline
+        self.run_label = attrs.get("label", "")  # run --label (schema 3)
+        self.input_hash = attrs.get("input_hash", "")
+        try:
+            params = json.loads(attrs.get("params_json", "{}"))
+        except ValueError:
+            params = {}
+        self.options = params.get("options", {}) if isinstance(params, dict) else {}
+
+    def identity(self):
+        """[(field, value)] compare matches runs on, the pipeline left out; the input's content
+        hash is apart (identity_differences), as older files lack it."""
+        fields = [("scene", self.scene), ("device", self.attrs.get("backend", "")), ("device_name", self.device),
+                  ("frames", f"{self.attrs['frame_first']}:{self.attrs['frame_last']}"),
+                  ("warmup", str(self.attrs.get("warmup", "")))]
+        for o in IDENTITY_OPTIONS:
+            v = self.options.get(o)
+            fields.append((f"--{o}", "(not recorded)" if v is None else v if isinstance(v, str) else json.dumps(v)))
+        return fields
 
     def incomplete_reason(self):
         """How report shows it: 'incomplete (K/N frames): error'."""
@@ -152,6 +175,14 @@ class Run:
         if self.summary is not None and "peak_bytes" in self.summary:
             return int(self.summary["peak_bytes"])
         return int(self.frames["device_peak_bytes"].max()) if self.rows else 0
+
+
+def identity_differences(a, b):
+    """The identity fields of runs a and b that differ, as 'field: A vs B' (no pipeline)."""
+    diffs = [f"{fa}: {va} vs {vb}" for (fa, va), (_, vb) in zip(a.identity(), b.identity()) if va != vb]
+    if a.input_hash and b.input_hash and a.input_hash != b.input_hash:
+        diffs.append(f"input_hash: {a.input_hash} vs {b.input_hash}")
+    return diffs
 
 
 def expand(paths):

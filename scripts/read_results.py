@@ -14,9 +14,12 @@ import sys
 import h5py
 import numpy as np
 
-SUPPORTED_SCHEMA = 1
+# In step with kResultsSchemaVersion (lib/io/results_file.h); 3 added label, input_path,
+# input_hash and noise_warning, which older files lack (they are printed when present).
+SUPPORTED_SCHEMA = 3
 HEADER_ATTRS = ["scene", "pipeline", "backend", "device_name", "frame_first", "frame_last",
-                "warmup", "triangles", "git_sha", "cdbench_version", "created_utc", "closed_utc"]
+                "warmup", "triangles", "label", "input_path", "input_hash", "noise_warning", "git_sha",
+                "cdbench_version", "created_utc", "closed_utc"]
 
 
 def text(value):

@@ -107,6 +107,8 @@ ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
   write_attr(root, "scene_overrides", info.scene_overrides.dump(), at);
   write_attr(root, "scene_label", scene_label(info.scene, info.scene_overrides), at);
   write_attr(root, "pipeline", info.pipeline, at);
+  write_attr(root, "label", info.label, at);
+  write_attr(root, "input_path", info.input_path, at);
   write_attr(root, "backend", info.backend, at);
   write_attr(root, "device_name", info.device_name, at);
   write_attr(root, "driver_version", int64_t(info.driver_version), at);
@@ -265,9 +267,11 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
   write_attr(loc, "growths", uint64_t(memory.growths), at);
 }
 
-void ResultsFile::finish(const RunSummary& summary, const MemoryStats& memory) {
+void ResultsFile::finish(const RunSummary& summary, const MemoryStats& memory, const RunFindings& findings) {
   if (!file_) fail(where_ + ": the results file is already closed");
   write_summary(summary, memory);
+  write_attr(file_.get(), "input_hash", findings.input_hash, where_ + ": /");
+  write_attr(file_.get(), "noise_warning", findings.noise_warning, where_ + ": /");
   close("complete");
 }
 

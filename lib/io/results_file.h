@@ -21,7 +21,8 @@ namespace cdb {
 
 // 2: scene_label and scene_overrides added, /quality (always empty) dropped, numeric
 // options in params_json stored as numbers.
-inline constexpr int64_t kResultsSchemaVersion = 2;
+// 3: label, input_path, input_hash and noise_warning added (readers treat them as optional).
+inline constexpr int64_t kResultsSchemaVersion = 3;
 
 // What the caller knows about the run; the writer adds the build (version, commit,
 // compilers), the host and the time.
@@ -31,6 +32,10 @@ struct RunInfo {
   // scene's name they make its label (io/scene_label.h).
   nlohmann::json scene_overrides = nlohmann::json::object();
   std::string pipeline;
+  std::string label;  // run --label: the user's name for the run ("" when none)
+  // The input's absolute path: the directory or descriptor given, or the named scene's
+  // descriptor.
+  std::string input_path;
   std::string backend;      // cuda | cpu
   std::string device_name;  // the GPU's name, or the CPU model
   int driver_version = 0, runtime_version = 0;  // CUDA's; 0 on the CPU
@@ -50,6 +55,14 @@ struct RunInfo {
   uint32_t contact_substeps = 0;
 };
 
+// Known only once every frame has run.
+struct RunFindings {
+  // The input's content hash (core/content_hash.h, 16 hex digits); "" when not known.
+  std::string input_hash;
+  // The noise warning the run printed (app/noise_check.h); "" when none.
+  std::string noise_warning;
+};
+
 class ResultsFile {
  public:
   // Creates the file (replacing one of that name; parent directories are made).
@@ -63,8 +76,9 @@ class ResultsFile {
   void append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory);
   // /pairs/frame_NNNN: the frame's sorted pairs as an (n, 2) array of triangle indices.
   void write_pairs(uint32_t frame, const std::vector<PrimPair>& pairs);
-  // Writes /summary, marks the file complete and closes it.
-  void finish(const RunSummary& summary, const MemoryStats& memory);
+  // Writes /summary and what the run learned about itself by its end, marks the file
+  // complete and closes it.
+  void finish(const RunSummary& summary, const MemoryStats& memory, const RunFindings& findings = {});
   // Writes /summary of the frames so far and the error, leaves the status "incomplete"
   // and closes the file. Never throws: it runs while another error is on its way out.
   void abandon(const RunSummary& summary, const MemoryStats& memory, const std::string& error) noexcept;

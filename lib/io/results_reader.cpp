@@ -29,6 +29,18 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   r.device_name = h5::read_string_attr(root, "device_name", at);
   r.frames_planned = uint64_t(h5::read_int_attr(root, "frame_last", at) - h5::read_int_attr(root, "frame_first", at));
   r.triangles = uint64_t(h5::read_int_attr(root, "triangles", at));
+  r.frame_first = uint64_t(h5::read_int_attr(root, "frame_first", at));
+  r.frame_last = uint64_t(h5::read_int_attr(root, "frame_last", at));
+  const auto optional_text = [&](const char* name) {
+    return h5::has_attr(root, name) ? h5::read_string_attr(root, name, at) : std::string();
+  };
+  r.git_sha = optional_text("git_sha");
+  r.label = optional_text("label");
+  r.input_path = optional_text("input_path");
+  r.input_hash = optional_text("input_hash");
+  r.noise_warning = optional_text("noise_warning");
+  if (h5::has_attr(root, "warmup")) r.warmup = uint64_t(h5::read_int_attr(root, "warmup", at));
+  if (h5::has_attr(root, "cold")) r.cold = h5::read_int_attr(root, "cold", at) != 0;
   if (h5::has_attr(root, "params_json")) {
     const std::string text = h5::read_string_attr(root, "params_json", at);
     const nlohmann::json params = nlohmann::json::parse(text, nullptr, false);
@@ -94,6 +106,54 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
     r.phase_means.emplace_back(phase, h5::read_double_attr(s, name.c_str(), st));
   }
   return r;
+}
+
+}  // namespace cdb
+
+namespace cdb {
+namespace {
+
+// One /frames column as `T`, converted by HDF5 from whatever numeric type the file stores.
+template <class T>
+std::vector<T> read_column(hid_t root, const std::string& where, const char* name, hid_t memory_type) {
+  using h5::own;
+  const std::string ds = where + ": /frames/" + name;
+  h5::Handle d = own(H5Dopen2(root, (std::string("frames/") + name).c_str(), H5P_DEFAULT), H5Dclose, ds,
+                     "open dataset");
+  h5::Handle space = own(H5Dget_space(d.get()), H5Sclose, ds, "get dataspace");
+  hsize_t rows = 0;
+  h5::check(H5Sget_simple_extent_dims(space.get(), &rows, nullptr), ds, "get size");
+  std::vector<T> v(rows);
+  if (rows) h5::check(H5Dread(d.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), ds, "read");
+  return v;
+}
+
+}  // namespace
+
+ResultsFrames read_results_frames(const std::filesystem::path& path) {
+  using h5::own;
+  h5::silence_library_errors();
+  const std::string where = path.string();
+  if (!std::filesystem::is_regular_file(path)) fail(where + ": no such file");
+  h5::Handle file = own(H5Fopen(where.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, where, "open results file");
+  const hid_t root = file.get();
+  ResultsFrames f;
+  f.frame = read_column<uint64_t>(root, where, "frame", H5T_NATIVE_UINT64);
+  f.total_ms = read_column<double>(root, where, "t_total_ms", H5T_NATIVE_DOUBLE);
+  f.pairs = read_column<uint64_t>(root, where, "pairs", H5T_NATIVE_UINT64);
+  const size_t rows = f.frame.size();
+  if (f.total_ms.size() != rows || f.pairs.size() != rows)
+    fail(where + ": /frames: t_total_ms and pairs have other lengths than frame");
+  // Files written before --repeat have neither column: one pass, no noise.
+  f.repeats = H5Lexists(root, "frames/repeats", H5P_DEFAULT) > 0
+                  ? read_column<uint64_t>(root, where, "repeats", H5T_NATIVE_UINT64)
+                  : std::vector<uint64_t>(rows, 1);
+  f.total_noise = H5Lexists(root, "frames/t_total_noise", H5P_DEFAULT) > 0
+                      ? read_column<double>(root, where, "t_total_noise", H5T_NATIVE_DOUBLE)
+                      : std::vector<double>(rows, 0.0);
+  if (f.repeats.size() != rows || f.total_noise.size() != rows)
+    fail(where + ": /frames: repeats and t_total_noise have other lengths than frame");
+  return f;
 }
 
 }  // namespace cdb

@@ -22,6 +22,12 @@ struct ResultsOverview {
   // scene_label attribute and get it from params_json's recorded --set options.
   std::string scene_label;
   uint64_t triangles = 0;
+  // Schema 3; "" in older files: run --label, the input's absolute path, its content hash
+  // (written when the run completes) and the noise warning the run printed.
+  std::string label, input_path, input_hash, noise_warning;
+  std::string git_sha;  // the build's commit (with -dirty when it had local changes)
+  uint64_t frame_first = 0, frame_last = 0, warmup = 0;
+  bool cold = false;
   // params_json's "options": every option of the run, the value given or its default.
   nlohmann::json options = nlohmann::json::object();
   uint64_t frames_planned = 0;  // frame_last - frame_first
@@ -42,5 +48,16 @@ struct ResultsOverview {
 };
 
 ResultsOverview read_results_overview(const std::filesystem::path& path);
+
+// The per-frame columns `cdbench compare` works on, one entry per /frames row.
+struct ResultsFrames {
+  std::vector<uint64_t> frame, pairs, repeats;
+  std::vector<double> total_ms;
+  // --repeat: relative standard deviation of total_ms over the passes (0 with one pass;
+  // files without the column read as 0).
+  std::vector<double> total_noise;
+};
+
+ResultsFrames read_results_frames(const std::filesystem::path& path);
 
 }  // namespace cdb

@@ -1,0 +1,160 @@
+#include "run_statistics.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "pipeline/run_summary.h"
+
+namespace cdb {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kZ95 = 1.959963984540054;  // two-sided 95% normal quantile
+
+double sample_sd(const std::vector<double>& v, double mean) {
+  double ss = 0;
+  for (double x : v) ss += (x - mean) * (x - mean);
+  return std::sqrt(ss / double(v.size() - 1));
+}
+
+double mean_of(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return v.empty() ? 0.0 : sum / double(v.size());
+}
+
+}  // namespace
+
+Metric parse_metric(const std::string& name) {
+  if (name == "mean") return Metric::mean;
+  if (name == "median") return Metric::median;
+  if (name == "p95") return Metric::p95;
+  fail_usage("--metric " + name + ": expected mean, median or p95");
+}
+
+const char* metric_name(Metric m) {
+  switch (m) {
+    case Metric::mean: return "mean";
+    case Metric::median: return "median";
+    case Metric::p95: return "p95";
+  }
+  return "?";
+}
+
+double metric_of(const std::vector<double>& frame_ms, Metric m) {
+  const Stat s = stat_of(frame_ms);
+  if (s.count == 0) return std::nan("");
+  return m == Metric::mean ? s.mean : m == Metric::median ? s.median : s.p95;
+}
+
+double student_t95(size_t df) {
+  // Exact to the digits shown up to 30 degrees of freedom; beyond, the Cornish-Fisher
+  // expansion around the normal quantile (error below 1e-5 from 30 on).
+  static constexpr std::array<double, 30> table = {
+      12.7062, 4.3027, 3.1824, 2.7764, 2.5706, 2.4469, 2.3646, 2.3060, 2.2622, 2.2281,
+      2.2010,  2.1788, 2.1604, 2.1448, 2.1314, 2.1199, 2.1098, 2.1009, 2.0930, 2.0860,
+      2.0796,  2.0739, 2.0687, 2.0639, 2.0595, 2.0555, 2.0518, 2.0484, 2.0452, 2.0423};
+  if (df == 0) return kInf;
+  if (df <= table.size()) return table[df - 1];
+  const double z = kZ95, n = double(df);
+  const double z3 = z * z * z, z5 = z3 * z * z, z7 = z5 * z * z;
+  return z + (z3 + z) / (4 * n) + (5 * z5 + 16 * z3 + 3 * z) / (96 * n * n) +
+         (3 * z7 + 19 * z5 + 17 * z3 - 15 * z) / (384 * n * n * n);
+}
+
+const char* ci_basis_name(CiBasis b) {
+  switch (b) {
+    case CiBasis::repeats: return "repeats";
+    case CiBasis::passes: return "passes";
+    case CiBasis::frames: return "frames";
+  }
+  return "?";
+}
+
+Estimate estimate_over_runs(const std::vector<double>& run_values) {
+  Estimate e;
+  e.basis = CiBasis::repeats;
+  e.n = run_values.size();
+  e.value = mean_of(run_values);
+  if (e.n < 2) {
+    e.lo = -kInf;
+    e.hi = kInf;
+    return e;
+  }
+  const double half = student_t95(e.n - 1) * sample_sd(run_values, e.value) / std::sqrt(double(e.n));
+  e.lo = e.value - half;
+  e.hi = e.value + half;
+  return e;
+}
+
+Estimate estimate_over_frames(const std::vector<double>& frame_ms, Metric m) {
+  Estimate e;
+  e.basis = CiBasis::frames;
+  e.n = frame_ms.size();
+  e.value = metric_of(frame_ms, m);
+  if (m == Metric::mean) {
+    const Estimate r = estimate_over_runs(frame_ms);
+    e.lo = r.lo;
+    e.hi = r.hi;
+    return e;
+  }
+  std::vector<double> v = frame_ms;
+  std::sort(v.begin(), v.end());
+  const double p = m == Metric::median ? 0.5 : 0.95, n = double(v.size());
+  const double spread = kZ95 * std::sqrt(n * p * (1 - p));
+  // 1-based ranks of the interval's ends; outside 1..n the samples do not bound it.
+  const double lo_rank = std::floor(n * p - spread), hi_rank = std::ceil(n * p + spread) + 1;
+  e.lo = lo_rank >= 1 ? v[size_t(lo_rank) - 1] : -kInf;
+  e.hi = hi_rank <= n ? v[size_t(hi_rank) - 1] : kInf;
+  return e;
+}
+
+Estimate estimate_over_passes(const std::vector<double>& frame_ms, const std::vector<double>& noise, size_t passes,
+                              Metric m) {
+  Estimate e;
+  e.basis = CiBasis::passes;
+  e.n = passes;
+  e.value = metric_of(frame_ms, m);
+  double spread = 0, total = 0;
+  for (size_t f = 0; f < frame_ms.size() && f < noise.size(); ++f) {
+    spread += noise[f] * frame_ms[f];
+    total += frame_ms[f];
+  }
+  if (passes < 2 || total <= 0) {
+    e.lo = -kInf;
+    e.hi = kInf;
+    return e;
+  }
+  const double sd = e.value * spread / total;
+  const double half = student_t95(passes - 1) * sd / std::sqrt(double(passes));
+  e.lo = e.value - half;
+  e.hi = e.value + half;
+  return e;
+}
+
+const char* verdict_name(Verdict v) {
+  switch (v) {
+    case Verdict::unchanged: return "unchanged";
+    case Verdict::within_noise: return "within-noise";
+    case Verdict::unknown: return "unknown-noise";
+    case Verdict::regression: return "REGRESSION";
+    case Verdict::improvement: return "improvement";
+  }
+  return "?";
+}
+
+double change_pct(double a, double b) { return a != 0 ? 100.0 * (b - a) / a : std::nan(""); }
+
+Verdict verdict(const Estimate& a, const Estimate& b, double threshold_pct) {
+  const double change = change_pct(a.value, b.value);
+  if (!(std::fabs(change) > threshold_pct)) return Verdict::unchanged;
+  const bool bounded = std::isfinite(a.lo) && std::isfinite(a.hi) && std::isfinite(b.lo) && std::isfinite(b.hi);
+  if (change > 0 && b.lo > a.hi) return Verdict::regression;
+  if (change < 0 && b.hi < a.lo) return Verdict::improvement;
+  return bounded ? Verdict::within_noise : Verdict::unknown;
+}
+
+}  // namespace cdb

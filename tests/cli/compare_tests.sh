@@ -1,0 +1,145 @@
+#!/usr/bin/env bash
+# cdbench compare, report's commit/label columns and stable CSV, run --label/--json, the
+# scripts' schema and baseline matching: small funnel runs on the CPU.
+set -u
+cdbench=$1
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+python=/usr/bin/python3
+[[ -x $python ]] || python=python3
+source "$root/tests/cli/harness.sh"
+
+scene=(--device cpu --scene funnel --set res=16 --frames 0:6 --quiet)
+run() {  # run OUT ARGS...: one run into OUT, its output kept in $tmp/run.out
+  local out=$1; shift
+  "$cdbench" run "${scene[@]}" --out "$out" "$@" >"$tmp/run.out" 2>&1 || { fail "run $*"; sed 's/^/    /' "$tmp/run.out"; }
+}
+run "$tmp/a.h5" --label before
+run "$tmp/b.h5" --label after
+run "$tmp/skip.h5" --skip-adjacent
+run "$tmp/margin.h5" --box-margin 0.5
+run "$tmp/c3.h5" --repeat 3
+run "$tmp/brute3.h5" --repeat 3 --pipeline brute
+
+# Same configuration twice. The threshold is wide because two one-pass runs on a shared
+# machine can differ by more than 5% for real; the verdicts themselves are unit-tested
+# (compare_statistics).
+check "same configuration: no regression" 0 "^\| funnel\[res=16\] \| c \| cpu \|" -- \
+  "$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --threshold 50 --fail-on-regression
+has "same configuration: the pairs agree" "$tmp/out" "\| same \(6 frames\) \|"
+has "one pass: the interval is over frames" "$tmp/out" "over frames n=5"
+has "the labels and commits are named" "$tmp/out" "\[before\] \(commit [0-9a-f]+.*\[after\] \(commit"
+if grep -q "REGRESSION" "$tmp/out"; then fail "same configuration flagged a regression"; else echo "ok   no regression row"; fi
+
+# A mismatch in an option that changes the pair set is refused, naming it and both values.
+check "mismatch refused" 2 "--skip-adjacent: 'false' in A, 'true' in B" -- "$cdbench" compare "$tmp/a.h5" "$tmp/skip.h5"
+has "mismatch suggests --allow-mismatch" "$tmp/out" "--allow-mismatch"
+check "allow-mismatch compares, flagged" 0 "\*\*MISMATCH: --box-margin: '0(\.0)?' in A, '0\.5' in B\*\*" -- \
+  "$cdbench" compare "$tmp/a.h5" "$tmp/margin.h5" --allow-mismatch
+has "fatter boxes: other pairs" "$tmp/out" "\*\*DIFFER in [1-9][0-9]* of 6 frames\*\*"
+
+# Two pipelines, allowed as a mismatch: the same pairs, and brute force (2-3x slower here)
+# never an improvement. Whether it is a regression depends on the machine's noise.
+check "other pipeline compared, flagged" 0 "\| (REGRESSION|within-noise) \| same \(6 frames\) \| \*\*MISMATCH: pipeline: 'c' in A, 'brute' in B\*\*" -- \
+  "$cdbench" compare "$tmp/c3.h5" "$tmp/brute3.h5" --allow-mismatch
+has "the interval is over the passes" "$tmp/out" "over passes n=3"
+
+# A known regression, independent of the machine: a --repeat 3 run whose passes agreed
+# within 1% (noise set so), against a copy with every frame 50% slower.
+$python - "$tmp/c3.h5" "$tmp/slow.h5" "$tmp/base.h5" <<'PY'
+import shutil, sys
+import h5py
+src, slow, base = sys.argv[1:]
+for path, factor in ((base, 1.0), (slow, 1.5)):
+    shutil.copy(src, path)
+    with h5py.File(path, "r+") as f:
+        f["frames/t_total_ms"][...] = f["frames/t_total_ms"][()] * factor
+        f["frames/t_total_noise"][...] = 0.01
+        f.attrs["noise_warning"] = ""  # the copied run's warning no longer applies
+PY
+check "a 50% slow-down is a regression" 1 "\| \+50\.0% \| REGRESSION \| same \(6 frames\) \|" -- \
+  "$cdbench" compare "$tmp/base.h5" "$tmp/slow.h5" --fail-on-regression
+has "the regression is named on stderr" "$tmp/out" "regression beyond 5\.0% and the noise"
+check "without --fail-on-regression it exits 0" 0 "REGRESSION" -- "$cdbench" compare "$tmp/base.h5" "$tmp/slow.h5"
+check "above the threshold it is no regression" 0 "\| unchanged \|" -- \
+  "$cdbench" compare "$tmp/base.h5" "$tmp/slow.h5" --threshold 60 --fail-on-regression
+check "and the other way an improvement" 0 "\| -33\.3% \| improvement \|" -- \
+  "$cdbench" compare "$tmp/slow.h5" "$tmp/base.h5" --fail-on-regression
+# The stored noise warning and content hash, set in copies: compare flags the noisy run and
+# refuses other frames under the same scene name.
+$python - "$tmp/base.h5" "$tmp/noisy.h5" "$tmp/otherinput.h5" <<'PY'
+import shutil, sys
+import h5py
+src, noisy, other = sys.argv[1:]
+shutil.copy(src, noisy)
+with h5py.File(noisy, "r+") as f:
+    f.attrs["noise_warning"] = "noisy run: the passes' times differ by 31.0%"
+shutil.copy(src, other)
+with h5py.File(other, "r+") as f:
+    f.attrs["input_hash"] = "0123456789abcdef"
+PY
+check "a noisy run is flagged" 0 "\| noisy run \(B\) \|$" -- "$cdbench" compare "$tmp/base.h5" "$tmp/noisy.h5"
+check "report marks the noisy run" 0 "noisy\.h5 \|.*\| noisy \| complete \|$" -- "$cdbench" report "$tmp/base.h5" "$tmp/noisy.h5"
+check "other input frames refused" 2 "input_hash: [0-9a-f]{16} in A, 0123456789abcdef in B" -- \
+  "$cdbench" compare "$tmp/base.h5" "$tmp/otherinput.h5"
+check "median metric" 0 "^median per-frame ms" -- "$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --metric median
+check "unknown metric is a usage error" 2 "--metric" -- "$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --metric max
+
+# Repeats: two files of one configuration in a directory are one run's repeats.
+mkdir -p "$tmp/repeats"
+cp "$tmp/a.h5" "$tmp/repeats/cell_r1.h5"
+cp "$tmp/b.h5" "$tmp/repeats/cell_r2.h5"
+"$cdbench" run "${scene[@]}" --out "$tmp/repeats/cell_r1.h5" --label r >/dev/null 2>&1
+"$cdbench" run "${scene[@]}" --out "$tmp/repeats/cell_r2.h5" --label r >/dev/null 2>&1
+check "directory repeats combine" 0 "over repeats n=2 \|.*over repeats n=2 \|" -- \
+  "$cdbench" compare "$tmp/repeats" "$tmp/repeats"
+
+# Stable machine-readable output: the same CSV header whatever the inputs.
+"$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --csv >"$tmp/csv1" 2>/dev/null
+"$cdbench" compare "$tmp/base.h5" "$tmp/slow.h5" --csv >"$tmp/csv2" 2>/dev/null
+"$cdbench" compare "$tmp/c3.h5" "$tmp/brute3.h5" --csv --allow-mismatch >"$tmp/csv3" 2>/dev/null
+if [[ "$(head -1 "$tmp/csv1")" == "$(head -1 "$tmp/csv2")" && "$(head -1 "$tmp/csv1")" == "$(head -1 "$tmp/csv3")" ]] && grep -q "^scene,pipeline,device,label_a" "$tmp/csv1"; then
+  echo "ok   compare CSV header is stable"
+else
+  fail "compare CSV headers differ: $(head -1 "$tmp/csv1") / $(head -1 "$tmp/csv2")"
+fi
+has "CSV row of the regression" "$tmp/csv2" ",50\.0000,REGRESSION,6,0,same,,"
+has "CSV row of the mismatch" "$tmp/csv3" ",6,0,same,\"pipeline: 'c' in A, 'brute' in B\","
+check "JSON parses" 0 '"verdict": "REGRESSION"' -- \
+  bash -c "'$cdbench' compare '$tmp/base.h5' '$tmp/slow.h5' --json 2>/dev/null | $python -m json.tool"
+has "JSON has the input hash comparison" "$tmp/out" '"input_hash": "same"'
+
+# report: the commit column, the label, the same CSV columns for any set of files.
+check "report has the commit column" 0 "\| label \| commit \| input \| (warning \| )?status \|" -- "$cdbench" report "$tmp/a.h5" "$tmp/skip.h5"
+has "report shows the label and commit" "$tmp/out" "a\.h5 \|.*\| before \| [0-9a-f]{12}(-dirty)? \| [0-9a-f]{8} \| ( \| |noisy \| )?complete \|"
+"$cdbench" report --csv "$tmp/a.h5" >"$tmp/rcsv1"
+run "$tmp/checked.h5" --check every --pipeline b
+"$cdbench" report --csv "$tmp/a.h5" "$tmp/checked.h5" "$tmp/margin.h5" >"$tmp/rcsv2"
+if [[ "$(head -1 "$tmp/rcsv1")" == "$(head -1 "$tmp/rcsv2")" ]]; then echo "ok   report CSV header is stable"; else
+  fail "report CSV headers differ:"; head -1 "$tmp/rcsv1" "$tmp/rcsv2" | sed 's/^/    /'; fi
+cols1=$(head -1 "$tmp/rcsv1" | tr ',' '\n' | wc -l)
+bad=$($python -c "import csv,sys; print(sum(len(r) != $cols1 for r in csv.reader(open('$tmp/rcsv2'))))")
+[[ $bad == 0 ]] && echo "ok   every report CSV row has $cols1 cells" || fail "$bad report CSV rows of another width"
+has "report CSV carries the label and commit" "$tmp/rcsv1" "a\.h5,funnel\[res=16\],c,cpu: [^,]*,before,[0-9a-f]{12}"
+
+# run --json: stdout is the JSON alone, the human lines on stderr.
+"$cdbench" run "${scene[@]}" --label json-run --json >"$tmp/json.out" 2>"$tmp/json.err"
+check "run --json parses" 0 '"label": "json-run"' -- "$python" -m json.tool "$tmp/json.out"
+has "run --json has the mean" "$tmp/out" '"mean_ms": [0-9.e-]+'
+has "run --json has the input hash" "$tmp/out" '"input_hash": "[0-9a-f]{16}"'
+has "run --json: the summary went to stderr" "$tmp/json.err" "^summary: 5 frames measured"
+
+# Scripts: no schema warning on files of this build; the baseline matches the identity.
+check "read_results knows this schema" 0 "^label: before$" -- "$python" "$root/scripts/read_results.py" --summary "$tmp/a.h5"
+if grep -q "newer than" "$tmp/out"; then fail "read_results warns about the schema"; else echo "ok   no schema warning"; fi
+has "read_results shows the input hash" "$tmp/out" "^input_hash: [0-9a-f]{16}$"
+mkdir -p "$tmp/tp"
+run "$tmp/tp/grid-skip.h5" --pipeline grid --skip-adjacent
+run "$tmp/tp/c.h5" --pipeline c
+check "table_pipelines: no baseline of another identity" 0 "No \`grid\` run of the same identity as \`$tmp/tp/c.h5\`" -- \
+  "$python" "$root/scripts/table_pipelines.py" --baseline grid "$tmp/tp"
+has "table_pipelines: c has no speed-up" "$tmp/out" "^\| \*?\*?c \[--skip-adjacent false\]\*?\*? \|.*\| — \|$"
+run "$tmp/tp/grid.h5" --pipeline grid
+check "table_pipelines: the matching baseline is named" 0 "Speed-up \[--skip-adjacent false\] against \`$tmp/tp/grid.h5\`" -- \
+  "$python" "$root/scripts/table_pipelines.py" --baseline grid "$tmp/tp"
+
+finish compare
