@@ -80,4 +80,13 @@ mkdir "$tmp/named"
 for f in 0 1 2 3 4 5; do cp "$oracle/frame_000$f.txt" "$tmp/named/step$((f * 5)).txt"; done
 check "natural order matches step0 .. step25" 0 "pairs frame 2 step10.txt: exact" -- "$cdbench" verify "${scene[@]}" --pairs "$tmp/named"
 
+# An outside program (tests/cli/outside_pairs.py, nothing of cdbench) reads the exported
+# OBJ frames, builds its boxes as the doc says, and its pairs are exactly the oracle's.
+python=/usr/bin/python3
+[[ -x $python ]] || python=python3
+check "export the frames as OBJ" 0 "wrote 3 frames of funnel" -- "$cdbench" scenes generate funnel --set res=4 --set frames=3 --out "$tmp/objs"
+"$python" "$root/tests/cli/outside_pairs.py" "$tmp/objs" "$tmp/outside" || fail "outside_pairs.py failed"
+check "an outside program's pairs verify" 0 "the pairs match the oracle" -- "$cdbench" verify --device cpu --scene "$tmp/objs" --pairs "$tmp/outside"
+has "its files matched in natural order" "$tmp/out" "^  pairs frame 2 pairs2.txt: exact, [1-9][0-9]* pairs"
+
 finish extending
