@@ -1,24 +1,107 @@
 #include "verify_command.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "bruteforce/sweep_oracle.h"
 #include "core/error.h"
 #include "frame_range.h"
 #include "geometry/position_rounding.h"
+#include "io/pairs_file.h"
 #include "report.h"
 
 namespace cdb {
+namespace {
+
+// --pairs: each frame's file against the oracle's pairs; prints one line a frame (and the
+// first few missed, extra and duplicated pairs of a mismatch) and keeps the totals.
+class PairsCheck {
+ public:
+  PairsCheck(std::filesystem::path dir, std::vector<std::filesystem::path> files, uint32_t first_frame)
+      : dir_(std::move(dir)), files_(std::move(files)), first_frame_(first_frame) {}
+
+  void check_frame(uint32_t frame, uint32_t num_faces, const std::vector<PrimPair>& expected) {
+    const std::filesystem::path& file = files_[frame - first_frame_];
+    const std::string name = file.filename().string();
+    PairsRead read;
+    try {
+      read = read_pairs_file(file, num_faces);
+    } catch (const Error& e) {
+      ++unreadable_;
+      std::printf("  pairs frame %u %s: ERROR %s\n", frame, name.c_str(), e.what());
+      return;
+    }
+    const PairSetDiff d = diff_pair_sets(expected, read.pairs);
+    missed_ += d.missing_count;
+    extra_ += d.unexpected_count;
+    duplicates_ += read.duplicates;
+    if (d.equal() && read.duplicates == 0) {
+      std::printf("  pairs frame %u %s: exact, %llu pairs\n", frame, name.c_str(),
+                  static_cast<unsigned long long>(expected.size()));
+      return;
+    }
+    ++mismatched_;
+    std::printf("  pairs frame %u %s: MISMATCH: oracle %llu pairs, file %llu listed; %llu missed, %llu extra, "
+                "%llu duplicates\n",
+                frame, name.c_str(), static_cast<unsigned long long>(expected.size()),
+                static_cast<unsigned long long>(read.listed), static_cast<unsigned long long>(d.missing_count),
+                static_cast<unsigned long long>(d.unexpected_count), static_cast<unsigned long long>(read.duplicates));
+    for (const PrimPair& p : d.missing) std::printf("    missed (%u, %u)\n", p.a, p.b);
+    for (const PrimPair& p : d.unexpected) std::printf("    extra (%u, %u)\n", p.a, p.b);
+    for (const PrimPair& p : read.first_duplicates) std::printf("    duplicate (%u, %u)\n", p.a, p.b);
+  }
+
+  // The summary line; true when every frame matched.
+  bool summarize() const {
+    const size_t frames = files_.size();
+    if (mismatched_ == 0 && unreadable_ == 0) {
+      std::printf("  %-12s exact (%zu frames) in %s\n", "pairs", frames, dir_.string().c_str());
+      return true;
+    }
+    std::printf("  %-12s MISMATCH in %llu of %zu frames, %llu unreadable, in %s: %llu missed, %llu extra, "
+                "%llu duplicates\n",
+                "pairs", static_cast<unsigned long long>(mismatched_), frames,
+                static_cast<unsigned long long>(unreadable_), dir_.string().c_str(),
+                static_cast<unsigned long long>(missed_), static_cast<unsigned long long>(extra_),
+                static_cast<unsigned long long>(duplicates_));
+    return false;
+  }
+
+ private:
+  std::filesystem::path dir_;
+  std::vector<std::filesystem::path> files_;
+  uint32_t first_frame_;
+  uint64_t mismatched_ = 0, unreadable_ = 0, missed_ = 0, extra_ = 0, duplicates_ = 0;
+};
+
+}  // namespace
 
 CLI::App* add_verify_command(CLI::App& app, CommonOptions& o, VerifyOptions& v) {
   auto* verify = app.add_subcommand("verify", "compare pipelines with the exact oracle, frame by frame");
-  verify->add_option("--pipelines", v.pipelines, "pipelines to check (default: all)")->group(kPipelineGroup);
+  verify
+      ->add_option("--pipelines", v.pipelines,
+                   "pipelines to check, space- or comma-separated (default: all; none with --pairs or --write-pairs)")
+      ->delimiter(',')
+      ->group(kPipelineGroup);
   add_common(verify, o);
   add_restructure(verify, o);
   verify->add_option("--brute-limit", v.brute_limit,
                      "largest triangle count for the O(N^2) oracle; above it, CPU sort-and-sweep")
       ->group(kAccuracyGroup)
+      ->capture_default_str();
+  verify
+      ->add_option("--pairs", v.pairs_dir,
+                   "check an outside method's pairs against the oracle: a directory of one file a frame, "
+                   "frame_N.txt (0-based triangle indices 'i j' a line) or frame_N.bin (uint32 pairs); "
+                   "docs/extending.md")
+      ->group(kAccuracyGroup);
+  verify->add_option("--write-pairs", v.write_pairs_dir, "write the oracle's pairs of each frame into this directory, as --pairs reads them")
+      ->group(kOutputGroup);
+  verify->add_option("--pairs-format", v.pairs_format, "format of the files --write-pairs writes")
+      ->check(CLI::IsMember({"txt", "bin"}))
+      ->group(kOutputGroup)
       ->capture_default_str();
   add_tuning(verify, o);
   return verify;
@@ -28,7 +111,10 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   std::vector<std::string> pipelines = v.pipelines;
   const size_t brute_limit = v.brute_limit;
   const std::string device = resolve_device(o.device);
-  if (pipelines.empty())
+  const bool pairs_only = !v.pairs_dir.empty() || !v.write_pairs_dir.empty();
+  if (!v.pairs_dir.empty() && !std::filesystem::is_directory(v.pairs_dir))
+    fail_usage("--pairs " + v.pairs_dir + ": not a directory");
+  if (pipelines.empty() && !pairs_only)
     for (const auto& n : pipeline_names())
       if (n != oracle_pipeline()) pipelines.push_back(n);
   std::vector<std::unique_ptr<Pipeline>> runs = make_pipelines(o, pipelines, device);
@@ -44,6 +130,16 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   std::printf("verify: scene %s (%zu triangles), frames %u:%u, device %s, oracle %s\n",
               scene.name.c_str(), topo.faces.size(), range.first, range.last, device.c_str(),
               brute_oracle ? "brute force (same device)" : "sort-and-sweep (cpu)");
+  // The files are matched to the frames before any work, so a missing one stops it.
+  std::optional<PairsCheck> pairs_check;
+  if (!v.pairs_dir.empty())
+    pairs_check.emplace(v.pairs_dir, pairs_files_for_frames(v.pairs_dir, range.first, range.last), range.first);
+  const PairsFormat write_format = v.pairs_format == "bin" ? PairsFormat::binary : PairsFormat::text;
+  if (!v.write_pairs_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(v.write_pairs_dir, ec);
+    if (ec) fail("--write-pairs " + v.write_pairs_dir + ": cannot create directory: " + ec.message());
+  }
   std::unique_ptr<Pipeline> oracle;
   if (brute_oracle) {
     oracle = make_pipeline(make_config(o, oracle_pipeline(), device));
@@ -71,6 +167,13 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
     } else {
       expected = sweep_oracle_pairs(topo, vertices, c.skip_adjacent);
     }
+    if (!v.write_pairs_dir.empty())
+      write_pairs_file(std::filesystem::path(v.write_pairs_dir) / pairs_file_name(f, write_format), expected,
+                       {"cdbench verify --write-pairs: the oracle's pairs of scene " + scene.name + ", frame " +
+                            std::to_string(f) + " (" + std::to_string(topo.faces.size()) + " triangles)",
+                        "one pair a line: two 0-based triangle indices, the smaller first, sorted"});
+    if (pairs_check) pairs_check->check_frame(f, uint32_t(topo.faces.size()), expected);
+    if (runs.empty()) continue;
     const std::vector<PrimPair> exact = sweep_oracle_pairs(topo, positions, c.skip_adjacent);
     double_pairs += exact.size();
     for (size_t p = 0; p < runs.size(); ++p) {
@@ -95,10 +198,17 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
                 lost ? " (LOST)" : "", static_cast<unsigned long long>(double_extra[p]));
     ok = ok && mismatched_frames[p] == 0 && !lost;
   }
-  if (c.refit_every > 1)
+  if (pairs_check) ok = pairs_check->summarize() && ok;
+  if (!v.write_pairs_dir.empty())
+    std::printf("verify: wrote the oracle's pairs of %u frames to %s\n", range.last - range.first,
+                v.write_pairs_dir.c_str());
+  if (c.refit_every > 1 && !runs.empty())
     std::printf("verify: --refit-every %u is not conservative: bvh and the front pipelines may miss pairs\n",
                 c.refit_every);
-  std::printf("verify: %s\n", ok ? "all pipelines match the oracle" : "FAILED");
+  const char* matched = runs.empty()      ? (pairs_check ? "the pairs match the oracle" : "done")
+                        : pairs_check ? "all pipelines and the pairs match the oracle"
+                                      : "all pipelines match the oracle";
+  std::printf("verify: %s\n", ok ? matched : "FAILED");
   return ok ? 0 : 1;
 }
 

@@ -177,7 +177,8 @@ inline float mean_box_extent(FrameSource& source) {
 // Pipelines whose hierarchy --refit-every leaves stale (every tree pipeline but the
 // per-frame rebuild); the baselines ignore the knob.
 inline bool keeps_stale_boxes(const std::string& name) {
-  return !(name == "sweep" || name == "hash" || name == "grid" || name == "brute" || name == "reference");
+  return !(name == "sweep" || name == "hash" || name == "grid" || name == "brute" || name == "reference" ||
+           name == "example-sap");
 }
 
 // A pipeline on `device` whose pair buffer starts too small, so that it must grow.

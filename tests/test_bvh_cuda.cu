@@ -3,6 +3,7 @@
 #include "baseline_cases.h"
 #include "bvh_cases.h"
 #include "cell_cases.h"
+#include "example_cases.h"
 #include "inter_cases.h"
 #include "knob_cases.h"
 #include "precision_cases.h"
@@ -46,6 +47,17 @@ TEST_P(CudaBaselines, SweepHashAndGridExact) { check_baselines<CudaExec>(GetPara
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaBaselines, testing::ValuesIn(baseline_cases()),
                          baseline_case_name);
+
+class CudaExample : public testing::TestWithParam<BaselineCase> {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_P(CudaExample, ExactAgainstTheOracleEveryFrame) { check_example_pipeline("cuda", GetParam().make()); }
+
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaExample, testing::ValuesIn(example_cases()), baseline_case_name);
 
 class CudaCells : public testing::Test {
  protected:

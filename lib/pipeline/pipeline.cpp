@@ -27,7 +27,12 @@ const std::vector<PipelineKind>& pipeline_kinds() {
       {"sweep", "", "sort-and-sweep along the axis of largest centroid variance, every frame", M::sweep},
       {"hash", "", "uniform-grid spatial hashing (kDet style), every frame", M::hash},
       {"grid", "", "uniform grid with size levels (OTG style), every frame", M::grid},
-      {"brute", "", "every pair tested, O(N^2): the oracle", M::brute}};
+      {"brute", "", "every pair tested, O(N^2): the oracle", M::brute},
+      // How a method of one's own comes in (docs/extending.md); last, so no one takes it
+      // for one of the compared pipelines.
+      {"example-sap", "",
+       "EXAMPLE for docs/extending.md, not a tuned baseline: textbook sort-and-sweep along x, every frame",
+       StandaloneMethod::example_sap}};
   return kinds;
 }
 
@@ -69,11 +74,13 @@ WarpSharing parse_warp_sharing(const std::string& name) {
 }
 
 bool config_conservative(const PipelineConfig& config) {
-  // The baselines and the per-frame rebuild never keep stale boxes.
+  // The baselines, the standalone methods (which start every frame from the positions) and
+  // the per-frame rebuild never keep stale boxes.
   const PipelineKind* kind = find_pipeline_kind(config.name);
-  const auto* method = kind ? std::get_if<BroadPhaseMethod>(&kind->builds) : nullptr;
-  const bool fresh = method ? *method != BroadPhaseMethod::bvh
-                            : kind && std::get<FrontStrategy>(kind->builds).rebuild_every_frame;
+  if (!kind) return config.refit_every <= 1;
+  bool fresh = std::holds_alternative<StandaloneMethod>(kind->builds);
+  if (const auto* method = std::get_if<BroadPhaseMethod>(&kind->builds)) fresh = *method != BroadPhaseMethod::bvh;
+  if (const auto* strategy = std::get_if<FrontStrategy>(&kind->builds)) fresh = strategy->rebuild_every_frame;
   return fresh || config.refit_every <= 1;
 }
 

@@ -20,11 +20,17 @@ enum class BroadPhaseMethod {
   brute,  // O(N^2) oracle
 };
 
+// Pipelines that are a Pipeline class of their own (docs/extending.md "Adding a
+// pipeline"), one value each; the registry makes the class.
+enum class StandaloneMethod {
+  example_sap,  // EXAMPLE: textbook sort-and-sweep along x (baselines/example/)
+};
+
 struct PipelineKind {
   const char* name;
   const char* paper;        // the paper's name for it, or ""
   const char* description;  // one line
-  std::variant<BroadPhaseMethod, FrontStrategy> builds;
+  std::variant<BroadPhaseMethod, FrontStrategy, StandaloneMethod> builds;
 };
 
 // In the order verify runs them.
