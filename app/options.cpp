@@ -92,8 +92,8 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
       ->group(kAccuracyGroup);
   cmd->add_option("--refit-every", c.refit_every,
                   "NOT CONSERVATIVE: front pipelines and bvh refit the hierarchy only every K frames and keep stale "
-                  "boxes in between, so pairs can be missed (recall < 1 under --check); sweep, hash, grid and brute "
-                  "ignore it; 1: every frame")
+                  "boxes in between, so pairs can be missed (recall < 1 under --check); sweep, hash, grid, brute and "
+                  "example-sap ignore it; 1: every frame")
       ->group(kAccuracyGroup)
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
