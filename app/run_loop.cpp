@@ -232,7 +232,12 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     result->input_hash = findings.input_hash;
   }
   if (out) {
-    out->finish(summarize_run(frames, options.warmup), pipeline.memory(), findings);
+    try {
+      out->finish(summarize_run(frames, options.warmup), pipeline.memory(), findings);
+    } catch (const std::exception&) {
+      tell_incomplete(*out);  // e.g. the disk filled while the summary was written
+      throw;
+    }
     std::printf("results: %s (%llu frames)\n", out->path().c_str(), static_cast<unsigned long long>(out->rows()));
   }
   return 0;
