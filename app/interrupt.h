@@ -2,21 +2,32 @@
 // SIGINT and SIGTERM during a run. The handler only records which signal came; the run
 // checks between frames and stops cleanly, so a results file is closed (as incomplete),
 // not cut off. A second signal gets the default action: a stuck run can still be killed.
+//
+// Before there is anything to close cleanly (a run loading its scene), a scope made with
+// Mode::exit_at_once ends the program at once, with a line on stderr and 128 + the
+// signal; defer() switches it to recording, before the results file is created, so no
+// signal can leave a file cut off between its creation and the first frame.
 #include <signal.h>
 
 namespace cdb {
 
 class InterruptScope {
  public:
-  InterruptScope();   // installs the handlers
+  enum class Mode { record, exit_at_once };
+  // Installs the handlers. SIGXFSZ (a file size limit, ulimit -f) is ignored while the
+  // scope lives, so a write past the limit fails with EFBIG and is reported like a full
+  // disk instead of killing the process mid-write.
+  explicit InterruptScope(Mode mode = Mode::record);
   ~InterruptScope();  // restores the ones there before
   InterruptScope(const InterruptScope&) = delete;
   InterruptScope& operator=(const InterruptScope&) = delete;
+  // From now on signals are recorded, not acted on (Mode::record).
+  void defer();
   // The signal that arrived since construction, 0 when none.
   int signal() const;
 
  private:
-  struct sigaction previous_int_ {}, previous_term_ {};
+  struct sigaction previous_int_ {}, previous_term_ {}, previous_xfsz_ {};
 };
 
 const char* signal_name(int signal);

@@ -1,5 +1,7 @@
 #include "output_path.h"
 
+#include <signal.h>
+
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -10,24 +12,37 @@
 
 namespace cdb {
 
-void check_output_path(const std::string& path) {
+bool check_output_path(const std::string& path, bool overwrite) {
   namespace fs = std::filesystem;
   const fs::path file(path);
   if (path.empty()) fail_usage("--out: empty file name");
   if (!file.has_filename() || fs::is_directory(file))
     fail_usage("--out " + path + ": names a directory; give a file, e.g. " + (file / "run.h5").lexically_normal().string());
-  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
   std::error_code ec;
+  const bool existed = fs::exists(file, ec) || fs::is_symlink(file, ec);
+  if (existed && !overwrite)
+    fail_usage("--out " + path + ": the file exists; pass --overwrite to replace it (it is replaced only once " +
+               "the new run completes)");
+  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
   fs::create_directories(dir, ec);
   if (ec) fail("--out " + path + ": cannot create directory " + dir.string() + ": " + ec.message());
   if (!fs::is_directory(dir)) fail("--out " + path + ": " + dir.string() + " is not a directory");
   // Opening the file is the only test that also holds for root and for read-only mounts;
-  // appending leaves an existing file as it is, and a file made here is removed again.
-  const bool existed = fs::exists(file);
-  if (!std::ofstream(file, std::ios::app))
+  // appending leaves an existing file as it is, and a file made here is removed again,
+  // with SIGINT and SIGTERM held back meanwhile so a signal cannot leave it behind empty.
+  sigset_t stop, previous;
+  sigemptyset(&stop);
+  sigaddset(&stop, SIGINT);
+  sigaddset(&stop, SIGTERM);
+  sigprocmask(SIG_BLOCK, &stop, &previous);
+  const bool writable = bool(std::ofstream(file, std::ios::app));
+  const int error = errno;
+  if (writable && !existed) fs::remove(file, ec);
+  sigprocmask(SIG_SETMASK, &previous, nullptr);
+  if (!writable)
     fail("--out " + path + ": cannot write " + (existed ? "this file" : "in directory " + dir.string()) + ": " +
-         std::strerror(errno));
-  if (!existed) fs::remove(file, ec);
+         std::strerror(error));
+  return existed;
 }
 
 }  // namespace cdb

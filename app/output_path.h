@@ -6,8 +6,10 @@
 
 namespace cdb {
 
-// Throws UsageError when `path` names a directory (ends in '/' or exists as one), Error
-// when its directory cannot be created or is not writable. Creates the directory.
-void check_output_path(const std::string& path);
+// Throws UsageError when `path` names a directory (ends in '/' or exists as one) or a file
+// that exists while `overwrite` is false (--overwrite), Error when its directory cannot be
+// created or is not writable. Creates the directory. Returns whether the file exists (a
+// run then writes beside it and replaces it only once complete: io/results_file.h).
+bool check_output_path(const std::string& path, bool overwrite);
 
 }  // namespace cdb

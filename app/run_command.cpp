@@ -8,12 +8,14 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "bruteforce/sweep_oracle.h"
 #include "core/build_info.h"
 #include "core/error.h"
 #include "frame_range.h"
+#include "interrupt.h"
 #include "geometry/cached_frames.h"
 #include "geometry/float_spacing.h"
 #include "geometry/hashed_frames.h"
@@ -185,12 +187,34 @@ std::vector<std::string> split_pipelines(const std::string& list) {
   }
 }
 
-// --out with {pipeline} replaced by the pipeline's name.
+// --out with every {pipeline} replaced by the pipeline's name.
 std::string results_path(const std::string& pattern, const std::string& pipeline) {
+  static constexpr std::string_view placeholder = "{pipeline}";
   std::string path = pattern;
-  const size_t at = path.find("{pipeline}");
-  if (at != std::string::npos) path.replace(at, 10, pipeline);
+  for (size_t at = path.find(placeholder); at != std::string::npos; at = path.find(placeholder, at + pipeline.size()))
+    path.replace(at, placeholder.size(), pipeline);
   return path;
+}
+
+// The results file of each pipeline, checked before any work: two pipelines writing the
+// same file (--pipeline c,c) would leave one run's results, and an existing file is kept
+// unless --overwrite. Per pipeline: whether its file exists (and is then replaced only once
+// the new run completes).
+std::vector<bool> check_results_paths(const RunOptions& r, const std::vector<std::string>& names) {
+  std::vector<bool> existing;
+  if (r.out.empty()) return existing;
+  std::vector<std::string> seen;
+  for (const auto& name : names) {
+    const std::string path = results_path(r.out, name);
+    const std::string normal = std::filesystem::path(path).lexically_normal().string();
+    for (size_t k = 0; k < seen.size(); ++k)
+      if (seen[k] == normal)
+        fail_usage("--out " + r.out + ": pipelines " + names[k] + " and " + name + " would both write " + path +
+                   " (each pipeline needs its own file; name a pipeline once)");
+    seen.push_back(normal);
+  }
+  for (const auto& name : names) existing.push_back(check_output_path(results_path(r.out, name), r.overwrite));
+  return existing;
 }
 
 }  // namespace
@@ -238,6 +262,11 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
   auto* out_option = run->add_option(
       "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced")
       ->group(kOutputGroup);
+  run->add_flag("--overwrite", r.overwrite,
+                "let --out replace an existing file; it is replaced only once the new run completes (until then the "
+                "new file is NAME.incomplete beside it)")
+      ->group(kOutputGroup)
+      ->needs(out_option);
   run->add_flag("--save-pairs", r.save_pairs, "also store each frame's sorted pairs in the results file")
       ->group(kOutputGroup)
       ->needs(out_option);
@@ -259,6 +288,9 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
 }
 
 int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options) {
+  // Until the first results file is about to be made a signal ends the program at once;
+  // from then on it is seen between frames and the file is closed as incomplete.
+  InterruptScope interrupts(InterruptScope::Mode::exit_at_once);
   std::optional<StdoutToStderr> redirect;
   if (r.json) redirect.emplace();
   nlohmann::json runs = nlohmann::json::array();
@@ -268,8 +300,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   if (names.size() > 1 && !r.out.empty() && r.out.find("{pipeline}") == std::string::npos)
     fail_usage("--out " + r.out + ": several pipelines need {pipeline} in the file name");
   std::vector<std::unique_ptr<Pipeline>> pipelines = make_pipelines(o, names, device);
-  if (!r.out.empty())
-    for (const auto& name : names) check_output_path(results_path(r.out, name));
+  const std::vector<bool> existing = check_results_paths(r, names);
   print_environment(device);
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
@@ -298,6 +329,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   if (names.size() > 1 || r.repeat > 1) cached = std::make_unique<CachedFrames>(*scene.source);
   // Above the cache: each frame is hashed once, as it is first loaded.
   const HashedFrames frames(cached ? *cached : *scene.source);
+  interrupts.defer();
   for (size_t p = 0; p < names.size(); ++p) {
     const std::string& name = names[p];
     const PipelineConfig config = make_config(o, name, device);
@@ -308,12 +340,18 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     RunOptions one = r;
     one.pipeline = name;
     one.out = results_path(r.out, name);
+    if (const int signal = interrupts.signal()) {
+      // Between pipelines: the next one's file is not made at all.
+      std::fflush(stdout);
+      std::fprintf(stderr, "cdbench: interrupted by %s before pipeline %s\n", signal_name(signal), name.c_str());
+      return 128 + signal;
+    }
     std::optional<ResultsFile> out;
     if (!one.out.empty()) {
       RunInfo info = run_info(o, one, scene, config, range, cli_options);
       info.copy_gbps = copy_gbps;
       info.precision_warning = spacing_warning;
-      out.emplace(one.out, info);
+      out.emplace(one.out, info, existing[p] ? ResultsFile::Placement::staged : ResultsFile::Placement::in_place);
     }
     RunLoopOptions loop;
     loop.warmup = r.warmup;
@@ -340,7 +378,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
       return h ? hash_hex(*h) : std::string();
     };
     RunResult result;
-    if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, loop, &result)) return rc;
+    if (const int rc = run_frames(*pipeline, frames, range, out ? &*out : nullptr, interrupts, loop, &result)) return rc;
     runs.push_back(run_json(scene, r, name, device, range, result, one.out));
   }
   if (redirect) {

@@ -17,6 +17,7 @@ struct RunOptions {
   uint32_t warmup = 1;
   bool quiet = false;
   std::string out;
+  bool overwrite = false;  // --overwrite: --out may replace an existing file (once the run completes)
   std::string label;  // --label: stored in the results file, shown by report and compare
   bool json = false;  // --json: a JSON summary on stdout, the human output on stderr
   bool save_pairs = false;

@@ -102,13 +102,20 @@ void print_accuracy_warning(const std::string& why, const std::vector<FrameStats
     std::printf("  warning     %s; recall not measured (use --check)\n", why.c_str());
 }
 
+// Where an abandoned run's results are, and that the file it was to replace is as it was.
+void tell_incomplete(const ResultsFile& out) {
+  std::fprintf(stderr, "cdbench: results (incomplete%s): %s\n",
+               out.intact() ? "" : ", only what was flushed before the failed write", out.path().c_str());
+  if (out.path() != out.target())
+    std::fprintf(stderr, "cdbench: %s left as it was (not replaced)\n", out.target().c_str());
+}
+
 }  // namespace
 
 int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
-               const RunLoopOptions& options, RunResult* result) {
+               const InterruptScope& interrupts, const RunLoopOptions& options, RunResult* result) {
   if (options.repeat == 0) fail("--repeat must be at least 1");
   if (options.cold && !options.probe) fail("--cold needs the device's cache flush");
-  const InterruptScope interrupts;
   const uint32_t frames_per_pass = range.last - range.first;
   Progress progress(frames_per_pass * options.repeat, options.progress);
   uint32_t done = 0;
@@ -192,7 +199,7 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     if (out)
       out->abandon(summarize_run(frames, options.warmup), pipeline.memory(),
                    "frame " + std::to_string(f) + ": " + e.what());
-    if (out) std::fprintf(stderr, "cdbench: results (incomplete): %s\n", out->path().c_str());
+    if (out) tell_incomplete(*out);
     throw;
   }
   progress.finish();
@@ -209,7 +216,7 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     std::fprintf(stderr, "cdbench: %s\n", why.c_str());
     if (out) {
       out->abandon(summarize_run(frames, options.warmup), pipeline.memory(), why);
-      std::fprintf(stderr, "cdbench: results (incomplete): %s\n", out->path().c_str());
+      tell_incomplete(*out);
     }
     return 128 + signal;
   }
@@ -225,7 +232,12 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     result->input_hash = findings.input_hash;
   }
   if (out) {
-    out->finish(summarize_run(frames, options.warmup), pipeline.memory(), findings);
+    try {
+      out->finish(summarize_run(frames, options.warmup), pipeline.memory(), findings);
+    } catch (const std::exception&) {
+      tell_incomplete(*out);  // e.g. the disk filled while the summary was written
+      throw;
+    }
     std::printf("results: %s (%llu frames)\n", out->path().c_str(), static_cast<unsigned long long>(out->rows()));
   }
   return 0;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "frame_range.h"
+#include "interrupt.h"
 #include "geometry/frame_source.h"
 #include "io/results_file.h"
 #include "narrow/contacts.h"
@@ -64,7 +65,9 @@ struct RunResult {
 // message and the error is rethrown; on SIGINT/SIGTERM (checked between frames) the same,
 // and the return value is 128 + the signal. Returns 0 otherwise.
 // `result`, when given, receives the summary of a run that ended without error or signal.
+// `interrupts`: the scope the caller installed before it created `out`, so a signal that
+// came between then and the first frame is seen too.
 int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
-               const RunLoopOptions& options, RunResult* result = nullptr);
+               const InterruptScope& interrupts, const RunLoopOptions& options, RunResult* result = nullptr);
 
 }  // namespace cdb

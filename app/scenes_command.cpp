@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <regex>
+#include <vector>
 
 #include "core/error.h"
 #include "geometry/float_spacing.h"
@@ -45,12 +49,60 @@ int scenes_list(const ScenesOptions& opts) {
   return 0;
 }
 
+namespace {
+
+// The frame number of a file this command writes (frame_0000.obj, ...), none for others.
+std::optional<uint64_t> written_frame(const std::filesystem::path& file) {
+  static const std::regex name("frame_([0-9]{4,})\\.obj");
+  std::smatch m;
+  const std::string filename = file.filename().string();
+  if (!std::regex_match(filename, m, name) || m[1].length() > 10) return std::nullopt;
+  return std::stoull(m[1].str());
+}
+
+// --out DIR may hold only frames an earlier `scenes generate` wrote: the command replaces
+// them, and anything else there (another scene's meshes, notes) would be mixed into the
+// sequence that reads the directory back. Checked before any work.
+void check_generate_dir(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return;
+  if (!fs::is_directory(dir, ec)) fail_usage("--out " + dir.string() + ": not a directory");
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (!it->is_regular_file(ec) || !written_frame(it->path()))
+      fail_usage("--out " + dir.string() + ": holds " + it->path().filename().string() +
+                 ", which `scenes generate` did not write; give an empty or new directory");
+  if (ec) fail("--out " + dir.string() + ": cannot list the directory: " + ec.message());
+}
+
+// Frames an earlier, longer generation left past the new last one: removed, so the
+// directory holds exactly this scene's frames. Returns how many went.
+size_t remove_stale_frames(const std::filesystem::path& dir, uint32_t frames) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> stale;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (const auto k = written_frame(it->path()); k && *k >= frames) stale.push_back(it->path());
+  if (ec) fail("--out " + dir.string() + ": cannot list the directory: " + ec.message());
+  for (const fs::path& file : stale)
+    if (!fs::remove(file, ec) || ec)
+      fail(file.string() + ": cannot remove this frame left from an earlier generation: " + ec.message());
+  return stale.size();
+}
+
+}  // namespace
+
 int scenes_generate(const ScenesOptions& opts) {
   const auto dir = scenes_dir(opts.scenes_dir);
+  check_generate_dir(opts.out_dir);
   const Scene s = open_scene(opts.scene, dir, parse_set_overrides(opts.sets));
   write_obj_sequence(*s.source, opts.out_dir);
+  const size_t removed = remove_stale_frames(opts.out_dir, s.source->num_frames());
   std::printf("wrote %u frames of %s (%zu triangles) to %s\n", s.source->num_frames(), s.name.c_str(),
               s.source->topology().faces.size(), opts.out_dir.c_str());
+  if (removed)
+    std::printf("removed %zu frames left there by an earlier generation (frame %u on)\n", removed,
+                s.source->num_frames());
   return 0;
 }
 

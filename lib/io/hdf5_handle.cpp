@@ -1,6 +1,8 @@
 #include "io/hdf5_handle.h"
 
-#include "core/error.h"
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
 
 namespace cdb::h5 {
 
@@ -21,26 +23,45 @@ bool Handle::reset() noexcept {
   return ok;
 }
 
-void silence_library_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+void silence_library_errors() {
+  // Before any other HDF5 call, or it has no effect; the library ignores repeats.
+  H5dont_atexit();
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
 
-std::string library_reason() {
-  std::string reason;
-  // Walking downward ends at the deepest entry, the most specific reason.
+LibraryFailure library_failure() {
+  LibraryFailure failure;
+  // Walking downward ends at the deepest entry, the most specific reason. The POSIX driver
+  // puts the errno into its text ("..., errno = 28, error message = '...'").
   H5Ewalk2(
       H5E_DEFAULT, H5E_WALK_DOWNWARD,
       [](unsigned, const H5E_error2_t* e, void* out) -> herr_t {
-        if (e->desc && *e->desc) *static_cast<std::string*>(out) = e->desc;
+        auto& f = *static_cast<LibraryFailure*>(out);
+        if (!e->desc || !*e->desc) return 0;
+        f.reason = e->desc;
+        if (const char* at = std::strstr(e->desc, "errno = ")) {
+          const int n = std::atoi(at + 8);
+          if (n > 0) f.error_number = n;
+        }
         return 0;
       },
-      &reason);
+      &failure);
   H5Eclear2(H5E_DEFAULT);
-  return reason;
+  if (failure.error_number) {
+    failure.reason = std::strerror(failure.error_number);
+    if (!failure.reason.empty()) failure.reason[0] = char(std::tolower(static_cast<unsigned char>(failure.reason[0])));
+  }
+  return failure;
 }
+
+std::string library_reason() { return library_failure().reason; }
 
 hid_t check(hid_t result, const std::string& where, const char* what) {
   if (result < 0) {
-    const std::string reason = library_reason();
-    fail(where + ": " + what + " failed" + (reason.empty() ? "" : ": " + reason));
+    const LibraryFailure f = library_failure();
+    const std::string message = where + ": " + what + " failed" + (f.reason.empty() ? "" : ": " + f.reason);
+    if (f.error_number) throw IoError(message, f.reason);
+    fail(message);
   }
   return result;
 }

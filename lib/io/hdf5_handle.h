@@ -6,9 +6,21 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "core/error.h"
+
 namespace cdb::h5 {
+
+// An HDF5 call that failed on the operating system's side (an errno on HDF5's error stack:
+// a full disk, a file size limit, an I/O error). `reason` is the system's text for the
+// errno ("no space left on device"), not HDF5's. What was written since the last flush
+// may be lost, and the library's cache cannot be flushed again.
+struct IoError : Error {
+  IoError(const std::string& message, std::string why) : Error(message), reason(std::move(why)) {}
+  std::string reason;
+};
 
 class Handle {
  public:
@@ -24,19 +36,31 @@ class Handle {
   explicit operator bool() const { return id_ >= 0; }
   // Closes now; returns false when HDF5 reports a failure (the id is gone either way).
   bool reset() noexcept;
+  // Forgets the id without closing it (after an IoError, when closing would flush again).
+  void abandon() noexcept { id_ = H5I_INVALID_HID; }
 
  private:
   hid_t id_ = H5I_INVALID_HID;
   Closer close_ = nullptr;
 };
 
-// HDF5 prints its error stack to stderr by default; we throw with context instead.
+// HDF5 prints its error stack to stderr by default; we throw with context instead. Also
+// keeps HDF5 from closing files itself at exit: a file whose writes failed is left for the
+// system to close, since flushing HDF5's cache again after a failed write crashes.
 void silence_library_errors();
 
-// The innermost reason on HDF5's current error stack ("" when empty).
+// What HDF5's current error stack says went wrong, and clears it.
+struct LibraryFailure {
+  std::string reason;  // the system's text for the errno when there is one, else HDF5's innermost
+  int error_number = 0;  // the errno HDF5 recorded, 0 when none
+};
+LibraryFailure library_failure();
+
+// The reason of library_failure() ("" when the stack is empty).
 std::string library_reason();
 
-// Throws "WHERE: WHAT failed: <reason>" when an HDF5 call returned a negative value.
+// Throws "WHERE: WHAT failed: <reason>" when an HDF5 call returned a negative value: an
+// IoError when the failure carries an errno, Error otherwise.
 hid_t check(hid_t result, const std::string& where, const char* what);
 
 // Wraps a fresh id, throwing as check() does when it is invalid.

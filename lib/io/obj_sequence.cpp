@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 
 #include "core/error.h"
 #include "io/natural_order.h"
@@ -86,6 +87,7 @@ class MeshSequence final : public FrameSource {
       fail(where + ": frame " + std::to_string(k) + " has " + std::to_string(t.faces.size()) +
            " triangles, frame 0 has " + std::to_string(topology_.faces.size()) +
            " (topology must stay fixed)");
+    check_same_faces(t.faces, where, k);
     check_frame(out, topology_, where, k);
   }
   std::string describe() const override {
@@ -93,6 +95,21 @@ class MeshSequence final : public FrameSource {
   }
 
  private:
+  // Frame 0's faces are the ones every frame is computed with, so a frame listing other
+  // faces would silently be run with frame 0's: refused, naming the first face that differs.
+  void check_same_faces(const std::vector<Tri>& faces, const std::string& where, uint32_t k) const {
+    const std::vector<Tri>& first = topology_.faces;
+    if (std::memcmp(faces.data(), first.data(), faces.size() * sizeof(Tri)) == 0) return;
+    size_t i = 0;
+    while (faces[i].v0 == first[i].v0 && faces[i].v1 == first[i].v1 && faces[i].v2 == first[i].v2) ++i;
+    const auto corners = [](const Tri& t) {
+      return std::to_string(t.v0 + 1) + " " + std::to_string(t.v1 + 1) + " " + std::to_string(t.v2 + 1);
+    };
+    fail(where + ": frame " + std::to_string(k) + ": face " + std::to_string(i + 1) + " has vertices " +
+         corners(faces[i]) + ", frame 0's face " + std::to_string(i + 1) + " has " + corners(first[i]) +
+         " (1-based, as OBJ counts; the faces must stay fixed, only positions may change)");
+  }
+
   std::filesystem::path dir_;
   std::vector<std::filesystem::path> files_;
   Topology topology_;

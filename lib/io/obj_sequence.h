@@ -1,7 +1,7 @@
 #pragma once
 // A directory of OBJ files, one per frame in natural name order (f2.obj before f10.obj;
 // io/natural_order.h), read by io/obj_reader.h. Frame 0 fixes the topology; every later
-// frame must match it (triangle and vertex counts) and be finite, which is checked for all
+// frame must match it (the same faces, vertex count) and be finite, which is checked for all
 // frames when the directory is opened.
 #include <filesystem>
 #include <memory>

@@ -75,8 +75,10 @@ h5::Handle create_group(hid_t loc, const char* name, const std::string& where) {
 
 }  // namespace
 
-ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
-    : path_(path), where_(path.string()) {
+ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info, Placement placement)
+    : target_(path),
+      path_(placement == Placement::staged ? std::filesystem::path(path.string() + ".incomplete") : path),
+      where_(path_.string()) {
   h5::silence_library_errors();
   // Checked before the file exists, so a bad value leaves no file behind.
   if (!info.scene_overrides.is_object())
@@ -86,6 +88,14 @@ ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
     std::filesystem::create_directories(path.parent_path(), ec);
     if (ec) fail(where_ + ": cannot create directory " + path.parent_path().string() + ": " + ec.message());
   }
+  try {
+    create(info);
+  } catch (const h5::IoError& e) {
+    io_failed(e);
+  }
+}
+
+void ResultsFile::create(const RunInfo& info) {
   // Strong close degree: closing the file closes every object still open in it.
   h5::Handle fapl = own(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, where_, "create file access properties");
   check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), where_, "set close degree");
@@ -149,6 +159,14 @@ ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info)
 
 void ResultsFile::append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory) {
   if (!file_) fail(where_ + ": frame " + std::to_string(frame) + ": the results file is already closed");
+  try {
+    append_row(frame, stats, memory);
+  } catch (const h5::IoError& e) {
+    io_failed(e);
+  }
+}
+
+void ResultsFile::append_row(uint32_t frame, const FrameStats& stats, const MemoryStats& memory) {
   const FrameRow row{frame, stats, memory};
   const hsize_t size = rows_ + 1, start = rows_, one = 1;
   h5::Handle mem_space = own(H5Screate_simple(1, &one, nullptr), H5Sclose, where_, "create dataspace");
@@ -198,6 +216,14 @@ void ResultsFile::append_frame(uint32_t frame, const FrameStats& stats, const Me
 
 void ResultsFile::write_pairs(uint32_t frame, const std::vector<PrimPair>& pairs) {
   if (!file_) fail(where_ + ": frame " + std::to_string(frame) + ": the results file is already closed");
+  try {
+    write_pair_rows(frame, pairs);
+  } catch (const h5::IoError& e) {
+    io_failed(e);
+  }
+}
+
+void ResultsFile::write_pair_rows(uint32_t frame, const std::vector<PrimPair>& pairs) {
   if (!pairs_) {
     pairs_ = create_group(file_.get(), "pairs", where_);
     write_attr(pairs_.get(), "description",
@@ -269,10 +295,23 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
 
 void ResultsFile::finish(const RunSummary& summary, const MemoryStats& memory, const RunFindings& findings) {
   if (!file_) fail(where_ + ": the results file is already closed");
-  write_summary(summary, memory);
-  write_attr(file_.get(), "input_hash", findings.input_hash, where_ + ": /");
-  write_attr(file_.get(), "noise_warning", findings.noise_warning, where_ + ": /");
-  close("complete");
+  try {
+    write_summary(summary, memory);
+    write_attr(file_.get(), "input_hash", findings.input_hash, where_ + ": /");
+    write_attr(file_.get(), "noise_warning", findings.noise_warning, where_ + ": /");
+    close("complete");
+  } catch (const h5::IoError& e) {
+    io_failed(e);
+  }
+  if (path_ == target_) return;
+  // Complete: only now does it take the place of the file it replaces.
+  std::error_code ec;
+  std::filesystem::rename(path_, target_, ec);
+  if (ec)
+    fail("writing results to " + target_.string() + " failed: cannot rename the finished " + where_ +
+         " over it: " + ec.message());
+  path_ = target_;
+  where_ = path_.string();
 }
 
 void ResultsFile::abandon(const RunSummary& summary, const MemoryStats& memory,
@@ -281,11 +320,20 @@ void ResultsFile::abandon(const RunSummary& summary, const MemoryStats& memory,
   try {
     write_attr(file_.get(), "error", error, where_ + ": /");
     write_summary(summary, memory);
+  } catch (const h5::IoError& e) {
+    broken_ = true;
+    forget_handles();
+    std::fprintf(stderr, "cdbench: writing results to %s failed: %s\n", where_.c_str(), e.reason.c_str());
+    return;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cdbench: %s\n", e.what());
   }
   try {
     close("incomplete");
+  } catch (const h5::IoError& e) {
+    broken_ = true;
+    forget_handles();
+    std::fprintf(stderr, "cdbench: writing results to %s failed: %s\n", where_.c_str(), e.reason.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cdbench: %s\n", e.what());
   }
@@ -299,7 +347,28 @@ void ResultsFile::close(const char* status) {
   pairs_.reset();
   frames_.reset();
   text_type_.reset();
-  if (!file_.reset()) fail(where_ + ": closing the results file failed: " + h5::library_reason());
+  // Closed once: the id is gone whether or not HDF5 reports a failure.
+  if (!file_.reset()) {
+    const h5::LibraryFailure f = h5::library_failure();
+    const std::string message = where_ + ": closing the results file failed: " + f.reason;
+    if (f.error_number) throw h5::IoError(message, f.reason);
+    fail(message);
+  }
+}
+
+void ResultsFile::io_failed(const h5::IoError& e) {
+  broken_ = true;
+  forget_handles();
+  fail("writing results to " + where_ + " failed: " + e.reason);
+}
+
+void ResultsFile::forget_handles() noexcept {
+  for (h5::Handle& c : columns_) c.abandon();
+  columns_.clear();
+  pairs_.abandon();
+  frames_.abandon();
+  text_type_.abandon();
+  file_.abandon();
 }
 
 void ResultsFile::flush_now_and_then() {

@@ -2,7 +2,9 @@
 // One run's results file (HDF5, schema in docs/results-format.md), written as the run
 // goes: the run's attributes and status "incomplete" first, one /frames row per frame,
 // and only a clean end marks it "complete". A run that fails or is interrupted still
-// leaves a readable file that says so.
+// leaves a readable file that says so. Replacing an existing file, it writes beside it
+// (NAME.incomplete) and renames over it only once complete, so a finished file is never
+// replaced by a worse one.
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -65,8 +67,14 @@ struct RunFindings {
 
 class ResultsFile {
  public:
-  // Creates the file (replacing one of that name; parent directories are made).
-  ResultsFile(const std::filesystem::path& path, const RunInfo& info);
+  // in_place: the file is written at its path from the start (there is nothing there to
+  // keep). staged: it is written to PATH.incomplete, which replaces PATH once complete; a
+  // run that does not finish leaves PATH as it was and its own file as PATH.incomplete.
+  enum class Placement { in_place, staged };
+  // Creates the file (replacing one of that name; parent directories are made). Every
+  // write that fails on the system's side (a full disk, a file size limit) throws
+  // "writing results to FILE failed: <the system's reason>".
+  ResultsFile(const std::filesystem::path& path, const RunInfo& info, Placement placement = Placement::in_place);
   // Closes without touching the status: a file never finished stays "incomplete". The
   // members close in reverse order of declaration, the file last.
   ~ResultsFile() = default;
@@ -84,15 +92,32 @@ class ResultsFile {
   void abandon(const RunSummary& summary, const MemoryStats& memory, const std::string& error) noexcept;
 
   uint64_t rows() const { return rows_; }
+  // Where the file is now: PATH.incomplete while a staged file is written and after it was
+  // abandoned, PATH once finished.
   const std::filesystem::path& path() const { return path_; }
+  // The path asked for: path() too unless the file is staged.
+  const std::filesystem::path& target() const { return target_; }
+  // False once a write failed on the system's side: the file on disk then holds what the
+  // last flush wrote, or may not be readable at all.
+  bool intact() const { return !broken_; }
 
  private:
+  void create(const RunInfo& info);
+  void append_row(uint32_t frame, const FrameStats& stats, const MemoryStats& memory);
+  void write_pair_rows(uint32_t frame, const std::vector<PrimPair>& pairs);
   void write_summary(const RunSummary& summary, const MemoryStats& memory);
   void close(const char* status);
   void flush_now_and_then();
+  // Rethrows a system-side failure as "writing results to FILE failed: <reason>" and
+  // forgets the file's HDF5 ids: closing them would flush HDF5's cache again, which after a
+  // failed write crashes inside the library (the descriptor closes at exit).
+  [[noreturn]] void io_failed(const h5::IoError& e);
+  void forget_handles() noexcept;
 
-  std::filesystem::path path_;
-  std::string where_;  // the path, for messages
+  std::filesystem::path target_;  // the path asked for
+  std::filesystem::path path_;    // the path written
+  std::string where_;  // the path written, for messages
+  bool broken_ = false;
   h5::Handle file_, frames_, pairs_;
   std::vector<h5::Handle> columns_;  // one dataset per frame_columns() entry
   h5::Handle text_type_;

@@ -88,8 +88,8 @@ check "unknown metric is a usage error" 2 "--metric" -- "$cdbench" compare "$tmp
 mkdir -p "$tmp/repeats"
 cp "$tmp/a.h5" "$tmp/repeats/cell_r1.h5"
 cp "$tmp/b.h5" "$tmp/repeats/cell_r2.h5"
-"$cdbench" run "${scene[@]}" --out "$tmp/repeats/cell_r1.h5" --label r >/dev/null 2>&1
-"$cdbench" run "${scene[@]}" --out "$tmp/repeats/cell_r2.h5" --label r >/dev/null 2>&1
+"$cdbench" run "${scene[@]}" --out "$tmp/repeats/cell_r1.h5" --label r --overwrite >/dev/null 2>&1
+"$cdbench" run "${scene[@]}" --out "$tmp/repeats/cell_r2.h5" --label r --overwrite >/dev/null 2>&1
 check "directory repeats combine" 0 "over repeats n=2 \|.*over repeats n=2 \|" -- \
   "$cdbench" compare "$tmp/repeats" "$tmp/repeats"
 
