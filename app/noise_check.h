@@ -14,9 +14,10 @@ inline constexpr double kNoiseWarningLimit = 0.10;
 
 // The measured frames' noise and what it is: with --repeat, the median over frames of the
 // relative standard deviation over the passes (the summary's noise); with one pass, the
-// coefficient of variation of the frame times over the measured frames that did the most
-// common operation (so a front update every few frames, real work, does not count as noise;
-// workload drift still does, the warning says so). `frames` under 2: none.
+// jitter of the measured frames that did the most common operation (so a front update every
+// few frames, real work, does not count as noise), from the median difference between
+// successive frames relative to their median (so a slow workload drift does not either).
+// `frames` under 2 (one pass: under 3): none.
 struct NoiseMeasure {
   double cv = 0;
   size_t frames = 0;   // frames it is over
@@ -27,5 +28,10 @@ NoiseMeasure measure_noise(const std::vector<FrameStats>& frames, uint32_t warmu
 
 // The warning, naming the number and what to do; "" when the noise is within the limit.
 std::string noise_warning(const NoiseMeasure& m);
+
+// A warning when the host's load average over the last minute, read before a run starts,
+// is at least half its cores (others' work then shares the cores and the memory bus: two
+// runs of one CPU scene measured 99.3 and 7.9 ms per frame so); "" otherwise.
+std::string host_load_warning();
 
 }  // namespace cdb

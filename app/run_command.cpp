@@ -21,6 +21,7 @@
 #include "geometry/hashed_frames.h"
 #include "io/results_file.h"
 #include "io/scene_label.h"
+#include "noise_check.h"
 #include "output_path.h"
 #include "pipeline/config_json.h"
 #include "pipeline/device_probe.h"
@@ -302,6 +303,8 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::vector<std::unique_ptr<Pipeline>> pipelines = make_pipelines(o, names, device);
   const std::vector<bool> existing = check_results_paths(r, names);
   print_environment(device);
+  const std::string busy = host_load_warning();
+  if (!busy.empty()) std::printf("warning: %s\n", busy.c_str());
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
   // A box's face is the box's diagonal (io/box_stream.h), so --check's exact triangle

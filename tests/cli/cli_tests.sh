@@ -89,7 +89,7 @@ check "fp32 far out: warned before the run" 0 "^warning: float spacing 1 at the 
 check "fp32 far out: recall 1, blurred" 0 "check +2 frames against the oracle: recall min 1.000000, precision min 0\\.0[0-9]+, 0 missed" -- "$cdbench" run --device cpu --quiet --pipeline c --frames 0:2 --check every "${far[@]}"
 check "fp64 far out: the double geometry's pairs" 0 "check +2 frames against the oracle: recall min 1.000000, precision min 1.000000, 0 missed, 0 false positives" -- "$cdbench" run --device cpu --quiet --pipeline c --frames 0:2 --check every "${far[@]}" --box-precision fp64
 "$cdbench" run --device cpu --quiet --pipeline grid --frames 0:1 --warmup 0 "${far[@]}" --box-precision fp64 >"$tmp/fp64.out" 2>&1
-if grep -q "warning" "$tmp/fp64.out"; then fail "fp64 far out: no warning"; else echo "ok   fp64 far out: no warning"; fi
+if grep -q "warning: float spacing" "$tmp/fp64.out"; then fail "fp64 far out: no precision warning"; else echo "ok   fp64 far out: no precision warning"; fi
 check "check every 5th frame, co-vertex filtered" 0 "check +4 frames against the oracle: recall min 1.000000" -- "$cdbench" run --device cpu --quiet --pipeline grid --check 5 --skip-adjacent
 check "check with declared queries" 0 "check +3 frames against the oracle: recall min 1.000000, precision min 1.000000" -- "$cdbench" run --device cpu --quiet --scene funnel-inter --frames 0:3 --pipeline static --check every
 check "check counts true contacts" 0 "contacts +[0-9]+ of [0-9]+ checked pairs truly intersect: contact precision 0\\.[0-9]+, min 0\\.[0-9]+" -- "$cdbench" run --device cpu --quiet --frames 0:3 --pipeline static --check every
