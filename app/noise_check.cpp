@@ -68,15 +68,39 @@ std::string noise_warning(const NoiseMeasure& m) {
   return text;
 }
 
+namespace {
+
+// Busy and total jiffies of all cores, from /proc/stat's first line; false where unreadable.
+bool cpu_jiffies(unsigned long long& busy, unsigned long long& total) {
+  std::FILE* f = std::fopen("/proc/stat", "r");
+  if (!f) return false;
+  unsigned long long v[8] = {};
+  const int n = std::fscanf(f, "cpu %llu %llu %llu %llu %llu %llu %llu %llu", &v[0], &v[1], &v[2], &v[3], &v[4],
+                            &v[5], &v[6], &v[7]);
+  std::fclose(f);
+  if (n < 5) return false;
+  total = 0;
+  for (unsigned long long x : v) total += x;
+  busy = total - v[3] - v[4];  // idle and iowait
+  return true;
+}
+
+}  // namespace
+
 std::string host_load_warning() {
-  double load[1] = {0};
+  // Sampled now rather than the load average, which still holds a build that just ended.
+  unsigned long long busy0 = 0, total0 = 0, busy1 = 0, total1 = 0;
+  if (!cpu_jiffies(busy0, total0)) return "";
+  usleep(200000);
+  if (!cpu_jiffies(busy1, total1) || total1 <= total0) return "";
   const long cores = sysconf(_SC_NPROCESSORS_ONLN);
-  if (getloadavg(load, 1) != 1 || cores <= 0 || load[0] < 0.5 * double(cores)) return "";
+  const double share = double(busy1 - busy0) / double(total1 - total0);
+  if (cores <= 0 || share < 0.5) return "";
   char text[256];
   std::snprintf(text, sizeof text,
-                "the host is busy before the run (load average %.2f over the last minute on %ld cores): its timings "
-                "will be noisy and may not compare with a run on a quiet host",
-                load[0], cores);
+                "the host is busy before the run (%.0f%% of its %ld cores in use by other work): its timings will be "
+                "noisy and may not compare with a run on a quiet host",
+                100.0 * share, cores);
   return text;
 }
 

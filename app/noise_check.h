@@ -29,9 +29,9 @@ NoiseMeasure measure_noise(const std::vector<FrameStats>& frames, uint32_t warmu
 // The warning, naming the number and what to do; "" when the noise is within the limit.
 std::string noise_warning(const NoiseMeasure& m);
 
-// A warning when the host's load average over the last minute, read before a run starts,
-// is at least half its cores (others' work then shares the cores and the memory bus: two
-// runs of one CPU scene measured 99.3 and 7.9 ms per frame so); "" otherwise.
+// A warning when at least half the host's CPU time is in use, sampled over 0.2 s before a
+// run starts (others' work then shares the cores and the memory bus: two runs of one CPU
+// scene on a loaded host measured 99.3 and 7.9 ms per frame); "" otherwise.
 std::string host_load_warning();
 
 }  // namespace cdb
