@@ -116,6 +116,11 @@ check "LaTeX table" 0 '^\\textbf\{[a-z-]+\} & 5 & \\textbf\{[0-9.]+\}' -- "$pyth
 check "other baseline" 0 "speed-up vs static" -- "$python" "$root/scripts/table_pipelines.py" --baseline static "$res"
 check "curves need a scene when there are several" 1 "--scene needed" -- \
   "$python" "$root/scripts/plot_curves.py" "$res" --out "$tmp/x.png"
+check "curves name the runs of a scene's other settings" 1 "runs of 'funnel', 'funnel\\[res=24\\]' are there: pass one to --scene" -- \
+  "$python" "$root/scripts/plot_curves.py" "$res" --scene 'funnel[res=99]' --out "$tmp/x.png"
+check "make_report --help" 0 "^usage: scripts/make_report.sh DIR OUTDIR" -- bash "$root/scripts/make_report.sh" --help
+has "curves line of a --set scene keeps no raw prefix" "$report" \
+  "^- funnel\\[res=24\\]: \\[curves-funnel_res_24_\\.png\\]\\(curves-funnel_res_24_\\.png\\): [a-z]"
 
 # Same inputs, same bytes: tables and plots are deterministic.
 mkdir -p "$tmp/out2"
