@@ -1,4 +1,5 @@
 #include "compare_command.h"
+#include "number_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -374,7 +375,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& c) {
       ->capture_default_str();
   cmd->add_option("--threshold", c.threshold_pct,
                   "smallest change, in percent of A, that counts as a regression or an improvement")
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_at_least(0))
       ->capture_default_str();
   auto* csv = cmd->add_flag("--csv", c.csv, "CSV instead of Markdown (fixed columns)");
   cmd->add_flag("--json", c.json, "JSON instead of Markdown (fixed keys)")->excludes(csv);

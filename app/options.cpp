@@ -1,4 +1,5 @@
 #include "options.h"
+#include "number_checks.h"
 
 #include <cstdio>
 #include <functional>
@@ -74,7 +75,7 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "fat boxes: inflate every triangle box by this much (scene units) on each side; conservative "
                   "(recall stays 1 against the exact oracle, precision drops); all pipelines")
       ->group(kAccuracyGroup)
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_at_least(0))
       ->capture_default_str();
   add_choice<bool>(
       cmd, "--boxes", c.swept_boxes,
@@ -95,7 +96,7 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "boxes in between, so pairs can be missed (recall < 1 under --check); sweep, hash, grid, brute and "
                   "example-sap ignore it; 1: every frame")
       ->group(kAccuracyGroup)
-      ->check(CLI::PositiveNumber)
+      ->check(whole_in(1, UINT32_MAX))
       ->capture_default_str();
   // --front-cycle is declared above with the other pipeline options; its heading:
   cmd->get_option("--front-cycle")->group(kPipelineGroup);
@@ -153,7 +154,7 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
                   "front pipelines with --update-in-place: the share of a front's nodes changed in place (holes "
                   "plus appended nodes) at which the next update produces the front whole again")
       ->group(kTuningGroup)
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_at_least(0))
       ->capture_default_str();
   add_switch(cmd, "--regenerate", c.regenerate,
              "front pipelines with --front-cycle auto: each maintenance runs an update of the fronts or a generate "
@@ -179,7 +180,7 @@ void add_restructure(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--restructure-quality", c.restructure_quality,
                   "pipeline c: a subtree is degraded when its Q exceeds this times Q(root) after the last rebuild")
       ->group(kPipelineGroup)
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_at_least(0))
       ->capture_default_str();
   cmd->add_option("--restructure-min-leaves", c.restructure_min_leaves,
                   "pipeline c: smallest candidate subtree, in leaves")
@@ -194,12 +195,12 @@ void add_restructure(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--threshold-refit", c.threshold_refit,
                   "pipeline c, Formula 2: below this share of leaves in candidates, only refit")
       ->group(kPipelineGroup)
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_at_least(0))
       ->capture_default_str();
   cmd->add_option("--threshold-build", c.threshold_build,
                   "pipeline c, Formula 2: from this share of leaves in candidates on, rebuild instead of restructuring")
       ->group(kPipelineGroup)
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_at_least(0))
       ->capture_default_str();
 }
 

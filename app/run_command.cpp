@@ -1,4 +1,5 @@
 #include "run_command.h"
+#include "number_checks.h"
 
 #include <unistd.h>
 
@@ -251,12 +252,12 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
                   "passes over the frames, each from a fresh state; times are the per-frame mean, "
                   "with the relative standard deviation reported as noise; Ctrl-C keeps the finished passes")
       ->group(kMeasurementGroup)
-      ->check(CLI::PositiveNumber)
+      ->check(whole_in(1, UINT32_MAX))
       ->capture_default_str();
   run->add_option("--max-noise", r.max_noise,
                   "stop repeating once the passes' mean frame times agree within this many percent (0: all passes)")
       ->group(kMeasurementGroup)
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_at_least(0))
       ->capture_default_str();
   run->add_flag("--cold", r.cold, "flush the device's last-level cache before every frame (outside its timing)")
       ->group(kMeasurementGroup);

@@ -1,4 +1,5 @@
 #include "slurm_script.h"
+#include "number_checks.h"
 
 #include <cctype>
 #include <cstdio>
@@ -64,7 +65,7 @@ void add_slurm_options(CLI::App& sweep, SlurmOptions& o) {
       ->group(group)
       ->capture_default_str();
   sweep.add_option("--cpus-per-task", o.cpus_per_task, "CPUs for each cell, also its OpenMP threads")
-      ->check(CLI::PositiveNumber)
+      ->check(whole_in(1, 4096))
       ->needs(script)
       ->group(group)
       ->capture_default_str();

@@ -1,4 +1,5 @@
 #include "sweep_command.h"
+#include "number_checks.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -17,7 +18,7 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& w) {
   sweep->add_option("--out", w.out_dir, "directory for the cells' results files, logs and status")->required();
   sweep->add_option("--gpus", w.gpus,
                     "cells at a time, one GPU each (CUDA_VISIBLE_DEVICES); default: the GPUs visible, 1 without")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_in(1, 1024));
   add_slurm_options(*sweep, w.slurm);
   sweep->add_flag("--dry-run", w.dry_run, "list the cells, their state and command lines; run nothing");
   sweep->add_option("--scenes-dir", w.scenes_dir, "where named scenes live, passed on to every cell");

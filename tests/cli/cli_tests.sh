@@ -19,6 +19,11 @@ check "front cycle neither auto nor K" 2 "auto or a positive whole number of fra
 check "unknown scene" 2 "unknown scene 'nowhere'" -- "$cdbench" run --device cpu --scene nowhere
 check "frame range past the end" 2 "only 20 frames" -- "$cdbench" run --device cpu --frames 0:99
 check "bad frame range" 2 "expected A:B" -- "$cdbench" run --device cpu --frames x:y
+check "--repeat 0 says what it expects" 2 "^--repeat: expected a whole number from 1 to 4294967295, not '0'" -- "$cdbench" run --device cpu --repeat 0
+check "--box-margin inf refused" 2 "^--box-margin: expected a finite number >= 0, not 'inf'" -- "$cdbench" run --device cpu --box-margin inf
+check "--box-margin -1 refused" 2 "^--box-margin: expected a finite number >= 0, not '-1'" -- "$cdbench" run --device cpu --box-margin -1
+check "--max-noise nan refused" 2 "^--max-noise: expected a finite number >= 0, not 'nan'" -- "$cdbench" run --device cpu --max-noise nan
+check "sweep --gpus 0 refused" 2 "^--gpus: expected a whole number from 1 to 1024, not '0'" -- "$cdbench" sweep x.json --out "$tmp/sw" --gpus 0
 check "frame index past uint32" 2 "beyond the largest frame index" -- "$cdbench" run --device cpu --frames 0:99999999999999999999
 check "one frame left to the warm-up, said" 0 "^warning: --frames '2' gives 1 frame, none after --warmup 1: the summary takes in the first frame" -- "$cdbench" run --device cpu --quiet --frames 2
 check "one frame with --warmup 0" 0 "summary: 1 frames measured \\(first 0 left out" -- "$cdbench" run --device cpu --quiet --frames 2 --warmup 0
