@@ -79,6 +79,11 @@ std::unique_ptr<FrameSource> declare_queries(std::unique_ptr<FrameSource> source
       if (!o.contains("faces") || !o["faces"].is_array() || o["faces"].size() != 2 ||
           !o["faces"][0].is_number_unsigned() || !o["faces"][1].is_number_unsigned())
         fail(at + "/faces: must be [first, count]");
+      // Face indices are 32-bit: a larger number would wrap into another face.
+      for (int k = 0; k < 2; ++k)
+        if (o["faces"][k].get<uint64_t>() > UINT32_MAX)
+          fail(at + "/faces/" + std::to_string(k) + ": " + std::to_string(o["faces"][k].get<uint64_t>()) +
+               " is beyond the largest face index, " + std::to_string(UINT32_MAX));
       topo.objects.push_back({std::move(name), o["faces"][0].get<uint32_t>(), o["faces"][1].get<uint32_t>(),
                               object.flag("rigid", false)});
     }

@@ -24,6 +24,8 @@ check "--box-margin inf refused" 2 "^--box-margin: expected a finite number >= 0
 check "--box-margin -1 refused" 2 "^--box-margin: expected a finite number >= 0, not '-1'" -- "$cdbench" run --device cpu --box-margin -1
 check "--max-noise nan refused" 2 "^--max-noise: expected a finite number >= 0, not 'nan'" -- "$cdbench" run --device cpu --max-noise nan
 check "sweep --gpus 0 refused" 2 "^--gpus: expected a whole number from 1 to 1024, not '0'" -- "$cdbench" sweep x.json --out "$tmp/sw" --gpus 0
+printf '{"generator": "funnel", "params": {"res": 8, "frames": 2}, "objects": [{"name": "a", "faces": [0, 4294967306]}]}' >"$tmp/wrap.json"
+check "descriptor face count past uint32 refused, not wrapped" 1 "/objects/0/faces/1: 4294967306 is beyond the largest face index" -- "$cdbench" scenes info "$tmp/wrap.json"
 check "frame index past uint32" 2 "beyond the largest frame index" -- "$cdbench" run --device cpu --frames 0:99999999999999999999
 check "one frame left to the warm-up, said" 0 "^warning: --frames '2' gives 1 frame, none after --warmup 1: the summary takes in the first frame" -- "$cdbench" run --device cpu --quiet --frames 2
 check "one frame with --warmup 0" 0 "summary: 1 frames measured \\(first 0 left out" -- "$cdbench" run --device cpu --quiet --frames 2 --warmup 0
