@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "io/hdf5_handle.h"
+#include "io/results_file.h"
 #include "io/scene_label.h"
 
 namespace cdb {
@@ -21,6 +22,10 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   const std::string at = where + ": /";
   if (!h5::has_attr(root, "schema_version")) fail(where + ": not a cdbench results file (no schema_version)");
   r.schema_version = h5::read_int_attr(root, "schema_version", at);
+  // A newer writer may have moved or redefined what this reader takes for granted.
+  if (r.schema_version > kResultsSchemaVersion || r.schema_version < 1)
+    fail(where + ": schema_version " + std::to_string(r.schema_version) + " is not one this cdbench reads (1 to " +
+         std::to_string(kResultsSchemaVersion) + "); read it with the cdbench that wrote it, or a newer one");
   r.status = h5::read_string_attr(root, "status", at);
   if (h5::has_attr(root, "error")) r.error = h5::read_string_attr(root, "error", at);
   r.scene = h5::read_string_attr(root, "scene", at);
