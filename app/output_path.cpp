@@ -20,6 +20,10 @@ bool check_output_path(const std::string& path, bool overwrite) {
     fail_usage("--out " + path + ": names a directory; give a file, e.g. " + (file / "run.h5").lexically_normal().string());
   std::error_code ec;
   const bool existed = fs::exists(file, ec) || fs::is_symlink(file, ec);
+  // A device or pipe (/dev/null) would take the whole run and then fail at the rename or
+  // the reopen: a results file is a regular file.
+  if (existed && fs::exists(file, ec) && !fs::is_regular_file(file, ec))
+    fail_usage("--out " + path + ": not a regular file; results are an HDF5 file, give a file name");
   if (existed && !overwrite)
     fail_usage("--out " + path + ": the file exists; pass --overwrite to replace it (it is replaced only once " +
                "the new run completes)");
@@ -39,9 +43,12 @@ bool check_output_path(const std::string& path, bool overwrite) {
   const int error = errno;
   if (writable && !existed) fs::remove(file, ec);
   sigprocmask(SIG_SETMASK, &previous, nullptr);
-  if (!writable)
-    fail("--out " + path + ": cannot write " + (existed ? "this file" : "in directory " + dir.string()) + ": " +
-         std::strerror(error));
+  if (!writable) {
+    // /proc and /sys refuse new files with ENOENT, which reads as a missing directory.
+    const std::string why = error == ENOENT && fs::is_directory(dir) ? "the file system does not take new files here"
+                                                                      : std::strerror(error);
+    fail("--out " + path + ": cannot write " + (existed ? "this file" : "in directory " + dir.string()) + ": " + why);
+  }
   return existed;
 }
 

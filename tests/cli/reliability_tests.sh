@@ -150,5 +150,10 @@ check "directory holding other files refused" 2 "--out $tmp/gen: holds notes.txt
   "$cdbench" scenes generate funnel --set res=4 --set frames=2 --out "$tmp/gen"
 [[ -e $tmp/gen/frame_0002.obj ]] && echo "ok   refused directory untouched" || fail "refused directory changed"
 
+check "--out /dev/null refused before any work" 2 "^cdbench: error: --out /dev/null: not a regular file" -- \
+  "$cdbench" run --device cpu --quiet --frames 0:3 --out /dev/null --overwrite
+check "--out in /proc names the reason" 1 "--out /proc/r.h5: cannot write in directory /proc: (the file system does not take new files here|Permission denied|Read-only file system)" -- \
+  "$cdbench" run --device cpu --quiet --frames 0:3 --out /proc/r.h5
+
 [[ $skipped -ne 0 ]] && echo "$skipped check(s) skipped (reasons above)"
 finish reliability
