@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "io/animated_mesh.h"
 #include "io/scene.h"
+#include "error_of.h"
 
 namespace cdb::test {
 namespace {
@@ -440,15 +441,6 @@ struct Descriptor {
   }
   ~Descriptor() { fs::remove_all(dir); }
 };
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 TEST(AnimatedMesh, DescriptorWithObjectQueries) {
   Descriptor d;

@@ -26,21 +26,13 @@
 #include "io/npy_header.h"
 #include "io/scene.h"
 #include "pipeline/pipeline.h"
+#include "error_of.h"
 
 namespace cdb::test {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 // A scratch directory, removed at the end; the scene cache points into it.
 struct Scratch {

@@ -29,6 +29,7 @@
 #include "io/keyframe_mesh.h"
 #include "io/rigid_mesh.h"
 #include "io/scene.h"
+#include "error_of.h"
 
 namespace cdb::test {
 namespace {
@@ -46,15 +47,6 @@ const fs::path kBunny = "/usr/share/glmark2/models/bunny.obj";
   if (fs::exists(file)) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << file << " is missing: install the Debian package " << package
                                        << " (scripts/install-deps.sh " << flag << ")";
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 // A scratch directory with descriptors and meshes, removed at the end; the scene cache
