@@ -28,9 +28,8 @@ using namespace cdb;
 int main(int argc, char** argv) {
   // Every kernel loads when the CUDA context starts, not at its first launch: under CUDA's
   // default lazy loading the first frames that launch a kernel paid for loading it, inside
-  // the timed frames (pipeline a on funnel: mean 0.0756 to 0.0436 ms, p95 over median 3.82
-  // to 1.60; H100, docs/experiments.md). An environment that sets CUDA_MODULE_LOADING keeps
-  // its choice; sweep cells inherit this one.
+  // the timed frames (docs/experiments.md). An environment that sets CUDA_MODULE_LOADING
+  // keeps its choice; sweep cells inherit this one.
   setenv("CUDA_MODULE_LOADING", "EAGER", 0);
   CLI::App app{"cdbench: GPU broad-phase collision detection benchmark for deforming meshes"};
   // Set before the subcommands are added: each takes its parent's formatter.

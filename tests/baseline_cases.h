@@ -340,9 +340,9 @@ uint32_t run_grid_frame(Exec& exec, UniformGrid<Exec>& grid, uint32_t n, const P
     grid_build(exec, grid, n);
     exec.fill(sink.count, 1, 0ull);
     grid_pairs(exec, grid, n, sink);
-    unsigned long long totals[kGridTotals] = {};
-    exec.copy_to_host(totals, grid.totals.data(), kGridTotals);
-    if (grid.settle(totals[0], totals[1])) return reruns;
+    GridTotals totals{};
+    exec.copy_to_host(&totals, grid.totals.data(), 1);
+    if (grid.settle(totals)) return reruns;
   }
 }
 

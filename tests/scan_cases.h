@@ -1,6 +1,6 @@
 #pragma once
 // Exec::exclusive_scan_pair against a serial scan, on host and CUDA: both arrays of a pair,
-// at sizes on both sides of the one-block limit (CudaExec::kPairScanBlockMax), one array
+// at sizes on both sides of the one-block limit (kPairScanBlockMax, exec/tuning.h), one array
 // empty, and values whose sums wrap 32 bits.
 #include <gtest/gtest.h>
 

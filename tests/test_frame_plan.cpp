@@ -25,7 +25,7 @@ PipelineConfig cycle_config(uint32_t cycle) {
 // the self query's operation after a refit unless the frame rebuilt.
 char letter(const FramePlan& p) {
   if (p.rebuild) return 'b';
-  switch (p.self) {
+  switch (p.op(Query::self)) {
     case FrontOp::preserve: return 'p';
     case FrontOp::update: return 'u';
     case FrontOp::generate: return 'g';
@@ -69,7 +69,7 @@ TEST(FramePlan, BalanceOnlyBeforeUpdatesOfPipelinesThatBalance) {
   FramePlanner planner(b, whole);
   for (int f = 0; f < 6; ++f) {
     const FramePlan p = planner.plan(100, 100);
-    EXPECT_EQ(p.balance, p.self == FrontOp::update) << "frame " << f;
+    EXPECT_EQ(p.balance, p.op(Query::self) == FrontOp::update) << "frame " << f;
     planner.finish(p, {1.0, true, 100, 1.0, {}});
   }
 }
@@ -128,7 +128,7 @@ TEST(FramePlan, AdaptiveUpdatesWhenTheRentPaidReachesTheUpdatesPrice) {
     };
     FramePlanner planner(FrontStrategy{}, cycle_config(0));
     const std::string s = schedule(planner, 300, cost);
-    const std::string first = "b" + std::string(steady_frames(a, (build - 1.0) / FrontMaintenance::kBuildPerUpdate), 'p') + "u";
+    const std::string first = "b" + std::string(steady_frames(a, (build - 1.0) / kBuildPerUpdate), 'p') + "u";
     const std::string cycle = std::string(steady_frames(a, extra), 'p') + "u";
     EXPECT_EQ(s.substr(0, first.size() + 3 * cycle.size()), first + cycle + cycle + cycle) << "a = " << a << ": " << s;
   }
@@ -184,7 +184,7 @@ TEST(FramePlan, ThePriceScalesWithTheFront) {
   EXPECT_FALSE(m.priced());
   m.observe(false, false, true, true, 17.0, 100);  // the build frame: a guess until measured
   m.observe(true, false, false, true, 1.0, 100);
-  EXPECT_DOUBLE_EQ(m.price_ms(100), 16.0 / FrontMaintenance::kBuildPerUpdate);
+  EXPECT_DOUBLE_EQ(m.price_ms(100), 16.0 / kBuildPerUpdate);
   m.produced();
   m.observe(true, false, false, true, 1.0, 100);
   m.observe(false, true, false, true, 3.0, 100);  // 2 ms over a steady frame for 100 nodes
@@ -270,7 +270,7 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
     EXPECT_FALSE(p.inspect);
     planner.finish(p, {1.0, true, 100, 2.0, {3, 99}});  // found nothing: not inspected
     p = planner.plan(1000, 100);  // frame 2 updates and inspects
-    ASSERT_EQ(p.self, FrontOp::update);
+    ASSERT_EQ(p.op(Query::self), FrontOp::update);
     EXPECT_TRUE(p.inspect);
     EXPECT_EQ(p.decision, Formula2::none);
     planner.finish(p, {2.0, true, 100, 2.5, {4, k.leaves_in_candidates}});
@@ -278,7 +278,7 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
     EXPECT_EQ(p.decision, k.decision);
     EXPECT_EQ(letter(p), k.op);
     if (k.decision == Formula2::restructure) {
-      EXPECT_EQ(p.inter, FrontOp::generate);  // the cross fronts name T_D's renumbered leaves
+      EXPECT_EQ(p.op(Query::inter), FrontOp::generate);  // the cross fronts name T_D's renumbered leaves
       EXPECT_EQ(p.restructuring.count, 4u);
       EXPECT_EQ(p.restructuring.leaves, k.leaves_in_candidates);
     }
@@ -306,7 +306,7 @@ std::string schedule_probes(FramePlanner& planner, int frames, Cost cost) {
   std::string s;
   for (int f = 0; f < frames; ++f) {
     const FramePlan p = planner.plan(1000, 100);
-    EXPECT_TRUE(!p.probe || (p.self == FrontOp::preserve && !p.rebuild)) << "frame " << f;
+    EXPECT_TRUE(!p.probe || (p.op(Query::self) == FrontOp::preserve && !p.rebuild)) << "frame " << f;
     s += p.probe ? 'P' : letter(p);
     planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
   }
@@ -335,7 +335,7 @@ TEST(FramePlan, UpdatesInPlaceUntilTheOrderDecays) {
     for (double disorder : {0.0, 0.3, 0.49, 0.5, 2.0}) {
       const FramePlan p = planner.plan(100, 100, disorder);
       const std::string where = std::string(in_place ? "in place" : "whole") + ", disorder " + std::to_string(disorder);
-      ASSERT_EQ(p.self, FrontOp::update) << where;
+      ASSERT_EQ(p.op(Query::self), FrontOp::update) << where;
       EXPECT_EQ(p.in_place, in_place && disorder < 0.5) << where;
       EXPECT_EQ(p.balance, !p.in_place && disorder == 0.0) << where;
       EXPECT_TRUE(p.inspect) << where;
@@ -364,10 +364,10 @@ TEST(FramePlan, AdaptiveMaintenanceRunsWhicheverMeasuredCheaper) {
     for (int f = 0; f < 120; ++f) {
       const FramePlan p = planner.plan(1000, 100);
       double ms = 17.0;
-      if (!p.rebuild && p.self != FrontOp::preserve) {
+      if (!p.rebuild && p.op(Query::self) != FrontOp::preserve) {
         maintenances += letter(p);
         EXPECT_EQ(p.inspect, planner.q_ref() > 0.0) << "frame " << f;
-        ms = 1.0 + (p.self == FrontOp::update ? 2.0 : extra);
+        ms = 1.0 + (p.op(Query::self) == FrontOp::update ? 2.0 : extra);
         since = 0;
       } else if (!p.rebuild) {
         ms = 1.0 + 0.5 * since++;
@@ -417,10 +417,10 @@ TEST(FramePlan, AdaptiveProbesOnceTheRentNearsThePrice) {
     s += p.probe ? 'P' : letter(p);
     const double price = planner.maintenance().price_ms(100);
     if (p.probe) {
-      EXPECT_GE(rent_before, FrontMaintenance::kProbeShare * price - 1e-9) << "frame " << f;
+      EXPECT_GE(rent_before, kProbeShare * price - 1e-9) << "frame " << f;
     }
-    if (p.self == FrontOp::preserve && !p.rebuild && !p.probe && f > 0) {
-      EXPECT_LT(rent_before, FrontMaintenance::kProbeShare * price + 1e-9) << "frame " << f;
+    if (p.op(Query::self) == FrontOp::preserve && !p.rebuild && !p.probe && f > 0) {
+      EXPECT_LT(rent_before, kProbeShare * price + 1e-9) << "frame " << f;
     }
     planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
   }

@@ -27,8 +27,8 @@ std::vector<size_t> awkward_sizes() {
           97,
           2047,
           2049,
-          HostExec::kSortChunkKeys - 1,
-          HostExec::kSortChunkKeys + 1,
+          kSortChunkKeys - 1,
+          kSortChunkKeys + 1,
           (size_t(1) << 15) + 1,
           65521,
           (size_t(1) << 20) + 3};
@@ -180,7 +180,7 @@ TEST(HostExecSort, MatchesTheStableSerialSort) {
 TEST(HostExecSort, TemporaryStorageNeverShrinksWithMoreKeys) {
   HostExec exec;
   size_t last = exec.sort_temp_bytes(0), last_keys = exec.sort_keys_temp_bytes(0);
-  for (size_t n = 1; n <= HostExec::kSortChunks * HostExec::kSortChunkKeys + 3; n += 997) {
+  for (size_t n = 1; n <= kSortChunks * kSortChunkKeys + 3; n += 997) {
     const size_t bytes = exec.sort_temp_bytes(n), keys_bytes = exec.sort_keys_temp_bytes(n);
     ASSERT_GE(bytes, last) << n;
     ASSERT_GE(keys_bytes, last_keys) << n;

@@ -22,6 +22,7 @@
 #include "core/pair_sink.h"
 #include "exec/balance.h"
 #include "exec/memory.h"
+#include "exec/tuning.h"
 #include "geometry/mesh.h"
 #include "grid/cell_pairs.h"
 #include "grid/grid_geometry.h"
@@ -29,14 +30,17 @@
 
 namespace cdb {
 
-// What the device reports for the host's plan: [0] entries, [1] key bits the sort needs.
-inline constexpr size_t kGridTotals = 2;
+// What the device reports for the host's plan (UniformGrid::settle): the cell entries and
+// the key bits the sort needs.
+struct GridTotals {
+  unsigned long long entries;
+  unsigned long long key_bits;
+};
 
 template <class Exec>
 struct UniformGrid : CellBoxes<Exec> {
-  // Before the first frame's count: cells per box, a generous guess (a box covers 1 to 8
-  // cells on level 0 for typical meshes); frame 0 re-runs if it is short.
-  static constexpr size_t kEntriesPerBoxEstimate = 8;
+  // Before the first frame's count: kEntriesPerBoxEstimate cells per box (exec/tuning.h);
+  // frame 0 re-runs if it is short.
   // Entries are indexed with 32 bits.
   static constexpr size_t kMaxPlan = 0xffffffffull;
 
@@ -59,7 +63,7 @@ struct UniformGrid : CellBoxes<Exec> {
     level_begin.reserve(kGridMaxLevels + 1);
     trimmed.reserve(1);
     params.reserve(1);
-    totals.reserve(kGridTotals);
+    totals.reserve(1);
     num_boxes = n;
     planned_entries = std::clamp<size_t>(kEntriesPerBoxEstimate * size_t(n), 1024, kMaxPlan);
     key_bits = 3 * kCellAxisBits + 1;
@@ -78,7 +82,8 @@ struct UniformGrid : CellBoxes<Exec> {
   // After the frame's read-back of the device totals: whether the last build's plan held
   // them. Either way, plans the next build (this frame's re-run, or the next frame) from
   // them; the build grows the entry arrays (logged) if the plan exceeds them.
-  bool settle(unsigned long long entries, unsigned long long bits) {
+  bool settle(const GridTotals& t) {
+    const unsigned long long entries = t.entries, bits = t.key_bits;
     if (entries > kMaxPlan)
       fail("grid: " + std::to_string(entries) + " cell entries exceed 32-bit offsets");
     planned_entries = std::clamp<size_t>(size_t(entries + entries / 4), 1024, kMaxPlan);
@@ -89,7 +94,7 @@ struct UniformGrid : CellBoxes<Exec> {
   Array<uint32_t> level, level_begin;
   Array<TrimmedWidths> trimmed;
   Array<GridLayout> params;
-  Array<unsigned long long> totals;
+  Array<GridTotals> totals;
   Array<uint64_t> keys, sorted_keys;
   Array<uint32_t> boxes, sorted_boxes;
   uint32_t num_boxes = 0;
@@ -105,7 +110,7 @@ struct UniformGrid : CellBoxes<Exec> {
 template <class Exec>
 void grid_build(Exec& exec, UniformGrid<Exec>& g, uint32_t n) {
   if (n == 0) {
-    exec.fill(g.totals.data(), kGridTotals, 0ull);
+    exec.fill(g.totals.data(), 1, GridTotals{0, 0});
     return;
   }
   if (g.planned_entries > g.keys.capacity()) g.reserve_entries(exec, g.planned_entries);
@@ -115,21 +120,20 @@ void grid_build(Exec& exec, UniformGrid<Exec>& g, uint32_t n) {
   reduce_scene_stats(exec, g, n);
   exec.reduce(n, TrimmedWidthsFn{g.lo.data(), g.hi.data(), g.scene.data(), n}, TrimmedWidthsOp{},
               TrimmedWidths{0.0, 0ull}, g.trimmed.data(), g.temp.data(), g.temp.size());
-  exec.for_each_n(1, GridLayoutFn{g.scene.data(), g.trimmed.data(), g.params.data(),
-                                  g.totals.data() + 1});
+  unsigned long long* entries = &g.totals.data()->entries;
+  exec.for_each_n(1, GridLayoutFn{g.scene.data(), g.trimmed.data(), g.params.data(), &g.totals.data()->key_bits});
   exec.for_each_n(n, GridCountFn{g.lo.data(), g.hi.data(), g.params.data(), g.counts.data(),
                                  g.level.data()});
-  exec.reduce(n, EntryTotalFn{g.counts.data()}, SumOp{}, 0ull, g.totals.data(), g.temp.data(),
-              g.temp.size());
+  exec.reduce(n, EntryTotalFn{g.counts.data()}, SumOp{}, 0ull, entries, g.temp.data(), g.temp.size());
   exec.exclusive_scan(g.counts.data(), g.offsets.data(), n, g.temp.data(), g.temp.size());
   exec.for_each_n(n, GridFillFn{g.lo.data(), g.hi.data(), g.params.data(), g.level.data(),
                                 g.offsets.data(), planned, g.keys.data(), g.boxes.data()});
   const int bits = g.built_key_bits;
   const uint64_t pad_key = bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
-  exec.for_each_n(planned, GridPadFn{g.totals.data(), pad_key, g.keys.data(), g.boxes.data()});
+  exec.for_each_n(planned, GridPadFn{entries, pad_key, g.keys.data(), g.boxes.data()});
   exec.sort_pairs(g.keys.data(), g.sorted_keys.data(), g.boxes.data(), g.sorted_boxes.data(),
                   planned, bits, g.temp.data(), g.temp.size());
-  exec.for_each_n(kGridMaxLevels + 1, LevelBeginFn{g.sorted_keys.data(), g.totals.data(), planned,
+  exec.for_each_n(kGridMaxLevels + 1, LevelBeginFn{g.sorted_keys.data(), entries, planned,
                                                    g.params.data(), g.level_begin.data()});
 }
 
@@ -138,7 +142,7 @@ void grid_pairs(Exec& exec, const UniformGrid<Exec>& g, uint32_t n, const PairSi
   if (n == 0) return;
   const uint32_t planned = static_cast<uint32_t>(g.built_entries);
   exec.for_each_staged(planned,
-                  SameLevelPairsFn{g.sorted_keys.data(), g.sorted_boxes.data(), g.totals.data(),
+                  SameLevelPairsFn{g.sorted_keys.data(), g.sorted_boxes.data(), &g.totals.data()->entries,
                                    planned, g.level.data(), g.lo.data(), g.hi.data(),
                                    g.params.data(), sink},
                   Balance::uneven);

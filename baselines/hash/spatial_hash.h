@@ -21,6 +21,7 @@
 #include <limits>
 
 #include "common/cell_boxes.h"
+#include "exec/tuning.h"
 #include "common/cell_coord.h"
 #include "common/cell_range.h"
 #include "common/home_cell.h"
@@ -211,8 +212,6 @@ struct LargePairsFn {
 // from an estimate of entries per box; growth beyond either is logged and counted.
 template <class Exec>
 struct SpatialHash : CellBoxes<Exec> {
-  static constexpr size_t kEntriesPerBoxEstimate = 8;
-
   explicit SpatialHash(Exec& exec) : CellBoxes<Exec>(exec, "hash") {
     MemoryResource& mr = exec.memory();
     large.bind(mr, "hash.large");

@@ -66,17 +66,7 @@ struct MortonFn {
   FaceSubset subset;
   CDB_HD void operator()(uint32_t i) const {
     const Aabb<float> s = *centroid_box;
-    const vec4f a = lo[i], b = hi[i];
-    // (centroid - scene_lo) / extent with every term halved, so that coordinates near the
-    // float limit do not overflow to infinity.
-    const float ex = s.hi.x * 0.5f - s.lo.x * 0.5f, ey = s.hi.y * 0.5f - s.lo.y * 0.5f,
-                ez = s.hi.z * 0.5f - s.lo.z * 0.5f;
-    const float cx = a.x * 0.5f + b.x * 0.5f, cy = a.y * 0.5f + b.y * 0.5f,
-                cz = a.z * 0.5f + b.z * 0.5f;
-    const vec4f u{ex > 0 ? (cx * 0.5f - s.lo.x * 0.5f) / ex : 0.5f,
-                  ey > 0 ? (cy * 0.5f - s.lo.y * 0.5f) / ey : 0.5f,
-                  ez > 0 ? (cz * 0.5f - s.lo.z * 0.5f) / ez : 0.5f, 0};
-    const uint64_t code = morton_code(u, bits);
+    const uint64_t code = morton_code(unit_centroid(lo[i], hi[i], s.lo, s.hi), bits);
     keys[i] = face_group ? (uint64_t(face_group[subset.face(i)]) << (int(bits) - kGroupBits)) | (code >> kGroupBits)
                          : code;
     iota[i] = i;

@@ -5,24 +5,18 @@
 #include <cstdint>
 
 #include "core/hd.h"
+#include "exec/tuning.h"
 
 namespace cdb {
 
-// Most leaves a refit tile holds: one block of the tile kernel. The tiles are treelets, the
-// largest subtrees of at most kRefitTile leaves (bvh/refit_index.h). 512 refits faster than 256 (docs/design.md
-// "Constants and their measurements"); the tile's shared memory (34 KB) stays under the
-// static limit, 1024 would not.
-inline constexpr uint32_t kRefitTile = 512;
-// Default of Lbvh::refit_top_max_leaves (--refit-top-leaves): the largest tree whose top
-// refits in one block, past which handing the top over between blocks is faster
-// (docs/results.md has the A/B behind it).
-inline constexpr uint32_t kRefitTopMaxLeaves = 1u << 15;
+// A refit tile holds at most kRefitTile leaves (exec/tuning.h): one block of the tile
+// kernel. The tiles are treelets, the largest subtrees of at most that many leaves
+// (bvh/refit_index.h). Trees of up to kRefitTopMaxLeaves leaves (the default of
+// Lbvh::refit_top_max_leaves, --refit-top-leaves) refit their top in one block, which keeps
+// kRefitTopSharedSlots spanning nodes in shared memory.
+
 // The most --refit-top-leaves may be: past 2^24 leaves one block is never the faster way.
 inline constexpr uint32_t kRefitTopLeavesLimit = 1u << 24;
-// Spanning nodes the block keeps in shared memory; the rest live in global memory. Over
-// treelets about 0.3% of the internal nodes span tiles (103 on the 32K cloth), so a default
-// tree keeps every slot here; 384 slots measured no faster (docs/experiments.md).
-inline constexpr uint32_t kRefitTopSharedSlots = 1536;
 
 // Whether node [first, last] spans tiles: with treelet tiles, whether it has more leaves than
 // a tile holds (a node with fewer lies inside the treelet that holds it).

@@ -10,10 +10,9 @@
 // levels: every spanning node at depth d merges both sides of its slot (its children, at
 // depth d + 1 or below the top, are final) and puts the merge on its side of the parent.
 // No atomics and no arrival bits: the barriers order every hand-over, which
-// compute-sanitizer's racecheck follows. A level costs about 1,000 cycles either way
-// (H100, clock64 between the barriers, and the climb with acquire-release arrivals it
-// replaced took as long); what made the top cheap is having fewer levels, 5 to 8 over
-// treelets against 17 to 19 over fixed tiles.
+// compute-sanitizer's racecheck follows. A level cost as much as in the climb with
+// acquire-release arrivals it replaced; what made the top cheap is having fewer levels over
+// treelets than over fixed tiles (docs/design.md "Constants and their measurements").
 //
 // The spanning nodes are indexed once per topology (bvh/refit_index.h, after every build,
 // order and restructure): compact slots 0..S-1, each slot's node, its depth (every
@@ -95,7 +94,7 @@ struct RefitTopFn {
     const uint32_t count = sh.count;
     if (p == sh.deepest + 2) {
       // The write-back, from side 0 of every slot: writing each box in its level instead
-      // took about 1 us longer on funnel and the 32K cloth (H100).
+      // measured slower (docs/experiments.md).
       for (uint32_t s = t; s < count; s += threads) {
         const bool local = s < shared_slots;
         vec4f lo, hi;

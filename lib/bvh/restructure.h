@@ -140,15 +140,7 @@ struct RestructureKeyFn {
     const uint32_t tag = cand.slot_of_leaf(l);
     if (tag == 0) return;
     const uint32_t k = tag - 1, r = cand.node[k];
-    const vec4f blo = node_lo[r], bhi = node_hi[r], a = leaf_lo[l], b = leaf_hi[l];
-    // Halved terms keep coordinates near the float limit finite, as in MortonFn.
-    const float ex = bhi.x * 0.5f - blo.x * 0.5f, ey = bhi.y * 0.5f - blo.y * 0.5f,
-                ez = bhi.z * 0.5f - blo.z * 0.5f;
-    const float cx = a.x * 0.5f + b.x * 0.5f, cy = a.y * 0.5f + b.y * 0.5f,
-                cz = a.z * 0.5f + b.z * 0.5f;
-    const vec4f u{ex > 0 ? (cx * 0.5f - blo.x * 0.5f) / ex : 0.5f,
-                  ey > 0 ? (cy * 0.5f - blo.y * 0.5f) / ey : 0.5f,
-                  ez > 0 ? (cz * 0.5f - blo.z * 0.5f) / ez : 0.5f, 0};
+    const vec4f u = unit_centroid(leaf_lo[l], leaf_hi[l], node_lo[r], node_hi[r]);
     const uint32_t m = base[k] + (l - cand.first[k]);
     keys[m] = (uint64_t(k) << kRestructureCodeBits) | morton_code(u, MortonBits::b30);
     old_leaf[m] = l;

@@ -29,12 +29,12 @@
 #include "core/atomics.h"
 #include "core/hd.h"
 #include "core/pair.h"
+#include "exec/tuning.h"
 
 namespace cdb {
 
-// Threads of a staged kernel's block (Exec::for_each_staged): what a stage's capacity and the
-// front pipelines' choice to stage preserve are sized against.
-inline constexpr uint32_t kStagedThreads = 256;
+// A staged kernel's block has kStagedThreads threads (Exec::for_each_staged, exec/tuning.h):
+// what a stage's capacity and the front pipelines' choice to stage preserve are sized against.
 
 struct PairStage {
   static constexpr uint32_t kCapacity = 1024;

@@ -36,6 +36,15 @@ CDB_HD_INLINE uint32_t grid_cell(float t, float cells) {
   return static_cast<uint32_t>(c);
 }
 
+// The centroid of box [a, b] as a position in [0, 1]^3 of the box [lo, hi] (0.5 on a flat
+// axis), every term halved so that coordinates near the float limit do not overflow.
+CDB_HD_INLINE vec4f unit_centroid(const vec4f& a, const vec4f& b, const vec4f& lo, const vec4f& hi) {
+  const float ex = hi.x * 0.5f - lo.x * 0.5f, ey = hi.y * 0.5f - lo.y * 0.5f, ez = hi.z * 0.5f - lo.z * 0.5f;
+  const float cx = a.x * 0.5f + b.x * 0.5f, cy = a.y * 0.5f + b.y * 0.5f, cz = a.z * 0.5f + b.z * 0.5f;
+  return {ex > 0 ? (cx * 0.5f - lo.x * 0.5f) / ex : 0.5f, ey > 0 ? (cy * 0.5f - lo.y * 0.5f) / ey : 0.5f,
+          ez > 0 ? (cz * 0.5f - lo.z * 0.5f) / ez : 0.5f, 0};
+}
+
 CDB_HD_INLINE uint64_t morton_code(vec4f unit, MortonBits bits) {
   if (bits == MortonBits::b30) {
     return (uint64_t(spread_bits_10(grid_cell(unit.x, 1024.0f))) << 2) |

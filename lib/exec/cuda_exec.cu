@@ -110,12 +110,6 @@ struct ScanJob {
   uint32_t n;
 };
 
-// Tiles of 4K values, about 2 us each on the H100 (a dependent round of loads, scan and
-// stores): two 9K-value count logs took 7.4 us against 13.8 for two device scans, two
-// 32K-value ones 16.7 us against 13.8 (Nsight Compute). 16 values a thread with warp scans
-// was slower still (13.3 and 37.7 us).
-constexpr uint32_t kPairScanThreads = 1024, kPairScanItems = 4;
-
 // Block b scans job b alone, tile after tile of kPairScanThreads * kPairScanItems values,
 // each thread a run of kPairScanItems consecutive ones, carrying the running total.
 __global__ void __launch_bounds__(kPairScanThreads) pair_scan_kernel(ScanJob first, ScanJob second) {

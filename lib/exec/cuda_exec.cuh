@@ -18,6 +18,7 @@
 #include "exec/tiles.h"
 #include "exec/exec_options.h"
 #include "exec/frame_graph.h"
+#include "exec/tuning.h"
 #include "exec/memory.h"
 
 namespace cdb {
@@ -96,10 +97,9 @@ __global__ void for_each_staged_kernel(uint32_t n, F f) {
   f.flush(stage);
 }
 
-// One block of kOneBlockThreads threads running F's phases (f.phases(), read from device
+// One block of kOneBlockThreads threads (exec/tuning.h) running F's phases (f.phases(), read from device
 // memory by every thread alike) with a block barrier between them, sharing one F::Shared in
 // dynamic shared memory.
-inline constexpr uint32_t kOneBlockThreads = 1024;
 
 template <class F>
 __global__ void __launch_bounds__(kOneBlockThreads) in_one_block_kernel(F f) {
@@ -120,9 +120,6 @@ struct BoxUnion {
     return r;
   }
 };
-
-inline constexpr uint32_t kReduceThreads = 256;
-inline constexpr uint32_t kReduceBlocks = 512;
 
 // The one reduction (CudaExec::reduce, and reduce_box through it): per-block partials, then
 // one block combines them; both in a fixed order, so results are reproducible run to run.
@@ -232,11 +229,9 @@ class CudaExec {
 
   size_t scan_temp_bytes(size_t n) const;
   // Two exclusive scans at once (the count logs of a front's two kinds): while both have at
-  // most kPairScanBlockMax values, one launch with one block per array; past it, one device
-  // scan each. temp holds scan_temp_bytes of the longer. A device scan is two launches of
-  // 2 to 5 us each however short the array (Nsight Compute, H100), and a front's ordering
-  // scanned both kinds' count logs that way: four launches a produced front.
-  static constexpr size_t kPairScanBlockMax = size_t(1) << 14;
+  // most kPairScanBlockMax values (exec/tuning.h), one launch with one block per array; past
+  // it, one device scan each, two launches however short the array. temp holds
+  // scan_temp_bytes of the longer.
   void exclusive_scan_pair(const uint32_t* in0, uint32_t* out0, size_t n0, const uint32_t* in1, uint32_t* out1,
                            size_t n1, void* temp, size_t temp_bytes) const;
   void exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void* temp,

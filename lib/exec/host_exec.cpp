@@ -8,9 +8,8 @@
 namespace cdb {
 
 namespace {
-// Below this many elements a scan runs on one thread: the second pass over the chunks
-// would cost more than it saves.
-constexpr size_t kParallelScanMin = size_t(1) << 15;
+// Below kParallelScanMin (exec/tuning.h) elements a scan runs on one thread: the second pass
+// over the chunks would cost more than it saves.
 
 // First index of chunk c of n elements split into `chunks` near-equal runs.
 size_t chunk_begin(size_t n, size_t chunks, size_t c) { return n * c / chunks; }
@@ -64,7 +63,7 @@ template <bool kValues>
 void radix_sort(const uint64_t* keys_in, uint64_t* keys_out, const uint32_t* values_in, uint32_t* values_out,
                 size_t n, int end_bit, void* temp) {
   constexpr size_t kBuckets = HostExec::kSortBuckets;
-  constexpr int kDigitBits = HostExec::kSortDigitBits;
+  constexpr int kDigitBits = kSortDigitBits;
   const int64_t count = int64_t(n);
   const size_t chunks = HostExec::sort_chunks(n);
   const bool parallel = chunks > 1;

@@ -17,6 +17,7 @@
 #include "exec/exec_options.h"
 #include "exec/frame_graph.h"
 #include "exec/memory.h"
+#include "exec/tuning.h"
 
 namespace cdb {
 
@@ -89,7 +90,6 @@ class HostExec {
 
   // Scan in two passes over kScanChunks chunks: the chunks' sums, then each chunk scanned
   // from the sum before it. The temporary storage holds the chunks' sums.
-  static constexpr size_t kScanChunks = 64;
   size_t scan_temp_bytes(size_t) const { return kScanChunks * sizeof(uint32_t); }
   // out[i] = in[0] + ... + in[i - 1] (mod 2^32); in and out may be the same array.
   void exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void* temp, size_t temp_bytes) const;
@@ -104,9 +104,7 @@ class HostExec {
   // counts its digits, then scatters its keys in order behind the earlier chunks' keys of
   // the same digit, so the sort is stable however many threads run. The temporary storage
   // holds a digit count per chunk and a second buffer of keys and values.
-  static constexpr int kSortDigitBits = 11;
   static constexpr size_t kSortBuckets = size_t(1) << kSortDigitBits;
-  static constexpr size_t kSortChunks = 64, kSortChunkKeys = size_t(1) << 14;
   // At most kSortChunks, fewer below kSortChunkKeys keys each (never decreasing with n, so
   // storage sized for a capacity serves every smaller sort).
   static size_t sort_chunks(size_t n) {
@@ -144,7 +142,6 @@ class HostExec {
 
   // Generic reduction of map(i) under an associative, commutative op. A fixed number of
   // chunks combined in order, so the result does not depend on the thread count.
-  static constexpr size_t kReduceChunks = 64;
   template <class T>
   size_t reduce_temp_bytes_of(size_t) const {
     return kReduceChunks * sizeof(T);

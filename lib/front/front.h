@@ -13,14 +13,14 @@
 #include "core/append_stage.h"
 #include "core/atomics.h"
 #include "exec/memory.h"
+#include "exec/tuning.h"
 
 namespace cdb {
 
 enum FrontKind : int { kInternalFront = 0, kExternalFront = 1 };
 
-// Slots a count that every block of a launch adds to is spread over (pipeline/
-// front_counters.h): blocks add to slot blockIdx % kStopSlots, not all to one address.
-inline constexpr uint32_t kStopSlots = 16;
+// Counts that every block of a launch adds to are spread over kStopSlots slots
+// (exec/tuning.h; pipeline/front_counters.h): block b adds to slot b % kStopSlots.
 
 CDB_HD_INLINE int front_kind(uint32_t ref) { return is_leaf(ref) ? kExternalFront : kInternalFront; }
 

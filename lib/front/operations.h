@@ -278,7 +278,7 @@ struct UpdateFrontFn {
 struct PatchSink {
   // Plain members only (no copy of a sink, no array indexed by kind), so that the compiler
   // keeps the sink in registers: a copy of FrontSink here went to local memory and made the
-  // kernel DRAM-bound (6x the update's time, docs/experiments.md).
+  // kernel DRAM-bound (docs/experiments.md).
   const FrontSink& append;
   uint32_t* count_internal;  // the current front's count logs per kind, or null: not kept
   uint32_t* count_external;

@@ -45,8 +45,7 @@ struct ScatterFrontFn {
 
 // One launch over both kinds of a front: index e < n0 runs `internal`, the rest `external`,
 // each pass launched over its own kind's size or capacity. A front's ordering passes are
-// short (2 to 6 us each on the H100 for fronts of 10^5 nodes), so a launch each for the
-// two kinds cost as much again as the work.
+// short, so a launch each for the two kinds cost as much again as the work.
 template <class F>
 struct BothKinds {
   F internal, external;

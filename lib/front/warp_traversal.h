@@ -1,8 +1,8 @@
 #pragma once
 // The front traversals (preserve's, and the sprouts of update) shared out within a warp. A
 // front node that starts to overlap descends its subtree alone, one dependent load a step,
-// and the warp waits for its longest lane: the preserve kernels ran at 12 to 22 of 32 lanes
-// active (results/2026-11-25-h100/ncu-*.md), update's at 16 to 17 on funnel.
+// and the warp waits for its longest lane: the preserve and update kernels ran with about
+// half their lanes active (Nsight Compute, docs/experiments.md).
 // Here a lane with nothing left takes over part of a busy lane's traversal, and the warp's
 // steps approach its lanes' total over 32 instead of its longest lane's.
 //
@@ -19,6 +19,7 @@
 #include "bvh/bvh_view.h"
 #include "bvh/traverse.h"
 #include "core/pair_sink.h"
+#include "exec/tuning.h"
 
 namespace cdb {
 
@@ -36,16 +37,10 @@ struct TraversalTask {
 // while each warp works through its own 32. Launched with 2^shift threads per traversal,
 // thread e << shift starts traversal e and the others start idle and take pieces of their
 // warp's traversals as above. spread_shift_for picks the largest spread up to 32 that keeps
-// the launch within `waves` times the resident threads (none past them). Measured on the
-// H100 (docs/experiments.md): generate within one wave (a spread past it made the generates
-// of 32K and 48K leaves 1.5x slower), update and restructure within four (sphere's update
-// 119 to 57 us, funnel's 53 to 35), preserve within one (four was no faster). A shift, not
-// a factor: a division by a value known only at run time costs every thread of the
-// launch, the preserve's millions included.
+// the launch within `waves` times the resident threads (none past them; kSpreadWaves* in
+// exec/tuning.h). A shift, not a factor: a division by a value known only at run time costs
+// every thread of the launch, the preserve's millions included.
 inline constexpr uint32_t kMaxSpreadShift = 5;  // 32 threads, a warp
-inline constexpr uint64_t kSpreadWavesGenerate = 1;
-inline constexpr uint64_t kSpreadWavesPreserve = 1;
-inline constexpr uint64_t kSpreadWavesUpdate = 4;
 
 CDB_HD_INLINE uint32_t spread_shift_for(uint64_t traversals, uint64_t resident_threads, uint64_t waves) {
   uint32_t shift = 0;

@@ -200,7 +200,7 @@ std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const Me
 
 // The pair buffer: pairs plus a block of device counters read back once a frame, typed by
 // the pipeline: `Counters` is a struct of unsigned long long counters whose first is the
-// pairs (pipeline/front_counters.h, BroadPhaseCounters in pipeline/broad_phase.h).
+// pairs (pipeline/front_counters.h, PairCounters in pipeline/pair_pipeline.h).
 template <class Exec, class Counters>
 class PairBuffer {
   static_assert(offsetof(Counters, pairs) == 0, "the pair count comes first: pair sinks count there");
@@ -215,7 +215,11 @@ class PairBuffer {
   void reserve(size_t capacity) {
     pairs_.reserve(std::max<size_t>(1024, capacity));
     counters_.reserve(kWords);
+    ++revision_;
   }
+  // Changes whenever the pair buffer moves (reserve, growth): what a recorded frame's
+  // launches read.
+  uint64_t revision() const { return revision_; }
   void reset_counters(Exec& exec) { exec.fill(counters_.data(), kWords, 0ull); }
   // The same reset, done by a refit on its way (bvh/refit.h).
   CounterReset counter_reset() { return {counters_.data(), uint32_t(kWords)}; }
@@ -246,6 +250,7 @@ class PairBuffer {
     const uint64_t need = count();
     if (need <= pairs_.capacity()) return false;
     pairs_.reserve(size_t(need + need / 4));
+    ++revision_;
     return true;
   }
   // Before a frame, outside its timing: when the last frame's pairs filled more than seven
@@ -258,6 +263,7 @@ class PairBuffer {
     const uint64_t last = count();
     if (last <= pairs_.capacity() - pairs_.capacity() / 8) return false;
     pairs_.reserve(size_t(last + last / 4));
+    ++revision_;
     return true;
   }
   uint64_t count() const { return last_.pairs; }
@@ -275,6 +281,7 @@ class PairBuffer {
   const uint32_t* face_object_ = nullptr;
   const uint64_t* partners_ = nullptr;
   Counters last_{};
+  uint64_t revision_ = 0;
 };
 
 }  // namespace cdb

@@ -6,8 +6,10 @@
 // the strategy, the measured frame costs (pipeline/front_maintenance.h) and, in c, what the
 // last quality inspection found.
 #include <algorithm>
+#include <array>
 #include <cstdint>
 
+#include "pipeline/front_counters.h"
 #include "pipeline/front_maintenance.h"
 #include "pipeline/pipeline.h"
 
@@ -48,8 +50,8 @@ struct Candidates {
 struct FramePlan {
   bool rebuild = false;  // build the trees (else refit them)
   bool stale = false;    // --refit-every: keep the last boxes, refit nothing
-  // Each front query's operation: T_D's self fronts, T_D's leaves against T_R, T_R's self.
-  FrontOp self = FrontOp::preserve, inter = FrontOp::preserve, rigid_self = FrontOp::preserve;
+  // Each front query's operation, by Query (pipeline/front_counters.h).
+  std::array<FrontOp, kQueryCount> ops = {FrontOp::preserve, FrontOp::preserve, FrontOp::preserve};
   // The updates write into the current fronts (PipelineConfig::update_in_place), not whole
   // new ones.
   bool in_place = false;
@@ -61,11 +63,19 @@ struct FramePlan {
   Formula2 decision = Formula2::none;
   Candidates restructuring;  // what (5) restructures this frame
 
-  // Whether any query produces fronts (anything but preserve).
-  bool produces() const {
-    return self != FrontOp::preserve || inter != FrontOp::preserve || rigid_self != FrontOp::preserve;
+  FrontOp op(Query q) const { return ops[size_t(q)]; }
+  FrontOp& op(Query q) { return ops[size_t(q)]; }
+  // Whether query q updates its fronts in place (PatchFrontFn), or produces new ones.
+  bool patches(Query q) const { return in_place && op(q) == FrontOp::update; }
+  bool produces(Query q) const { return op(q) != FrontOp::preserve && !patches(q); }
+  bool updates() const {
+    return std::find(ops.begin(), ops.end(), FrontOp::update) != ops.end();
   }
-  bool steady() const { return !rebuild && !produces(); }
+  // Whether any query changes its fronts (anything but preserve).
+  bool changes_fronts() const {
+    return std::find_if(ops.begin(), ops.end(), [](FrontOp o) { return o != FrontOp::preserve; }) != ops.end();
+  }
+  bool steady() const { return !rebuild && !changes_fronts(); }
 };
 
 class FramePlanner {
@@ -92,8 +102,8 @@ class FramePlanner {
     p.decision = formula2(leaves);
     if (p.decision != Formula2::none) p.restructuring = pending_;
     pending_ = {};
-    p.rebuild = frame_ == 0 || strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
-                (config_.rebuild_every > 0 && frame_ % config_.rebuild_every == 0);
+    p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
+                rebuild_due(frame_, config_.rebuild_every);
     // --refit-every: between refits both trees keep their last boxes (not conservative).
     p.stale = !p.rebuild && !refit_due(frame_, config_.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
@@ -101,10 +111,10 @@ class FramePlanner {
     // T_R is only refitted after its build, so its self fronts follow the rule.
     const FrontOp cycle = maintenance_op(p.rebuild, front_nodes);
     const bool restructure = !p.rebuild && p.decision == Formula2::restructure;
-    p.self = restructure ? FrontOp::restructure : cycle;
-    p.inter = restructure ? FrontOp::generate : cycle;
-    p.rigid_self = cycle;
-    const bool updates = p.self == FrontOp::update || p.inter == FrontOp::update || p.rigid_self == FrontOp::update;
+    p.op(Query::self) = restructure ? FrontOp::restructure : cycle;
+    p.op(Query::inter) = restructure ? FrontOp::generate : cycle;
+    p.op(Query::rigid_self) = cycle;
+    const bool updates = p.updates();
     // In place while the fronts' order has decayed by less than the compact share; the
     // update after produces them whole and ordered.
     p.in_place = updates && config_.update_in_place && disorder < config_.compact_share;
@@ -115,7 +125,7 @@ class FramePlanner {
     // instead) only: right after a rebuild Q is the reference, and a restructure keeps the
     // stale front for the next maintenance to refresh.
     p.inspect = strategy_.restructure && q_ref_ > 0.0 &&
-                (p.self == FrontOp::update || (p.self == FrontOp::generate && !p.rebuild));
+                (p.op(Query::self) == FrontOp::update || (p.op(Query::self) == FrontOp::generate && !p.rebuild));
     p.probe = config_.update_probe && !p.rebuild && cycle == FrontOp::preserve &&
               maintenance_.update_near(frame_, generated_, produced_, front_nodes);
     return p;
@@ -132,12 +142,12 @@ class FramePlanner {
     double generate_per_node_ms = -1.0;  // a build frame: its generate and ordering per front node made
   };
   void finish(const FramePlan& p, const Outcome& o) {
-    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && p.self == FrontOp::update, p.rebuild,
-                         o.ran_once && !o.recorded, o.ms, o.front_nodes,
-                         !p.rebuild && p.self == FrontOp::generate);
+    const FrontOp self = p.op(Query::self);
+    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && self == FrontOp::update, p.rebuild,
+                         o.ran_once && !o.recorded, o.ms, o.front_nodes, !p.rebuild && self == FrontOp::generate);
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
-    if (p.rebuild || p.self == FrontOp::generate) generated_ = frame_;
-    if (p.produces()) {
+    if (p.rebuild || self == FrontOp::generate) generated_ = frame_;
+    if (p.changes_fronts()) {
       produced_ = frame_;
       maintenance_.produced();
     }

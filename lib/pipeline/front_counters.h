@@ -3,6 +3,7 @@
 // once a frame, in one copy (PairBuffer): the pairs first, since every pair sink counts
 // there, then per front query and for the inspection. Kernels get pointers into the block
 // on the device (PairBuffer::device), the host reads the block itself.
+#include <cstddef>
 #include <cstdint>
 
 #include "front/front.h"
@@ -34,11 +35,16 @@ struct FrontQueryCounters {
   }
 };
 
-// Front pipelines (pipeline/front_pipeline.h): the self fronts of T_D, T_D's leaves
-// against T_R, and the self fronts of T_R, in that order.
+// A front pipeline's queries (pipeline/front_pipeline.h): the self fronts of T_D, T_D's
+// leaves against T_R, and the self fronts of T_R. Each indexes its counter slot
+// (FrontCounters::query) and its operation in a frame's plan (FramePlan::op).
+enum class Query { self, inter, rigid_self };
+inline constexpr size_t kQueryCount = 3;
+inline constexpr Query kQueries[kQueryCount] = {Query::self, Query::inter, Query::rigid_self};
+
 struct FrontCounters {
   unsigned long long pairs;
-  FrontQueryCounters query[3];
+  FrontQueryCounters query[kQueryCount];  // by Query
   InspectCounters inspect;  // pipeline c's inspection (front/quality.h)
 };
 

@@ -33,29 +33,27 @@
 // What a maintenance runs (regenerate): an update, or a generate of new fronts from the
 // current tree, whichever its last measured cost per front node says is cheaper. A generate
 // costs what the geometry costs, however stale the fronts; an update of stale fronts can
-// cost more (sphere: 4.1-4.3 median frames against a generate's 2.2-2.7) or less (the
-// falling spheres: 3.0 against 7.5). Before a maintenance generate ran, the build frame's
+// cost more (sphere) or less (the falling spheres). Before a maintenance generate ran, the build frame's
 // generate and ordering (timed alone) per front node made stand for it: a bound, since a
 // maintenance generate's cost over a steady frame leaves out the preserve it replaces. A
 // generate is tried once that bound is below the cost of an update after the first (the
 // first update of a run is its dearest: against it the bound let the generate be tried on
 // every scene); from then on each maintenance runs the one measured cheaper last, which
-// re-measures it, so a choice that grew dear gives way. Trying it where it lost cost one
-// dear frame a run: 3-10% of the mean on cloth-ball, the falling spheres and the 32K cloth
-// (docs/experiments.md).
+// re-measures it, so a choice that grew dear gives way; trying it where it loses costs one
+// dear frame a run (docs/front-maintenance.md has the figures).
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+
+#include "exec/tuning.h"
 
 namespace cdb {
 
 class FrontMaintenance {
  public:
   static constexpr uint32_t kAuto = 0;
-  static constexpr double kBuildPerUpdate = 8.0;
-  // Probing starts at half the price: for rent growing linearly, the last 30% of the frames
-  // between updates probe.
-  static constexpr double kProbeShare = 0.5;
+  // kBuildPerUpdate and kProbeShare: exec/tuning.h. Probing from half the price: for rent
+  // growing linearly, the last 30% of the frames between updates probe.
 
   // cycle: frames per fixed cycle, or kAuto.
   // regenerate: adaptive maintenances may generate instead of update.

@@ -2,8 +2,10 @@
 // The BVTT fronts of one query of a front pipeline: the self fronts of a tree, or the cross
 // fronts of T_D's leaves against T_R (docs/design.md "Deformable and rigid objects"). It
 // holds both kinds of front, knows its two trees and where its counts lie in the frame's
-// counter block (FrontCounters::query), and runs the front operations on them; FrontPipeline decides which
-// operation runs when. A query the scene does not ask for is inactive: no fronts, no work.
+// counter block (its Query's FrontCounters::query slot), and runs the front operations on
+// them; FrontPipeline decides which operation runs when. It counts every change to what its
+// launches read (buffers, sizes: revision()), so a recorded frame knows when it is out of
+// date. A query the scene does not ask for is inactive: no fronts, no work.
 #include <algorithm>
 #include <array>
 #include <string>
@@ -24,8 +26,7 @@ class FrontQuery {
  public:
   using Pairs = PairBuffer<Exec, FrontCounters>;
 
-  // `index`: the query's counters in the frame's counter block (FrontCounters::query).
-  FrontQuery(Exec& exec, const std::string& name, int index) : index_(index) {
+  FrontQuery(Exec& exec, const std::string& name, Query query) : index_(size_t(query)) {
     front_[kInternalFront].bind(exec.memory(), kInternalFront, name);
     front_[kExternalFront].bind(exec.memory(), kExternalFront, name);
   }
@@ -37,6 +38,7 @@ class FrontQuery {
     tree_ = &tree;
     active_ = active;
     for (auto& f : front_) f.size = 0;
+    ++revision_;
     dropped_[0] = dropped_[1] = appended_[0] = appended_[1] = 0;
     if (!active_) return;
     const size_t cap = std::max<size_t>(1024, size_t(front_per_triangle * leaves.num_leaves));
@@ -44,6 +46,8 @@ class FrontQuery {
   }
 
   bool active() const { return active_; }
+  // Changes whenever a buffer or a front size its launches read changes.
+  uint64_t revision() const { return revision_; }
   // Entries of kind k, holes left by updates in place included: what a pass over it launches.
   size_t size(int k) const { return front_[k].size; }
   size_t total() const { return front_[0].size + front_[1].size; }
@@ -126,6 +130,7 @@ class FrontQuery {
       const size_t need = size_t(update_bound(c, k));
       grew = reserve_headroom(exec, front_[k], need + need / 8, need + need / 4) || grew;
     }
+    revision_ += grew;
     return grew;
   }
 
@@ -218,6 +223,7 @@ class FrontQuery {
       dropped_[k] += size_t(q.dropped_of(k));
       reserve_headroom(exec, f, f.size + live(k) / 4, f.size + live(k) / 2);
     }
+    ++revision_;
     return true;
   }
 
@@ -306,6 +312,7 @@ class FrontQuery {
       std::swap(f.node, f.sorted_node);
       match_capacity(f);
     }
+    ++revision_;
   }
 
   // After a read-back: grow each kind whose produced front did not fit; true if one grew
@@ -322,6 +329,7 @@ class FrontQuery {
       f.raw_mark.reserve(cap);
       grew = true;
     }
+    revision_ += grew;
     return grew;
   }
 
@@ -342,6 +350,7 @@ class FrontQuery {
       match_capacity(f);
       reserve_headroom(exec, f, f.size + f.size / 4, f.size + f.size / 2);
     }
+    ++revision_;
   }
 
  private:
@@ -443,7 +452,8 @@ class FrontQuery {
   size_t appended_[2] = {0, 0};
   Lbvh<Exec>* leaves_ = nullptr;
   Lbvh<Exec>* tree_ = nullptr;
-  int index_;
+  size_t index_;
+  uint64_t revision_ = 0;
   bool active_ = false;
 };
 

@@ -6,7 +6,7 @@
 namespace cdb {
 
 const std::vector<PipelineKind>& pipeline_kinds() {
-  using M = BroadPhaseMethod;
+  using M = BaselineMethod;
   // static = b and restructure = c: the paper's strategy names (§5.2, Fig. 5) beside its pipelines.
   static const std::vector<PipelineKind> kinds = {
       {"bvh", "", "ordered LBVH built on the first frame (and every --rebuild-every K), refitted, queried", M::bvh},
@@ -32,7 +32,7 @@ const std::vector<PipelineKind>& pipeline_kinds() {
       // for one of the compared pipelines.
       {"example-sap", "",
        "EXAMPLE for docs/extending.md, not a tuned baseline: textbook sort-and-sweep along x, every frame",
-       StandaloneMethod::example_sap}};
+       M::example_sap}};
   return kinds;
 }
 
@@ -74,13 +74,12 @@ WarpSharing parse_warp_sharing(const std::string& name) {
 }
 
 bool config_conservative(const PipelineConfig& config) {
-  // The baselines, the standalone methods (which start every frame from the positions) and
-  // the per-frame rebuild never keep stale boxes.
+  // The baselines but bvh (which start every frame from the positions) and the per-frame
+  // rebuild never keep stale boxes.
   const PipelineKind* kind = find_pipeline_kind(config.name);
   if (!kind) return config.refit_every <= 1;
-  bool fresh = std::holds_alternative<StandaloneMethod>(kind->builds);
-  if (const auto* method = std::get_if<BroadPhaseMethod>(&kind->builds)) fresh = *method != BroadPhaseMethod::bvh;
-  if (const auto* strategy = std::get_if<FrontStrategy>(&kind->builds)) fresh = strategy->rebuild_every_frame;
+  const auto* method = std::get_if<BaselineMethod>(&kind->builds);
+  const bool fresh = method ? *method != BaselineMethod::bvh : std::get<FrontStrategy>(kind->builds).rebuild_every_frame;
   return fresh || config.refit_every <= 1;
 }
 

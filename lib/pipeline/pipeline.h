@@ -31,10 +31,10 @@ BoxPrecision parse_box_precision(const std::string& name);
 
 // Preserve and update on CUDA (front/warp_traversal.h): share each front node's traversal
 // with the idle lanes of its warp. automatic: while the fronts fit in kWarpSharingWaves
-// waves of the GPU's resident threads, where the launch's tail is its longest lanes; past
-// that the SMs are full anyway and the sharing's votes cost more than they save.
+// (exec/tuning.h) waves of the GPU's resident threads, where the launch's tail is its
+// longest lanes; past that the SMs are full anyway and the sharing's votes cost more than
+// they save.
 enum class WarpSharing { automatic, on, off };
-inline constexpr uint64_t kWarpSharingWaves = 32;
 
 const char* warp_sharing_name(WarpSharing w);
 // Throws cdb::Error naming the known values.
@@ -57,9 +57,9 @@ struct PipelineConfig {
   uint32_t front_cycle = 0;
   // --front-cycle auto: each maintenance runs an update or a generate of new fronts,
   // whichever measured cheaper last (pipeline/front_maintenance.h); off: always an update
-  // (the paper). The periodic strategy keeps its own alternation. On made sphere's mean
-  // frame 1.12-1.18x faster than off, with a lower p95, and the other anchors 0.97-1.06x
-  // (H200, docs/front-maintenance.md "Update or generate").
+  // (the paper). The periodic strategy keeps its own alternation. On by default: measured
+  // faster on sphere and within noise elsewhere (docs/front-maintenance.md "Update or
+  // generate").
   bool regenerate = true;
   // Co-vertex filtering: pairs of triangles sharing a vertex are not reported.
   bool skip_adjacent = false;
@@ -123,6 +123,11 @@ struct PipelineConfig {
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
 };
+
+// Whether a frame builds its hierarchy: the first, and with --rebuild-every K every K-th.
+inline bool rebuild_due(uint64_t frame, uint32_t rebuild_every) {
+  return frame == 0 || (rebuild_every > 0 && frame % rebuild_every == 0);
+}
 
 // --refit-every: whether a frame that does not rebuild refits its hierarchy (otherwise it
 // keeps the last frame's boxes: not conservative).

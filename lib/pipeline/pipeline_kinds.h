@@ -10,27 +10,22 @@
 
 namespace cdb {
 
-// The pipelines without fronts (pipeline/broad_phase.h).
-enum class BroadPhaseMethod {
-  bvh,    // build once (and every rebuild_every frames), refit otherwise; a split scene's
-          // rigid tree is only refitted after its build (docs/design.md)
-  sweep,  // sort-and-sweep along the axis of largest centroid variance, every frame
-  grid,   // uniform grid with size levels (OTG style), every frame
-  hash,   // uniform-grid spatial hashing (kDet style), every frame
-  brute,  // O(N^2) oracle
-};
-
-// Pipelines that are a Pipeline class of their own (docs/extending.md "Adding a
-// pipeline"), one value each; the registry makes the class.
-enum class StandaloneMethod {
-  example_sap,  // EXAMPLE: textbook sort-and-sweep along x (baselines/example/)
+// The pipelines without fronts, each a QueryPipeline class of its own (pipeline/registry.h
+// makes it; docs/extending.md "Adding a pipeline").
+enum class BaselineMethod {
+  bvh,          // pipeline/bvh_pipeline.h
+  sweep,        // baselines/sweep/sweep_pipeline.h
+  grid,         // baselines/grid/grid_pipeline.h
+  hash,         // baselines/hash/hash_pipeline.h
+  brute,        // baselines/bruteforce/brute_pipeline.h: the oracle
+  example_sap,  // EXAMPLE: baselines/example/example_sap_pipeline.h
 };
 
 struct PipelineKind {
   const char* name;
   const char* paper;        // the paper's name for it, or ""
   const char* description;  // one line
-  std::variant<BroadPhaseMethod, FrontStrategy, StandaloneMethod> builds;
+  std::variant<BaselineMethod, FrontStrategy> builds;
 };
 
 // In the order verify runs them.

@@ -1,30 +1,44 @@
 #pragma once
 // Name -> pipeline on one executor, as the table (pipeline/pipeline_kinds.h) says. Each
 // backend (host_backend.cpp, cuda_backend.cu) instantiates this once. The library's one way
-// into baselines/ (broad_phase.h and the standalone methods' pipelines, which only this
-// file includes).
+// into baselines/: the baseline pipelines are included here only.
 #include <memory>
 
+#include "bruteforce/brute_pipeline.h"
 #include "example/example_sap_pipeline.h"
-#include "pipeline/broad_phase.h"
+#include "grid/grid_pipeline.h"
+#include "hash/hash_pipeline.h"
+#include "pipeline/bvh_pipeline.h"
 #include "pipeline/front_pipeline.h"
 #include "pipeline/pipeline_kinds.h"
+#include "sweep/sweep_pipeline.h"
 
 namespace cdb {
+
+template <class Exec, class Timer>
+std::unique_ptr<Pipeline> make_baseline_on(const PipelineConfig& c, BaselineMethod method) {
+  switch (method) {
+    case BaselineMethod::bvh:
+      return std::make_unique<BvhPipeline<Exec, Timer>>(c);
+    case BaselineMethod::sweep:
+      return std::make_unique<SweepPipeline<Exec, Timer>>(c);
+    case BaselineMethod::grid:
+      return std::make_unique<GridPipeline<Exec, Timer>>(c);
+    case BaselineMethod::hash:
+      return std::make_unique<HashPipeline<Exec, Timer>>(c);
+    case BaselineMethod::brute:
+      return std::make_unique<BrutePipeline<Exec, Timer>>(c);
+    case BaselineMethod::example_sap:
+      return std::make_unique<ExampleSap<Exec, Timer>>(c);
+  }
+  return nullptr;
+}
 
 template <class Exec, class Timer>
 std::unique_ptr<Pipeline> make_pipeline_on(const PipelineConfig& c) {
   const PipelineKind* kind = find_pipeline_kind(c.name);
   if (!kind) return nullptr;
-  if (const auto* method = std::get_if<BroadPhaseMethod>(&kind->builds))
-    return std::make_unique<BroadPhase<Exec, Timer>>(c, *method);
-  if (const auto* method = std::get_if<StandaloneMethod>(&kind->builds)) {
-    switch (*method) {
-      case StandaloneMethod::example_sap:
-        return std::make_unique<ExampleSap<Exec, Timer>>(c);
-    }
-    return nullptr;
-  }
+  if (const auto* method = std::get_if<BaselineMethod>(&kind->builds)) return make_baseline_on<Exec, Timer>(c, *method);
   return std::make_unique<FrontPipeline<Exec, Timer>>(c, std::get<FrontStrategy>(kind->builds));
 }
 

@@ -1,0 +1,83 @@
+#pragma once
+// Every constant that only trades speed, in one place, as CUB's tuning headers keep theirs:
+// values that change no result, only how fast it comes. Each line says what measured it;
+// the figures are in docs/design.md "Constants and their measurements". All were measured
+// on sm_90 (H100 and H200); other architectures run the same values until measured.
+#include <cstddef>
+#include <cstdint>
+
+namespace cdb {
+
+// --- Launch shapes (CUDA executor) ---
+// Threads of a staged kernel's block (for_each_staged). Measured: 128 (half-size stages)
+// and 512 against 256 on update and preserve (H100).
+inline constexpr uint32_t kStagedThreads = 256;
+// Threads of the one-block kernels (in_one_block): the hardware's limit, not a measurement.
+inline constexpr uint32_t kOneBlockThreads = 1024;
+// The reduction's block size and most partials. Not measured: a common choice.
+inline constexpr uint32_t kReduceThreads = 256;
+inline constexpr uint32_t kReduceBlocks = 512;
+// exclusive_scan_pair: arrays up to this long scan in one block each, longer ones by device
+// scans. Measured: Nsight Compute on count logs of 9K and 32K values (H100).
+inline constexpr size_t kPairScanBlockMax = size_t(1) << 14;
+// The one-block scan's tile: threads and values per thread. Measured: the same study,
+// against 16 values a thread with warp scans.
+inline constexpr uint32_t kPairScanThreads = 1024, kPairScanItems = 4;
+
+// --- Front traversals ---
+// Spread launches (front/warp_traversal.h): the most waves of resident threads a spread
+// launch may fill, per operation. Measured: one against four waves for generate (32K and
+// 48K leaves), update (sphere, funnel, falling spheres) and preserve (H100).
+inline constexpr uint64_t kSpreadWavesGenerate = 1;
+inline constexpr uint64_t kSpreadWavesPreserve = 1;
+inline constexpr uint64_t kSpreadWavesUpdate = 4;
+// --preserve-warp/--update-warp auto: warp sharing while the fronts fit in this many waves
+// of resident threads. Measured: warp-shared preserve on funnel and cloth-ball against the
+// 1M and 10M cloths (H100).
+inline constexpr uint64_t kWarpSharingWaves = 32;
+// Preserve stages its pairs per block while a block of front nodes yields at least this
+// many pairs. Measured: pairs per block on the cloths and n-body, staged against direct
+// appends (H100).
+inline constexpr uint64_t kStagedPairsPerBlock = 32;
+// Slots a count every block adds to is spread over (blockIdx % kStopSlots). Not measured
+// apart: probing frames cost what replayed frames did on cloth-ball (H100).
+inline constexpr uint32_t kStopSlots = 16;
+
+// --- Refit ---
+// Most leaves a refit tile holds (one block; its shared memory stays under the static
+// limit, 1024 would not). Measured: 256 against 512 on four scenes (H100).
+inline constexpr uint32_t kRefitTile = 512;
+// Default of --refit-top-leaves: the largest tree whose top refits in one block. Measured:
+// one block against hand-over between blocks, by tree size (docs/results.md).
+inline constexpr uint32_t kRefitTopMaxLeaves = 1u << 15;
+// Spanning nodes the one-block top refit keeps in shared memory. Measured: 384 against
+// 1536 slots on three scenes, within noise (H100).
+inline constexpr uint32_t kRefitTopSharedSlots = 1536;
+
+// --- Front maintenance (pipeline/front_maintenance.h) ---
+// Before any update was measured, a build frame's cost over this is an update's price.
+// Measured: the build over the steady frame on the anchors; 6 against 8 (H100).
+inline constexpr double kBuildPerUpdate = 8.0;
+// Probing starts at this share of an update's price. Measured: updates that ran twice, on
+// seven scenes (H100).
+inline constexpr double kProbeShare = 0.5;
+
+// --- Baselines ---
+// Cell entries per box before the first frame's count (grid and hash); a short guess
+// re-runs frame 0 only. Not measured: a box covers 1 to 8 cells of its level.
+inline constexpr size_t kEntriesPerBoxEstimate = 8;
+
+// --- Host executor ---
+// Below this many elements a host scan runs on one thread. Not measured: where the second
+// pass over the chunks costs more than it saves.
+inline constexpr size_t kParallelScanMin = size_t(1) << 15;
+// Chunks of the host scan, sort and reduction; a fixed count keeps results independent of
+// the thread count. Not measured.
+inline constexpr size_t kScanChunks = 64;
+inline constexpr size_t kReduceChunks = 64;
+inline constexpr size_t kSortChunks = 64;
+// The host radix sort's digit and the keys a chunk takes at least. Not measured.
+inline constexpr int kSortDigitBits = 11;
+inline constexpr size_t kSortChunkKeys = size_t(1) << 14;
+
+}  // namespace cdb
