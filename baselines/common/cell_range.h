@@ -35,6 +35,16 @@ CDB_HD_INLINE CellCoords cell_of(const CellLattice<Real>& g, const vec4<Real>& p
           cell_coord(p.z, g.origin[2], g.inv_cell)};
 }
 
+// Calls f(cell) for every cell of r, x fastest and z slowest (the order a box's entries are
+// written in), until f returns false.
+template <class F>
+CDB_HD_INLINE void for_each_cell(const CellRange& r, F&& f) {
+  for (uint32_t z = r.lo.z; z <= r.hi.z; ++z)
+    for (uint32_t y = r.lo.y; y <= r.hi.y; ++y)
+      for (uint32_t x = r.lo.x; x <= r.hi.x; ++x)
+        if (!f(CellCoords{x, y, z})) return;
+}
+
 template <class Real>
 CDB_HD_INLINE CellRange cell_range(const CellLattice<Real>& g, const vec4<Real>& lo,
                                    const vec4<Real>& hi) {

@@ -36,16 +36,13 @@ struct SameLevelPairsFn {
     const uint32_t entries = static_cast<uint32_t>(min_of(*total, (unsigned long long)planned));
     if (k >= entries) return;
     const uint64_t key = keys[k];
-    const uint32_t a = boxes[k];
-    const vec4f alo = lo[a], ahi = hi[a];
-    const uint32_t l = level[a];
-    for (uint32_t t = k + 1; t < entries && keys[t] == key; ++t) {
-      const uint32_t b = boxes[t];
-      const vec4f blo = lo[b], bhi = hi[b];
-      if (!overlaps(alo, ahi, blo, bhi)) continue;
-      if (grid_key(*params, l, home_cell(level_lattice(*params, l), alo, blo)) == key)
-        out.emit(a, b);
-    }
+    const uint32_t l = level[boxes[k]];
+    emit_later_in_cell(
+        k, entries, boxes, lo, hi, [&](uint32_t t) { return keys[t] == key; }, [](uint32_t) { return true; },
+        [&](const vec4f& alo, const vec4f& blo) {
+          return grid_key(*params, l, home_cell(level_lattice(*params, l), alo, blo)) == key;
+        },
+        out);
   }
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const { sink.flush(s); }
@@ -72,19 +69,15 @@ struct CoarserLevelPairsFn {
       const uint32_t begin = level_begin[l], end = level_begin[l + 1];
       if (begin == end) continue;
       const CellLattice<float> lattice = level_lattice(p, l);
-      const CellRange r = cell_range(lattice, alo, ahi);
-      for (uint32_t z = r.lo.z; z <= r.hi.z; ++z)
-        for (uint32_t y = r.lo.y; y <= r.hi.y; ++y)
-          for (uint32_t x = r.lo.x; x <= r.hi.x; ++x) {
-            const uint64_t key = grid_key(p, l, {x, y, z});
-            for (uint32_t t = lower_bound_key(keys, begin, end, key); t < end && keys[t] == key;
-                 ++t) {
-              const uint32_t b = boxes[t];
-              const vec4f blo = lo[b], bhi = hi[b];
-              if (!overlaps(alo, ahi, blo, bhi)) continue;
-              if (grid_key(p, l, home_cell(lattice, alo, blo)) == key) out.emit(a, b);
-            }
-          }
+      for_each_cell(cell_range(lattice, alo, ahi), [&](CellCoords cell) {
+        const uint64_t key = grid_key(p, l, cell);
+        for (uint32_t t = lower_bound_key(keys, begin, end, key); t < end && keys[t] == key; ++t) {
+          const uint32_t b = boxes[t];
+          const vec4f blo = lo[b], bhi = hi[b];
+          if (overlaps(alo, ahi, blo, bhi) && grid_key(p, l, home_cell(lattice, alo, blo)) == key) out.emit(a, b);
+        }
+        return true;
+      });
     }
   }
 #if defined(__CUDACC__)

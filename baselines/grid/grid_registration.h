@@ -56,15 +56,13 @@ struct GridFillFn {
   CDB_HD void operator()(uint32_t i) const {
     const GridLayout& p = *params;
     const uint32_t l = level[i];
-    const CellRange r = grid_range(p, l, lo[i], hi[i]);
     uint32_t e = offsets[i];
-    for (uint32_t z = r.lo.z; z <= r.hi.z; ++z)
-      for (uint32_t y = r.lo.y; y <= r.hi.y; ++y)
-        for (uint32_t x = r.lo.x; x <= r.hi.x; ++x, ++e) {
-          if (e >= planned) return;
-          keys[e] = grid_key(p, l, {x, y, z});
-          boxes[e] = i;
-        }
+    for_each_cell(grid_range(p, l, lo[i], hi[i]), [&](CellCoords cell) {
+      if (e >= planned) return false;
+      keys[e] = grid_key(p, l, cell);
+      boxes[e++] = i;
+      return true;
+    });
   }
 };
 

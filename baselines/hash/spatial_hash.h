@@ -124,17 +124,15 @@ struct FillCellsFn {
   uint64_t* entry_cell;
   CDB_HD void operator()(uint32_t i) const {
     if (counts[i] == 0) return;
-    const CellRange r = cell_range(*lattice, lo[i], hi[i]);
     uint32_t e = offsets[i];
-    for (uint32_t z = r.lo.z; z <= r.hi.z; ++z)
-      for (uint32_t y = r.lo.y; y <= r.hi.y; ++y)
-        for (uint32_t x = r.lo.x; x <= r.hi.x; ++x, ++e) {
-          const uint64_t cell = pack_cell({x, y, z});
-          keys[e] = cell_bucket(cell, bucket_bits);
-          entry_ids[e] = e;
-          entry_box[e] = i;
-          entry_cell[e] = cell;
-        }
+    for_each_cell(cell_range(*lattice, lo[i], hi[i]), [&](CellCoords c) {
+      const uint64_t cell = pack_cell(c);
+      keys[e] = cell_bucket(cell, bucket_bits);
+      entry_ids[e] = e;
+      entry_box[e] = i;
+      entry_cell[e++] = cell;
+      return true;
+    });
   }
 };
 
@@ -166,16 +164,11 @@ struct PairsInCellsFn {
   CDB_HD void operator()(uint32_t k, Stage* stage = nullptr) const {
     const PairSink out = sink.staged(stage);
     const uint64_t bucket = buckets[k], c = cell[k];
-    const uint32_t a = box[k];
-    const vec4f alo = lo[a], ahi = hi[a];
     const CellLattice<float> g = *lattice;
-    for (uint32_t t = k + 1; t < entries && buckets[t] == bucket; ++t) {
-      if (cell[t] != c) continue;
-      const uint32_t b = box[t];
-      const vec4f blo = lo[b], bhi = hi[b];
-      if (!overlaps(alo, ahi, blo, bhi)) continue;
-      if (pack_cell(home_cell(g, alo, blo)) == c) out.emit(a, b);
-    }
+    emit_later_in_cell(
+        k, entries, box, lo, hi, [&](uint32_t t) { return buckets[t] == bucket; },
+        [&](uint32_t t) { return cell[t] == c; },
+        [&](const vec4f& alo, const vec4f& blo) { return pack_cell(home_cell(g, alo, blo)) == c; }, out);
   }
 #if defined(__CUDACC__)
   __device__ void flush(Stage& s) const { sink.flush(s); }
