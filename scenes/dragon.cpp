@@ -10,7 +10,6 @@
 // it (stronger near the impact point), spinning, falling under gravity and bouncing on the
 // ground. Pieces pass through each other: their contacts are what the broad phase reports.
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <queue>
