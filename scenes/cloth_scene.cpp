@@ -14,6 +14,12 @@ ClothSceneSource::ClothSceneSource(ClothSceneSpec spec) : spec_(std::move(spec))
     topology_.objects.push_back({b.name, first, uint32_t(topology_.faces.size()) - first, true});
     base += uint32_t(b.mesh.vertices.size());
   }
+  for (const auto& d : spec_.deforming) {
+    const uint32_t first = uint32_t(topology_.faces.size());
+    for (const Tri& t : d.faces) topology_.faces.push_back({base + t.v0, base + t.v1, base + t.v2});
+    topology_.objects.push_back({d.name, first, uint32_t(d.faces.size()), false});
+    base += d.vertices;
+  }
   topology_.num_vertices = base;
 }
 
@@ -25,6 +31,7 @@ void ClothSceneSource::positions(uint32_t k, std::vector<vec3d>& out) const {
     PbdCloth cloth(spec_.cloth, spec_.cloth_faces, spec_.settings);
     for (uint32_t v : spec_.pins) cloth.pin(v);
     for (const auto& [v, at] : spec_.moved_pins) cloth.pin(v, at);
+    if (spec_.driven_at) cloth.drive(spec_.driven, spec_.driven_at);
     for (uint32_t f = 0; f < spec_.warmup; ++f) cloth.step(f * dt, dt, spec_.colliders, spec_.wind);
     start_.emplace(std::move(cloth));
   }
@@ -45,6 +52,12 @@ void ClothSceneSource::positions(uint32_t k, std::vector<vec3d>& out) const {
       const dvec3 p = pose.apply(v);
       out.push_back({p.x, p.y, p.z});
     }
+  }
+  std::vector<dvec3> body;
+  for (const auto& d : spec_.deforming) {
+    d.at_frame(k, body);
+    if (body.size() != d.vertices) fail(d.name + ": frame " + std::to_string(k) + " has another vertex count");
+    for (const dvec3& p : body) out.push_back({p.x, p.y, p.z});
   }
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-// A simulated scene: one PBD cloth and kinematic rigid bodies. Every frame's mesh holds the
-// cloth's triangles first, then each body's, so the broad phase sees cloth self-contact
-// and cloth-body contact in one triangle set (as the paper's benchmarks do).
+// A simulated scene: one PBD cloth and kinematic rigid or deforming bodies. Every frame's
+// mesh holds the cloth's triangles first, then each body's, so the broad phase sees cloth
+// self-contact and cloth-body contact in one triangle set (as the paper's benchmarks do).
 //
 // Frames are simulated on demand and in order. The state after the warm-up steps is kept,
 // so asking for an earlier frame restarts from there; memory stays at a few copies of the
@@ -33,6 +33,17 @@ struct ClothSceneSpec {
     std::function<Pose(double t)> pose;
   };
   std::vector<Body> bodies;
+  // Deforming bodies (a skinned character), after the rigid ones, each one deformable
+  // object: its faces and its positions at output frame k.
+  struct Deforming {
+    std::string name;
+    std::vector<Tri> faces;
+    uint32_t vertices = 0;
+    std::function<void(uint32_t frame, std::vector<dvec3>& out)> at_frame;
+  };
+  std::vector<Deforming> deforming;
+  std::vector<uint32_t> driven;  // cloth vertices moved by `driven_at` (PbdCloth::drive)
+  DrivenAt driven_at;
   CollidersAt colliders;
   WindAt wind;
   double frame_time = 1.0 / 30.0;

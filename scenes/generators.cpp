@@ -7,6 +7,7 @@
 #include "cloth_scenes.h"
 #include "core/error.h"
 #include "n_body.h"
+#include "paper_scenes.h"
 #include "params.h"
 #include "rng.h"
 
@@ -144,13 +145,14 @@ class ClothWaveSource final : public GeneratedSource {
 }  // namespace
 
 const std::vector<std::string>& generator_names() {
-  static const std::vector<std::string> names = {"soup", "cloth-wave", "funnel", "cloth-ball", "flag", "sphere", "n-body"};
+  static const std::vector<std::string> names = {"soup",   "cloth-wave", "funnel", "cloth-ball", "flag",
+                                                    "sphere", "n-body",     "flamenco", "dragon"};
   return names;
 }
 
 namespace {
 
-std::unique_ptr<FrameSource> make_named(const std::string& name, Params& p) {
+std::unique_ptr<FrameSource> make_named(const std::string& name, Params& p, const scene::SceneInputs* inputs) {
   if (name == "soup") return std::make_unique<SoupSource>(p);
   if (name == "cloth-wave") return std::make_unique<ClothWaveSource>(p);
   if (name == "funnel") return scene::make_funnel(p);
@@ -158,6 +160,10 @@ std::unique_ptr<FrameSource> make_named(const std::string& name, Params& p) {
   if (name == "flag") return scene::make_flag(p);
   if (name == "sphere") return scene::make_sphere_hit(p);
   if (name == "n-body") return scene::make_n_body(p);
+  if (name == "flamenco" || name == "dragon") {
+    if (!inputs) fail("generator '" + name + "' reads packaged files: open it as a scene (a descriptor), not alone");
+    return name == "flamenco" ? scene::make_flamenco(p, *inputs) : scene::make_dragon(p, *inputs);
+  }
   std::string list;
   for (const auto& n : generator_names()) list += (list.empty() ? "" : ", ") + n;
   fail("unknown generator '" + name + "' (known: " + list + ")");
@@ -166,10 +172,11 @@ std::unique_ptr<FrameSource> make_named(const std::string& name, Params& p) {
 }  // namespace
 
 std::unique_ptr<FrameSource> make_generator(const std::string& name, const nlohmann::json& params,
-                                            std::vector<GeneratorParameter>* described) {
+                                            std::vector<GeneratorParameter>* described,
+                                            const scene::SceneInputs* inputs) {
   Params p(name, params);
   try {
-    std::unique_ptr<FrameSource> source = make_named(name, p);
+    std::unique_ptr<FrameSource> source = make_named(name, p, inputs);
     if (described) *described = p.described();
     return source;
   } catch (const std::bad_alloc&) {

@@ -8,16 +8,19 @@
 
 #include "generator_parameter.h"
 #include "geometry/frame_source.h"
+#include "scene_inputs.h"
 
 namespace cdb {
 
 // Known generators: soup, cloth-wave (kinematic); funnel, cloth-ball, flag, sphere (simulated
-// cloth, see cloth_scenes.h); n-body (rigid bodies). Unknown parameters are an error that
-// lists the known ones; out-of-range values and running out of memory are errors naming the
-// parameters. `described`, when given, receives every parameter with its default, range and
-// the value used.
+// cloth, see cloth_scenes.h); n-body (rigid bodies); flamenco and dragon (built on packaged
+// files, see paper_scenes.h). Unknown parameters are an error that lists the known ones;
+// out-of-range values and running out of memory are errors naming the parameters.
+// `described`, when given, receives every parameter with its default, range and the value
+// used. `inputs` opens the files flamenco and dragon read; without it they are an error.
 std::unique_ptr<FrameSource> make_generator(const std::string& name, const nlohmann::json& params,
-                                            std::vector<GeneratorParameter>* described = nullptr);
+                                            std::vector<GeneratorParameter>* described = nullptr,
+                                            const scene::SceneInputs* inputs = nullptr);
 const std::vector<std::string>& generator_names();
 
 }  // namespace cdb

@@ -64,6 +64,12 @@ void PbdCloth::pin(uint32_t vertex, dvec3 position) {
   x_[vertex] = prev_[vertex] = position;
 }
 
+void PbdCloth::drive(std::vector<uint32_t> vertices, DrivenAt at) {
+  for (uint32_t v : vertices) pin(v);
+  driven_ = std::move(vertices);
+  driven_at_ = std::move(at);
+}
+
 // Greedy colouring in constraint order: each constraint takes the lowest colour that
 // neither of its vertices has yet. Fixed order, so the batches are the same every run.
 void PbdCloth::colour_constraints() {
@@ -170,6 +176,8 @@ void PbdCloth::collide(const Colliders& col, double h) {
       if (resolve(s, s_.thickness, p, c)) rub();
     for (size_t s = 0; s < shells; ++s)
       if (resolve(col.revolved[s], s_.thickness, p, shell_side_[s * x_.size() + v], c)) rub();
+    for (const auto& m : col.meshes)
+      if (resolve(m, s_.thickness, p, c)) rub();
     x_[v] = p;
   }
 }
@@ -189,6 +197,11 @@ void PbdCloth::step(double t, double dt, const CollidersAt& colliders, const Win
       if (inv_mass_[v] == 0) continue;
       v_[v] = decay * v_[v] + h * accel_[v];
       x_[v] += h * v_[v];
+    }
+    if (driven_at_) {
+      driven_at_(ts, driven_to_);
+      if (driven_to_.size() != driven_.size()) fail("cloth solver: driven vertices and their positions differ in number");
+      for (size_t i = 0; i < driven_.size(); ++i) x_[driven_[i]] = driven_to_[i];
     }
     std::fill(lambda_.begin(), lambda_.end(), 0.0);
     for (uint32_t it = 0; it < std::max(s_.iterations, 1u); ++it) project_constraints(h);

@@ -35,6 +35,8 @@ struct ClothSettings {
 using CollidersAt = std::function<void(double t, Colliders& out)>;
 // Wind velocity at time t and point p.
 using WindAt = std::function<dvec3(double t, dvec3 p)>;
+// Where driven vertices are at time t, one position per driven vertex in order.
+using DrivenAt = std::function<void(double t, std::vector<dvec3>& out)>;
 
 class PbdCloth {
  public:
@@ -42,6 +44,9 @@ class PbdCloth {
 
   void pin(uint32_t vertex);  // held where it is
   void pin(uint32_t vertex, dvec3 position);  // held at `position`; rest lengths stay
+  // Pins `vertices` that move: at every substep each goes where `at` says (a skirt's
+  // waistband following a dancing body).
+  void drive(std::vector<uint32_t> vertices, DrivenAt at);
   // Advances from time t by dt. The obstacles must keep the same shapes and counts.
   void step(double t, double dt, const CollidersAt& colliders, const WindAt& wind);
   const std::vector<dvec3>& positions() const { return x_; }
@@ -70,6 +75,9 @@ class PbdCloth {
   std::vector<int8_t> shell_side_;  // per (open revolved obstacle, vertex)
   bool sides_ready_ = false;
   Colliders colliders_;
+  std::vector<uint32_t> driven_;
+  DrivenAt driven_at_;
+  std::vector<dvec3> driven_to_;
 };
 
 }  // namespace cdb::scene

@@ -21,6 +21,7 @@
 #include "io/placed_scene.h"
 #include "io/rigid_mesh.h"
 #include "io/scene_label.h"
+#include "scene_inputs.h"
 
 namespace cdb {
 namespace {
@@ -38,6 +39,42 @@ class DeclaredQueries final : public FrameSource {
  private:
   std::unique_ptr<FrameSource> inner_;
   Topology topology_;
+};
+
+// The files generators build on (scenes/scene_inputs.h), opened as the descriptors' own
+// keys open them; relative paths are the descriptor's.
+class LoaderInputs final : public scene::SceneInputs {
+ public:
+  explicit LoaderInputs(std::filesystem::path dir) : dir_(std::move(dir)) {}
+  // Each file opened so far, with its size and modification time.
+  const std::string& identity() const { return identity_; }
+  scene::InputMesh mesh(const std::string& file, const std::string& member) const override {
+    std::filesystem::path path = existing(file);
+    if (!member.empty()) path = extract_from_archive(path, member);
+    StaticMesh m = load_static_mesh(path, 1.0, false);
+    return {std::move(m.positions), std::move(m.faces)};
+  }
+  scene::InputAnimation animation(const std::string& file) const override {
+    AnimationOptions o;
+    o.file = existing(file);
+    std::shared_ptr<const AnimatedClip> clip = open_animated_clip(o);
+    return {clip->topology(), clip->clip_seconds(),
+            [clip](double seconds, std::vector<vec3f>& out) { clip->positions_at(seconds, out); }};
+  }
+
+ private:
+  std::filesystem::path existing(const std::string& file) const {
+    std::filesystem::path path = file;
+    if (path.is_relative()) path = dir_ / path;
+    if (!std::filesystem::exists(path)) fail(path.string() + ": no such file" + package_hint(path));
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    const auto time = std::filesystem::last_write_time(path, ec).time_since_epoch().count();
+    identity_ += " " + path.string() + ":" + std::to_string(size) + ":" + std::to_string(time);
+    return path;
+  }
+  std::filesystem::path dir_;
+  mutable std::string identity_;
 };
 
 // Runs `open`, prefixing its error with the descriptor path of what it opens or checks.
@@ -312,7 +349,8 @@ std::unique_ptr<FrameSource> open_parts(const DescriptorObject& root, const std:
       const std::string generator = p.text("generator");
       const nlohmann::json params = p.has("params") ? p.raw("params") : nlohmann::json::object();
       if (!params.is_object()) fail(p.at("params") + ": must be an object");
-      part.source = opened_at(p.where(), [&] { return make_generator(generator, params); });
+      const LoaderInputs inputs(descriptor.parent_path());
+      part.source = opened_at(p.where(), [&] { return make_generator(generator, params, nullptr, &inputs); });
     } else if (p.has("animation")) {
       part.source = open_animation(p.object("animation", animation_keys()), descriptor);
     } else if (p.has("keyframes")) {
@@ -391,9 +429,11 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
     nlohmann::json params = j.contains("params") ? j["params"] : nlohmann::json::object();
     if (!params.is_object()) fail(file.string() + ": /params: must be an object");
     for (auto it = overrides.begin(); it != overrides.end(); ++it) params[it.key()] = it.value();
+    const LoaderInputs inputs(file.parent_path());
     s.source = opened_at(file.string(), [&] {
-      return cache_frames(make_generator(generator, params, &s.parameters), generator + " " + params.dump(),
-                          frame_cache_dir());
+      std::unique_ptr<FrameSource> made = make_generator(generator, params, &s.parameters, &inputs);
+      // The files it read are part of what it made: another package version is another key.
+      return cache_frames(std::move(made), generator + " " + params.dump() + inputs.identity(), frame_cache_dir());
     });
   } else if (root.has("animation")) {
     s.source = open_animation(root.object("animation", animation_keys()), file);
