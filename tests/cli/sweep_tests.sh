@@ -64,9 +64,9 @@ grep -q -- "--gres" "$tmp/job.sh" && fail "slurm script of CPU cells asks for a 
 [[ -d $tmp/slurm/logs ]] && echo "ok   slurm log directory exists before sbatch" || fail "no $tmp/slurm/logs"
 check "report shows cells pending under the script" 0 "cloth-wave\.frames=3\.res=12_sweep_cpu\.h5 \| .* \| pending \(task 4 of $tmp/job2\.sh\) \|$" -- "$cdbench" report "$tmp/slurm"
 check "a second script notes the pending cells" 0 "note: 5 of these cells were pending" -- "$cdbench" sweep "$sweep" --out "$tmp/slurm" --slurm "$tmp/job3.sh"
-check "slurm options reach the script" 0 "55 array tasks" -- "$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" \
+check "slurm options reach the script" 0 "66 array tasks" -- "$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" \
   --slurm "$tmp/fig9.sh" --time 2-0 --cpus-per-task 8 --partition gpu --account lab --gres gpu:h100:1 --throttle 3
-has "slurm array throttle" "$tmp/fig9.sh" "^#SBATCH --array=0-54%3$"
+has "slurm array throttle" "$tmp/fig9.sh" "^#SBATCH --array=0-65%3$"
 has "slurm time limit" "$tmp/fig9.sh" "^#SBATCH --time=2-0$"
 has "slurm CPUs" "$tmp/fig9.sh" "^#SBATCH --cpus-per-task=8$"
 has "slurm partition" "$tmp/fig9.sh" "^#SBATCH --partition=gpu$"
@@ -107,7 +107,7 @@ check "duplicate cell names refused" 2 "bad4.json: cells 0 and 1 are both named 
 printf '{"scenes": ["funnel"], "pipeline": ["bvh"]}' >"$tmp/bad5.json"
 check "unknown key" 2 "bad5.json: /pipeline: unknown key" -- "$cdbench" sweep "$tmp/bad5.json" --out "$tmp/x"
 
-check "committed paper sweep expands" 0 "paper-fig9.json: 55 cells" -- "$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" --dry-run
+check "committed paper sweep expands" 0 "paper-fig9.json: 66 cells" -- "$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" --dry-run
 check "run takes --set" 0 "frames 0:2" -- "$cdbench" run --device cpu --quiet --scene funnel --set res=12 --set frames=2
 
 finish sweep
