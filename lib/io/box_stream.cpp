@@ -124,12 +124,7 @@ namespace {
 class BoxStream final : public FrameSource {
  public:
   explicit BoxStream(const std::filesystem::path& dir) : dir_(dir) {
-    if (!std::filesystem::is_directory(dir)) fail(dir.string() + ": not a directory");
-    for (const auto& e : std::filesystem::directory_iterator(dir))
-      if (e.is_regular_file() && is_box_frame_file(e.path())) files_.push_back(e.path());
-    std::sort(files_.begin(), files_.end(), [](const std::filesystem::path& a, const std::filesystem::path& b) {
-      return natural_less(a.filename().native(), b.filename().native());
-    });
+    files_ = frame_files(dir, is_box_frame_file);
     if (files_.empty()) fail(dir.string() + ": no box frames (.boxes, .boxes64, .npy) in this directory");
     for (const auto& f : files_)
       if (lower_extension(f) != lower_extension(files_[0]))
