@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cell_status.h"
+#include "library_errors.h"
 
 #include "core/phase.h"
 #include "io/results_reader.h"
@@ -185,10 +186,10 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
       row.r = read_results_overview(f);
     } catch (const std::exception& e) {
       row.r.path = f;
-      row.unreadable = e.what();
+      row.unreadable = error_text(e);
       // A running cell's file is open for writing; its state is the row, not an error.
       if (!row.process || !cell_in_progress(*row.process)) {
-        std::fprintf(stderr, "cdbench: report: %s\n", e.what());
+        std::fprintf(stderr, "cdbench: report: %s\n", row.unreadable.c_str());
         rc = 1;
       }
     }
