@@ -221,6 +221,16 @@ std::vector<bool> check_results_paths(const RunOptions& r, const std::vector<std
 
 }  // namespace
 
+void check_run_options(const CommonOptions& o, const RunOptions& r, const std::string& device) {
+  const std::vector<std::string> names = split_pipelines(r.pipeline);
+  contact_check(r, check_interval(r.check));
+  if (names.size() > 1 && !r.out.empty() && r.out.find("{pipeline}") == std::string::npos)
+    fail_usage("--out " + r.out + ": several pipelines need {pipeline} in the file name");
+  // Its form only: the scene, not loaded here, says how many frames there are.
+  parse_frame_range(o.frames, UINT32_MAX);
+  if (device == "cpu") make_pipelines(o, names, device);
+}
+
 CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
   auto* run = app.add_subcommand("run", "run pipelines on a scene and print timings");
   run->add_option("--pipeline", r.pipeline,
@@ -297,10 +307,9 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   if (r.json) redirect.emplace();
   nlohmann::json runs = nlohmann::json::array();
   const std::string device = resolve_device(o.device);
+  check_run_options(o, r, "");
   const std::vector<std::string> names = split_pipelines(r.pipeline);
   const ContactCheck contact = contact_check(r, check_interval(r.check));
-  if (names.size() > 1 && !r.out.empty() && r.out.find("{pipeline}") == std::string::npos)
-    fail_usage("--out " + r.out + ": several pipelines need {pipeline} in the file name");
   std::vector<std::unique_ptr<Pipeline>> pipelines = make_pipelines(o, names, device);
   const std::vector<bool> existing = check_results_paths(r, names);
   print_environment(device);

@@ -31,6 +31,13 @@ struct RunOptions {
 
 CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r);
 
+// What `run` checks of its options before it loads the scene, throwing UsageError with
+// the message the run would print: the pipeline list and each pipeline's configuration
+// (made on `device` when it is "cpu"; a CUDA pipeline needs the device to be made),
+// --check and the contact options, --frames' form, {pipeline} in --out. A sweep checks
+// its cells with it (sweep --dry-run included), so a cell's options fail before it runs.
+void check_run_options(const CommonOptions& o, const RunOptions& r, const std::string& device);
+
 // `cli_options`: the command's options as the results file records them (cli_params.h).
 int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::json& cli_options);
 

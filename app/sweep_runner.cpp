@@ -126,12 +126,15 @@ bool cell_complete(const fs::path& out_dir, const SweepCell& cell) {
   }
 }
 
-void list_cells(const SweepPlan& plan, const SweepRunOptions& options) {
-  size_t complete = 0;
+void list_cells(const SweepPlan& plan, const SweepRunOptions& options, const std::vector<std::string>& option_errors) {
+  size_t complete = 0, invalid = 0;
   for (size_t i = 0; i < plan.cells.size(); ++i) {
     const SweepCell& c = plan.cells[i];
     std::string state = "to run";
-    if (cell_complete(options.out_dir, c)) {
+    if (i < option_errors.size() && !option_errors[i].empty()) {
+      state = "INVALID: " + option_errors[i];
+      ++invalid;
+    } else if (cell_complete(options.out_dir, c)) {
       state = "complete (skipped)";
       ++complete;
     } else if (const auto s = read_cell_status(cell_status_file(options.out_dir, c.name)); s && s->state != "complete") {
@@ -141,8 +144,10 @@ void list_cells(const SweepPlan& plan, const SweepRunOptions& options) {
     std::printf("%3zu  %s  %s\n     cdbench %s\n", i, c.name.c_str(), state.c_str(),
                 shell_line(cell_run_args(plan, c, options.out_dir, options.scenes_dir)).c_str());
   }
-  std::printf("sweep %s: %zu cells, %zu complete, %zu to run\n", plan.file.c_str(), plan.cells.size(), complete,
-              plan.cells.size() - complete);
+  std::printf("sweep %s: %zu cells, %zu complete, %zu to run", plan.file.c_str(), plan.cells.size(), complete,
+              plan.cells.size() - complete - invalid);
+  if (invalid) std::printf(", %zu invalid (run refuses their options)", invalid);
+  std::printf("\n");
 }
 
 int run_sweep(const SweepPlan& plan, const SweepRunOptions& options) {
