@@ -14,26 +14,11 @@
 namespace cdb {
 namespace {
 
-// What the user can do about a system error on a path.
-std::string path_hint(const std::error_code& ec) {
-  switch (ec.value()) {
-    case ELOOP: return ": its symbolic links form a loop; point the link at a real file or directory";
-    case ENAMETOOLONG: return ": the name is too long for the file system (255 bytes a name here); choose a shorter one";
-    case ENOTDIR: return ": a part of the path is a file, not a directory; name a directory there";
-    case EISDIR: return ": it is a directory; name a file";
-    case EACCES:
-    case EPERM: return ": permission denied; check the permissions of the path";
-    case ENOENT: return ": no such file or directory";
-    case ENOSPC: return ": no space left on device";
-    default: return ": " + ec.message();
-  }
-}
-
 std::string filesystem_text(const std::filesystem::filesystem_error& e) {
   std::string paths;
   if (!e.path1().empty()) paths = e.path1().string();
   if (!e.path2().empty()) paths += (paths.empty() ? "" : " -> ") + e.path2().string();
-  return (paths.empty() ? std::string("a file operation failed") : paths) + path_hint(e.code());
+  return (paths.empty() ? std::string("a file operation failed") : paths) + ": " + path_error_text(e.code());
 }
 
 // nlohmann's messages start with "[json.exception.KIND.ID] "; the rest is plain.
@@ -44,6 +29,21 @@ std::string json_detail(const nlohmann::json::exception& e) {
 }
 
 }  // namespace
+
+std::string path_error_text(const std::error_code& ec) {
+  if (ec.category() != std::generic_category() && ec.category() != std::system_category()) return ec.message();
+  switch (ec.value()) {
+    case ELOOP: return "its symbolic links form a loop; point the link at a real file or directory";
+    case ENAMETOOLONG: return "the name is too long for the file system (most allow 255 bytes a name); choose a shorter one";
+    case ENOTDIR: return "a part of the path is a file, not a directory; name a directory there";
+    case EISDIR: return "it is a directory; name a file";
+    case EACCES:
+    case EPERM: return "permission denied; check the permissions of the path";
+    case ENOENT: return "no such file or directory";
+    case ENOSPC: return "no space left on device";
+    default: return ec.message();
+  }
+}
 
 std::string error_text(const std::exception& e) {
   if (dynamic_cast<const Error*>(&e)) return e.what();

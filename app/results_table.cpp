@@ -11,8 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cell_status.h"
+#include "exit_codes.h"
 #include "library_errors.h"
 
+#include "core/error.h"
 #include "core/phase.h"
 #include "io/results_reader.h"
 
@@ -27,8 +29,10 @@ struct Row {
 
 struct Inputs {
   std::vector<std::string> files;
-  // Sweep cells that ended without a results file: the file they were to write, and how.
   std::vector<std::pair<std::string, CellStatus>> missing;
+  // Directory entries that could not be looked at (a link loop, a dangling link, no
+  // permission), with why: said, and the rest reported.
+  std::vector<std::pair<std::string, std::string>> skipped;
 };
 
 // A directory stands for every .h5 under it, and for every sweep cell recorded there
@@ -38,24 +42,41 @@ Inputs expand_inputs(const std::vector<std::string>& args) {
   namespace fs = std::filesystem;
   Inputs in;
   for (const auto& a : args) {
-    if (!fs::is_directory(a)) {
+    std::error_code ec;
+    // As compare does: a name that is not there is a mistyped argument, found before any
+    // file is read; a file there that cannot be read is a row and exit 1.
+    if (!fs::exists(fs::symlink_status(a, ec))) fail_usage(a + ": no such file or directory");
+    if (!fs::is_directory(a, ec)) {
       in.files.push_back(a);
       continue;
     }
     std::vector<fs::path> found, statuses;
-    for (const auto& e : fs::recursive_directory_iterator(a)) {
-      if (!e.is_regular_file()) continue;
-      const std::string name = e.path().filename().string();
-      if (e.path().extension() == ".h5") found.push_back(e.path());
-      if (name.ends_with(".status.json")) statuses.push_back(e.path());
+    fs::recursive_directory_iterator it(a, fs::directory_options::skip_permission_denied, ec);
+    for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      const fs::path& p = it->path();
+      std::error_code entry_ec;
+      const bool regular = it->is_regular_file(entry_ec);
+      if (entry_ec) {
+        in.skipped.emplace_back(p.string(), path_error_text(entry_ec));
+        continue;
+      }
+      if (!regular) {
+        if (it->is_symlink(entry_ec) && !it->exists(entry_ec))
+          in.skipped.emplace_back(p.string(), "a link to " + fs::read_symlink(p, entry_ec).string() + ", which does not exist");
+        continue;
+      }
+      const std::string name = p.filename().string();
+      if (p.extension() == ".h5") found.push_back(p);
+      if (name.ends_with(".status.json")) statuses.push_back(p);
     }
+    if (ec) in.skipped.emplace_back(a, "cannot list the directory: " + path_error_text(ec));
     std::sort(found.begin(), found.end());
     std::sort(statuses.begin(), statuses.end());
     for (const auto& f : found) in.files.push_back(f.string());
     for (const auto& st : statuses) {
       const std::optional<CellStatus> s = read_cell_status(st);
       const fs::path file = st.parent_path() / (s ? s->cell + ".h5" : "");
-      if (s && !fs::exists(file)) in.missing.emplace_back(file.string(), *s);
+      if (s && !fs::exists(file, ec)) in.missing.emplace_back(file.string(), *s);
     }
   }
   return in;
@@ -176,7 +197,17 @@ std::string csv_cell(const std::string& s) {
 int print_results_table(const std::vector<std::string>& args, bool csv) {
   const Inputs inputs = expand_inputs(args);
   std::vector<Row> rows;
-  int rc = 0;
+  int rc = kExitOk;
+  for (const auto& [entry, why] : inputs.skipped) {
+    std::fprintf(stderr, "cdbench: report: skipped %s: %s\n", entry.c_str(), why.c_str());
+    rc = kExitFailure;
+  }
+  if (inputs.files.empty() && inputs.missing.empty()) {
+    std::string given;
+    for (const auto& a : args) given += (given.empty() ? "" : ", ") + a;
+    std::fprintf(stderr, "cdbench: report: no results files (.h5) or sweep cells under %s\n", given.c_str());
+    return kExitFailure;
+  }
   for (const auto& f : inputs.files) {
     Row row;
     const std::filesystem::path path(f);
@@ -190,7 +221,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
       // A running cell's file is open for writing; its state is the row, not an error.
       if (!row.process || !cell_in_progress(*row.process)) {
         std::fprintf(stderr, "cdbench: report: %s\n", row.unreadable.c_str());
-        rc = 1;
+        rc = kExitFailure;
       }
     }
     if (row.process && cell_in_progress(*row.process)) {
@@ -208,6 +239,16 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     row.r.backend = s.device;
     row.process = s;
     rows.push_back(std::move(row));
+  }
+  // A failed sweep cell is a failure of what is reported, as an unreadable file is: the
+  // exit code says so to a script that reads no table.
+  const size_t failed = size_t(std::count_if(rows.begin(), rows.end(), [](const Row& row) {
+    return row.process && row.process->state == "failed";
+  }));
+  if (failed) {
+    std::fprintf(stderr, "cdbench: report: %zu sweep cell%s failed (see the status column)\n", failed,
+                 failed == 1 ? "" : "s");
+    rc = kExitFailure;
   }
   // CSV has the same columns for any set of files (every phase this build knows, the check
   // columns, the options as one JSON cell), so scripts can concatenate and index tables;

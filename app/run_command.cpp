@@ -1,4 +1,5 @@
 #include "run_command.h"
+#include "exit_codes.h"
 #include "number_checks.h"
 
 #include <unistd.h>
@@ -357,7 +358,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
       // Between pipelines: the next one's file is not made at all.
       std::fflush(stdout);
       std::fprintf(stderr, "cdbench: interrupted by %s before pipeline %s\n", signal_name(signal), name.c_str());
-      return 128 + signal;
+      return exit_for_signal(signal);
     }
     std::optional<ResultsFile> out;
     if (!one.out.empty()) {
@@ -398,7 +399,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     redirect.reset();
     std::printf("%s\n", nlohmann::json{{"command", "run"}, {"runs", runs}}.dump(2).c_str());
   }
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace cdb

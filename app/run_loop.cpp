@@ -1,4 +1,5 @@
 #include "run_loop.h"
+#include "exit_codes.h"
 
 #include <cmath>
 #include <cstdint>
@@ -218,7 +219,7 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
       out->abandon(summarize_run(frames, options.warmup), pipeline.memory(), why);
       tell_incomplete(*out);
     }
-    return 128 + signal;
+    return exit_for_signal(signal);
   }
   // After the summary it qualifies; stored so `compare` can flag the run.
   RunFindings findings;
@@ -240,7 +241,7 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
     }
     std::printf("results: %s (%llu frames)\n", out->path().c_str(), static_cast<unsigned long long>(out->rows()));
   }
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace cdb

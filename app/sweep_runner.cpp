@@ -1,4 +1,5 @@
 #include "sweep_runner.h"
+#include "exit_codes.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -252,8 +253,8 @@ int run_sweep(const SweepPlan& plan, const SweepRunOptions& options) {
   std::printf("sweep: %zu run, %zu complete, %zu failed%s; results in %s\n", done, done - failed, failed,
               stopped_by ? ", stopped early" : "", dir.string().c_str());
   sweep_log << utc_now() << " end: " << done << " run, " << failed << " failed" << std::endl;
-  if (stopped_by) return 128 + stopped_by;
-  return failed ? 1 : 0;
+  if (stopped_by) return exit_for_signal(stopped_by);
+  return failed ? kExitFailure : kExitOk;
 }
 
 }  // namespace cdb
