@@ -73,7 +73,8 @@ double DescriptorObject::number(const char* key, double fallback) const {
 
 double DescriptorObject::positive(const char* key, double fallback) const {
   const double v = number(key, fallback);
-  if (!(v > 0)) fail(at(key) + ": must be a positive number");
+  // 1e-320 is positive, but a rate's reciprocal (a time step) overflows to infinity.
+  if (!(v > 0) || !std::isfinite(1 / v)) fail(at(key) + ": must be a positive number (at least 1e-300)");
   return v;
 }
 
@@ -168,7 +169,11 @@ nlohmann::json parse_json_file(std::istream& in, const std::string& where) {
     const size_t close = what.find("] ");
     fail(where + ": malformed JSON: " + (close == std::string::npos ? what : what.substr(close + 2)));
   } catch (const json::exception& e) {
-    fail(where + ": cannot read the JSON: " + e.what());
+    // 406: a number beyond double's range ("1e400").
+    const std::string what = e.what();
+    const size_t close = what.find("] ");
+    fail(where + ": malformed JSON: " + (close == std::string::npos ? what : what.substr(close + 2)) +
+         (e.id == 406 ? " (beyond the range of a double, about 1.8e308)" : ""));
   }
   if (!duplicate.empty()) fail(where + ": " + duplicate);
   return j;
