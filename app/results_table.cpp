@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cell_status.h"
+#include "damaged_file_guard.h"
 #include "exit_codes.h"
 #include "library_errors.h"
 
@@ -214,6 +215,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     if (path.extension() == ".h5")
       row.process = read_cell_status(path.parent_path() / (path.stem().string() + ".status.json"));
     try {
+      const DamagedFileGuard guard("report", f);
       row.r = read_results_overview(f);
     } catch (const std::exception& e) {
       row.r.path = f;
