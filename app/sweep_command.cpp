@@ -64,6 +64,9 @@ int sweep_command(const SweepOptions& w, const CLI::App& run) {
       fail_usage(e.what());
     }
   }();
+  std::error_code ec;
+  if (std::filesystem::exists(w.out_dir, ec) && !std::filesystem::is_directory(w.out_dir, ec))
+    fail_usage("--out " + w.out_dir + ": not a directory; name a directory for the cells' results, logs and status");
   SweepRunOptions options;
   options.out_dir = w.out_dir;
   options.scenes_dir = w.scenes_dir.empty() ? "" : std::filesystem::absolute(w.scenes_dir).string();
