@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <set>
 #include <string>
@@ -26,6 +27,15 @@ struct Row {
   ResultsOverview r;
   std::string unreadable;  // why, when the file could not be read
   std::optional<CellStatus> process;  // how a sweep cell's process ended, when recorded
+};
+
+// A column of the table: its header and how a row's cell reads; text columns are
+// left-aligned in Markdown, numbers right-aligned.
+using CellOf = std::function<std::string(const Row&)>;
+struct Column {
+  std::string name;
+  bool text = true;
+  CellOf cell;
 };
 
 struct Inputs {
@@ -269,75 +279,88 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   const bool hashes = csv || any([](const ResultsOverview& r) { return !r.input_hash.empty(); });
   const bool warnings = csv || any([](const ResultsOverview& r) { return !r.noise_warning.empty(); });
 
-  std::vector<std::string> header = {"file", "scene", "pipeline", "device"};
-  if (csv) header.insert(header.end(), {"label", "commit", "input_path", "input_hash"});
-  header.push_back("triangles");
-  for (const auto& o : options) header.push_back("--" + o);
-  header.insert(header.end(), {"frames", "mean_ms", "noise_%", "median_ms", "p95_ms"});
-  for (const auto& p : phases) header.push_back(p + "_ms");
-  header.push_back("pairs");
-  if (checked) header.insert(header.end(), {"recall_min", "precision_min", "contacts", "contact_precision"});
-  header.insert(header.end(), {"syncs", csv ? "peak_bytes" : "peak_MiB"});
+  // One list of columns drives the header, the cells and the Markdown alignment.
+  const double none = std::nan("");
+  const auto read = [](const Row& row) { return row.unreadable.empty() && !row.r.status.empty(); };
+  const auto stats = [](const Row& row) {
+    return row.unreadable.empty() && row.r.has_summary && row.r.measured_frames > 0;
+  };
+  const auto has_check = [&stats](const Row& row) { return stats(row) && row.r.checked_frames > 0; };
+  std::vector<Column> columns;
+  const auto text = [&columns](std::string name, CellOf cell) { columns.push_back({std::move(name), true, std::move(cell)}); };
+  const auto numeric = [&columns](std::string name, CellOf cell) {
+    columns.push_back({std::move(name), false, std::move(cell)});
+  };
+  text("file", [](const Row& row) { return row.r.path; });
+  text("scene", [](const Row& row) { return row.r.scene_label.empty() ? row.r.scene : row.r.scene_label; });
+  text("pipeline", [](const Row& row) { return row.r.pipeline; });
+  text("device", [](const Row& row) {
+    return row.r.device_name.empty() ? row.r.backend : row.r.backend + ": " + row.r.device_name;
+  });
   if (csv) {
-    header.insert(header.end(), {"noise_warning", "options_json"});
-  } else {
-    if (labels) header.push_back("label");
-    header.push_back("commit");
-    if (hashes) header.push_back("input");
-    if (warnings) header.push_back("warning");
+    text("label", [](const Row& row) { return row.r.label; });
+    text("commit", [](const Row& row) { return row.r.git_sha; });
+    text("input_path", [](const Row& row) { return row.r.input_path; });
+    text("input_hash", [](const Row& row) { return row.r.input_hash; });
   }
-  header.push_back("status");
-  // Left-aligned in Markdown: the leading names and options, and label to status at the end.
-  const size_t text_columns = 5 + options.size();
-  const size_t trailing_text = size_t(labels) + 1 + size_t(hashes) + size_t(warnings) + 1;
+  numeric("triangles", [&read](const Row& row) { return read(row) ? std::to_string(row.r.triangles) : ""; });
+  for (const auto& o : options)
+    text("--" + o, [&read, o](const Row& row) { return read(row) ? option_text(row.r.options, o) : ""; });
+  numeric("frames", [&read](const Row& row) { return read(row) ? std::to_string(row.r.frames_written) : ""; });
+  numeric("mean_ms", [&](const Row& row) { return number(stats(row) ? row.r.mean_ms : none); });
+  // The noise beside the time it qualifies: with one pass there is none to report.
+  numeric("noise_%", [&](const Row& row) {
+    return number(stats(row) && row.r.repeats > 1 ? 100.0 * row.r.noise_median : none, "%.1f");
+  });
+  numeric("median_ms", [&](const Row& row) { return number(stats(row) ? row.r.median_ms : none); });
+  numeric("p95_ms", [&](const Row& row) { return number(stats(row) ? row.r.p95_ms : none); });
+  for (const auto& p : phases)
+    numeric(p + "_ms", [&none, p](const Row& row) {
+      double mean = none;
+      for (const auto& [name, m] : row.r.phase_means)
+        if (name == p) mean = m;
+      return number(mean);
+    });
+  numeric("pairs", [&](const Row& row) { return number(stats(row) ? row.r.pairs_mean : none, "%.0f"); });
+  if (checked) {
+    numeric("recall_min", [&](const Row& row) { return number(has_check(row) ? row.r.recall_min : none, "%.6f"); });
+    numeric("precision_min",
+            [&](const Row& row) { return number(has_check(row) ? row.r.precision_min : none, "%.6f"); });
+    numeric("contacts", [&](const Row& row) { return has_check(row) ? std::to_string(row.r.contacts) : ""; });
+    numeric("contact_precision",
+            [&](const Row& row) { return number(has_check(row) ? row.r.contact_precision : none, "%.6f"); });
+  }
+  numeric("syncs", [&](const Row& row) { return number(stats(row) ? row.r.host_syncs_mean : none, "%.2f"); });
+  numeric(csv ? "peak_bytes" : "peak_MiB", [csv](const Row& row) {
+    return !row.r.has_summary ? ""
+           : csv              ? std::to_string(row.r.peak_bytes)
+                              : number(double(row.r.peak_bytes) / (1 << 20), "%.2f");
+  });
+  if (csv) {
+    text("noise_warning", [](const Row& row) { return row.r.noise_warning; });
+    text("options_json", [&read](const Row& row) {
+      if (!read(row)) return std::string();
+      nlohmann::json shown = nlohmann::json::object();
+      for (auto it = row.r.options.begin(); it != row.r.options.end(); ++it)
+        if (!shown_elsewhere(it.key())) shown[it.key()] = it.value();
+      return shown.dump();
+    });
+  } else {
+    if (labels) text("label", [](const Row& row) { return row.r.label; });
+    // Twelve digits of the commit (and -dirty) are as many as `git log` needs.
+    text("commit", [](const Row& row) { return row.r.git_sha; });
+    // The hash's first 8 digits tell inputs apart at a glance; CSV has all 16.
+    if (hashes) text("input", [](const Row& row) { return row.r.input_hash.substr(0, 8); });
+    if (warnings) text("warning", [](const Row& row) { return row.r.noise_warning.empty() ? "" : "noisy"; });
+  }
+  text("status", [csv](const Row& row) { return status_text(row, csv); });
 
+  std::vector<std::string> header;
+  for (const Column& c : columns) header.push_back(c.name);
   std::vector<std::vector<std::string>> table;
   for (const Row& row : rows) {
-    const ResultsOverview& r = row.r;
-    const bool read = row.unreadable.empty() && !r.status.empty();
-    std::vector<std::string> cells = {r.path, r.scene_label.empty() ? r.scene : r.scene_label, r.pipeline,
-                                      r.device_name.empty() ? r.backend : r.backend + ": " + r.device_name};
-    if (csv) cells.insert(cells.end(), {r.label, r.git_sha, r.input_path, r.input_hash});
-    cells.push_back(read ? std::to_string(r.triangles) : "");
-    for (const auto& o : options) cells.push_back(read ? option_text(r.options, o) : "");
-    cells.push_back(read ? std::to_string(r.frames_written) : "");
-    const bool stats = row.unreadable.empty() && r.has_summary && r.measured_frames > 0;
-    const double none = std::nan("");
-    cells.push_back(number(stats ? r.mean_ms : none));
-    // The noise beside the time it qualifies: with one pass there is none to report.
-    cells.push_back(number(stats && r.repeats > 1 ? 100.0 * r.noise_median : none, "%.1f"));
-    cells.push_back(number(stats ? r.median_ms : none));
-    cells.push_back(number(stats ? r.p95_ms : none));
-    for (const auto& p : phases) {
-      double mean = none;
-      for (const auto& [name, m] : r.phase_means)
-        if (name == p) mean = m;
-      cells.push_back(number(mean));
-    }
-    cells.push_back(number(stats ? r.pairs_mean : none, "%.0f"));
-    if (checked) {
-      const bool has_check = stats && r.checked_frames > 0;
-      cells.push_back(number(has_check ? r.recall_min : none, "%.6f"));
-      cells.push_back(number(has_check ? r.precision_min : none, "%.6f"));
-      cells.push_back(has_check ? std::to_string(r.contacts) : "");
-      cells.push_back(number(has_check ? r.contact_precision : none, "%.6f"));
-    }
-    cells.push_back(number(stats ? r.host_syncs_mean : none, "%.2f"));
-    cells.push_back(!r.has_summary ? "" : csv ? std::to_string(r.peak_bytes) : number(double(r.peak_bytes) / (1 << 20), "%.2f"));
-    if (csv) {
-      nlohmann::json shown = nlohmann::json::object();
-      for (auto it = r.options.begin(); it != r.options.end(); ++it)
-        if (!shown_elsewhere(it.key())) shown[it.key()] = it.value();
-      cells.insert(cells.end(), {r.noise_warning, read ? shown.dump() : ""});
-    } else {
-      if (labels) cells.push_back(r.label);
-      // Twelve digits of the commit (and -dirty) are as many as `git log` needs.
-      cells.push_back(r.git_sha);
-      // The hash's first 8 digits tell inputs apart at a glance; CSV has all 16.
-      if (hashes) cells.push_back(r.input_hash.substr(0, 8));
-      if (warnings) cells.push_back(r.noise_warning.empty() ? "" : "noisy");
-    }
-    cells.push_back(status_text(row, csv));
+    std::vector<std::string> cells;
+    for (const Column& c : columns) cells.push_back(c.cell(row));
     table.push_back(std::move(cells));
   }
 
@@ -364,9 +387,9 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     std::printf("%s\n", s.c_str());
   };
   line(header);
+  // Text left-aligned, numbers right-aligned.
   std::string rule = "|";
-  for (size_t i = 0; i < header.size(); ++i)
-    rule += (i < text_columns && i != 4) || i + trailing_text >= header.size() ? " --- |" : " ---: |";
+  for (const Column& c : columns) rule += c.text ? " --- |" : " ---: |";
   std::printf("%s\n", rule.c_str());
   for (const auto& cells : table) line(cells);
   return rc;
