@@ -1,4 +1,5 @@
 #include "sweep_runner.h"
+#include "damaged_file_guard.h"
 #include "exit_codes.h"
 
 #include <fcntl.h>
@@ -121,6 +122,7 @@ bool cell_complete(const fs::path& out_dir, const SweepCell& cell) {
   const fs::path file = cell_results_file(out_dir, cell);
   if (!fs::exists(file)) return false;
   try {
+    const DamagedFileGuard guard("sweep", file.string());
     return read_results_overview(file).status == "complete";
   } catch (const std::exception&) {
     return false;
