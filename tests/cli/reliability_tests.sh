@@ -208,6 +208,17 @@ ln -s gone.boxes "$tmp/danglingbox/f1.boxes"
 check "dangling box frame link refused" 1 "danglingbox/f1.boxes: this frame is a link that leads nowhere" -- \
   "$cdbench" run --device cpu --quiet --scene "$tmp/danglingbox"
 
+mkdir -p "$tmp/farboxes"
+/usr/bin/python3 -c '
+import struct, sys
+for k in range(2):
+    v = [0, 0, 0, 1, 1, 1, 0.5, 0.5, 0.5, 1.5, 1.5, 1.5]
+    if k == 1: v[3] = 1e39
+    open(sys.argv[1] + "/f%d.boxes64" % k, "wb").write(struct.pack("<12d", *v))' "$tmp/farboxes"
+check "a box beyond float range found before any frame" 1 "farboxes/f1.boxes64: frame 1, box 0: max.x is 1e\+39, beyond float range" -- \
+  "$cdbench" run --device cpu --scene "$tmp/farboxes"
+if grep -qE "^frame " "$tmp/out"; then fail "a box frame was timed before the bad one was found"; else echo "ok   no box frame timed first"; fi
+
 # --- descriptors and options quietly accepted before ---
 printf '{"generator": "cloth-wave", "generator": "funnel", "params": {"res": 8, "frames": 3}}' >"$tmp/dupkey.json"
 check "duplicate descriptor key refused" 1 "dupkey.json: key \"generator\" appears twice in the object at /" -- \
