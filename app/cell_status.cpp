@@ -58,6 +58,9 @@ std::string describe_exit(const CellStatus& s) {
                   : abbrev  ? std::string("killed by SIG") + abbrev
                             : "killed by signal " + std::to_string(s.signal);
   std::string tail = s.log_tail;
+  // A usage error ends with CLI11's pointer to --help; the reason is the line before it.
+  for (const std::string hint : {"\n", "Run with --help for more information.", "\n"})
+    if (tail.ends_with(hint)) tail.resize(tail.size() - hint.size());
   while (!tail.empty() && tail.back() == '\n') tail.pop_back();
   const size_t nl = tail.rfind('\n');
   const std::string last = nl == std::string::npos ? tail : tail.substr(nl + 1);

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "damaged_file_guard.h"
 #include "exit_codes.h"
 #include "io/results_reader.h"
 #include "run_statistics.h"
@@ -98,6 +99,7 @@ std::vector<RunGroup> load_side(const std::string& arg, const char* side) {
   std::vector<RunGroup> groups;
   for (const std::string& path : expand(arg)) {
     RunFile f;
+    const DamagedFileGuard guard("compare", path);
     f.info = read_results_overview(path);
     if (f.info.status != "complete") {
       std::fprintf(stderr, "cdbench: compare: %s: %s run, left out\n", path.c_str(), f.info.status.c_str());

@@ -1,4 +1,5 @@
 #include "interrupt.h"
+#include "exit_codes.h"
 
 #include <unistd.h>
 
@@ -22,7 +23,7 @@ void record(int signal) {
                                          : "cdbench: interrupted before the run started\n";
   const ssize_t ignored = write(STDERR_FILENO, line, std::strlen(line));
   (void)ignored;
-  _exit(128 + signal);
+  _exit(exit_for_signal(signal));
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "exit_codes.h"
 #include "help_format.h"
+#include "library_errors.h"
 #include "options.h"
 #include "results_table.h"
 #include "run_command.h"
@@ -79,7 +80,7 @@ int main(int argc, char** argv) {
     return kExitUsage;
   } catch (const std::exception& e) {
     std::fflush(stdout);
-    std::fprintf(stderr, "cdbench: error: %s\n", e.what());
+    std::fprintf(stderr, "cdbench: error: %s\n", error_text(e).c_str());
     return kExitFailure;
   }
   return kExitOk;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <set>
 #include <string>
@@ -11,7 +12,11 @@
 #include <nlohmann/json.hpp>
 
 #include "cell_status.h"
+#include "damaged_file_guard.h"
+#include "exit_codes.h"
+#include "library_errors.h"
 
+#include "core/error.h"
 #include "core/phase.h"
 #include "io/results_reader.h"
 
@@ -24,10 +29,21 @@ struct Row {
   std::optional<CellStatus> process;  // how a sweep cell's process ended, when recorded
 };
 
+// A column of the table: its header and how a row's cell reads; text columns are
+// left-aligned in Markdown, numbers right-aligned.
+using CellOf = std::function<std::string(const Row&)>;
+struct Column {
+  std::string name;
+  bool text = true;
+  CellOf cell;
+};
+
 struct Inputs {
   std::vector<std::string> files;
-  // Sweep cells that ended without a results file: the file they were to write, and how.
   std::vector<std::pair<std::string, CellStatus>> missing;
+  // Directory entries that could not be looked at (a link loop, a dangling link, no
+  // permission), with why: said, and the rest reported.
+  std::vector<std::pair<std::string, std::string>> skipped;
 };
 
 // A directory stands for every .h5 under it, and for every sweep cell recorded there
@@ -37,24 +53,41 @@ Inputs expand_inputs(const std::vector<std::string>& args) {
   namespace fs = std::filesystem;
   Inputs in;
   for (const auto& a : args) {
-    if (!fs::is_directory(a)) {
+    std::error_code ec;
+    // As compare does: a name that is not there is a mistyped argument, found before any
+    // file is read; a file there that cannot be read is a row and exit 1.
+    if (!fs::exists(fs::symlink_status(a, ec))) fail_usage(a + ": no such file or directory");
+    if (!fs::is_directory(a, ec)) {
       in.files.push_back(a);
       continue;
     }
     std::vector<fs::path> found, statuses;
-    for (const auto& e : fs::recursive_directory_iterator(a)) {
-      if (!e.is_regular_file()) continue;
-      const std::string name = e.path().filename().string();
-      if (e.path().extension() == ".h5") found.push_back(e.path());
-      if (name.ends_with(".status.json")) statuses.push_back(e.path());
+    fs::recursive_directory_iterator it(a, fs::directory_options::skip_permission_denied, ec);
+    for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      const fs::path& p = it->path();
+      std::error_code entry_ec;
+      const bool regular = it->is_regular_file(entry_ec);
+      if (entry_ec) {
+        in.skipped.emplace_back(p.string(), path_error_text(entry_ec));
+        continue;
+      }
+      if (!regular) {
+        if (it->is_symlink(entry_ec) && !it->exists(entry_ec))
+          in.skipped.emplace_back(p.string(), "a link to " + fs::read_symlink(p, entry_ec).string() + ", which does not exist");
+        continue;
+      }
+      const std::string name = p.filename().string();
+      if (p.extension() == ".h5") found.push_back(p);
+      if (name.ends_with(".status.json")) statuses.push_back(p);
     }
+    if (ec) in.skipped.emplace_back(a, "cannot list the directory: " + path_error_text(ec));
     std::sort(found.begin(), found.end());
     std::sort(statuses.begin(), statuses.end());
     for (const auto& f : found) in.files.push_back(f.string());
     for (const auto& st : statuses) {
       const std::optional<CellStatus> s = read_cell_status(st);
       const fs::path file = st.parent_path() / (s ? s->cell + ".h5" : "");
-      if (s && !fs::exists(file)) in.missing.emplace_back(file.string(), *s);
+      if (s && !fs::exists(file, ec)) in.missing.emplace_back(file.string(), *s);
     }
   }
   return in;
@@ -175,21 +208,32 @@ std::string csv_cell(const std::string& s) {
 int print_results_table(const std::vector<std::string>& args, bool csv) {
   const Inputs inputs = expand_inputs(args);
   std::vector<Row> rows;
-  int rc = 0;
+  int rc = kExitOk;
+  for (const auto& [entry, why] : inputs.skipped) {
+    std::fprintf(stderr, "cdbench: report: skipped %s: %s\n", entry.c_str(), why.c_str());
+    rc = kExitFailure;
+  }
+  if (inputs.files.empty() && inputs.missing.empty()) {
+    std::string given;
+    for (const auto& a : args) given += (given.empty() ? "" : ", ") + a;
+    std::fprintf(stderr, "cdbench: report: no results files (.h5) or sweep cells under %s\n", given.c_str());
+    return kExitFailure;
+  }
   for (const auto& f : inputs.files) {
     Row row;
     const std::filesystem::path path(f);
     if (path.extension() == ".h5")
       row.process = read_cell_status(path.parent_path() / (path.stem().string() + ".status.json"));
     try {
+      const DamagedFileGuard guard("report", f);
       row.r = read_results_overview(f);
     } catch (const std::exception& e) {
       row.r.path = f;
-      row.unreadable = e.what();
+      row.unreadable = error_text(e);
       // A running cell's file is open for writing; its state is the row, not an error.
       if (!row.process || !cell_in_progress(*row.process)) {
-        std::fprintf(stderr, "cdbench: report: %s\n", e.what());
-        rc = 1;
+        std::fprintf(stderr, "cdbench: report: %s\n", row.unreadable.c_str());
+        rc = kExitFailure;
       }
     }
     if (row.process && cell_in_progress(*row.process)) {
@@ -208,6 +252,16 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     row.process = s;
     rows.push_back(std::move(row));
   }
+  // A failed sweep cell is a failure of what is reported, as an unreadable file is: the
+  // exit code says so to a script that reads no table.
+  const size_t failed = size_t(std::count_if(rows.begin(), rows.end(), [](const Row& row) {
+    return row.process && row.process->state == "failed";
+  }));
+  if (failed) {
+    std::fprintf(stderr, "cdbench: report: %zu sweep cell%s failed (see the status column)\n", failed,
+                 failed == 1 ? "" : "s");
+    rc = kExitFailure;
+  }
   // CSV has the same columns for any set of files (every phase this build knows, the check
   // columns, the options as one JSON cell), so scripts can concatenate and index tables;
   // Markdown, for reading, shows only the phases that ran and the options that differ.
@@ -225,75 +279,88 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   const bool hashes = csv || any([](const ResultsOverview& r) { return !r.input_hash.empty(); });
   const bool warnings = csv || any([](const ResultsOverview& r) { return !r.noise_warning.empty(); });
 
-  std::vector<std::string> header = {"file", "scene", "pipeline", "device"};
-  if (csv) header.insert(header.end(), {"label", "commit", "input_path", "input_hash"});
-  header.push_back("triangles");
-  for (const auto& o : options) header.push_back("--" + o);
-  header.insert(header.end(), {"frames", "mean_ms", "noise_%", "median_ms", "p95_ms"});
-  for (const auto& p : phases) header.push_back(p + "_ms");
-  header.push_back("pairs");
-  if (checked) header.insert(header.end(), {"recall_min", "precision_min", "contacts", "contact_precision"});
-  header.insert(header.end(), {"syncs", csv ? "peak_bytes" : "peak_MiB"});
+  // One list of columns drives the header, the cells and the Markdown alignment.
+  const double none = std::nan("");
+  const auto read = [](const Row& row) { return row.unreadable.empty() && !row.r.status.empty(); };
+  const auto stats = [](const Row& row) {
+    return row.unreadable.empty() && row.r.has_summary && row.r.measured_frames > 0;
+  };
+  const auto has_check = [&stats](const Row& row) { return stats(row) && row.r.checked_frames > 0; };
+  std::vector<Column> columns;
+  const auto text = [&columns](std::string name, CellOf cell) { columns.push_back({std::move(name), true, std::move(cell)}); };
+  const auto numeric = [&columns](std::string name, CellOf cell) {
+    columns.push_back({std::move(name), false, std::move(cell)});
+  };
+  text("file", [](const Row& row) { return row.r.path; });
+  text("scene", [](const Row& row) { return row.r.scene_label.empty() ? row.r.scene : row.r.scene_label; });
+  text("pipeline", [](const Row& row) { return row.r.pipeline; });
+  text("device", [](const Row& row) {
+    return row.r.device_name.empty() ? row.r.backend : row.r.backend + ": " + row.r.device_name;
+  });
   if (csv) {
-    header.insert(header.end(), {"noise_warning", "options_json"});
-  } else {
-    if (labels) header.push_back("label");
-    header.push_back("commit");
-    if (hashes) header.push_back("input");
-    if (warnings) header.push_back("warning");
+    text("label", [](const Row& row) { return row.r.label; });
+    text("commit", [](const Row& row) { return row.r.git_sha; });
+    text("input_path", [](const Row& row) { return row.r.input_path; });
+    text("input_hash", [](const Row& row) { return row.r.input_hash; });
   }
-  header.push_back("status");
-  // Left-aligned in Markdown: the leading names and options, and label to status at the end.
-  const size_t text_columns = 5 + options.size();
-  const size_t trailing_text = size_t(labels) + 1 + size_t(hashes) + size_t(warnings) + 1;
+  numeric("triangles", [&read](const Row& row) { return read(row) ? std::to_string(row.r.triangles) : ""; });
+  for (const auto& o : options)
+    text("--" + o, [&read, o](const Row& row) { return read(row) ? option_text(row.r.options, o) : ""; });
+  numeric("frames", [&read](const Row& row) { return read(row) ? std::to_string(row.r.frames_written) : ""; });
+  numeric("mean_ms", [&](const Row& row) { return number(stats(row) ? row.r.mean_ms : none); });
+  // The noise beside the time it qualifies: with one pass there is none to report.
+  numeric("noise_%", [&](const Row& row) {
+    return number(stats(row) && row.r.repeats > 1 ? 100.0 * row.r.noise_median : none, "%.1f");
+  });
+  numeric("median_ms", [&](const Row& row) { return number(stats(row) ? row.r.median_ms : none); });
+  numeric("p95_ms", [&](const Row& row) { return number(stats(row) ? row.r.p95_ms : none); });
+  for (const auto& p : phases)
+    numeric(p + "_ms", [&none, p](const Row& row) {
+      double mean = none;
+      for (const auto& [name, m] : row.r.phase_means)
+        if (name == p) mean = m;
+      return number(mean);
+    });
+  numeric("pairs", [&](const Row& row) { return number(stats(row) ? row.r.pairs_mean : none, "%.0f"); });
+  if (checked) {
+    numeric("recall_min", [&](const Row& row) { return number(has_check(row) ? row.r.recall_min : none, "%.6f"); });
+    numeric("precision_min",
+            [&](const Row& row) { return number(has_check(row) ? row.r.precision_min : none, "%.6f"); });
+    numeric("contacts", [&](const Row& row) { return has_check(row) ? std::to_string(row.r.contacts) : ""; });
+    numeric("contact_precision",
+            [&](const Row& row) { return number(has_check(row) ? row.r.contact_precision : none, "%.6f"); });
+  }
+  numeric("syncs", [&](const Row& row) { return number(stats(row) ? row.r.host_syncs_mean : none, "%.2f"); });
+  numeric(csv ? "peak_bytes" : "peak_MiB", [csv](const Row& row) {
+    return !row.r.has_summary ? ""
+           : csv              ? std::to_string(row.r.peak_bytes)
+                              : number(double(row.r.peak_bytes) / (1 << 20), "%.2f");
+  });
+  if (csv) {
+    text("noise_warning", [](const Row& row) { return row.r.noise_warning; });
+    text("options_json", [&read](const Row& row) {
+      if (!read(row)) return std::string();
+      nlohmann::json shown = nlohmann::json::object();
+      for (auto it = row.r.options.begin(); it != row.r.options.end(); ++it)
+        if (!shown_elsewhere(it.key())) shown[it.key()] = it.value();
+      return shown.dump();
+    });
+  } else {
+    if (labels) text("label", [](const Row& row) { return row.r.label; });
+    // Twelve digits of the commit (and -dirty) are as many as `git log` needs.
+    text("commit", [](const Row& row) { return row.r.git_sha; });
+    // The hash's first 8 digits tell inputs apart at a glance; CSV has all 16.
+    if (hashes) text("input", [](const Row& row) { return row.r.input_hash.substr(0, 8); });
+    if (warnings) text("warning", [](const Row& row) { return row.r.noise_warning.empty() ? "" : "noisy"; });
+  }
+  text("status", [csv](const Row& row) { return status_text(row, csv); });
 
+  std::vector<std::string> header;
+  for (const Column& c : columns) header.push_back(c.name);
   std::vector<std::vector<std::string>> table;
   for (const Row& row : rows) {
-    const ResultsOverview& r = row.r;
-    const bool read = row.unreadable.empty() && !r.status.empty();
-    std::vector<std::string> cells = {r.path, r.scene_label.empty() ? r.scene : r.scene_label, r.pipeline,
-                                      r.device_name.empty() ? r.backend : r.backend + ": " + r.device_name};
-    if (csv) cells.insert(cells.end(), {r.label, r.git_sha, r.input_path, r.input_hash});
-    cells.push_back(read ? std::to_string(r.triangles) : "");
-    for (const auto& o : options) cells.push_back(read ? option_text(r.options, o) : "");
-    cells.push_back(read ? std::to_string(r.frames_written) : "");
-    const bool stats = row.unreadable.empty() && r.has_summary && r.measured_frames > 0;
-    const double none = std::nan("");
-    cells.push_back(number(stats ? r.mean_ms : none));
-    // The noise beside the time it qualifies: with one pass there is none to report.
-    cells.push_back(number(stats && r.repeats > 1 ? 100.0 * r.noise_median : none, "%.1f"));
-    cells.push_back(number(stats ? r.median_ms : none));
-    cells.push_back(number(stats ? r.p95_ms : none));
-    for (const auto& p : phases) {
-      double mean = none;
-      for (const auto& [name, m] : r.phase_means)
-        if (name == p) mean = m;
-      cells.push_back(number(mean));
-    }
-    cells.push_back(number(stats ? r.pairs_mean : none, "%.0f"));
-    if (checked) {
-      const bool has_check = stats && r.checked_frames > 0;
-      cells.push_back(number(has_check ? r.recall_min : none, "%.6f"));
-      cells.push_back(number(has_check ? r.precision_min : none, "%.6f"));
-      cells.push_back(has_check ? std::to_string(r.contacts) : "");
-      cells.push_back(number(has_check ? r.contact_precision : none, "%.6f"));
-    }
-    cells.push_back(number(stats ? r.host_syncs_mean : none, "%.2f"));
-    cells.push_back(!r.has_summary ? "" : csv ? std::to_string(r.peak_bytes) : number(double(r.peak_bytes) / (1 << 20), "%.2f"));
-    if (csv) {
-      nlohmann::json shown = nlohmann::json::object();
-      for (auto it = r.options.begin(); it != r.options.end(); ++it)
-        if (!shown_elsewhere(it.key())) shown[it.key()] = it.value();
-      cells.insert(cells.end(), {r.noise_warning, read ? shown.dump() : ""});
-    } else {
-      if (labels) cells.push_back(r.label);
-      // Twelve digits of the commit (and -dirty) are as many as `git log` needs.
-      cells.push_back(r.git_sha);
-      // The hash's first 8 digits tell inputs apart at a glance; CSV has all 16.
-      if (hashes) cells.push_back(r.input_hash.substr(0, 8));
-      if (warnings) cells.push_back(r.noise_warning.empty() ? "" : "noisy");
-    }
-    cells.push_back(status_text(row, csv));
+    std::vector<std::string> cells;
+    for (const Column& c : columns) cells.push_back(c.cell(row));
     table.push_back(std::move(cells));
   }
 
@@ -320,9 +387,9 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     std::printf("%s\n", s.c_str());
   };
   line(header);
+  // Text left-aligned, numbers right-aligned.
   std::string rule = "|";
-  for (size_t i = 0; i < header.size(); ++i)
-    rule += (i < text_columns && i != 4) || i + trailing_text >= header.size() ? " --- |" : " ---: |";
+  for (const Column& c : columns) rule += c.text ? " --- |" : " ---: |";
   std::printf("%s\n", rule.c_str());
   for (const auto& cells : table) line(cells);
   return rc;

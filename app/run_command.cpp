@@ -1,4 +1,5 @@
 #include "run_command.h"
+#include "exit_codes.h"
 #include "number_checks.h"
 
 #include <unistd.h>
@@ -147,12 +148,12 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.device_name = gpu ? info.name : cpu_model() + " (" + std::to_string(omp_threads()) + " OpenMP threads)";
   run.driver_version = info.driver_version;
   run.runtime_version = info.runtime_version;
-  run.warmup = r.warmup;
+  run.warmup = r.loop.warmup;
   run.frame_first = range.first;
   run.frame_last = range.last;
   run.triangles = scene.source->topology().faces.size();
   run.vertices = scene.source->topology().num_vertices;
-  run.cold = r.cold;
+  run.cold = r.loop.cold;
   run.precision = box_precision_name(config.box_precision);
   run.contact_distance = double(float(r.contact_distance));
   run.contact_substeps = r.contact_substeps;
@@ -165,12 +166,12 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
                                      {"scenes_dir", scenes_dir(o.scenes_dir).string()},
                                      {"frame_first", range.first},
                                      {"frame_last", range.last},
-                                     {"warmup", r.warmup},
-                                     {"repeat", r.repeat},
-                                     {"max_noise", r.max_noise},
-                                     {"cold", r.cold},
-                                     {"contact_distance", double(float(r.contact_distance))},
-                                     {"contact_substeps", r.contact_substeps}}}}
+                                     {"warmup", run.warmup},
+                                     {"repeat", r.loop.repeat},
+                                     {"max_noise", r.loop.max_noise_pct},
+                                     {"cold", run.cold},
+                                     {"contact_distance", run.contact_distance},
+                                     {"contact_substeps", run.contact_substeps}}}}
                         .dump();
   return run;
 }
@@ -221,6 +222,16 @@ std::vector<bool> check_results_paths(const RunOptions& r, const std::vector<std
 
 }  // namespace
 
+void check_run_options(const CommonOptions& o, const RunOptions& r, const std::string& device) {
+  const std::vector<std::string> names = split_pipelines(r.pipeline);
+  contact_check(r, check_interval(r.check));
+  if (names.size() > 1 && !r.out.empty() && r.out.find("{pipeline}") == std::string::npos)
+    fail_usage("--out " + r.out + ": several pipelines need {pipeline} in the file name");
+  // Its form only: the scene, not loaded here, says how many frames there are.
+  parse_frame_range(o.frames, UINT32_MAX);
+  if (device == "cpu") make_pipelines(o, names, device);
+}
+
 CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
   auto* run = app.add_subcommand("run", "run pipelines on a scene and print timings");
   run->add_option("--pipeline", r.pipeline,
@@ -245,21 +256,21 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
                   "motion, both frames included) to count the contacts discrete boxes miss; a lower bound")
       ->group(kAccuracyGroup)
       ->capture_default_str();
-  run->add_option("--warmup", r.warmup, "frames left out of the summary statistics")
+  run->add_option("--warmup", r.loop.warmup, "frames left out of the summary statistics")
       ->group(kMeasurementGroup)
       ->capture_default_str();
-  run->add_option("--repeat", r.repeat,
+  run->add_option("--repeat", r.loop.repeat,
                   "passes over the frames, each from a fresh state; times are the per-frame mean, "
                   "with the relative standard deviation reported as noise; Ctrl-C keeps the finished passes")
       ->group(kMeasurementGroup)
       ->check(whole_in(1, UINT32_MAX))
       ->capture_default_str();
-  run->add_option("--max-noise", r.max_noise,
+  run->add_option("--max-noise", r.loop.max_noise_pct,
                   "stop repeating once the passes' mean frame times agree within this many percent (0: all passes)")
       ->group(kMeasurementGroup)
       ->check(finite_at_least(0))
       ->capture_default_str();
-  run->add_flag("--cold", r.cold, "flush the device's last-level cache before every frame (outside its timing)")
+  run->add_flag("--cold", r.loop.cold, "flush the device's last-level cache before every frame (outside its timing)")
       ->group(kMeasurementGroup);
   auto* out_option = run->add_option(
       "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced")
@@ -269,7 +280,7 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
                 "new file is NAME.incomplete beside it)")
       ->group(kOutputGroup)
       ->needs(out_option);
-  run->add_flag("--save-pairs", r.save_pairs, "also store each frame's sorted pairs in the results file")
+  run->add_flag("--save-pairs", r.loop.save_pairs, "also store each frame's sorted pairs in the results file")
       ->group(kOutputGroup)
       ->needs(out_option);
   run->add_option("--label", r.label,
@@ -297,10 +308,9 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   if (r.json) redirect.emplace();
   nlohmann::json runs = nlohmann::json::array();
   const std::string device = resolve_device(o.device);
+  check_run_options(o, r, "");
   const std::vector<std::string> names = split_pipelines(r.pipeline);
   const ContactCheck contact = contact_check(r, check_interval(r.check));
-  if (names.size() > 1 && !r.out.empty() && r.out.find("{pipeline}") == std::string::npos)
-    fail_usage("--out " + r.out + ": several pipelines need {pipeline} in the file name");
   std::vector<std::unique_ptr<Pipeline>> pipelines = make_pipelines(o, names, device);
   const std::vector<bool> existing = check_results_paths(r, names);
   print_environment(device);
@@ -322,7 +332,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   const std::string spacing_warning =
       range.last > range.first ? float_spacing_warning(*scene.source, range.first, fp64) : "";
   if (!spacing_warning.empty()) std::printf("warning: %s\n", spacing_warning.c_str());
-  const std::string short_warning = warmup_warning(range, r.warmup, o.frames);
+  const std::string short_warning = warmup_warning(range, r.loop.warmup, o.frames);
   if (!short_warning.empty()) std::printf("warning: %s\n", short_warning.c_str());
   // Measured once, before any frame: the yardstick of the bandwidth floor; and the cache
   // flush of --cold, allocated here rather than in the frame loop.
@@ -330,7 +340,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   const double copy_gbps = probe->copy_bandwidth_gbps();
   std::printf("copy bandwidth: %.0f GB/s (%s, measured; read + written)\n", copy_gbps, device.c_str());
   std::unique_ptr<FrameSource> cached;
-  if (names.size() > 1 || r.repeat > 1) cached = std::make_unique<CachedFrames>(*scene.source);
+  if (names.size() > 1 || r.loop.repeat > 1) cached = std::make_unique<CachedFrames>(*scene.source);
   // Above the cache: each frame is hashed once, as it is first loaded.
   const HashedFrames frames(cached ? *cached : *scene.source);
   interrupts.defer();
@@ -348,7 +358,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
       // Between pipelines: the next one's file is not made at all.
       std::fflush(stdout);
       std::fprintf(stderr, "cdbench: interrupted by %s before pipeline %s\n", signal_name(signal), name.c_str());
-      return 128 + signal;
+      return exit_for_signal(signal);
     }
     std::optional<ResultsFile> out;
     if (!one.out.empty()) {
@@ -357,16 +367,11 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
       info.precision_warning = spacing_warning;
       out.emplace(one.out, info, existing[p] ? ResultsFile::Placement::staged : ResultsFile::Placement::in_place);
     }
-    RunLoopOptions loop;
-    loop.warmup = r.warmup;
+    RunLoopOptions loop = r.loop;
     loop.frame_lines = !r.quiet;
     loop.list_growth = !r.quiet;
     loop.progress = Progress::mode_for(r.quiet);
-    loop.save_pairs = r.save_pairs;
     loop.check_every = check_interval(r.check);
-    loop.repeat = r.repeat;
-    loop.max_noise = r.max_noise / 100.0;
-    loop.cold = r.cold;
     loop.probe = probe.get();
     loop.copy_gbps = copy_gbps;
     loop.oracle = [&topo, &config](const std::vector<vec3d>& v) {
@@ -389,7 +394,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     redirect.reset();
     std::printf("%s\n", nlohmann::json{{"command", "run"}, {"runs", runs}}.dump(2).c_str());
   }
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace cdb

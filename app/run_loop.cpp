@@ -1,4 +1,5 @@
 #include "run_loop.h"
+#include "exit_codes.h"
 
 #include <cmath>
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include "core/pair_set.h"
 #include "geometry/position_rounding.h"
 #include "interrupt.h"
+#include "library_errors.h"
 #include "noise_check.h"
 #include "narrow/contacts.h"
 #include "pipeline/run_summary.h"
@@ -110,137 +112,200 @@ void tell_incomplete(const ResultsFile& out) {
     std::fprintf(stderr, "cdbench: %s left as it was (not replaced)\n", out.target().c_str());
 }
 
+// One run_frames call: the passes over the frames, the per-frame --check, the results
+// file and the console, as named steps over the state they share.
+class FrameLoop {
+ public:
+  FrameLoop(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
+            const InterruptScope& interrupts, const RunLoopOptions& options)
+      : pipeline_(pipeline),
+        source_(source),
+        range_(range),
+        out_(out),
+        interrupts_(interrupts),
+        options_(options),
+        frames_per_pass_(range.last - range.first),
+        progress_(frames_per_pass_ * options.repeat, options.progress),
+        f_(range.first) {}
+
+  // Every pass (--repeat), the last one recorded; stops between frames on a signal.
+  void run_passes() {
+    run_earlier_passes();
+    if (interrupts_.signal() && earlier_.count() > 0) {
+      keep_finished_passes();
+      return;
+    }
+    // Each pass starts from a fresh state, so every pass takes the same decisions.
+    if (earlier_.count() > 0) pipeline_.set_topology(source_.topology());
+    run_recording_pass();
+  }
+
+  // After an error: the file closed as incomplete, saying at which frame and why.
+  void abandon(const std::exception& e) {
+    progress_.finish();
+    if (!out_) return;
+    out_->abandon(summarize_run(frames_, options_.warmup), pipeline_.memory(),
+                  "frame " + std::to_string(f_) + ": " + error_text(e));
+    tell_incomplete(*out_);
+  }
+
+  // The summary and warnings; then the file finished, or closed as incomplete when a
+  // signal stopped the run (its exit code returned).
+  int finish(RunResult* result) {
+    progress_.finish();
+    print_summary(frames_, options_.warmup, pipeline_.memory(), options_.copy_gbps, options_.contact,
+                  options_.list_growth);
+    if (!options_.accuracy_warning.empty()) print_accuracy_warning(options_.accuracy_warning, frames_, options_.warmup);
+    if (const int signal = interrupts_.signal()) return stop_for(signal);
+    // After the summary it qualifies; stored so `compare` can flag the run.
+    RunFindings findings;
+    findings.noise_warning = noise_warning(measure_noise(frames_, options_.warmup));
+    if (!findings.noise_warning.empty()) std::printf("  warning     %s\n", findings.noise_warning.c_str());
+    if (options_.input_hash) findings.input_hash = options_.input_hash();
+    if (result) {
+      result->summary = summarize_run(frames_, options_.warmup);
+      result->memory = pipeline_.memory();
+      result->noise_warning = findings.noise_warning;
+      result->input_hash = findings.input_hash;
+    }
+    if (out_) finish_file(findings);
+    return kExitOk;
+  }
+
+ private:
+  FrameStats run_one(uint32_t frame) {
+    source_.positions(frame, positions_);
+    if (options_.cold) options_.probe->flush_caches();
+    FrameStats s = pipeline_.run_frame(positions_);
+    s.bytes_floor = frame_bytes_floor(source_.topology(), s.pairs);
+    progress_.update(++done_);
+    return s;
+  }
+
+  // --repeat: the passes before the recording one, timed only; fewer once --max-noise is
+  // met. A pass a signal cut short is dropped.
+  void run_earlier_passes() {
+    while (earlier_.count() + 1 < options_.repeat && !interrupts_.signal()) {
+      if (earlier_.count() > 0) pipeline_.set_topology(source_.topology());
+      earlier_.passes.emplace_back();
+      for (f_ = range_.first; f_ < range_.last && !interrupts_.signal(); ++f_)
+        earlier_.passes.back().push_back(run_one(f_));
+      if (earlier_.passes.back().size() < frames_per_pass_) break;
+      if (options_.max_noise_pct > 0 && earlier_.count() >= 2 &&
+          earlier_.noise_of_means(options_.warmup) < options_.max_noise_pct / 100.0)
+        break;
+    }
+    if (earlier_.count() > 0 && earlier_.passes.back().size() < frames_per_pass_) earlier_.passes.pop_back();
+  }
+
+  // Stopped before the recording pass: the finished passes are the result, the last of
+  // them recorded with the mean of all. --check and --save-pairs need the recording pass's
+  // pipeline state, so those frames have neither.
+  void keep_finished_passes() {
+    const std::vector<FrameStats> last = std::move(earlier_.passes.back());
+    earlier_.passes.pop_back();
+    kept_passes_ = uint32_t(earlier_.count() + 1);
+    for (size_t k = 0; k < last.size(); ++k) {
+      f_ = range_.first + uint32_t(k);
+      frames_.push_back(last[k]);
+      earlier_.merge_into(k, f_, frames_.back());
+      record(f_, false);
+    }
+  }
+
+  void run_recording_pass() {
+    for (f_ = range_.first; f_ < range_.last && !interrupts_.signal(); ++f_) {
+      frames_.push_back(run_one(f_));
+      earlier_.merge_into(frames_.size() - 1, f_, frames_.back());
+      if (options_.check_every) check(f_);
+      record(f_, options_.save_pairs);
+    }
+  }
+
+  // --check, after the timed frame. The pass's first frame has no previous one (its swept
+  // boxes are its own boxes), so its interval is the frame itself.
+  void check(uint32_t frame) {
+    if (frame == range_.first) contact_rounding_.restart();
+    contact_rounding_.round(positions_, vertices_);
+    if (frame == range_.first) previous_ = vertices_;
+    if ((frame - range_.first) % options_.check_every == 0)
+      check_frame_pairs(pipeline_, options_.oracle(positions_), *options_.faces, previous_, vertices_,
+                        options_.contact, frames_.back());
+    previous_ = vertices_;
+  }
+
+  // The last frame into the results file (its pairs too with `pairs`) and onto the console.
+  void record(uint32_t frame, bool pairs) {
+    if (out_) {
+      out_->append_frame(frame, frames_.back(), pipeline_.memory());
+      if (pairs) out_->write_pairs(frame, pipeline_.sorted_pairs());
+    }
+    if (options_.frame_lines) {
+      progress_.clear();
+      print_frame_line(frame, frames_.back());
+    }
+  }
+
+  int stop_for(int signal) {
+    const std::string why =
+        kept_passes_ ? std::string("interrupted by ") + signal_name(signal) + " after " +
+                           std::to_string(kept_passes_) + " of " + std::to_string(options_.repeat) +
+                           " passes (the finished passes kept)"
+                     : std::string("interrupted by ") + signal_name(signal) + " after " +
+                           std::to_string(frames_.size()) + " of " + std::to_string(frames_per_pass_) + " frames";
+    std::fflush(stdout);
+    std::fprintf(stderr, "cdbench: %s\n", why.c_str());
+    if (out_) {
+      out_->abandon(summarize_run(frames_, options_.warmup), pipeline_.memory(), why);
+      tell_incomplete(*out_);
+    }
+    return exit_for_signal(signal);
+  }
+
+  void finish_file(const RunFindings& findings) {
+    try {
+      out_->finish(summarize_run(frames_, options_.warmup), pipeline_.memory(), findings);
+    } catch (const std::exception&) {
+      tell_incomplete(*out_);  // e.g. the disk filled while the summary was written
+      throw;
+    }
+    std::printf("results: %s (%llu frames)\n", out_->path().c_str(), static_cast<unsigned long long>(out_->rows()));
+  }
+
+  Pipeline& pipeline_;
+  const FrameSource& source_;
+  const FrameRange range_;
+  ResultsFile* const out_;
+  const InterruptScope& interrupts_;
+  const RunLoopOptions& options_;
+  const uint32_t frames_per_pass_;
+  Progress progress_;
+  uint32_t done_ = 0;
+  std::vector<FrameStats> frames_;
+  std::vector<vec3d> positions_;
+  // --check's contacts: the frame (and the one before) rebased and rounded as fp64 rounds
+  // them, so exact float tests see the scene's geometry whatever the pipeline's precision.
+  PositionRounding contact_rounding_{true};
+  std::vector<vec3f> vertices_, previous_;
+  EarlierPasses earlier_;
+  uint32_t kept_passes_ = 0;  // --repeat stopped by a signal: the finished passes recorded
+  uint32_t f_;                // the frame under way, for the message of an error
+};
+
 }  // namespace
 
 int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
                const InterruptScope& interrupts, const RunLoopOptions& options, RunResult* result) {
   if (options.repeat == 0) fail("--repeat must be at least 1");
   if (options.cold && !options.probe) fail("--cold needs the device's cache flush");
-  const uint32_t frames_per_pass = range.last - range.first;
-  Progress progress(frames_per_pass * options.repeat, options.progress);
-  uint32_t done = 0;
-  std::vector<FrameStats> frames;
-  std::vector<vec3d> positions;
-  // --check's contacts: the frame (and the one before) rebased and rounded as fp64 rounds
-  // them, so exact float tests see the scene's geometry whatever the pipeline's precision.
-  PositionRounding contact_rounding(true);
-  std::vector<vec3f> vertices, previous;
-  EarlierPasses earlier;
-  uint32_t kept_passes = 0;  // --repeat stopped by a signal: the finished passes recorded
-  uint32_t f = range.first;
-  const auto run_one = [&](uint32_t frame) {
-    source.positions(frame, positions);
-    if (options.cold) options.probe->flush_caches();
-    FrameStats s = pipeline.run_frame(positions);
-    s.bytes_floor = frame_bytes_floor(source.topology(), s.pairs);
-    progress.update(++done);
-    return s;
-  };
+  FrameLoop loop(pipeline, source, range, out, interrupts, options);
   try {
-    // --repeat: passes before the recording one, timed only; each starts from a fresh
-    // state, so every pass takes the same decisions on the same frames.
-    while (earlier.count() + 1 < options.repeat && !interrupts.signal()) {
-      if (earlier.count() > 0) pipeline.set_topology(source.topology());
-      earlier.passes.emplace_back();
-      for (f = range.first; f < range.last && !interrupts.signal(); ++f)
-        earlier.passes.back().push_back(run_one(f));
-      if (earlier.passes.back().size() < frames_per_pass) break;
-      if (options.max_noise > 0 && earlier.count() >= 2 &&
-          earlier.noise_of_means(options.warmup) < options.max_noise)
-        break;
-    }
-    if (earlier.count() > 0 && earlier.passes.back().size() < frames_per_pass)
-      earlier.passes.pop_back();  // the pass a signal cut short
-    if (interrupts.signal() && earlier.count() > 0) {
-      // Stopped before the recording pass: the finished passes are the result, the last of
-      // them recorded with the mean of all. --check and --save-pairs need the recording
-      // pass's pipeline state, so those frames have neither.
-      const std::vector<FrameStats> last = std::move(earlier.passes.back());
-      earlier.passes.pop_back();
-      kept_passes = uint32_t(earlier.count() + 1);
-      for (size_t k = 0; k < last.size(); ++k) {
-        f = range.first + uint32_t(k);
-        frames.push_back(last[k]);
-        earlier.merge_into(k, f, frames.back());
-        if (out) out->append_frame(f, frames.back(), pipeline.memory());
-        if (options.frame_lines) {
-          progress.clear();
-          print_frame_line(f, frames.back());
-        }
-      }
-    } else if (earlier.count() > 0) {
-      pipeline.set_topology(source.topology());
-    }
-    for (f = range.first; f < range.last && !interrupts.signal() && !kept_passes; ++f) {
-      frames.push_back(run_one(f));
-      earlier.merge_into(frames.size() - 1, f, frames.back());
-      if (options.check_every) {
-        // After the timed frame. The pass's first frame has no previous one (its swept
-        // boxes are its own boxes), so its interval is the frame itself.
-        if (f == range.first) contact_rounding.restart();
-        contact_rounding.round(positions, vertices);
-        if (f == range.first) previous = vertices;
-        if ((f - range.first) % options.check_every == 0)
-          check_frame_pairs(pipeline, options.oracle(positions), *options.faces, previous, vertices, options.contact,
-                            frames.back());
-        previous = vertices;
-      }
-      if (out) {
-        out->append_frame(f, frames.back(), pipeline.memory());
-        if (options.save_pairs) out->write_pairs(f, pipeline.sorted_pairs());
-      }
-      if (options.frame_lines) {
-        progress.clear();
-        print_frame_line(f, frames.back());
-      }
-    }
+    loop.run_passes();
   } catch (const std::exception& e) {
-    progress.finish();
-    if (out)
-      out->abandon(summarize_run(frames, options.warmup), pipeline.memory(),
-                   "frame " + std::to_string(f) + ": " + e.what());
-    if (out) tell_incomplete(*out);
+    loop.abandon(e);
     throw;
   }
-  progress.finish();
-  print_summary(frames, options.warmup, pipeline.memory(), options.copy_gbps, options.contact, options.list_growth);
-  if (!options.accuracy_warning.empty()) print_accuracy_warning(options.accuracy_warning, frames, options.warmup);
-  if (const int signal = interrupts.signal()) {
-    const std::string why =
-        kept_passes ? std::string("interrupted by ") + signal_name(signal) + " after " +
-                          std::to_string(kept_passes) + " of " + std::to_string(options.repeat) +
-                          " passes (the finished passes kept)"
-                    : std::string("interrupted by ") + signal_name(signal) + " after " +
-                          std::to_string(frames.size()) + " of " + std::to_string(frames_per_pass) + " frames";
-    std::fflush(stdout);
-    std::fprintf(stderr, "cdbench: %s\n", why.c_str());
-    if (out) {
-      out->abandon(summarize_run(frames, options.warmup), pipeline.memory(), why);
-      tell_incomplete(*out);
-    }
-    return 128 + signal;
-  }
-  // After the summary it qualifies; stored so `compare` can flag the run.
-  RunFindings findings;
-  findings.noise_warning = noise_warning(measure_noise(frames, options.warmup));
-  if (!findings.noise_warning.empty()) std::printf("  warning     %s\n", findings.noise_warning.c_str());
-  if (options.input_hash) findings.input_hash = options.input_hash();
-  if (result) {
-    result->summary = summarize_run(frames, options.warmup);
-    result->memory = pipeline.memory();
-    result->noise_warning = findings.noise_warning;
-    result->input_hash = findings.input_hash;
-  }
-  if (out) {
-    try {
-      out->finish(summarize_run(frames, options.warmup), pipeline.memory(), findings);
-    } catch (const std::exception&) {
-      tell_incomplete(*out);  // e.g. the disk filled while the summary was written
-      throw;
-    }
-    std::printf("results: %s (%llu frames)\n", out->path().c_str(), static_cast<unsigned long long>(out->rows()));
-  }
-  return 0;
+  return loop.finish(result);
 }
 
 }  // namespace cdb

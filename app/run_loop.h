@@ -18,25 +18,28 @@
 
 namespace cdb {
 
+// The run command binds its options --warmup, --save-pairs, --repeat, --max-noise and
+// --cold straight into this struct (run_command.h); the rest is set per pipeline.
 struct RunLoopOptions {
   uint32_t warmup = 1;
+  bool save_pairs = false;  // each frame's sorted pairs into the results file
+  // --repeat: at most this many passes over the frames, each from a fresh pipeline state;
+  // the last records, its times the mean over all passes with their noise beside them.
+  uint32_t repeat = 1;
+  // --max-noise, in percent: fewer passes once the passes' mean frame times agree within
+  // this relative standard deviation (0: always `repeat` passes).
+  double max_noise_pct = 0.0;
+  // --cold: caches flushed through `probe` before every frame (outside its timing).
+  bool cold = false;
+
   bool frame_lines = true;  // one line per frame on stdout
   bool list_growth = true;  // the summary names each buffer that grew (--quiet: only their count)
   Progress::Mode progress = Progress::Mode::off;
-  bool save_pairs = false;  // each frame's sorted pairs into the results file
   // --check: compare every check_every-th frame (0: none) with `oracle`'s pairs for the
   // same positions in double (the scene's geometry, not the pipeline's floats), outside the
   // timed frame.
   uint32_t check_every = 0;
   std::function<std::vector<PrimPair>(const std::vector<vec3d>&)> oracle;
-  // --repeat: at most this many passes over the frames, each from a fresh pipeline state;
-  // the last records, its times the mean over all passes with their noise beside them.
-  uint32_t repeat = 1;
-  // --max-noise: fewer passes once the passes' mean frame times agree within this relative
-  // standard deviation (0: always `repeat` passes).
-  double max_noise = 0.0;
-  // --cold: caches flushed through `probe` before every frame (outside its timing).
-  bool cold = false;
   DeviceProbe* probe = nullptr;
   // The device's measured copy bandwidth, for the bandwidth floor in the summary (0: none).
   double copy_gbps = 0.0;

@@ -2,15 +2,42 @@
 #include "number_checks.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <vector>
 
 #include "core/error.h"
+#include "exit_codes.h"
+#include "options.h"
 #include "pipeline/pipeline.h"
+#include "run_command.h"
 #include "sweep_plan.h"
 #include "sweep_runner.h"
 
 namespace cdb {
+namespace {
+
+// The error `cdbench run` would stop the cell with before loading its scene: its command
+// line parsed by the run command's own definition, then run's own checks; "" when none.
+std::string cell_option_error(const std::vector<std::string>& args) {
+  CLI::App app;
+  CommonOptions o;
+  RunOptions r;
+  add_run_command(app, o, r);
+  // CLI11 takes the arguments last first.
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  try {
+    app.parse(reversed);
+    check_run_options(o, r, o.device);
+  } catch (const CLI::ParseError& e) {
+    return e.what();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
 
 CLI::App* add_sweep_command(CLI::App& app, SweepOptions& w) {
   auto* sweep = app.add_subcommand("sweep", "run the cells of a sweep file, one process each (docs/sweeps.md)");
@@ -37,12 +64,30 @@ int sweep_command(const SweepOptions& w, const CLI::App& run) {
       fail_usage(e.what());
     }
   }();
+  std::error_code ec;
+  if (std::filesystem::exists(w.out_dir, ec) && !std::filesystem::is_directory(w.out_dir, ec))
+    fail_usage("--out " + w.out_dir + ": not a directory; name a directory for the cells' results, logs and status");
   SweepRunOptions options;
   options.out_dir = w.out_dir;
   options.scenes_dir = w.scenes_dir.empty() ? "" : std::filesystem::absolute(w.scenes_dir).string();
+  std::vector<std::string> errors;
+  size_t invalid = 0;
+  for (const SweepCell& c : plan.cells) {
+    errors.push_back(cell_option_error(cell_run_args(plan, c, options.out_dir, options.scenes_dir)));
+    invalid += !errors.back().empty();
+  }
   if (w.dry_run) {
-    list_cells(plan, options);
-    return 0;
+    list_cells(plan, options, errors);
+    return invalid ? kExitUsage : kExitOk;
+  }
+  if (invalid) {
+    for (size_t i = 0; i < plan.cells.size(); ++i)
+      if (!errors[i].empty())
+        std::fprintf(stderr, "cdbench: error: %s: cell %s: %s\n", w.file.c_str(), plan.cells[i].name.c_str(),
+                     errors[i].c_str());
+    std::fprintf(stderr, "cdbench: %zu of %zu cells have options run refuses; nothing was run\n", invalid,
+                 plan.cells.size());
+    return kExitUsage;
   }
   if (!w.slurm.script.empty()) return slurm_script_command(plan, options, w.slurm);
   const int gpus = w.gpus > 0 ? w.gpus : cuda_device_info().device_count;

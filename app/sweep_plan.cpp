@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "io/descriptor_object.h"
 
 namespace cdb {
 namespace {
@@ -141,12 +142,7 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
   const std::string& at = plan.file;
   std::ifstream in(file);
   if (!in) fail(at + ": cannot open sweep file");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    fail(at + ": malformed JSON: " + e.what());
-  }
+  const json j = parse_json_file(in, at);
   if (!j.is_object()) fail(at + ": must be a JSON object");
   for (auto it = j.begin(); it != j.end(); ++it) {
     static const std::vector<std::string> keys = {"description", "scenes", "pipelines", "devices",

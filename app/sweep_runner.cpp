@@ -1,4 +1,6 @@
 #include "sweep_runner.h"
+#include "damaged_file_guard.h"
+#include "exit_codes.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -120,18 +122,22 @@ bool cell_complete(const fs::path& out_dir, const SweepCell& cell) {
   const fs::path file = cell_results_file(out_dir, cell);
   if (!fs::exists(file)) return false;
   try {
+    const DamagedFileGuard guard("sweep", file.string());
     return read_results_overview(file).status == "complete";
   } catch (const std::exception&) {
     return false;
   }
 }
 
-void list_cells(const SweepPlan& plan, const SweepRunOptions& options) {
-  size_t complete = 0;
+void list_cells(const SweepPlan& plan, const SweepRunOptions& options, const std::vector<std::string>& option_errors) {
+  size_t complete = 0, invalid = 0;
   for (size_t i = 0; i < plan.cells.size(); ++i) {
     const SweepCell& c = plan.cells[i];
     std::string state = "to run";
-    if (cell_complete(options.out_dir, c)) {
+    if (i < option_errors.size() && !option_errors[i].empty()) {
+      state = "INVALID: " + option_errors[i];
+      ++invalid;
+    } else if (cell_complete(options.out_dir, c)) {
       state = "complete (skipped)";
       ++complete;
     } else if (const auto s = read_cell_status(cell_status_file(options.out_dir, c.name)); s && s->state != "complete") {
@@ -141,8 +147,10 @@ void list_cells(const SweepPlan& plan, const SweepRunOptions& options) {
     std::printf("%3zu  %s  %s\n     cdbench %s\n", i, c.name.c_str(), state.c_str(),
                 shell_line(cell_run_args(plan, c, options.out_dir, options.scenes_dir)).c_str());
   }
-  std::printf("sweep %s: %zu cells, %zu complete, %zu to run\n", plan.file.c_str(), plan.cells.size(), complete,
-              plan.cells.size() - complete);
+  std::printf("sweep %s: %zu cells, %zu complete, %zu to run", plan.file.c_str(), plan.cells.size(), complete,
+              plan.cells.size() - complete - invalid);
+  if (invalid) std::printf(", %zu invalid (run refuses their options)", invalid);
+  std::printf("\n");
 }
 
 int run_sweep(const SweepPlan& plan, const SweepRunOptions& options) {
@@ -247,8 +255,8 @@ int run_sweep(const SweepPlan& plan, const SweepRunOptions& options) {
   std::printf("sweep: %zu run, %zu complete, %zu failed%s; results in %s\n", done, done - failed, failed,
               stopped_by ? ", stopped early" : "", dir.string().c_str());
   sweep_log << utc_now() << " end: " << done << " run, " << failed << " failed" << std::endl;
-  if (stopped_by) return 128 + stopped_by;
-  return failed ? 1 : 0;
+  if (stopped_by) return exit_for_signal(stopped_by);
+  return failed ? kExitFailure : kExitOk;
 }
 
 }  // namespace cdb

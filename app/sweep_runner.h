@@ -4,6 +4,7 @@
 // array of them: slurm_script.h.)
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "cell_status.h"
 #include "sweep_plan.h"
@@ -24,8 +25,9 @@ bool cell_complete(const std::filesystem::path& out_dir, const SweepCell& cell);
 // still to be set.
 CellStatus status_of(const SweepPlan& plan, const SweepCell& cell, const SweepRunOptions& options);
 
-// --dry-run: every cell with its state and command line.
-void list_cells(const SweepPlan& plan, const SweepRunOptions& options);
+// --dry-run: every cell with its state and command line. `option_errors`: per cell, the
+// error its run would stop with before loading the scene ("" for none), listed as INVALID.
+void list_cells(const SweepPlan& plan, const SweepRunOptions& options, const std::vector<std::string>& option_errors);
 
 // Runs the cells not yet complete. Returns 0 when every cell is complete, 1 when some
 // failed, 128 + signal when SIGINT/SIGTERM stopped the sweep (running cells are passed the

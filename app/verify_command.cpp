@@ -1,4 +1,5 @@
 #include "verify_command.h"
+#include "exit_codes.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -209,7 +210,7 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
                         : pairs_check ? "all pipelines and the pairs match the oracle"
                                       : "all pipelines match the oracle";
   std::printf("verify: %s\n", ok ? matched : "FAILED");
-  return ok ? 0 : 1;
+  return ok ? kExitOk : kExitFailure;
 }
 
 }  // namespace cdb

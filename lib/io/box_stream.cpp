@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
@@ -112,6 +113,13 @@ void read_box_frame(const std::filesystem::path& file, uint32_t frame, std::vect
       if (!std::isfinite(c[a]))
         fail(where + ", box " + std::to_string(b) + ": " + kFieldNames[a] + " is " + number_text(c[a]) +
              " (coordinates must be finite)");
+    // The pipelines hold boxes in float: past +-FLT_MAX a corner rounds to infinity, which
+    // was found only after frame 0 ran; refused here, before any frame is timed.
+    for (int a = 0; a < 6; ++a)
+      if (std::fabs(c[a]) > double(std::numeric_limits<float>::max()))
+        fail(where + ", box " + std::to_string(b) + ": " + kFieldNames[a] + " is " + number_text(c[a]) +
+             ", beyond float range (magnitudes up to " + number_text(double(std::numeric_limits<float>::max())) +
+             "): boxes are computed in float; scale the boxes down or move them nearer the origin");
     for (int a = 0; a < 3; ++a)
       if (c[a] > c[a + 3])
         fail(where + ", box " + std::to_string(b) + ": " + kFieldNames[a] + " " + number_text(c[a]) + " > " +
@@ -124,12 +132,7 @@ namespace {
 class BoxStream final : public FrameSource {
  public:
   explicit BoxStream(const std::filesystem::path& dir) : dir_(dir) {
-    if (!std::filesystem::is_directory(dir)) fail(dir.string() + ": not a directory");
-    for (const auto& e : std::filesystem::directory_iterator(dir))
-      if (e.is_regular_file() && is_box_frame_file(e.path())) files_.push_back(e.path());
-    std::sort(files_.begin(), files_.end(), [](const std::filesystem::path& a, const std::filesystem::path& b) {
-      return natural_less(a.filename().native(), b.filename().native());
-    });
+    files_ = frame_files(dir, is_box_frame_file);
     if (files_.empty()) fail(dir.string() + ": no box frames (.boxes, .boxes64, .npy) in this directory");
     for (const auto& f : files_)
       if (lower_extension(f) != lower_extension(files_[0]))

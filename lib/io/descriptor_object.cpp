@@ -1,5 +1,6 @@
 #include "io/descriptor_object.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -72,7 +73,8 @@ double DescriptorObject::number(const char* key, double fallback) const {
 
 double DescriptorObject::positive(const char* key, double fallback) const {
   const double v = number(key, fallback);
-  if (!(v > 0)) fail(at(key) + ": must be a positive number");
+  // 1e-320 is positive, but a rate's reciprocal (a time step) overflows to infinity.
+  if (!(v > 0) || !std::isfinite(1 / v)) fail(at(key) + ": must be a positive number (at least 1e-300)");
   return v;
 }
 
@@ -105,6 +107,76 @@ std::filesystem::path DescriptorObject::existing_file(const char* key,
   if (file.is_relative()) file = descriptor_dir / file;
   if (!std::filesystem::exists(file)) fail(at(key) + ": " + file.string() + ": no such file" + package_hint(file));
   return file;
+}
+
+namespace {
+
+// The containers the parser is inside of, outermost first, so a duplicate key can be
+// named by its path ("/parts/1/motion").
+struct JsonLevel {
+  bool object = false;
+  std::vector<std::string> keys;  // seen in this object so far
+  size_t index = 0;               // elements of this array so far
+};
+
+std::string json_path(const std::vector<JsonLevel>& levels) {
+  std::string path;
+  for (size_t i = 0; i + 1 < levels.size(); ++i)
+    path += "/" + (levels[i].object ? levels[i].keys.back() : std::to_string(levels[i].index));
+  return path.empty() ? "/" : path;
+}
+
+}  // namespace
+
+nlohmann::json parse_json_file(std::istream& in, const std::string& where) {
+  using nlohmann::json;
+  std::vector<JsonLevel> levels;
+  std::string duplicate;
+  const auto element_done = [&levels] {
+    if (!levels.empty() && !levels.back().object) ++levels.back().index;
+  };
+  const json::parser_callback_t callback = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: levels.push_back({true, {}, 0}); break;
+      case json::parse_event_t::array_start: levels.push_back({false, {}, 0}); break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        levels.pop_back();
+        element_done();
+        break;
+      case json::parse_event_t::key: {
+        const std::string key = parsed.get<std::string>();
+        std::vector<std::string>& keys = levels.back().keys;
+        if (duplicate.empty() && std::find(keys.begin(), keys.end(), key) != keys.end()) {
+          levels.back().keys.push_back(key);
+          duplicate = "key \"" + key + "\" appears twice in the object at " + json_path(levels) +
+                      " (JSON readers keep only one of the two): remove one";
+        }
+        keys.push_back(key);
+        break;
+      }
+      case json::parse_event_t::value: element_done(); break;
+    }
+    return true;
+  };
+  json j;
+  try {
+    j = json::parse(in, callback);
+  } catch (const json::parse_error& e) {
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error
+    // while parsing object - ..." without the bracketed code.
+    const std::string what = e.what();
+    const size_t close = what.find("] ");
+    fail(where + ": malformed JSON: " + (close == std::string::npos ? what : what.substr(close + 2)));
+  } catch (const json::exception& e) {
+    // 406: a number beyond double's range ("1e400").
+    const std::string what = e.what();
+    const size_t close = what.find("] ");
+    fail(where + ": malformed JSON: " + (close == std::string::npos ? what : what.substr(close + 2)) +
+         (e.id == 406 ? " (beyond the range of a double, about 1.8e308)" : ""));
+  }
+  if (!duplicate.empty()) fail(where + ": " + duplicate);
+  return j;
 }
 
 }  // namespace cdb

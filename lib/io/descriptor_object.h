@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,12 @@ class DescriptorObject {
   const nlohmann::json& j_;
   std::string where_;
 };
+
+// Parses a JSON document for a file the user writes (a scene descriptor, a sweep file),
+// `where` naming it. Refuses, in words rather than the parser's own text: malformed JSON
+// (with line and column), text that is not UTF-8, and a key given twice in one object
+// (a parser keeps one of the two silently), naming the key and its JSON path.
+nlohmann::json parse_json_file(std::istream& in, const std::string& where);
 
 // Where a missing file under `file`'s directory comes from: " (it ships with the Debian
 // package P: run scripts/install-deps.sh --flag)", or "" for files no package provides.

@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "core/build_info.h"
+#include "core/content_hash.h"
 #include "core/error.h"
 #include "io/archive_cache.h"
 
@@ -39,13 +40,23 @@ std::string binary_identity() {
   return id;
 }
 
-// 02: positions in double (01 held floats).
-constexpr char kMagic[8] = {'c', 'd', 'b', 'f', 'r', 'm', '0', '2'};
+// 03: a checksum of the positions (02 had none, 01 held floats).
+constexpr char kMagic[8] = {'c', 'd', 'b', 'f', 'r', 'm', '0', '3'};
 
 struct FrameHeader {
   char magic[8];
   uint32_t frame, num_vertices;
+  // ContentHash of the positions' bytes: a file overwritten with other finite numbers (a
+  // copy from another scene, a disk fault) reads whole and finite, and only this tells.
+  uint64_t checksum;
 };
+static_assert(sizeof(FrameHeader) == 24, "the header is written as raw bytes");
+
+uint64_t positions_checksum(const std::vector<vec3d>& v) {
+  ContentHash h;
+  h.add_bytes(v.data(), v.size() * sizeof(vec3d));
+  return h.value();
+}
 
 class DiskCachedFrames final : public FrameSource {
  public:
@@ -57,26 +68,33 @@ class DiskCachedFrames final : public FrameSource {
 
   void positions(uint32_t k, std::vector<vec3d>& out) const override {
     const std::filesystem::path file = dir_ / ("frame_" + std::to_string(k) + ".f64");
-    if (read(file, k, out)) return;
+    const std::string why = read(file, k, out);
+    if (why.empty()) return;
+    if (why != kAbsent)
+      std::fprintf(stderr, "cdbench: cached frame %s %s; simulating the frame again\n", file.c_str(), why.c_str());
     source_->positions(k, out);
     write(file, k, out);
   }
 
  private:
-  bool read(const std::filesystem::path& file, uint32_t k, std::vector<vec3d>& out) const {
+  static constexpr const char* kAbsent = "absent";
+
+  // "" when `file` holds frame k whole and unchanged, else why not (kAbsent: no file yet).
+  std::string read(const std::filesystem::path& file, uint32_t k, std::vector<vec3d>& out) const {
     std::ifstream in(file, std::ios::binary);
-    if (!in) return false;
+    if (!in) return kAbsent;
     FrameHeader h{};
     const uint32_t n = topology().num_vertices;
-    if (!in.read(reinterpret_cast<char*>(&h), sizeof h) || std::string(h.magic, 8) != std::string(kMagic, 8) ||
-        h.frame != k || h.num_vertices != n)
-      return false;
+    if (!in.read(reinterpret_cast<char*>(&h), sizeof h) || std::string(h.magic, 8) != std::string(kMagic, 8))
+      return "is not a frame file of this version";
+    if (h.frame != k || h.num_vertices != n) return "holds another frame or vertex count";
     out.resize(n);
     if (!in.read(reinterpret_cast<char*>(out.data()), std::streamsize(n * sizeof(vec3d))) || in.peek() != EOF)
-      return false;
+      return "has another size than its header says";
+    if (positions_checksum(out) != h.checksum) return "does not match its checksum (changed since it was written)";
     for (const vec3d& p : out)
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
-    return true;
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return "holds a non-finite position";
+    return {};
   }
 
   // Best effort: a cache that cannot be written costs time, never a result.
@@ -90,6 +108,7 @@ class DiskCachedFrames final : public FrameSource {
       std::copy(kMagic, kMagic + 8, h.magic);
       h.frame = k;
       h.num_vertices = uint32_t(v.size());
+      h.checksum = positions_checksum(v);
       os.write(reinterpret_cast<const char*>(&h), sizeof h);
       os.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(vec3d)));
       if (!os) {

@@ -2,8 +2,9 @@
 // Frames of procedural scenes kept on disk after their first simulation, so the many
 // processes of a sweep (one per cell) simulate a scene once instead of once per cell. A
 // frame is one file, written to a temporary name and renamed, so concurrent cells and
-// interrupted runs never leave a half-written frame behind; a file that does not read back
-// whole and finite is simulated again.
+// interrupted runs never leave a half-written frame behind. Each file carries a checksum of
+// its positions: a file that does not read back whole, finite and matching it is simulated
+// again, with a line on stderr naming the file.
 #include <filesystem>
 #include <memory>
 #include <string>

@@ -1,5 +1,10 @@
 #include "io/natural_order.h"
 
+#include <algorithm>
+#include <system_error>
+
+#include "core/error.h"
+
 namespace cdb {
 namespace {
 
@@ -31,6 +36,38 @@ bool natural_less(std::string_view a, std::string_view b) {
   }
   if (i < a.size() || j < b.size()) return j < b.size();  // a prefix comes first
   return a < b;
+}
+
+std::vector<std::filesystem::path> frame_files(const std::filesystem::path& dir,
+                                               const std::function<bool(const std::filesystem::path&)>& is_frame) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto status = fs::status(dir, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory) fail(dir.string() + ": " + ec.message());
+  if (!fs::is_directory(status)) fail(dir.string() + ": not a directory");
+  std::vector<fs::path> files;
+  fs::directory_iterator it(dir, ec);
+  for (; !ec && it != fs::directory_iterator(); it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (!is_frame(p)) continue;
+    std::error_code sec;
+    const auto target = fs::status(p, sec);
+    if (sec || !fs::exists(target)) {
+      std::error_code lec;
+      const fs::path to = fs::read_symlink(p, lec);
+      const std::string reason = sec && sec != std::errc::no_such_file_or_directory
+                                     ? sec.message()
+                                     : "it leads to " + (lec ? std::string("nothing") : to.string()) + ", which does not exist";
+      fail(p.string() + ": this frame is a link that leads nowhere (" + reason +
+           "); restore the file it points to, or remove the link");
+    }
+    if (fs::is_regular_file(target)) files.push_back(p);
+  }
+  if (ec) fail(dir.string() + ": cannot list the directory: " + ec.message());
+  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
+    return natural_less(a.filename().native(), b.filename().native());
+  });
+  return files;
 }
 
 }  // namespace cdb

@@ -7,6 +7,7 @@
 // such as -2.13448675e-05). Vertices are kept as the file lists them (no per-corner duplication),
 // faces in file order; polygons become fans (0, k, k+1) and are counted for the caller.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -16,8 +17,11 @@
 namespace cdb {
 
 // Returns the number of polygon faces (more than 3 corners) that were triangulated. Throws
-// naming the file and line on a malformed vertex, a face with fewer than 3 corners or an
-// index out of range (negative indices count back from the last vertex, as OBJ defines).
-size_t read_obj_file(const std::filesystem::path& file, Topology& topology, std::vector<vec3d>& positions);
+// naming the file, the frame (when `frame` >= 0) and the line on a malformed vertex (a
+// coordinate that is not a number, trailing text that is not), a NaN or Inf coordinate,
+// one beyond float range, a face with fewer than 3 corners, a malformed corner or an index
+// out of range (negative indices count back from the last vertex, as OBJ defines).
+size_t read_obj_file(const std::filesystem::path& file, Topology& topology, std::vector<vec3d>& positions,
+                     int64_t frame = -1);
 
 }  // namespace cdb

@@ -15,11 +15,13 @@
 namespace cdb {
 
 size_t read_mesh_file(const std::filesystem::path& file, Topology& topology,
-                      std::vector<vec3d>& positions) {
-  if (!std::filesystem::is_regular_file(file)) fail(file.string() + ": no such file");
+                      std::vector<vec3d>& positions, int64_t frame) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    fail(file.string() + ": " + (ec ? ec.message() : std::string("no such file")));
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  if (ext == ".obj") return read_obj_file(file, topology, positions);
+  if (ext == ".obj") return read_obj_file(file, topology, positions, frame);
   Assimp::Importer importer;
   // Read as is, count the polygons, then triangulate them only: no vertex joining, no
   // degenerate removal, no reordering, so the file's faces keep their order.
@@ -56,18 +58,14 @@ namespace {
 class MeshSequence final : public FrameSource {
  public:
   explicit MeshSequence(const std::filesystem::path& dir) : dir_(dir) {
-    if (!std::filesystem::is_directory(dir)) fail(dir.string() + ": not a directory");
-    for (const auto& e : std::filesystem::directory_iterator(dir)) {
-      std::string ext = e.path().extension().string();
+    files_ = frame_files(dir, [](const std::filesystem::path& p) {
+      std::string ext = p.extension().string();
       std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-      if (e.is_regular_file() && ext == ".obj") files_.push_back(e.path());
-    }
-    std::sort(files_.begin(), files_.end(), [](const std::filesystem::path& a, const std::filesystem::path& b) {
-      return natural_less(a.filename().native(), b.filename().native());
+      return ext == ".obj";
     });
     if (files_.empty()) fail(dir.string() + ": no .obj frames in this directory");
     std::vector<vec3d> positions;
-    const size_t polygons = read_mesh_file(files_[0], topology_, positions);
+    const size_t polygons = read_mesh_file(files_[0], topology_, positions, 0);
     if (polygons)
       std::fprintf(stderr, "cdbench: %s: %zu polygon faces triangulated (%zu triangles in all)\n",
                    files_[0].string().c_str(), polygons, topology_.faces.size());
@@ -81,7 +79,7 @@ class MeshSequence final : public FrameSource {
   uint32_t num_frames() const override { return uint32_t(files_.size()); }
   void positions(uint32_t k, std::vector<vec3d>& out) const override {
     Topology t;
-    read_mesh_file(files_.at(k), t, out);
+    read_mesh_file(files_.at(k), t, out, k);
     const std::string where = files_[k].string();
     if (t.faces.size() != topology_.faces.size())
       fail(where + ": frame " + std::to_string(k) + " has " + std::to_string(t.faces.size()) +

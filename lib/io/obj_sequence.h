@@ -3,6 +3,7 @@
 // io/natural_order.h), read by io/obj_reader.h. Frame 0 fixes the topology; every later
 // frame must match it (the same faces, vertex count) and be finite, which is checked for all
 // frames when the directory is opened.
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -16,8 +17,8 @@ std::unique_ptr<FrameSource> open_mesh_sequence(const std::filesystem::path& dir
 
 // Reads one mesh file: all its meshes' triangles in file order, no vertex merging, no
 // dropping of degenerate faces; polygons are triangulated (their count is returned, so the
-// caller can say so). Throws naming the file on any failure.
+// caller can say so). Throws naming the file (and `frame`, when >= 0) on any failure.
 size_t read_mesh_file(const std::filesystem::path& file, Topology& topology,
-                      std::vector<vec3d>& positions);
+                      std::vector<vec3d>& positions, int64_t frame = -1);
 
 }  // namespace cdb

@@ -99,6 +99,10 @@ void ResultsFile::create(const RunInfo& info) {
   // Strong close degree: closing the file closes every object still open in it.
   h5::Handle fapl = own(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, where_, "create file access properties");
   check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), where_, "set close degree");
+  // The 1.8 format on: its superblock and object headers carry checksums, so a damaged
+  // file is refused by the reader rather than followed into a crash or an endless loop
+  // (tests/test_input_mutations.cpp found both with the 1.0 format's unchecked metadata).
+  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST), where_, "set format version");
   file_ = own(H5Fcreate(where_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose, where_,
               "create results file");
 

@@ -16,6 +16,7 @@
 #include "io/composed_scene.h"
 #include "io/descriptor_object.h"
 #include "io/frame_cache.h"
+#include "io/natural_order.h"
 #include "io/keyframe_mesh.h"
 #include "io/obj_sequence.h"
 #include "io/placed_scene.h"
@@ -233,14 +234,14 @@ std::unique_ptr<FrameSource> open_crowd(const DescriptorObject& c, const std::fi
 // (io/obj_sequence.h), told apart by the files' extensions; a directory of both is refused
 // rather than read as either, which would silently drop the other's files.
 std::unique_ptr<FrameSource> open_frame_directory(const std::filesystem::path& dir) {
-  std::filesystem::path box_file, mesh_file;
-  for (const auto& e : std::filesystem::directory_iterator(dir)) {
-    if (!e.is_regular_file()) continue;
-    std::string ext = e.path().extension().string();
+  const auto box_files = frame_files(dir, is_box_frame_file);
+  const auto mesh_files = frame_files(dir, [](const std::filesystem::path& p) {
+    std::string ext = p.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-    if (is_box_frame_file(e.path())) box_file = e.path();
-    else if (ext == ".obj") mesh_file = e.path();
-  }
+    return ext == ".obj";
+  });
+  const std::filesystem::path box_file = box_files.empty() ? "" : box_files.back();
+  const std::filesystem::path mesh_file = mesh_files.empty() ? "" : mesh_files.back();
   if (!box_file.empty() && !mesh_file.empty())
     fail(dir.string() + ": mixes box frames (" + box_file.filename().string() + ") and mesh frames (" +
          mesh_file.filename().string() + "): a frame directory holds one kind");
@@ -399,12 +400,7 @@ std::unique_ptr<FrameSource> open_parts(const DescriptorObject& root, const std:
 Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& overrides) {
   std::ifstream in(file);
   if (!in) fail(file.string() + ": cannot open scene descriptor");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    fail(file.string() + ": malformed JSON: " + e.what());
-  }
+  const nlohmann::json j = parse_json_file(in, file.string());
   if (!j.is_object()) fail(file.string() + ": a scene descriptor must be a JSON object");
   const DescriptorObject root(j, file.string() + ": ",
                               {"description", "generator", "params", "frames", "boxes", "animation", "keyframes",

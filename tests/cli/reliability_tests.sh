@@ -155,5 +155,122 @@ check "--out /dev/null refused before any work" 2 "^cdbench: error: --out /dev/n
 check "--out in /proc names the reason" 1 "--out /proc/r.h5: cannot write in directory /proc: (the file system does not take new files here|Permission denied|Read-only file system)" -- \
   "$cdbench" run --device cpu --quiet --frames 0:3 --out /proc/r.h5
 
+# --- cached frames: a cache file changed since it was written is simulated again ---
+export CDBENCH_CACHE=$tmp/cache
+unset CDBENCH_FRAME_CACHE
+cached=(--device cpu --quiet --scene cloth-wave --set res=8 --set frames=3 --pipeline bvh)
+check "first run fills the frame cache" 0 "^  pairs +mean" -- "$cdbench" run "${cached[@]}"
+first_pairs=$(grep "^  pairs" "$tmp/out")
+frame_file=$(find "$tmp/cache" -name frame_1.f64 | head -1)
+if [[ -z $frame_file ]]; then
+  fail "no cached frame_1.f64 under $tmp/cache"
+else
+  # Other finite numbers in place of the first vertex's x: whole, finite, and wrong.
+  /usr/bin/python3 -c 'import struct,sys; f=open(sys.argv[1],"r+b"); f.seek(24); f.write(struct.pack("<d", 12345.5))' "$frame_file"
+  check "a changed cache file is detected" 0 "cached frame .*frame_1\.f64 does not match its checksum .*; simulating the frame again" -- \
+    "$cdbench" run "${cached[@]}"
+  [[ $(grep "^  pairs" "$tmp/out") == "$first_pairs" ]] && echo "ok   the regenerated frame gives the first run's pairs" ||
+    fail "pairs after regeneration: $(grep "^  pairs" "$tmp/out") (first run: $first_pairs)"
+  check "the rewritten file is trusted again" 0 "^  pairs" -- "$cdbench" run "${cached[@]}"
+  grep -q "cached frame" "$tmp/out" && fail "the regenerated cache file was refused again" || echo "ok   no note once rewritten"
+fi
+unset CDBENCH_CACHE
+
+# --- OBJ frames: every frame checked before the first is timed, the line and field named ---
+obj_seq() {  # obj_seq DIR Z1: three frames, frame 1's last vertex at z = Z1
+  mkdir -p "$1"
+  for f in 0 1 2; do
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 %s\nf 1 2 3\nf 1 2 4\n' "$([[ $f == 1 ]] && echo "$2" || echo 1)" >"$1/frame_000$f.obj"
+  done
+}
+obj_seq "$tmp/far" 1e39
+check "1e39 in frame 1 named by file, frame, line and field" 1 \
+  "far/frame_0001.obj: frame 1, vertex 3: position beyond float range \(0 0 1e\+39\) on line 4 \(z is 1e\+39, float holds magnitudes up to 3.40282e\+38\): .*scale the frames down" -- \
+  "$cdbench" run --device cpu --scene "$tmp/far"
+if grep -qE "^frame " "$tmp/out"; then fail "a frame was timed before the bad frame was found"; else echo "ok   found before any frame was timed"; fi
+obj_seq "$tmp/far308" 1e308
+check "1e308 printed compactly" 1 "z is 1e\+308" -- "$cdbench" run --device cpu --quiet --scene "$tmp/far308"
+grep -qE "[0-9]{40}" "$tmp/out" && fail "a number of 40 or more digits in the message" || echo "ok   no 309-digit number"
+obj_seq "$tmp/garbage" 0.3xyz
+check "trailing garbage on a vertex refused" 1 "garbage/frame_0001.obj: frame 1, line 4: '0.3xyz' is not a number" -- \
+  "$cdbench" run --device cpu --quiet --scene "$tmp/garbage"
+obj_seq "$tmp/dangling" 1
+ln -s frame_0009.obj "$tmp/dangling/frame_0003.obj"
+check "dangling frame link refused" 1 "dangling/frame_0003.obj: this frame is a link that leads nowhere \(it leads to frame_0009.obj, which does not exist\)" -- \
+  "$cdbench" run --device cpu --quiet --scene "$tmp/dangling"
+rm "$tmp/dangling/frame_0003.obj"
+ln -s frame_0003.obj "$tmp/dangling/frame_0003.obj"
+check "looping frame link refused" 1 "dangling/frame_0003.obj: this frame is a link that leads nowhere" -- \
+  "$cdbench" run --device cpu --quiet --scene "$tmp/dangling"
+mkdir -p "$tmp/danglingbox"
+printf '\0\0\0\0\0\0\0\0\0\0\0\0\0\0\200\77\0\0\200\77\0\0\200\77' >"$tmp/danglingbox/f0.boxes"
+ln -s gone.boxes "$tmp/danglingbox/f1.boxes"
+check "dangling box frame link refused" 1 "danglingbox/f1.boxes: this frame is a link that leads nowhere" -- \
+  "$cdbench" run --device cpu --quiet --scene "$tmp/danglingbox"
+
+mkdir -p "$tmp/farboxes"
+/usr/bin/python3 -c '
+import struct, sys
+for k in range(2):
+    v = [0, 0, 0, 1, 1, 1, 0.5, 0.5, 0.5, 1.5, 1.5, 1.5]
+    if k == 1: v[3] = 1e39
+    open(sys.argv[1] + "/f%d.boxes64" % k, "wb").write(struct.pack("<12d", *v))' "$tmp/farboxes"
+check "a box beyond float range found before any frame" 1 "farboxes/f1.boxes64: frame 1, box 0: max.x is 1e\+39, beyond float range" -- \
+  "$cdbench" run --device cpu --scene "$tmp/farboxes"
+if grep -qE "^frame " "$tmp/out"; then fail "a box frame was timed before the bad one was found"; else echo "ok   no box frame timed first"; fi
+
+# --- descriptors and options quietly accepted before ---
+printf '{"generator": "cloth-wave", "generator": "funnel", "params": {"res": 8, "frames": 3}}' >"$tmp/dupkey.json"
+check "duplicate descriptor key refused" 1 "dupkey.json: key \"generator\" appears twice in the object at /" -- \
+  "$cdbench" run --device cpu --quiet --scene "$tmp/dupkey.json"
+printf '{"generator": "cloth-wave", "params": {"res": 8, "res": 9, "frames": 3}}' >"$tmp/dupkey2.json"
+check "duplicate nested key names its path" 1 "key \"res\" appears twice in the object at /params" -- \
+  "$cdbench" run --device cpu --quiet --scene "$tmp/dupkey2.json"
+printf '{"generator": "cloth-wave", "params": {"res": 1e400}}' >"$tmp/overflow.json"
+check "a number past double range in words" 1 "overflow.json: malformed JSON: .*beyond the range of a double" -- \
+  "$cdbench" run --device cpu --quiet --scene "$tmp/overflow.json"
+if raw_library_text "$tmp/out" || grep -q "json.exception" "$tmp/out"; then fail "raw library text"; else echo "ok   no raw library text"; fi
+check "--max-noise nan refused" 2 "--max-noise: expected a finite number >= 0, not 'nan'" -- \
+  "$cdbench" run "${small[@]}" --max-noise nan
+
+# --- library text translated, the input named ---
+check "a name that is not UTF-8" 1 "not valid UTF-8 .*rename it with UTF-8 characters" -- \
+  "$cdbench" run "${small[@]}" --out "$d/bad-$(printf '\xff').h5"
+ln -s loop-b "$tmp/loop-a"
+ln -s loop-a "$tmp/loop-b"
+check "a scene link loop" 1 "loop-a: its symbolic links form a loop" -- "$cdbench" run --device cpu --quiet --scene "$tmp/loop-a"
+long=$(printf 'x%.0s' $(seq 300))
+check "a 300-character file name" 1 "$long\.h5: the name is too long for the file system" -- "$cdbench" run "${small[@]}" --out "$d/$long.h5"
+echo "not a directory" >"$tmp/sweep-out-file"
+printf '{"scenes": [{"scene": "funnel", "set": {"res": 8, "frames": 3}}], "pipelines": ["bvh"], "devices": ["cpu"]}' >"$tmp/one.json"
+check "sweep --out onto a file" 2 "--out $tmp/sweep-out-file: not a directory" -- "$cdbench" sweep "$tmp/one.json" --out "$tmp/sweep-out-file"
+if grep -q "filesystem error" "$tmp/out"; then fail "raw filesystem text"; else echo "ok   no raw filesystem text"; fi
+
+# --- sweep --dry-run checks each cell's options as its run will ---
+printf '{"scenes": [{"scene": "funnel", "set": {"res": 8, "frames": 3}, "frames": "5:2"}], "pipelines": ["bvh"], "devices": ["cpu"]}' >"$tmp/bad-frames.json"
+check "dry run refuses --frames 5:2" 2 "INVALID: --frames '5:2': empty range" -- "$cdbench" sweep "$tmp/bad-frames.json" --out "$tmp/sw" --dry-run
+printf '{"scenes": [{"scene": "funnel", "set": {"res": 8, "frames": 3}}], "pipelines": ["bvh"], "devices": ["cpu"], "options": {"box-margin": [-1, 0]}}' >"$tmp/bad-margin.json"
+check "dry run refuses --box-margin -1" 2 "box-margin=-1  INVALID: --box-margin: expected a finite number >= 0, not '-1'" -- \
+  "$cdbench" sweep "$tmp/bad-margin.json" --out "$tmp/sw" --dry-run
+has "the valid cell is still listed to run" "$tmp/out" "box-margin=0  to run$"
+has "the count says which are invalid" "$tmp/out" "2 cells, 0 complete, 1 to run, 1 invalid"
+check "a sweep with an invalid cell runs nothing" 2 "cell .*box-margin=-1: --box-margin: expected a finite number >= 0, not '-1'" -- \
+  "$cdbench" sweep "$tmp/bad-margin.json" --out "$tmp/sw"
+[[ -e $tmp/sw ]] && fail "the refused sweep made its output directory" || echo "ok   nothing written for the refused sweep"
+# A cell's FAILED reason is its error, not CLI11's pointer to --help.
+mkdir -p "$tmp/cells"
+printf '{"cell": "c1", "scene": "funnel", "pipeline": "c", "device": "cpu", "state": "failed", "exit_code": 2, "log_tail": "--warmup: bad value\\nRun with --help for more information.\\n"}' >"$tmp/cells/c1.status.json"
+check "report shows the cell's own error" 1 "c1\.h5 .*failed, no results file: exit 2: --warmup: bad value \|$" -- "$cdbench" report "$tmp/cells"
+
+# --- report: exit codes, and a link loop beside valid files ---
+mkdir -p "$tmp/empty-results"
+check "report on an empty directory" 1 "no results files \(.h5\) or sweep cells under $tmp/empty-results" -- "$cdbench" report "$tmp/empty-results"
+check "report on a path that is not there" 2 "$tmp/nothing-here: no such file or directory" -- "$cdbench" report "$tmp/nothing-here"
+mkdir -p "$tmp/looped"
+cp "$d/r.h5" "$tmp/looped/r.h5"
+ln -s self "$tmp/looped/self"
+check "report beside a link loop reports the valid file" 1 "^\| $tmp/looped/r.h5 \| funnel\[res=16\] .*\| complete \|$" -- "$cdbench" report "$tmp/looped"
+has "and names the entry skipped and why" "$tmp/out" "cdbench: report: skipped $tmp/looped/self: its symbolic links form a loop"
+
 [[ $skipped -ne 0 ]] && echo "$skipped check(s) skipped (reasons above)"
 finish reliability

@@ -137,7 +137,7 @@ for p in bvh b sweep; do
   has "$p cell ran under Slurm" "$out/funnel.frames=3.res=24_${p}_cpu.status.json" "\"job\": \"slurm job ${job}_[0-9]\""
 done
 has "missing scene recorded failed" "$out/nowhere_b_cpu.status.json" '"state": "failed", "exit_code": 2'
-check "report reads the directory" 0 "funnel\.frames=3\.res=24_sweep_cpu\.h5 \| funnel.* \| sweep \| cpu.* \| complete \|$" -- \
+check "report reads the directory, exit 1 for the failed cells" 1 "funnel\.frames=3\.res=24_sweep_cpu\.h5 \| funnel.* \| sweep \| cpu.* \| complete \|$" -- \
   "$cdbench" report "$out"
 n=$(grep -cE "\| complete \|$" "$tmp/out")
 [[ $n -eq 3 ]] && echo "ok   report has three complete cells" || fail "report has $n complete cells (want 3)"

@@ -44,8 +44,8 @@ check "failed cells make the sweep exit 1" 1 "3 cells, 1 already complete, 2 to 
 count "the others are reported failed" 2 "^\[[12]/2\] (midway|nowhere)_bvh_cpu: FAILED, exit [12]: cdbench: error: "
 check "failure recorded with its exit code" 0 '"exit_code": 2' -- cat "$out/nowhere_bvh_cpu.status.json"
 check "sweep.log has the failure" 0 "failed midway_bvh_cpu exit 1: .*non-finite" -- cat "$out/sweep.log"
-check "report shows the cell with a bad frame" 0 "midway_bvh_cpu\.h5 \| midway \| bvh \| cpu \|.*\| failed, no results file: exit 1: .*frame 2, vertex 2: non-finite" -- "$cdbench" report "$out"
-check "report shows the cell without a file" 0 "nowhere_bvh_cpu\.h5 \| nowhere \| bvh \| cpu \|.*\| failed, no results file: exit 2: .*nowhere" -- "$cdbench" report "$out"
+check "report shows the cell with a bad frame, exit 1" 1 "midway_bvh_cpu\.h5 \| midway \| bvh \| cpu \|.*\| failed, no results file: exit 1: .*frame 2, vertex 2: non-finite" -- "$cdbench" report "$out"
+check "report shows the cell without a file" 1 "nowhere_bvh_cpu\.h5 \| nowhere \| bvh \| cpu \|.*\| failed, no results file: exit 2: .*nowhere" -- "$cdbench" report "$out"
 count "report still has the six complete rows" 6 "\| complete \|$"
 check "dry run says which cells failed" 0 "nowhere_bvh_cpu  to run again \(failed: exit 2" -- "$cdbench" sweep "$tmp/failing.json" --out "$out" --dry-run
 
