@@ -1,4 +1,4 @@
-// Paper's Dragon (Wang et al. 2018, Table 1: 252K triangles): a dragon shattered by a
+// Paper's Dragon (Wang et al. 2018, §5.2: 252K triangles): a dragon shattered by a
 // projectile, its pieces scattering. The hierarchy built on the intact dragon of frame 0
 // becomes poor as the pieces fly apart: the case for the paper's restructuring, where
 // refitting alone degrades.

@@ -1,4 +1,4 @@
-// Paper's Flamenco (Wang et al. 2018, Table 1: 49K triangles): a dancer in a multi-layer
+// Paper's Flamenco (Wang et al. 2018, §5.2: 49K triangles): a dancer in a multi-layer
 // skirt. The layers slide over each other and over the legs, so self-contact between the
 // layers and contact with the body are dense and change every frame.
 //
