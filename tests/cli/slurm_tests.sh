@@ -156,7 +156,7 @@ job2=$(sbatch --parsable "$tmp/jobs/two.sbatch") || cluster_broken "sbatch refus
 wait_for_job "$job2"
 has "removed cell complete again" "$out/funnel.frames=3.res=24_b_cpu.status.json" "\"state\": \"complete\".*\"job\": \"slurm job ${job2}_"
 has "complete cells not run again" "$out/funnel.frames=3.res=24_bvh_cpu.status.json" "\"job\": \"slurm job ${job}_"
-check "report after resubmission" 0 "funnel\.frames=3\.res=24_b_cpu\.h5 \| funnel.* \| complete \|$" -- "$cdbench" report "$out"
+check "report after resubmission: exit 1 for the failed cells left" 1 "funnel\.frames=3\.res=24_b_cpu\.h5 \| funnel.* \| complete \|$" -- "$cdbench" report "$out"
 n=$(grep -cE "\| complete \|$" "$tmp/out")
 [[ $n -eq 3 ]] && echo "ok   three complete cells after resubmission" || fail "report has $n complete cells (want 3)"
 
