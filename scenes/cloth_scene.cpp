@@ -68,15 +68,19 @@ void cloth_grid(uint32_t nu, uint32_t nv, dvec3 origin, dvec3 du, dvec3 dv, std:
     for (uint32_t i = 0; i < nu; ++i) vertices.push_back(origin + double(i) * du + double(j) * dv);
   for (uint32_t j = 0; j + 1 < nv; ++j)
     for (uint32_t i = 0; i + 1 < nu; ++i) {
-      const uint32_t a = base + j * nu + i, b = a + 1, c = a + nu, d = c + 1;
-      if ((i + j) % 2 == 0) {
-        faces.push_back({a, b, d});
-        faces.push_back({a, d, c});
-      } else {
-        faces.push_back({a, b, c});
-        faces.push_back({b, d, c});
-      }
+      const uint32_t a = base + j * nu + i;
+      grid_cell_faces(i, j, a, a + 1, a + nu, a + nu + 1, faces);
     }
+}
+
+void grid_cell_faces(uint32_t i, uint32_t j, uint32_t a, uint32_t b, uint32_t c, uint32_t d, std::vector<Tri>& faces) {
+  if ((i + j) % 2 == 0) {
+    faces.push_back({a, b, d});
+    faces.push_back({a, d, c});
+  } else {
+    faces.push_back({a, b, c});
+    faces.push_back({b, d, c});
+  }
 }
 
 ClothCommon read_cloth_common(Params& p, uint32_t res, uint32_t frames, uint32_t warmup, uint32_t substeps) {

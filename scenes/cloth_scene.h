@@ -73,6 +73,10 @@ class ClothSceneSource final : public FrameSource {
 void cloth_grid(uint32_t nu, uint32_t nv, dvec3 origin, dvec3 du, dvec3 dv, std::vector<dvec3>& vertices,
                 std::vector<Tri>& faces);
 
+// Cell (i, j) of a cloth grid, corners a, b along the row and c, d above them, as two
+// triangles whose diagonal alternates with (i + j), as cloth_grid's cells do.
+void grid_cell_faces(uint32_t i, uint32_t j, uint32_t a, uint32_t b, uint32_t c, uint32_t d, std::vector<Tri>& faces);
+
 // Parameters every cloth scene takes.
 struct ClothCommon {
   uint32_t res, frames, warmup, substeps;

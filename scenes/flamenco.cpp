@@ -61,16 +61,8 @@ bool first_hit(dvec3 origin, dvec3 dir, const std::vector<Tri>& faces, const std
 void tube_faces(uint32_t base, uint32_t around, uint32_t rows, std::vector<Tri>& faces) {
   for (uint32_t j = 0; j + 1 < rows; ++j)
     for (uint32_t i = 0; i < around; ++i) {
-      const uint32_t i1 = (i + 1) % around;
-      const uint32_t a = base + j * around + i, b = base + j * around + i1;
-      const uint32_t c = a + around, d = b + around;
-      if ((i + j) % 2 == 0) {
-        faces.push_back({a, b, d});
-        faces.push_back({a, d, c});
-      } else {
-        faces.push_back({a, b, c});
-        faces.push_back({b, d, c});
-      }
+      const uint32_t a = base + j * around + i, b = base + j * around + (i + 1) % around;
+      grid_cell_faces(i, j, a, b, a + around, b + around, faces);
     }
 }
 

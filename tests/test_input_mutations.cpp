@@ -20,6 +20,7 @@
 #include <functional>
 #include <map>
 #include <new>
+#include <optional>
 #include <random>
 #include <regex>
 #include <sstream>
@@ -64,13 +65,26 @@ struct Result {
   std::string detail;  // the message, or what went wrong
 };
 
-// Waits for child `pid` up to `timeout_s`, collecting what it writes to `fd`; kills it
-// past the limit. False on a timeout.
-bool wait_for(pid_t pid, int fd, double timeout_s, int& status, std::string& output) {
+// Runs `child(fd)` in a forked process, which ends with _exit and whatever it writes to
+// `fd` is collected into `output`; waits up to `timeout_s` and kills it past the limit. A
+// failed pipe, a hang (`hang` says how, before the limit) or a crash is a finding;
+// otherwise `code` is its exit code.
+std::optional<Result> run_child(const std::function<void(int)>& child, double timeout_s, const std::string& hang,
+                                int& code, std::string& output) {
+  int fds[2];
+  if (pipe(fds) != 0) return Result{Outcome::finding, "pipe failed"};
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fds[0]);
+    child(fds[1]);
+    _exit(127);
+  }
+  close(fds[1]);
+  const int fd = fds[0];
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   char buf[4096];
-  bool done = false;
-  while (!done) {
+  int status = 0;
+  for (bool done = false; !done;) {
     pollfd p{fd, POLLIN, 0};
     if (poll(&p, 1, 20) > 0) {
       const ssize_t n = read(fd, buf, sizeof buf);
@@ -81,12 +95,14 @@ bool wait_for(pid_t pid, int fd, double timeout_s, int& status, std::string& out
       kill(pid, SIGKILL);
       waitpid(pid, &status, 0);
       close(fd);
-      return false;
+      return Result{Outcome::finding, "hang: " + hang + " " + std::to_string(timeout_s) + " s"};
     }
   }
   for (ssize_t n; (n = read(fd, buf, sizeof buf)) > 0;) output.append(buf, size_t(n));
   close(fd);
-  return true;
+  if (WIFSIGNALED(status)) return Result{Outcome::finding, std::string("crash: ") + strsignal(WTERMSIG(status))};
+  code = WEXITSTATUS(status);
+  return std::nullopt;
 }
 
 // A refusal's message: in words, naming the input, of a readable length.
@@ -100,11 +116,7 @@ Result judge_message(const std::string& message, const std::string& name) {
 // Runs `reader` in a child process under a memory limit (a huge mutated size must fail,
 // not swap) and a time limit. `name`: what the message must mention.
 Result run_isolated(const std::function<void()>& reader, const std::string& name, double timeout_s = 10.0) {
-  int fds[2];
-  if (pipe(fds) != 0) return {Outcome::finding, "pipe failed"};
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fds[0]);
+  auto child = [&](int fd) {
     // The readers' notes (polygons triangulated, frames re-read) are not under test.
     const int null = open("/dev/null", O_WRONLY);
     dup2(null, STDERR_FILENO);
@@ -128,17 +140,13 @@ Result run_isolated(const std::function<void()>& reader, const std::string& name
       message = "a non-exception was thrown";
       code = 3;
     }
-    const ssize_t ignored = write(fds[1], message.data(), std::min<size_t>(message.size(), 1 << 16));
+    const ssize_t ignored = write(fd, message.data(), std::min<size_t>(message.size(), 1 << 16));
     (void)ignored;
     _exit(code);
-  }
-  close(fds[1]);
+  };
+  int code = 0;
   std::string message;
-  int status = 0;
-  if (!wait_for(pid, fds[0], timeout_s, status, message))
-    return {Outcome::finding, "hang: no answer within " + std::to_string(timeout_s) + " s"};
-  if (WIFSIGNALED(status)) return {Outcome::finding, std::string("crash: ") + strsignal(WTERMSIG(status))};
-  const int code = WEXITSTATUS(status);
+  if (auto finding = run_child(child, timeout_s, "no answer within", code, message)) return *finding;
   if (code == 0) return {Outcome::read, ""};
   if (code == 3) return {Outcome::finding, message};
   if (code == 2) return {Outcome::refused, message};
@@ -148,24 +156,15 @@ Result run_isolated(const std::function<void()>& reader, const std::string& name
 // `cdbench report --csv FILE` as a user runs it: exit 0 or 1, stderr in words naming the
 // file; a crash, a hang or another exit code is a finding.
 Result run_report(const std::string& cdbench, const std::string& file, double timeout_s) {
-  int fds[2];
-  if (pipe(fds) != 0) return {Outcome::finding, "pipe failed"};
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fds[0]);
+  auto child = [&](int fd) {
     const int null = open("/dev/null", O_WRONLY);
     dup2(null, STDOUT_FILENO);
-    dup2(fds[1], STDERR_FILENO);
+    dup2(fd, STDERR_FILENO);
     execl(cdbench.c_str(), cdbench.c_str(), "report", "--csv", file.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  close(fds[1]);
+  };
+  int code = 0;
   std::string message;
-  int status = 0;
-  if (!wait_for(pid, fds[0], timeout_s, status, message))
-    return {Outcome::finding, "hang: cdbench report still running after " + std::to_string(timeout_s) + " s"};
-  if (WIFSIGNALED(status)) return {Outcome::finding, std::string("crash: ") + strsignal(WTERMSIG(status))};
-  const int code = WEXITSTATUS(status);
+  if (auto finding = run_child(child, timeout_s, "cdbench report still running after", code, message)) return *finding;
   if (code == 0 && message.empty()) return {Outcome::read, ""};
   if (code != 1) return {Outcome::finding, "exit " + std::to_string(code) + ": " + message};
   return judge_message(message, file);
