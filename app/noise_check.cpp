@@ -32,7 +32,7 @@ NoiseMeasure measure_noise(const std::vector<FrameStats>& frames, uint32_t warmu
     }
   std::vector<double> t;
   for (size_t f = r.warmup; f < frames.size(); ++f)
-    if (frames[f].op == m.op) t.push_back(frames[f].total_ms);
+    if (frames[f].op == m.op) t.push_back(frames[f].timing.total_ms);
   m.frames = t.size();
   if (t.size() < 3) return m;
   // One pass holds no repeat of a frame, and the workload drifts over a scene (pairs grow,

@@ -50,13 +50,13 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
       ->group(kSceneGroup);
   cmd->add_option("--frames", o.frames, "frame range A:B (half-open), A: or A; default all")->group(kSceneGroup);
   cmd->add_option("--scenes-dir", o.scenes_dir, "where named scenes live")->group(kSceneGroup);
-  cmd->add_option("--rebuild-every", c.rebuild_every,
+  cmd->add_option("--rebuild-every", c.tree.rebuild_every,
                   "bvh pipeline: rebuild every K frames (0: build on the first frame only)")
       ->group(kPipelineGroup)
       ->capture_default_str();
   cmd->add_option_function<std::string>(
          "--front-cycle",
-         [&c](const std::string& v) { c.front_cycle = v == "auto" ? 0u : uint32_t(std::stoul(v)); },
+         [&c](const std::string& v) { c.fronts.cycle = v == "auto" ? 0u : uint32_t(std::stoul(v)); },
          "front pipelines: when fronts are updated instead of preserved; auto: once the measured growth of "
          "the steady frames' cost since the last update has paid for one (rent or buy); K: every K-th frame "
          "since the fronts were generated (the paper's fixed cycle)")
@@ -67,31 +67,31 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
             return digits && std::stoul(v) > 0 ? "" : "auto or a positive whole number of frames, not " + v;
           },
           "auto|K"))
-      ->default_str(c.front_cycle ? std::to_string(c.front_cycle) : "auto");
+      ->default_str(c.fronts.cycle ? std::to_string(c.fronts.cycle) : "auto");
   cmd->add_flag("--skip-adjacent", c.skip_adjacent,
                 "co-vertex filtering: do not report pairs of triangles that share a vertex (oracle too)")
       ->group(kAccuracyGroup);
-  cmd->add_option("--box-margin", c.box_margin,
+  cmd->add_option("--box-margin", c.boxes.margin,
                   "fat boxes: inflate every triangle box by this much (scene units) on each side; conservative "
                   "(recall stays 1 against the exact oracle, precision drops); all pipelines")
       ->group(kAccuracyGroup)
       ->check(finite_at_least(0))
       ->capture_default_str();
   add_choice<bool>(
-      cmd, "--boxes", c.swept_boxes,
+      cmd, "--boxes", c.boxes.swept,
       "discrete: each triangle's box at the frame; swept: its box over the frame interval (previous and current "
       "positions); swept is conservative with respect to the discrete oracle; all pipelines",
-      {"discrete", "swept"}, [](const std::string& w) { return w == "swept"; }, c.swept_boxes ? "swept" : "discrete")
+      {"discrete", "swept"}, [](const std::string& w) { return w == "swept"; }, c.boxes.swept ? "swept" : "discrete")
       ->group(kAccuracyGroup);
   add_choice<BoxPrecision>(
-      cmd, "--box-precision", c.box_precision,
+      cmd, "--box-precision", c.boxes.precision,
       "fp32: the boxes of the positions rounded to float; fp64: the positions rebased on the first frame's centre in "
       "double before rounding, for scenes far from the origin (a run warns when fp32 cannot hold a scene); q16: fp32 "
       "boxes snapped outward onto a 16-bit grid per axis over the frame's vertex bounds, as a 16-bit box format stores "
       "them; all conservative against the double geometry (recall stays 1, precision drops); all pipelines",
-      {"fp32", "fp64", "q16"}, parse_box_precision, box_precision_name(c.box_precision))
+      {"fp32", "fp64", "q16"}, parse_box_precision, box_precision_name(c.boxes.precision))
       ->group(kAccuracyGroup);
-  cmd->add_option("--refit-every", c.refit_every,
+  cmd->add_option("--refit-every", c.tree.refit_every,
                   "NOT CONSERVATIVE: front pipelines and bvh refit the hierarchy only every K frames and keep stale "
                   "boxes in between, so pairs can be missed (recall < 1 under --check); sweep, hash, grid, brute and "
                   "example-sap ignore it; 1: every frame")
@@ -106,67 +106,67 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
 void add_tuning(CLI::App* cmd, CommonOptions& o) {
   PipelineConfig& c = o.config;
   // MortonBits' values are the widths, so CLI11 reads the checked number into the enum.
-  cmd->add_option("--morton-bits", c.morton_bits, "Morton code width (all devices)")
+  cmd->add_option("--morton-bits", c.tree.morton_bits, "Morton code width (all devices)")
       ->group(kTuningGroup)
       ->check(CLI::IsMember({30, 63}))
       ->type_name("INT")
       ->capture_default_str();
-  add_switch(cmd, "--cuda-graph", c.cuda_graph,
+  add_switch(cmd, "--cuda-graph", c.launch.cuda_graph,
              "front pipelines on cuda: capture the steady-state frame (refit + preserve) in a CUDA graph once "
              "and replay it while its launches stay the same; off (the default, measured on the H100): plain "
              "launches every frame")
       ->group(kTuningGroup);
-  add_switch(cmd, "--dependent-launch", c.dependent_launch,
+  add_switch(cmd, "--dependent-launch", c.launch.dependent_launch,
              "cuda: launch every kernel with programmatic stream serialization, so it is scheduled while the "
              "kernel before it runs and waits for it on the device; off: plain launches. Per architecture: "
              "a Hopper (sm_90) feature, the kernels' wait is compiled for sm_90 and later only; its effect "
              "on earlier GPUs is not measured")
       ->group(kTuningGroup);
-  add_switch(cmd, "--phase-timing", c.phase_timing,
+  add_switch(cmd, "--phase-timing", c.launch.phase_timing,
              "time each phase of a frame with events; off: only the frame and its upload (no event between "
              "kernels, which in a CUDA graph costs a node and keeps the next kernel from launching early)")
       ->group(kMeasurementGroup);
   add_choice<WarpSharing>(
-      cmd, "--preserve-warp", c.preserve_warp,
+      cmd, "--preserve-warp", c.fronts.preserve_warp,
       "front pipelines on cuda: preserve shares each front node's traversal with the idle lanes of its warp; auto: "
       "while the fronts fit in " + std::to_string(kWarpSharingWaves) +
           " waves of the GPU's resident threads (per architecture: SMs x threads per SM, read from the GPU at run time)",
-      {"auto", "on", "off"}, parse_warp_sharing, warp_sharing_name(c.preserve_warp))
+      {"auto", "on", "off"}, parse_warp_sharing, warp_sharing_name(c.fronts.preserve_warp))
       ->group(kTuningGroup);
   add_choice<WarpSharing>(
-      cmd, "--update-warp", c.update_warp,
+      cmd, "--update-warp", c.fronts.update_warp,
       "front pipelines on cuda: the operations that write fronts (generate, update, restructure) share each "
       "traversal with the idle lanes of its warp; auto: as --preserve-warp",
-      {"auto", "on", "off"}, parse_warp_sharing, warp_sharing_name(c.update_warp))
+      {"auto", "on", "off"}, parse_warp_sharing, warp_sharing_name(c.fronts.update_warp))
       ->group(kTuningGroup);
-  add_switch(cmd, "--order-updates", c.order_updates,
+  add_switch(cmd, "--order-updates", c.fronts.order_updates,
              "ordered front pipelines: histogram-sort the front each update produces (the paper); off: keep the "
              "update's output in its blocks' order and sort only generated and restructured fronts (b and c "
              "sort in their balance before the next update)")
       ->group(kTuningGroup);
-  add_switch(cmd, "--update-in-place", c.update_in_place,
+  add_switch(cmd, "--update-in-place", c.fronts.update_in_place,
              "front pipelines: an update writes only the front nodes that change, into the current front (holes "
              "and an appended tail), and the update once those reach --compact-share of the front produces it "
              "whole and ordered; off: every update produces the whole front (the paper). Off measured as fast or "
              "faster under --front-cycle auto; on is faster when fronts update every frame")
       ->group(kTuningGroup);
-  cmd->add_option("--compact-share", c.compact_share,
+  cmd->add_option("--compact-share", c.fronts.compact_share,
                   "front pipelines with --update-in-place: the share of a front's nodes changed in place (holes "
                   "plus appended nodes) at which the next update produces the front whole again")
       ->group(kTuningGroup)
       ->check(finite_at_least(0))
       ->capture_default_str();
-  add_switch(cmd, "--regenerate", c.regenerate,
+  add_switch(cmd, "--regenerate", c.fronts.regenerate,
              "front pipelines with --front-cycle auto: each maintenance runs an update of the fronts or a generate "
              "of new ones, whichever measured cheaper per front node last (a generate is tried once the first "
              "frame's generate costs less than an update after the first); off: always an update (the paper)")
       ->group(kTuningGroup);
-  add_switch(cmd, "--update-probe", c.update_probe,
+  add_switch(cmd, "--update-probe", c.fronts.update_probe,
              "front pipelines: the preserves before an update count what it can produce, and the front buffers "
              "grow to that between frames; off: an update that outgrows them grows them inside its frame and runs "
              "again")
       ->group(kTuningGroup);
-  cmd->add_option("--refit-top-leaves", c.refit_top_leaves,
+  cmd->add_option("--refit-top-leaves", c.tree.refit_top_leaves,
                   "front pipelines and bvh: trees of up to this many leaves refit their top (the nodes whose leaves "
                   "span refit tiles) in one block of threads, larger trees hand it over between blocks; 0: always "
                   "hand over. The default was measured on the H100; other GPUs may want another")
@@ -177,27 +177,27 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
 
 void add_restructure(CLI::App* cmd, CommonOptions& o) {
   PipelineConfig& c = o.config;
-  cmd->add_option("--restructure-quality", c.restructure_quality,
+  cmd->add_option("--restructure-quality", c.restructure.quality,
                   "pipeline c: a subtree is degraded when its Q exceeds this times Q(root) after the last rebuild")
       ->group(kPipelineGroup)
       ->check(finite_at_least(0))
       ->capture_default_str();
-  cmd->add_option("--restructure-min-leaves", c.restructure_min_leaves,
+  cmd->add_option("--restructure-min-leaves", c.restructure.min_leaves,
                   "pipeline c: smallest candidate subtree, in leaves")
       ->group(kPipelineGroup)
       ->check(CLI::Range(2u, 0x7FFFFFFFu))
       ->capture_default_str();
-  cmd->add_option("--restructure-max-fraction", c.restructure_max_fraction,
+  cmd->add_option("--restructure-max-fraction", c.restructure.max_fraction,
                   "pipeline c: largest candidate subtree, as a share of all leaves")
       ->group(kPipelineGroup)
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  cmd->add_option("--threshold-refit", c.threshold_refit,
+  cmd->add_option("--threshold-refit", c.restructure.threshold_refit,
                   "pipeline c, Formula 2: below this share of leaves in candidates, only refit")
       ->group(kPipelineGroup)
       ->check(finite_at_least(0))
       ->capture_default_str();
-  cmd->add_option("--threshold-build", c.threshold_build,
+  cmd->add_option("--threshold-build", c.restructure.threshold_build,
                   "pipeline c, Formula 2: from this share of leaves in candidates on, rebuild instead of restructuring")
       ->group(kPipelineGroup)
       ->check(finite_at_least(0))

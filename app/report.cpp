@@ -13,25 +13,25 @@ namespace cdb {
 int omp_threads() { return omp_get_max_threads(); }
 
 void print_frame_line(uint32_t frame, const FrameStats& s) {
-  std::printf("frame %4u  %-15s %9.3f ms", frame, s.op.c_str(), s.total_ms);
-  if (s.repeats > 1) std::printf(" ±%.1f%%", 100.0 * s.total_noise);
+  std::printf("frame %4u  %-15s %9.3f ms", frame, s.op.c_str(), s.timing.total_ms);
+  if (s.timing.repeats > 1) std::printf(" ±%.1f%%", 100.0 * s.timing.total_noise);
   std::printf("  pairs %10llu", static_cast<unsigned long long>(s.pairs));
-  if (s.front_internal + s.front_external)
-    std::printf("  front %llu+%llu  Q %.3f", static_cast<unsigned long long>(s.front_internal),
-                static_cast<unsigned long long>(s.front_external), s.q_root);
-  if (s.front_inter) std::printf("  inter front %llu", static_cast<unsigned long long>(s.front_inter));
-  if (s.front_rigid) std::printf("  rigid front %llu", static_cast<unsigned long long>(s.front_rigid));
+  if (s.fronts.internal + s.fronts.external)
+    std::printf("  front %llu+%llu  Q %.3f", static_cast<unsigned long long>(s.fronts.internal),
+                static_cast<unsigned long long>(s.fronts.external), s.quality.q_root);
+  if (s.fronts.inter) std::printf("  inter front %llu", static_cast<unsigned long long>(s.fronts.inter));
+  if (s.fronts.rigid) std::printf("  rigid front %llu", static_cast<unsigned long long>(s.fronts.rigid));
   for (size_t p = 1; p < kPhaseCount; ++p)
-    if (s.phase_ms[p] > 0) std::printf("  %s %.3f", kPhaseNames[p], s.phase_ms[p]);
-  if (!s.decision.empty()) std::printf("  decision %s", s.decision.c_str());
-  if (s.candidates)
-    std::printf("  candidates %llu (%llu leaves, mean Q %.3f)", static_cast<unsigned long long>(s.candidates),
-                static_cast<unsigned long long>(s.candidate_leaves), s.q_candidates);
-  if (s.checked)
-    std::printf("  check recall %.6f precision %.6f contacts %llu (%.6f) discrete-missed %llu", s.recall, s.precision,
-                static_cast<unsigned long long>(s.contacts), s.contact_precision,
-                static_cast<unsigned long long>(s.discrete_missed_contacts));
-  if (s.query_reruns) std::printf("  (a buffer grew, re-ran %u)", s.query_reruns);
+    if (s.timing.phase_ms[p] > 0) std::printf("  %s %.3f", kPhaseNames[p], s.timing.phase_ms[p]);
+  if (!s.quality.decision.empty()) std::printf("  decision %s", s.quality.decision.c_str());
+  if (s.quality.candidates)
+    std::printf("  candidates %llu (%llu leaves, mean Q %.3f)", static_cast<unsigned long long>(s.quality.candidates),
+                static_cast<unsigned long long>(s.quality.candidate_leaves), s.quality.q_candidates);
+  if (s.check.checked)
+    std::printf("  check recall %.6f precision %.6f contacts %llu (%.6f) discrete-missed %llu", s.check.recall, s.check.precision,
+                static_cast<unsigned long long>(s.check.contacts), s.check.contact_precision,
+                static_cast<unsigned long long>(s.check.discrete_missed_contacts));
+  if (s.timing.query_reruns) std::printf("  (a buffer grew, re-ran %u)", s.timing.query_reruns);
   std::printf("\n");
 }
 
@@ -93,13 +93,13 @@ void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const
   }
   std::printf("  pairs       mean %.0f per frame\n", r.pairs_mean);
   const FrameStats& last = frames.back();
-  if (last.front_internal + last.front_external)
+  if (last.fronts.internal + last.fronts.external)
     std::printf("  front       %llu internal + %llu external nodes at the end, Q(root) %.3f\n",
-                static_cast<unsigned long long>(last.front_internal),
-                static_cast<unsigned long long>(last.front_external), last.q_root);
-  if (last.front_inter + last.front_rigid)
+                static_cast<unsigned long long>(last.fronts.internal),
+                static_cast<unsigned long long>(last.fronts.external), last.quality.q_root);
+  if (last.fronts.inter + last.fronts.rigid)
     std::printf("  fronts      %llu inter (deformable vs rigid tree) + %llu rigid self nodes at the end\n",
-                static_cast<unsigned long long>(last.front_inter), static_cast<unsigned long long>(last.front_rigid));
+                static_cast<unsigned long long>(last.fronts.inter), static_cast<unsigned long long>(last.fronts.rigid));
   if (r.checked_frames)
     std::printf("  check       %zu frames against the oracle: recall min %.6f, precision min %.6f, "
                 "%llu missed, %llu false positives\n",

@@ -154,7 +154,7 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.triangles = scene.source->topology().faces.size();
   run.vertices = scene.source->topology().num_vertices;
   run.cold = r.loop.cold;
-  run.precision = box_precision_name(config.box_precision);
+  run.precision = box_precision_name(config.boxes.precision);
   run.contact_distance = double(float(r.contact_distance));
   run.contact_substeps = r.contact_substeps;
   run.params_json = nlohmann::json{{"command", "run"},
@@ -328,7 +328,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
               scene.name.c_str(), scene.description.c_str(), topo.faces.size(),
               topo.num_vertices, range.first, range.last);
-  const bool fp64 = o.config.box_precision == BoxPrecision::fp64;
+  const bool fp64 = o.config.boxes.precision == BoxPrecision::fp64;
   const std::string spacing_warning =
       range.last > range.first ? float_spacing_warning(*scene.source, range.first, fp64) : "";
   if (!spacing_warning.empty()) std::printf("warning: %s\n", spacing_warning.c_str());
@@ -380,7 +380,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     loop.faces = &topo.faces;
     loop.contact = contact;
     if (!config_conservative(config))
-      loop.accuracy_warning = "--refit-every " + std::to_string(config.refit_every) +
+      loop.accuracy_warning = "--refit-every " + std::to_string(config.tree.refit_every) +
                               " keeps stale boxes between refits: NOT conservative, pairs can be missed";
     loop.input_hash = [&frames, range] {
       const std::optional<uint64_t> h = frames.input_hash(range.first, range.last);

@@ -28,15 +28,15 @@ void check_frame_pairs(Pipeline& pipeline, const std::vector<PrimPair>& expected
                        const ContactCheck& contact, FrameStats& s) {
   const std::vector<PrimPair> reported = pipeline.sorted_pairs();
   const PairAccuracy a = pair_accuracy(expected, reported);
-  s.checked = true;
-  s.recall = a.recall;
-  s.precision = a.precision;
-  s.missed = a.missed;
-  s.false_positives = a.false_positives;
-  s.contacts = count_true_contacts(faces, vertices, reported, contact.distance);
-  s.contact_precision = contact_precision(s.contacts, reported.size());
+  s.check.checked = true;
+  s.check.recall = a.recall;
+  s.check.precision = a.precision;
+  s.check.missed = a.missed;
+  s.check.false_positives = a.false_positives;
+  s.check.contacts = count_true_contacts(faces, vertices, reported, contact.distance);
+  s.check.contact_precision = contact_precision(s.check.contacts, reported.size());
   const std::vector<PrimPair> beyond_discrete = diff_pair_sets(expected, reported, SIZE_MAX).unexpected;
-  s.discrete_missed_contacts =
+  s.check.discrete_missed_contacts =
       count_interval_contacts(faces, previous, vertices, beyond_discrete, contact.distance, contact.substeps);
 }
 
@@ -62,7 +62,7 @@ struct EarlierPasses {
     for (const auto& p : passes) {
       double sum = 0;
       size_t k = 0;
-      for (size_t f = std::min<size_t>(warmup, p.size() - 1); f < p.size(); ++f, ++k) sum += p[f].total_ms;
+      for (size_t f = std::min<size_t>(warmup, p.size() - 1); f < p.size(); ++f, ++k) sum += p[f].timing.total_ms;
       means.push_back(sum / double(k));
     }
     return mean_and_noise(means).second;
@@ -70,22 +70,22 @@ struct EarlierPasses {
   // Frame k of the recording pass becomes the mean over all passes; pair counts must agree.
   void merge_into(size_t k, uint32_t frame, FrameStats& s) const {
     if (passes.empty()) return;
-    std::vector<double> totals{s.total_ms};
-    std::array<double, kPhaseCount> phase = s.phase_ms;
+    std::vector<double> totals{s.timing.total_ms};
+    std::array<double, kPhaseCount> phase = s.timing.phase_ms;
     for (size_t p = 0; p < passes.size(); ++p) {
       const FrameStats& e = passes[p][k];
       if (e.pairs != s.pairs)
         fail("frame " + std::to_string(frame) + ": pass " + std::to_string(p + 1) + " reported " +
              std::to_string(e.pairs) + " pairs, the last pass " + std::to_string(s.pairs) +
              " (--repeat needs a deterministic pipeline)");
-      totals.push_back(e.total_ms);
-      for (size_t q = 0; q < kPhaseCount; ++q) phase[q] += e.phase_ms[q];
+      totals.push_back(e.timing.total_ms);
+      for (size_t q = 0; q < kPhaseCount; ++q) phase[q] += e.timing.phase_ms[q];
     }
     const auto [mean, noise] = mean_and_noise(totals);
-    s.total_ms = mean;
-    s.total_noise = noise;
-    s.repeats = uint32_t(totals.size());
-    for (size_t q = 0; q < kPhaseCount; ++q) s.phase_ms[q] = phase[q] / double(totals.size());
+    s.timing.total_ms = mean;
+    s.timing.total_noise = noise;
+    s.timing.repeats = uint32_t(totals.size());
+    for (size_t q = 0; q < kPhaseCount; ++q) s.timing.phase_ms[q] = phase[q] / double(totals.size());
   }
 };
 
@@ -177,7 +177,7 @@ class FrameLoop {
     source_.positions(frame, positions_);
     if (options_.cold) options_.probe->flush_caches();
     FrameStats s = pipeline_.run_frame(positions_);
-    s.bytes_floor = frame_bytes_floor(source_.topology(), s.pairs);
+    s.timing.bytes_floor = frame_bytes_floor(source_.topology(), s.pairs);
     progress_.update(++done_);
     return s;
   }

@@ -126,7 +126,7 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   const bool brute_oracle = topo.faces.size() <= brute_limit;
   // The oracle sees the same fat, swept or quantized boxes only as the brute-force pipeline.
   const PipelineConfig& c = o.config;
-  if (!brute_oracle && (c.box_margin > 0 || c.swept_boxes || c.box_precision == BoxPrecision::q16))
+  if (!brute_oracle && (c.boxes.margin > 0 || c.boxes.swept || c.boxes.precision == BoxPrecision::q16))
     fail_usage("verify --box-margin/--boxes swept/--box-precision q16 needs the brute-force oracle (raise --brute-limit)");
   std::printf("verify: scene %s (%zu triangles), frames %u:%u, device %s, oracle %s\n",
               scene.name.c_str(), topo.faces.size(), range.first, range.last, device.c_str(),
@@ -151,8 +151,8 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   // Each pipeline against the oracle of the floats it ran on (exact), and against the
   // scene's double geometry: none of its pairs may be missed (position_rounding.h says
   // when that holds), and the extra ones are float's blur.
-  const bool fp64 = c.box_precision == BoxPrecision::fp64;
-  const bool keeps_double_pairs = fp64 || c.box_margin == 0;
+  const bool fp64 = c.boxes.precision == BoxPrecision::fp64;
+  const bool keeps_double_pairs = fp64 || c.boxes.margin == 0;
   std::vector<uint64_t> double_missed(pipelines.size(), 0), double_extra(pipelines.size(), 0);
   uint64_t double_pairs = 0;
   PositionRounding rounding(fp64);
@@ -203,9 +203,9 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   if (!v.write_pairs_dir.empty())
     std::printf("verify: wrote the oracle's pairs of %u frames to %s\n", range.last - range.first,
                 v.write_pairs_dir.c_str());
-  if (c.refit_every > 1 && !runs.empty())
+  if (c.tree.refit_every > 1 && !runs.empty())
     std::printf("verify: --refit-every %u is not conservative: bvh and the front pipelines may miss pairs\n",
-                c.refit_every);
+                c.tree.refit_every);
   const char* matched = runs.empty()      ? (pairs_check ? "the pairs match the oracle" : "done")
                         : pairs_check ? "all pipelines and the pairs match the oracle"
                                       : "all pipelines match the oracle";

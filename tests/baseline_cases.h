@@ -188,7 +188,7 @@ inline std::vector<std::string> grid_pipeline_ops(const std::string& device,
     const std::vector<PrimPair> expected = sweep_oracle_pairs(scene.topology, v);
     EXPECT_EQ(s.pairs, expected.size()) << ops.size();
     EXPECT_TRUE(diff_pair_sets(expected, p->sorted_pairs()).equal()) << ops.size();
-    EXPECT_EQ(s.query_reruns > 0, s.op == "regrid") << ops.size();
+    EXPECT_EQ(s.timing.query_reruns > 0, s.op == "regrid") << ops.size();
     ops.push_back(s.op);
   }
   return ops;

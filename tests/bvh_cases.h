@@ -326,9 +326,9 @@ inline PipelineConfig config_for(const std::string& device, double pairs_per_tri
                                  double front_per_triangle = 8.0, uint32_t front_cycle = 4) {
   PipelineConfig c;
   c.device = device;
-  c.pairs_per_triangle = pairs_per_triangle;
-  c.front_per_triangle = front_per_triangle;
-  c.front_cycle = front_cycle;
+  c.capacity.pairs_per_triangle = pairs_per_triangle;
+  c.capacity.front_per_triangle = front_per_triangle;
+  c.fronts.cycle = front_cycle;
   return c;
 }
 
@@ -392,15 +392,15 @@ inline void check_forced_decisions(const std::string& device, const ExactFrames&
                           Forced{"refit", 1.01, 1.01, nullptr}}) {
     PipelineConfig cfg = config_for(device, 0.5, 0.05, cycle);
     cfg.name = "c";
-    cfg.restructure_quality = 0.0;
-    cfg.restructure_min_leaves = 4;
-    cfg.threshold_refit = f.refit;
-    cfg.threshold_build = f.build;
+    cfg.restructure.quality = 0.0;
+    cfg.restructure.min_leaves = 4;
+    cfg.restructure.threshold_refit = f.refit;
+    cfg.restructure.threshold_build = f.build;
     const auto frames = run_exact(cfg, scene);
     size_t taken = 0;
     for (const auto& s : frames) {
-      EXPECT_TRUE(s.decision.empty() || s.decision == f.decision) << s.decision;
-      if (s.decision != f.decision) continue;
+      EXPECT_TRUE(s.quality.decision.empty() || s.quality.decision == f.decision) << s.quality.decision;
+      if (s.quality.decision != f.decision) continue;
       ++taken;
       if (f.op) {
         EXPECT_EQ(s.op, f.op);
@@ -411,10 +411,10 @@ inline void check_forced_decisions(const std::string& device, const ExactFrames&
   // A quality factor nothing reaches: inspections find no candidate, nothing is decided.
   PipelineConfig cfg = config_for(device, 8.0, 8.0, cycle);
   cfg.name = "restructure";
-  cfg.restructure_quality = 1e9;
+  cfg.restructure.quality = 1e9;
   for (const auto& s : run_exact(cfg, scene)) {
-    EXPECT_EQ(s.candidates, 0u);
-    EXPECT_TRUE(s.decision.empty());
+    EXPECT_EQ(s.quality.candidates, 0u);
+    EXPECT_TRUE(s.quality.decision.empty());
   }
 }
 

@@ -38,7 +38,7 @@ inline void check_example_pipeline(const std::string& device, const SceneFrames&
     cfg.name = kExamplePipeline;
     cfg.device = device;
     cfg.skip_adjacent = skip_adjacent;
-    cfg.pairs_per_triangle = 0.25;
+    cfg.capacity.pairs_per_triangle = 0.25;
     auto p = make_pipeline(cfg);
     p->set_topology(scene.topology);
     for (uint32_t f = 0; f < scene.frames.size(); ++f) {

@@ -236,7 +236,7 @@ inline void check_inter_pipelines(const std::string& device, const InterCase& c)
   }
   SCOPED_TRACE("rebuild every 3 frames");
   PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
-  cfg.rebuild_every = 3;
+  cfg.tree.rebuild_every = 3;
   check_pipelines_on(cfg, scene, 0, only);
 }
 
@@ -261,18 +261,18 @@ inline void check_inter_fronts(const std::string& device, const InterCase& c) {
       const FrameStats& s = frames[f];
       SCOPED_TRACE("frame " + std::to_string(f) + " (" + s.op + ")");
       const bool fronts = name != "bvh";
-      EXPECT_EQ(s.front_internal + s.front_external > 0, fronts && c.deformable_self);
-      EXPECT_EQ(s.front_inter > 0, fronts && c.cross);
+      EXPECT_EQ(s.fronts.internal + s.fronts.external > 0, fronts && c.deformable_self);
+      EXPECT_EQ(s.fronts.inter > 0, fronts && c.cross);
       if (fronts && c.cross) {
-        EXPECT_GE(s.front_inter, deformable);
+        EXPECT_GE(s.fronts.inter, deformable);
       }
-      EXPECT_EQ(s.front_rigid > 0, fronts && c.rigid_self);
-      const double build_ms = s.phase_ms[size_t(Phase::build)];
+      EXPECT_EQ(s.fronts.rigid > 0, fronts && c.rigid_self);
+      const double build_ms = s.timing.phase_ms[size_t(Phase::build)];
       if (f == 0) {
         EXPECT_GT(build_ms, 0.0);
       } else if (s.op.rfind("refit", 0) == 0) {
         EXPECT_EQ(build_ms, 0.0) << "a tree was rebuilt on a refit frame";
-        EXPECT_GT(s.phase_ms[size_t(Phase::refit)], 0.0);
+        EXPECT_GT(s.timing.phase_ms[size_t(Phase::refit)], 0.0);
       }
     }
   }

@@ -186,7 +186,7 @@ inline PipelineConfig growing_config(const std::string& device, const std::strin
   PipelineConfig cfg;
   cfg.device = device;
   cfg.name = name;
-  cfg.pairs_per_triangle = 0.5;
+  cfg.capacity.pairs_per_triangle = 0.5;
   return cfg;
 }
 
@@ -199,22 +199,22 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
       exact_frames(*make_generator("funnel", {{"res", 40}, {"frames", 10}, {"segments", 16}, {"ball_level", 1}}));
   for (const auto& name : pipeline_names()) {
     PipelineConfig cfg = growing_config(device, name);
-    cfg.front_cycle = 4;
-    cfg.cuda_graph = graph;
-    cfg.dependent_launch = dependent;
-    cfg.preserve_warp = dependent ? WarpSharing::on : WarpSharing::off;
-    cfg.phase_timing = false;
+    cfg.fronts.cycle = 4;
+    cfg.launch.cuda_graph = graph;
+    cfg.launch.dependent_launch = dependent;
+    cfg.fronts.preserve_warp = dependent ? WarpSharing::on : WarpSharing::off;
+    cfg.launch.phase_timing = false;
     auto p = make_pipeline(cfg);
     p->set_topology(funnel.topology);
     for (uint32_t f = 0; f < funnel.num_frames(); ++f) {
       const FrameStats s = p->run_frame(funnel.vertices[f]);
       const std::string where = name + (graph ? " graph" : "") + (dependent ? " dependent" : "") + " frame " +
                                 std::to_string(f);
-      EXPECT_GT(s.total_ms, 0.0) << where;
-      EXPECT_GT(s.phase_ms[size_t(Phase::upload)], 0.0) << where;
+      EXPECT_GT(s.timing.total_ms, 0.0) << where;
+      EXPECT_GT(s.timing.phase_ms[size_t(Phase::upload)], 0.0) << where;
       for (size_t ph = 0; ph < kPhaseCount; ++ph) {
         if (Phase(ph) == Phase::upload) continue;
-        EXPECT_EQ(s.phase_ms[ph], 0.0) << where << ", phase " << ph;
+        EXPECT_EQ(s.timing.phase_ms[ph], 0.0) << where << ", phase " << ph;
       }
       const PairSetDiff d = diff_pair_sets(funnel.pairs[f], p->sorted_pairs());
       ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count << " extra";
@@ -259,13 +259,13 @@ inline void check_update_knobs(const std::string& device) {
         uint32_t in_place_frames = 0;
         for (const UpdateKnobs& knobs : variants) {
           PipelineConfig cfg = growing_config(device, name);
-          cfg.front_per_triangle = 0.5;
-          cfg.front_cycle = cycle;
-          cfg.order_updates = knobs.order;
-          cfg.update_warp = knobs.warp;
-          cfg.update_in_place = knobs.in_place;
-          cfg.compact_share = knobs.compact_share;
-          cfg.regenerate = cycle == 0;  // adaptive maintenances may generate where measured cheaper
+          cfg.capacity.front_per_triangle = 0.5;
+          cfg.fronts.cycle = cycle;
+          cfg.fronts.order_updates = knobs.order;
+          cfg.fronts.update_warp = knobs.warp;
+          cfg.fronts.update_in_place = knobs.in_place;
+          cfg.fronts.compact_share = knobs.compact_share;
+          cfg.fronts.regenerate = cycle == 0;  // adaptive maintenances may generate where measured cheaper
           auto p = make_pipeline(cfg);
           p->set_topology(scene->topology);
           for (uint32_t f = 0; f < scene->num_frames(); ++f) {
@@ -278,9 +278,9 @@ inline void check_update_knobs(const std::string& device) {
             if (s.op.find("+update-in-place") != std::string::npos) ++in_place_frames;
             if (cycle == 0 || (name == "c" && knobs.in_place)) continue;
             if (sorted_sizes.size() <= f)
-              sorted_sizes.push_back({s.front_internal, s.front_external});
+              sorted_sizes.push_back({s.fronts.internal, s.fronts.external});
             else
-              EXPECT_EQ(sorted_sizes[f], (std::array<uint64_t, 2>{s.front_internal, s.front_external})) << where;
+              EXPECT_EQ(sorted_sizes[f], (std::array<uint64_t, 2>{s.fronts.internal, s.fronts.external})) << where;
           }
         }
         if (cycle == 1 && name != "reference") {
@@ -304,11 +304,11 @@ inline void check_update_probe(const std::string& device) {
         PipelineConfig cfg;
         cfg.device = device;
         cfg.name = name;
-        cfg.pairs_per_triangle = 64;
-        cfg.front_per_triangle = 0.25;
-        cfg.front_cycle = 2;
-        cfg.update_probe = probe;
-        cfg.update_in_place = in_place;
+        cfg.capacity.pairs_per_triangle = 64;
+        cfg.capacity.front_per_triangle = 0.25;
+        cfg.fronts.cycle = 2;
+        cfg.fronts.update_probe = probe;
+        cfg.fronts.update_in_place = in_place;
         auto p = make_pipeline(cfg);
         p->set_topology(soup.topology);
         for (uint32_t k = 0; k < 2 * soup.num_frames() - 1; ++k) {
@@ -320,9 +320,9 @@ inline void check_update_probe(const std::string& device) {
           ASSERT_TRUE(d.equal()) << where << ": " << d.missing_count << " missing, " << d.unexpected_count << " extra";
           if (s.op.find("+update") == std::string::npos) continue;
           if (probe)
-            EXPECT_EQ(s.query_reruns, 0u) << where;
+            EXPECT_EQ(s.timing.query_reruns, 0u) << where;
           else
-            reruns_unprobed += s.query_reruns;
+            reruns_unprobed += s.timing.query_reruns;
         }
       }
       EXPECT_GT(reruns_unprobed, 0u) << name << (in_place ? " in place" : " whole")
@@ -360,7 +360,7 @@ inline void check_pairs_grown_ahead(const std::string& device) {
     ASSERT_LT(pairs[f].size(), pairs[f - 1].size() + pairs[f - 1].size() / 8) << "frame " << f << " grows too fast";
   for (const auto& name : pipeline_names()) {
     PipelineConfig cfg = growing_config(device, name);
-    cfg.front_cycle = 3;
+    cfg.fronts.cycle = 3;
     auto p = make_pipeline(cfg);
     p->set_topology(soup->topology());
     for (size_t f = 0; f < frames.size(); ++f) {
@@ -372,7 +372,7 @@ inline void check_pairs_grown_ahead(const std::string& device) {
       const bool others_grow = s.op.find("+update") != std::string::npos ||
                                s.op.find("+generate") != std::string::npos || s.op == "regrid";
       if (f > 0 && !others_grow) {
-        EXPECT_EQ(s.query_reruns, 0u) << name << " frame " << f << " (" << s.op << ")";
+        EXPECT_EQ(s.timing.query_reruns, 0u) << name << " frame " << f << " (" << s.op << ")";
       }
     }
   }
@@ -385,7 +385,7 @@ inline void check_margin(const std::string& device, FrameSource& source, float m
   std::vector<vec3f> v;
   for (const auto& name : pipeline_names()) {
     PipelineConfig cfg = growing_config(device, name);
-    cfg.box_margin = margin;
+    cfg.boxes.margin = margin;
     auto p = make_pipeline(cfg);
     p->set_topology(topo);
     size_t extra = 0;
@@ -414,8 +414,8 @@ inline void check_swept(const std::string& device, FrameSource& source) {
     PipelineConfig cfg;
     cfg.device = device;
     cfg.name = name;
-    cfg.pairs_per_triangle = 0.5;
-    cfg.swept_boxes = true;
+    cfg.capacity.pairs_per_triangle = 0.5;
+    cfg.boxes.swept = true;
     auto p = make_pipeline(cfg);
     // Twice: set_topology (what --repeat does) must forget the last pass's positions.
     for (int pass = 0; pass < 2; ++pass) {
@@ -450,8 +450,8 @@ inline void check_lazy_refit(const std::string& device, FrameSource& source, uin
     PipelineConfig cfg;
     cfg.device = device;
     cfg.name = name;
-    cfg.pairs_per_triangle = 0.5;
-    cfg.refit_every = k;
+    cfg.capacity.pairs_per_triangle = 0.5;
+    cfg.tree.refit_every = k;
     const bool lazy = keeps_stale_boxes(name);
     EXPECT_EQ(config_conservative(cfg), !lazy) << name;
     auto p = make_pipeline(cfg);

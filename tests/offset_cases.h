@@ -87,9 +87,9 @@ inline DoubleCheck check_against_double(const std::string& device, double offset
     PipelineConfig c;
     c.name = name;
     c.device = device;
-    c.box_precision = precision;
-    c.box_margin = margin;
-    c.front_cycle = 1;  // every frame after the first updates its fronts
+    c.boxes.precision = precision;
+    c.boxes.margin = margin;
+    c.fronts.cycle = 1;  // every frame after the first updates its fronts
     const auto p = make_pipeline(c);
     p->set_topology(topo);
     DoubleCheck d;

@@ -162,8 +162,8 @@ void check_executor_grid(const SceneFrames& s, bool swept) {
   Exec exec;
   DeviceMesh<Exec> mesh(exec);
   PipelineConfig cfg;
-  cfg.box_precision = BoxPrecision::q16;
-  cfg.swept_boxes = swept;
+  cfg.boxes.precision = BoxPrecision::q16;
+  cfg.boxes.swept = swept;
   mesh.set_box_knobs(cfg);
   mesh.set_topology(exec, s.topology);
   for (size_t f = 0; f < s.frames.size(); ++f) {
@@ -192,10 +192,10 @@ inline void check_q16_pipelines(const std::string& device, const SceneFrames& s,
     PipelineConfig cfg;
     cfg.device = device;
     cfg.name = name;
-    cfg.pairs_per_triangle = 0.5;
-    cfg.box_margin = margin;
-    cfg.swept_boxes = swept;
-    cfg.box_precision = BoxPrecision::q16;
+    cfg.capacity.pairs_per_triangle = 0.5;
+    cfg.boxes.margin = margin;
+    cfg.boxes.swept = swept;
+    cfg.boxes.precision = BoxPrecision::q16;
     auto p = make_pipeline(cfg);
     p->set_topology(topo);
     for (size_t f = 0; f < s.frames.size(); ++f) {

@@ -402,13 +402,13 @@ TEST(BoxStream, BoxSceneGivesTheMeshScenesPairsInEveryPipelineAndKnob) {
   };
   const std::vector<Knob> knobs = {
       {"plain", [](PipelineConfig&) {}},
-      {"margin", [](PipelineConfig& c) { c.box_margin = 0.03f; }},
-      {"swept", [](PipelineConfig& c) { c.swept_boxes = true; }},
-      {"q16", [](PipelineConfig& c) { c.box_precision = BoxPrecision::q16; }},
+      {"margin", [](PipelineConfig& c) { c.boxes.margin = 0.03f; }},
+      {"swept", [](PipelineConfig& c) { c.boxes.swept = true; }},
+      {"q16", [](PipelineConfig& c) { c.boxes.precision = BoxPrecision::q16; }},
       {"fp64 margin",
        [](PipelineConfig& c) {
-         c.box_precision = BoxPrecision::fp64;
-         c.box_margin = 0.03f;
+         c.boxes.precision = BoxPrecision::fp64;
+         c.boxes.margin = 0.03f;
        }},
   };
   for (const std::string& name : pipeline_names())

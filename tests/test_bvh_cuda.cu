@@ -251,9 +251,9 @@ TEST(CudaPipelines, GraphReplaysGiveThePlainLaunchesPairs) {
     for (bool swept : {false, true}) {
       PipelineConfig with = config_for("cuda", 0.05, 0.05, 6), without = with;
       with.name = without.name = name;
-      with.swept_boxes = without.swept_boxes = swept;
-      with.cuda_graph = true;
-      without.cuda_graph = false;
+      with.boxes.swept = without.boxes.swept = swept;
+      with.launch.cuda_graph = true;
+      without.launch.cuda_graph = false;
       auto graphed = make_pipeline(with), plain = make_pipeline(without);
       graphed->set_topology(topo);
       plain->set_topology(topo);
@@ -262,12 +262,12 @@ TEST(CudaPipelines, GraphReplaysGiveThePlainLaunchesPairs) {
       for (uint32_t f = 0; f < funnel->num_frames(); ++f) {
         funnel->frame(f, v);
         const FrameStats g = graphed->run_frame(v), p = plain->run_frame(v);
-        EXPECT_EQ(p.graph, "");
-        captured += g.graph == "captured";
-        replayed += g.graph == "replayed";
-        if (!g.graph.empty()) {
-          EXPECT_GT(g.phase_ms[size_t(Phase::preserve)], 0.0) << name << " frame " << f;
-          EXPECT_GT(g.phase_ms[size_t(Phase::refit)], 0.0) << name << " frame " << f;
+        EXPECT_EQ(p.timing.graph, "");
+        captured += g.timing.graph == "captured";
+        replayed += g.timing.graph == "replayed";
+        if (!g.timing.graph.empty()) {
+          EXPECT_GT(g.timing.phase_ms[size_t(Phase::preserve)], 0.0) << name << " frame " << f;
+          EXPECT_GT(g.timing.phase_ms[size_t(Phase::refit)], 0.0) << name << " frame " << f;
         }
         ASSERT_EQ(g.pairs, p.pairs) << name << " frame " << f;
         ASSERT_TRUE(diff_pair_sets(plain->sorted_pairs(), graphed->sorted_pairs()).equal())

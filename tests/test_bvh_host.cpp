@@ -130,7 +130,7 @@ TEST(HostFrontPipelines, RecordTheOperationsOfTheirCycle) {
     const std::string name = label.substr(0, label.find(' '));
     PipelineConfig cfg = config_for("cpu", 8.0, 8.0, 2);
     cfg.name = name;
-    cfg.update_in_place = label != name;
+    cfg.fronts.update_in_place = label != name;
     auto p = make_pipeline(cfg);
     p->set_topology(wave->topology());
     std::vector<vec3f> v;
@@ -138,9 +138,9 @@ TEST(HostFrontPipelines, RecordTheOperationsOfTheirCycle) {
       wave->frame(f, v);
       const FrameStats s = p->run_frame(v);
       EXPECT_EQ(s.op, ops[f]) << name << " frame " << f;
-      EXPECT_GT(s.front_internal + s.front_external, 0u) << name;
+      EXPECT_GT(s.fronts.internal + s.fronts.external, 0u) << name;
       if (name != "unordered") {
-        EXPECT_GT(s.q_root, 0.0) << name;
+        EXPECT_GT(s.quality.q_root, 0.0) << name;
       }
     }
   }
@@ -160,13 +160,13 @@ TEST(HostPipelines, OneSynchronizationPerFrame) {
     for (uint32_t f = 0; f < 7; ++f) {
       wave->frame(f, v);
       const FrameStats s = p->run_frame(v);
-      EXPECT_EQ(s.query_reruns, 0u) << name << " frame " << f;
+      EXPECT_EQ(s.timing.query_reruns, 0u) << name << " frame " << f;
       // hash reads its cell-entry totals back to size the entry sort; the radix-sort
       // baseline reads the produced front sizes before sorting them.
       const bool produced_front =
           s.op.find("preserve") == std::string::npos && s.op.find("in-place") == std::string::npos;
       const uint32_t expected = name == "hash" || (name == "radix-order" && produced_front) ? 2 : 1;
-      EXPECT_EQ(s.host_syncs, expected) << name << " frame " << f << " " << s.op;
+      EXPECT_EQ(s.timing.host_syncs, expected) << name << " frame " << f << " " << s.op;
     }
   }
 }
@@ -217,14 +217,14 @@ TEST(HostPipelines, PairBufferGrowthIsCountedNotTruncated) {
   auto soup = make_generator("soup", {{"triangles", 500}, {"distribution", "identical"}});
   PipelineConfig cfg;
   cfg.device = "cpu";
-  cfg.pairs_per_triangle = 0.0;
+  cfg.capacity.pairs_per_triangle = 0.0;
   auto p = make_pipeline(cfg);
   p->set_topology(soup->topology());
   std::vector<vec3f> v;
   soup->frame(0, v);
   const FrameStats s = p->run_frame(v);
   EXPECT_EQ(s.pairs, 500ull * 499 / 2);
-  EXPECT_GE(s.query_reruns, 1u);
+  EXPECT_GE(s.timing.query_reruns, 1u);
   EXPECT_GE(p->memory().growths, 1u);
   EXPECT_EQ(p->sorted_pairs().size(), 500ull * 499 / 2);
 }

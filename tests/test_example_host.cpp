@@ -16,17 +16,17 @@ TEST(HostExample, GrowsItsPairBufferAndRunsTheQueryAgain) {
   PipelineConfig cfg;
   cfg.name = kExamplePipeline;
   cfg.device = "cpu";
-  cfg.pairs_per_triangle = 0.25;
+  cfg.capacity.pairs_per_triangle = 0.25;
   const SceneFrames scene = all_at_one_point(300, 0.25f);
   auto p = make_pipeline(cfg);
   p->set_topology(scene.topology);
   const FrameStats first = p->run_frame(scene.frames[0]);
-  EXPECT_EQ(first.query_reruns, 1u);
+  EXPECT_EQ(first.timing.query_reruns, 1u);
   EXPECT_EQ(first.pairs, 300u * 299u / 2u);
-  EXPECT_EQ(first.host_syncs, 2u);  // the counters' read-back, once more after the growth
+  EXPECT_EQ(first.timing.host_syncs, 2u);  // the counters' read-back, once more after the growth
   const FrameStats second = p->run_frame(scene.frames[1]);
-  EXPECT_EQ(second.query_reruns, 0u);
-  EXPECT_EQ(second.host_syncs, 1u);
+  EXPECT_EQ(second.timing.query_reruns, 0u);
+  EXPECT_EQ(second.timing.host_syncs, 1u);
   EXPECT_EQ(p->sorted_pairs().size(), 300u * 299u / 2u);
   EXPECT_EQ(p->memory().growths, 1u);
 }
@@ -39,7 +39,7 @@ TEST(HostExample, ListedAsAnExampleAndConservative) {
   EXPECT_EQ(pipeline_names().back(), kExamplePipeline);
   PipelineConfig cfg;
   cfg.name = kExamplePipeline;
-  cfg.refit_every = 4;
+  cfg.tree.refit_every = 4;
   EXPECT_TRUE(config_conservative(cfg));
 }
 
@@ -50,7 +50,7 @@ TEST(HostExample, FatBoxesGiveTheInflatedOraclePairs) {
   PipelineConfig exact_cfg, fat_cfg;
   exact_cfg.name = fat_cfg.name = kExamplePipeline;
   exact_cfg.device = fat_cfg.device = "cpu";
-  fat_cfg.box_margin = 0.01f;
+  fat_cfg.boxes.margin = 0.01f;
   PipelineConfig brute_cfg = fat_cfg;
   brute_cfg.name = oracle_pipeline();
   auto exact = make_pipeline(exact_cfg), fat = make_pipeline(fat_cfg), brute = make_pipeline(brute_cfg);

@@ -16,8 +16,8 @@ namespace {
 // Maintenances always update, as in the paper (--regenerate off), unless a test says.
 PipelineConfig cycle_config(uint32_t cycle) {
   PipelineConfig c;
-  c.front_cycle = cycle;
-  c.regenerate = false;
+  c.fronts.cycle = cycle;
+  c.fronts.regenerate = false;
   return c;
 }
 
@@ -65,7 +65,7 @@ TEST(FramePlan, BalanceOnlyBeforeUpdatesOfPipelinesThatBalance) {
   FrontStrategy b;
   b.balance = true;
   PipelineConfig whole = cycle_config(2);
-  whole.update_in_place = false;
+  whole.fronts.update_in_place = false;
   FramePlanner planner(b, whole);
   for (int f = 0; f < 6; ++f) {
     const FramePlan p = planner.plan(100, 100);
@@ -81,12 +81,12 @@ TEST(FramePlan, RebuildAndStaleFrames) {
   EXPECT_EQ(schedule(r, 4, flat), "bbbb");
 
   PipelineConfig c = cycle_config(4);
-  c.rebuild_every = 3;
+  c.tree.rebuild_every = 3;
   FramePlanner every3(FrontStrategy{}, c);
   EXPECT_EQ(schedule(every3, 8, flat), "bppbppbp");
 
   c = cycle_config(4);
-  c.refit_every = 2;
+  c.tree.refit_every = 2;
   FramePlanner stale(FrontStrategy{}, c);
   std::vector<bool> stale_frames;
   for (int f = 0; f < 5; ++f) {
@@ -252,8 +252,8 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
   FrontStrategy c;
   c.balance = c.restructure = true;
   PipelineConfig config = cycle_config(2);
-  config.threshold_refit = 0.05;
-  config.threshold_build = 0.5;
+  config.restructure.threshold_refit = 0.05;
+  config.restructure.threshold_build = 0.5;
   struct Case {
     uint32_t leaves_in_candidates;
     Formula2 decision;
@@ -326,8 +326,8 @@ TEST(FramePlan, UpdatesInPlaceUntilTheOrderDecays) {
   c.restructure = true;
   for (bool in_place : {true, false}) {
     PipelineConfig cfg = cycle_config(1);
-    cfg.compact_share = 0.5;
-    cfg.update_in_place = in_place;
+    cfg.fronts.compact_share = 0.5;
+    cfg.fronts.update_in_place = in_place;
     FramePlanner planner(c, cfg);
     const FramePlan built = planner.plan(100, 100);
     ASSERT_TRUE(built.rebuild);
@@ -357,7 +357,7 @@ TEST(FramePlan, AdaptiveMaintenanceRunsWhicheverMeasuredCheaper) {
   for (const double bound : {0.01, 0.03, -1.0})
   for (const double extra : {1.0, 3.0}) {
     PipelineConfig cfg = cycle_config(0);
-    cfg.regenerate = regenerate;
+    cfg.fronts.regenerate = regenerate;
     FramePlanner planner(c, cfg);
     int since = 0;
     std::string maintenances;
@@ -389,7 +389,7 @@ TEST(FramePlan, FixedCycleProbesTheFrameBeforeAnUpdate) {
   FramePlanner every(FrontStrategy{}, cycle_config(1));
   EXPECT_EQ(schedule_probes(every, 5, flat), "buuuu");
   PipelineConfig off = cycle_config(4);
-  off.update_probe = false;
+  off.fronts.update_probe = false;
   FramePlanner unprobed(FrontStrategy{}, off);
   EXPECT_EQ(schedule_probes(unprobed, 13, flat), "bpppupppupppu");
 }

@@ -146,7 +146,7 @@ RecordedRun run_into(ResultsFile& out, const std::string& pipeline, uint32_t fra
   PipelineConfig cfg;
   cfg.name = pipeline;
   cfg.device = "cpu";
-  cfg.front_cycle = 2;
+  cfg.fronts.cycle = 2;
   auto p = make_pipeline(cfg);
   p->set_topology(scene->topology());
   RecordedRun run;
@@ -171,10 +171,10 @@ TEST(ResultsFile, CheckedFramesRecordContacts) {
   TempDir dir;
   const fs::path path = dir / "checked.h5";
   std::vector<FrameStats> frames(3);
-  frames[0].pairs = 10, frames[0].checked = true, frames[0].contacts = 4, frames[0].contact_precision = 0.4;
-  frames[0].discrete_missed_contacts = 3;
-  frames[1].pairs = 0, frames[1].checked = true, frames[1].contacts = 0, frames[1].contact_precision = 1.0;
-  frames[2].pairs = 100, frames[2].discrete_missed_contacts = 7;  // not checked: not summed
+  frames[0].pairs = 10, frames[0].check.checked = true, frames[0].check.contacts = 4, frames[0].check.contact_precision = 0.4;
+  frames[0].check.discrete_missed_contacts = 3;
+  frames[1].pairs = 0, frames[1].check.checked = true, frames[1].check.contacts = 0, frames[1].check.contact_precision = 1.0;
+  frames[2].pairs = 100, frames[2].check.discrete_missed_contacts = 7;  // not checked: not summed
   const MemoryStats memory;
   const RunSummary summary = summarize_run(frames, 0);
   EXPECT_EQ(summary.contacts, 4u);
@@ -291,17 +291,17 @@ TEST(ResultsFile, CompleteRunMatchesFrameStats) {
   for (uint32_t i = 0; i < n; ++i) {
     const FrameStats& s = run.frames[i];
     EXPECT_EQ(frame[i], i);
-    EXPECT_EQ(total[i], s.total_ms) << "frame " << i;
+    EXPECT_EQ(total[i], s.timing.total_ms) << "frame " << i;
     EXPECT_EQ(pairs[i], s.pairs) << "frame " << i;
-    EXPECT_EQ(reruns[i], s.query_reruns) << "frame " << i;
-    EXPECT_EQ(front_int[i], s.front_internal) << "frame " << i;
-    EXPECT_EQ(front_ext[i], s.front_external) << "frame " << i;
-    EXPECT_EQ(q_root[i], s.q_root) << "frame " << i;
+    EXPECT_EQ(reruns[i], s.timing.query_reruns) << "frame " << i;
+    EXPECT_EQ(front_int[i], s.fronts.internal) << "frame " << i;
+    EXPECT_EQ(front_ext[i], s.fronts.external) << "frame " << i;
+    EXPECT_EQ(q_root[i], s.quality.q_root) << "frame " << i;
     EXPECT_EQ(op[i], s.op) << "frame " << i;
     EXPECT_EQ(bytes[i], run.memory[i].current_bytes) << "frame " << i;
     EXPECT_EQ(peak[i], run.memory[i].peak_bytes) << "frame " << i;
     for (size_t p = 0; p < kPhaseCount; ++p)
-      EXPECT_EQ(numbers(f.id, std::string("frames/t_") + kPhaseNames[p] + "_ms")[i], s.phase_ms[p])
+      EXPECT_EQ(numbers(f.id, std::string("frames/t_") + kPhaseNames[p] + "_ms")[i], s.timing.phase_ms[p])
           << kPhaseNames[p] << " frame " << i;
   }
   EXPECT_EQ(op[0], "build+generate");
@@ -312,7 +312,7 @@ TEST(ResultsFile, CompleteRunMatchesFrameStats) {
   EXPECT_EQ(number_attr(f.id, "summary", "warmup"), 1);
   EXPECT_EQ(number_attr(f.id, "summary", "t_total_ms_mean"), expected.total.mean);
   EXPECT_EQ(number_attr(f.id, "summary", "t_total_ms_p95"), expected.total.p95);
-  EXPECT_EQ(number_attr(f.id, "summary", "first_frame_ms"), run.frames[0].total_ms);
+  EXPECT_EQ(number_attr(f.id, "summary", "first_frame_ms"), run.frames[0].timing.total_ms);
   EXPECT_EQ(number_attr(f.id, "summary", "t_refit_ms_frames"), double(expected.phase[size_t(Phase::refit)].count));
   EXPECT_TRUE(std::isnan(number_attr(f.id, "summary", "t_build_ms_mean")))
       << "build runs only on frame 0, a warm-up frame";

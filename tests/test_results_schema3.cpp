@@ -32,7 +32,7 @@ fs::path write_run(const std::string& name) {
   ResultsFile out(path, info);
   std::vector<FrameStats> frames(3);
   for (size_t k = 0; k < frames.size(); ++k) {
-    frames[k].total_ms = 1.0 + double(k);
+    frames[k].timing.total_ms = 1.0 + double(k);
     frames[k].pairs = 10 * k;
     out.append_frame(uint32_t(k), frames[k], MemoryStats{});
   }

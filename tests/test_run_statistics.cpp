@@ -90,10 +90,10 @@ TEST(Verdict, RegressionNeedsThresholdAndNoise) {
 
 FrameStats frame(double ms, const std::string& op, uint32_t repeats = 1, double noise = 0) {
   FrameStats s;
-  s.total_ms = ms;
+  s.timing.total_ms = ms;
   s.op = op;
-  s.repeats = repeats;
-  s.total_noise = noise;
+  s.timing.repeats = repeats;
+  s.timing.total_noise = noise;
   return s;
 }
 
@@ -113,7 +113,7 @@ TEST(NoiseCheck, OnePassCountsOnlyTheCommonOperation) {
   EXPECT_EQ(noise_warning(measure_noise(frames, 0)), "");
   // Steady frames that jitter between 1 and 1.5 ms: noise.
   for (size_t i = 0; i < frames.size(); ++i)
-    if (frames[i].op == "refit") frames[i].total_ms = (i % 2) ? 1.5 : 1.0;
+    if (frames[i].op == "refit") frames[i].timing.total_ms = (i % 2) ? 1.5 : 1.0;
   const std::string w = noise_warning(measure_noise(frames, 0));
   EXPECT_NE(w.find("'refit' frames"), std::string::npos) << w;
   EXPECT_NE(w.find("--repeat 5"), std::string::npos) << w;
@@ -127,7 +127,7 @@ TEST(NoiseCheck, OnePassDriftIsNotNoise) {
   EXPECT_EQ(noise_warning(measure_noise(drift, 0)), "");
   // One outlier among steady frames is not a noisy run either; the median ignores it.
   std::vector<FrameStats> outlier(9, frame(1.0, "refit"));
-  outlier[4].total_ms = 3.0;
+  outlier[4].timing.total_ms = 3.0;
   EXPECT_EQ(noise_warning(measure_noise(outlier, 0)), "");
 }
 

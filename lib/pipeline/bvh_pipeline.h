@@ -19,19 +19,19 @@ class BvhPipeline final : public QueryPipeline<Exec, Timer> {
 
  private:
   void reserve(uint32_t) override {
-    bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = this->config_.refit_top_leaves;
+    bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = this->config_.tree.refit_top_leaves;
     bvh_.reserve(this->exec_, this->mesh_.deformable().count);
     rigid_bvh_.reserve(this->exec_, this->mesh_.rigid().count);
   }
 
   std::string prepare(const MeshView& mesh) override {
     const uint64_t frame = this->frame();
-    const bool rebuild = rebuild_due(frame, this->config_.rebuild_every);
-    if (!rebuild && !refit_due(frame, this->config_.refit_every)) return "stale";
+    const bool rebuild = rebuild_due(frame, this->config_.tree.rebuild_every);
+    if (!rebuild && !refit_due(frame, this->config_.tree.refit_every)) return "stale";
     update_hierarchy(this->exec_, this->timer_, rigid_bvh_, mesh, this->mesh_.rigid(), frame == 0,
-                     this->config_.morton_bits, false, this->mesh_.face_object());
+                     this->config_.tree.morton_bits, false, this->mesh_.face_object());
     return update_hierarchy(this->exec_, this->timer_, bvh_, mesh, this->mesh_.deformable(), rebuild,
-                            this->config_.morton_bits);
+                            this->config_.tree.morton_bits);
   }
 
   // The traversals the scene's queries need (all of the one tree's pairs when unsplit).

@@ -85,11 +85,11 @@ class DeviceMesh {
   // The box knobs of PipelineConfig; call before set_topology (swept boxes need the
   // second vertex buffer, reserved there).
   void set_box_knobs(const PipelineConfig& config) {
-    if (!(config.box_margin >= 0.0f) || !std::isfinite(config.box_margin))
+    if (!(config.boxes.margin >= 0.0f) || !std::isfinite(config.boxes.margin))
       fail("--box-margin must be a finite number >= 0");
-    swept_ = config.swept_boxes;
-    margin_ = config.box_margin;
-    precision_ = config.box_precision;
+    swept_ = config.boxes.swept;
+    margin_ = config.boxes.margin;
+    precision_ = config.boxes.precision;
     // fp64's rounding keeps every overlap on its own; with a margin it needs the spacing
     // (geometry/position_rounding.h).
     widen_ = precision_ == BoxPrecision::fp64 && margin_ > 0.0f;
@@ -168,9 +168,9 @@ MeshView begin_frame(Exec& exec, Timer& timer, DeviceMesh<Exec>& mesh,
 // Copies the frame's phase times into its stats, after the frame's read-back.
 template <class Timer>
 void record_timings(const Timer& timer, FrameStats& stats) {
-  for (size_t p = 0; p < kPhaseCount; ++p) stats.phase_ms[p] = timer.phase_ms(Phase(p));
-  stats.total_ms = timer.frame_ms() - stats.phase_ms[size_t(Phase::upload)];
-  stats.host_syncs = uint32_t(timer.frame_syncs());
+  for (size_t p = 0; p < kPhaseCount; ++p) stats.timing.phase_ms[p] = timer.phase_ms(Phase(p));
+  stats.timing.total_ms = timer.frame_ms() - stats.timing.phase_ms[size_t(Phase::upload)];
+  stats.timing.host_syncs = uint32_t(timer.frame_syncs());
 }
 
 // Rebuild (build + depth-first order, by histogram or, for the radix baseline, by a key

@@ -52,7 +52,7 @@ struct FramePlan {
   bool stale = false;    // --refit-every: keep the last boxes, refit nothing
   // Each front query's operation, by Query (pipeline/front_counters.h).
   std::array<FrontOp, kQueryCount> ops = {FrontOp::preserve, FrontOp::preserve, FrontOp::preserve};
-  // The updates write into the current fronts (PipelineConfig::update_in_place), not whole
+  // The updates write into the current fronts (FrontConfig::update_in_place), not whole
   // new ones.
   bool in_place = false;
   bool balance = false;  // (4) before the updates
@@ -81,7 +81,7 @@ struct FramePlan {
 class FramePlanner {
  public:
   FramePlanner(FrontStrategy strategy, const PipelineConfig& config)
-      : strategy_(strategy), config_(config), maintenance_(config.front_cycle, config.regenerate) {}
+      : strategy_(strategy), config_(config), maintenance_(config.fronts.cycle, config.fronts.regenerate) {}
 
   const FrontStrategy& strategy() const { return strategy_; }
   const FrontMaintenance& maintenance() const { return maintenance_; }
@@ -103,9 +103,9 @@ class FramePlanner {
     if (p.decision != Formula2::none) p.restructuring = pending_;
     pending_ = {};
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
-                rebuild_due(frame_, config_.rebuild_every);
+                rebuild_due(frame_, config_.tree.rebuild_every);
     // --refit-every: between refits both trees keep their last boxes (not conservative).
-    p.stale = !p.rebuild && !refit_due(frame_, config_.refit_every);
+    p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
     // name T_D's leaves, which a rebuild or a restructure renumbers: they regenerate then.
     // T_R is only refitted after its build, so its self fronts follow the rule.
@@ -117,7 +117,7 @@ class FramePlanner {
     const bool updates = p.updates();
     // In place while the fronts' order has decayed by less than the compact share; the
     // update after produces them whole and ordered.
-    p.in_place = updates && config_.update_in_place && disorder < config_.compact_share;
+    p.in_place = updates && config_.fronts.update_in_place && disorder < config_.fronts.compact_share;
     // Balance orders a front by the offsets of the sort that produced it: not one with holes
     // and an appended tail.
     p.balance = strategy_.balance && updates && !p.in_place && disorder == 0.0;
@@ -126,7 +126,7 @@ class FramePlanner {
     // stale front for the next maintenance to refresh.
     p.inspect = strategy_.restructure && q_ref_ > 0.0 &&
                 (p.op(Query::self) == FrontOp::update || (p.op(Query::self) == FrontOp::generate && !p.rebuild));
-    p.probe = config_.update_probe && !p.rebuild && cycle == FrontOp::preserve &&
+    p.probe = config_.fronts.update_probe && !p.rebuild && cycle == FrontOp::preserve &&
               maintenance_.update_near(frame_, generated_, produced_, front_nodes);
     return p;
   }
@@ -167,8 +167,8 @@ class FramePlanner {
   Formula2 formula2(uint32_t leaves) const {
     if (!strategy_.restructure || pending_.count == 0) return Formula2::none;
     const double share = double(pending_.leaves) / double(std::max<uint32_t>(leaves, 1));
-    return share < config_.threshold_refit   ? Formula2::refit
-           : share < config_.threshold_build ? Formula2::restructure
+    return share < config_.restructure.threshold_refit   ? Formula2::refit
+           : share < config_.restructure.threshold_build ? Formula2::restructure
                                              : Formula2::rebuild;
   }
 
@@ -178,7 +178,7 @@ class FramePlanner {
     // periodic: every second maintenance generates. With a fixed cycle that is every second
     // cycle since the last generate; adaptively, the maintenance after an update.
     if (strategy_.periodic) {
-      if (maintenance_.adaptive() ? produced_ > generated_ : ((frame_ - generated_) / config_.front_cycle) % 2 == 0)
+      if (maintenance_.adaptive() ? produced_ > generated_ : ((frame_ - generated_) / config_.fronts.cycle) % 2 == 0)
         return FrontOp::generate;
       return FrontOp::update;
     }

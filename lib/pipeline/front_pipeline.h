@@ -53,16 +53,16 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   void set_topology(const Topology& topology) override {
     this->set_mesh(topology);
     const ObjectSplit& split = mesh_.split();
-    bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.refit_top_leaves;
+    bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.tree.refit_top_leaves;
     bvh_.reserve(exec_, mesh_.deformable().count);
     rigid_bvh_.reserve(exec_, mesh_.rigid().count);
-    query(Query::self).plan(bvh_, bvh_, split.deformable_self, config_.front_per_triangle);
-    query(Query::inter).plan(bvh_, rigid_bvh_, split.cross, config_.front_per_triangle);
-    query(Query::rigid_self).plan(rigid_bvh_, rigid_bvh_, split.rigid_self, config_.front_per_triangle);
+    query(Query::self).plan(bvh_, bvh_, split.deformable_self, config_.capacity.front_per_triangle);
+    query(Query::inter).plan(bvh_, rigid_bvh_, split.cross, config_.capacity.front_per_triangle);
+    query(Query::rigid_self).plan(rigid_bvh_, rigid_bvh_, split.rigid_self, config_.capacity.front_per_triangle);
     size_t capacity = 0;
     for (const auto& fq : queries_) capacity = std::max(capacity, fq.capacity());
     if (strategy().radix_sort) radix_.reserve(exec_, capacity);
-    if (strategy().restructure) restructure_.reserve(exec_, bvh_.num_leaves, config_.restructure_min_leaves);
+    if (strategy().restructure) restructure_.reserve(exec_, bvh_.num_leaves, config_.restructure.min_leaves);
     planner_.reset();
     stage_preserve_ = warp_preserve_ = true;
     exec_.sync();
@@ -84,7 +84,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     FramePlan run = plan;  // on a re-run: each query's fronts as they stand
     for (bool first = true;; first = false) {
       if (first && plan.steady()) {
-        stats.graph = frame_graph_run_name(run_steady(mesh, plan));
+        stats.timing.graph = frame_graph_run_name(run_steady(mesh, plan));
       } else {
         pairs_.reset_counters(exec_);
         run_ops(run);
@@ -92,13 +92,13 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       if (run.inspect) inspect_quality();
       timer_.stop_frame();
       if (adopt(run, pairs_.read_counters(exec_))) break;
-      ++stats.query_reruns;
+      ++stats.timing.query_reruns;
     }
     timer_.force_phases(false);
     describe(plan, stats);
     const double generate_per_node = time_generate ? price_generate(stats) : -1.0;
-    planner_.finish(plan, {stats.total_ms, stats.query_reruns == 0, fronts, stats.q_root, found(plan),
-                           stats.graph == "captured", generate_per_node});
+    planner_.finish(plan, {stats.timing.total_ms, stats.timing.query_reruns == 0, fronts, stats.quality.q_root, found(plan),
+                           stats.timing.graph == "captured", generate_per_node});
     choose_preserve_launch(stats.pairs);
     return stats;
   }
@@ -140,9 +140,9 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // Refit or rebuild T_D; T_R is built on the first frame and refitted after.
   std::string update_trees(const MeshView& mesh, bool rebuild) {
     const std::string op = update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild,
-                                            config_.morton_bits, strategy().radix_sort);
+                                            config_.tree.morton_bits, strategy().radix_sort);
     update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), planner_.frame() == 0,
-                     config_.morton_bits, strategy().radix_sort, mesh_.face_object());
+                     config_.tree.morton_bits, strategy().radix_sort, mesh_.face_object());
     return op;
   }
 
@@ -170,20 +170,20 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // The frame's counts, fronts and timings for its stats, after its last read-back.
   void describe(const FramePlan& plan, FrameStats& stats) const {
     stats.pairs = pairs_.count();
-    stats.decision = formula2_name(plan.decision);
-    stats.front_internal = self().live(kInternalFront);
-    stats.front_external = self().live(kExternalFront);
-    stats.front_inter = queries_[size_t(Query::inter)].live_total();
-    stats.front_rigid = queries_[size_t(Query::rigid_self)].live_total();
-    stats.front_disorder = disorder();
-    stats.q_root = strategy().ordered && stats.front_external
-                       ? double(stats.front_internal) / double(stats.front_external)
+    stats.quality.decision = formula2_name(plan.decision);
+    stats.fronts.internal = self().live(kInternalFront);
+    stats.fronts.external = self().live(kExternalFront);
+    stats.fronts.inter = queries_[size_t(Query::inter)].live_total();
+    stats.fronts.rigid = queries_[size_t(Query::rigid_self)].live_total();
+    stats.fronts.disorder = disorder();
+    stats.quality.q_root = strategy().ordered && stats.fronts.external
+                       ? double(stats.fronts.internal) / double(stats.fronts.external)
                        : 0.0;
     if (plan.inspect) {
       const InspectCounters& c = pairs_.last_counters().inspect;
-      stats.candidates = c.candidates;
-      stats.candidate_leaves = c.candidate_leaves;
-      stats.q_candidates = c.candidates ? double(c.candidate_q_milli) / 1000.0 / double(c.candidates) : 0.0;
+      stats.quality.candidates = c.candidates;
+      stats.quality.candidate_leaves = c.candidate_leaves;
+      stats.quality.q_candidates = c.candidates ? double(c.candidate_q_milli) / 1000.0 / double(c.candidates) : 0.0;
     }
     record_timings(timer_, stats);
   }
@@ -199,11 +199,11 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // The build frame's generate and its ordering, per front node produced (a re-run after a
   // buffer grew ran them again); the phases are then cleared unless phases are timed.
   double price_generate(FrameStats& stats) const {
-    double& gen = stats.phase_ms[size_t(Phase::generate)];
-    double& order = stats.phase_ms[size_t(Phase::front_order)];
-    const uint64_t produced = stats.front_internal + stats.front_external + stats.front_inter + stats.front_rigid;
-    const double per_node = (gen + order) / double(1 + stats.query_reruns) / double(std::max<uint64_t>(produced, 1));
-    if (!config_.phase_timing) gen = order = 0.0;
+    double& gen = stats.timing.phase_ms[size_t(Phase::generate)];
+    double& order = stats.timing.phase_ms[size_t(Phase::front_order)];
+    const uint64_t produced = stats.fronts.internal + stats.fronts.external + stats.fronts.inter + stats.fronts.rigid;
+    const double per_node = (gen + order) / double(1 + stats.timing.query_reruns) / double(std::max<uint64_t>(produced, 1));
+    if (!config_.launch.phase_timing) gen = order = 0.0;
     return per_node;
   }
 
@@ -229,7 +229,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     };
     // A probing frame launches plain: probes come in short runs before an update, too few
     // to repay a recording (FrontMaintenance::observe).
-    if (!config_.cuda_graph || plan.probe) {
+    if (!config_.launch.cuda_graph || plan.probe) {
       launch();
       return FrameGraphRun::plain;
     }
@@ -240,11 +240,11 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   }
 
   static void check_restructure_config(const PipelineConfig& c) {
-    if (c.restructure_min_leaves < 2) fail("--restructure-min-leaves must be at least 2");
-    if (!(c.restructure_max_fraction > 0.0 && c.restructure_max_fraction <= 1.0))
+    if (c.restructure.min_leaves < 2) fail("--restructure-min-leaves must be at least 2");
+    if (!(c.restructure.max_fraction > 0.0 && c.restructure.max_fraction <= 1.0))
       fail("--restructure-max-fraction must be in (0, 1]");
-    if (!(c.restructure_quality >= 0.0)) fail("--restructure-quality must be at least 0");
-    if (!(c.threshold_refit >= 0.0) || !(c.threshold_build >= c.threshold_refit))
+    if (!(c.restructure.quality >= 0.0)) fail("--restructure-quality must be at least 0");
+    if (!(c.restructure.threshold_refit >= 0.0) || !(c.restructure.threshold_build >= c.restructure.threshold_refit))
       fail("thresholds must satisfy 0 <= --threshold-refit <= --threshold-build");
   }
 
@@ -263,13 +263,13 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     const uint32_t n = bvh_.num_leaves;
     if (n < 2) return;
     const uint32_t max_leaves = std::max<uint32_t>(
-        config_.restructure_min_leaves, uint32_t(config_.restructure_max_fraction * double(n)));
+        config_.restructure.min_leaves, uint32_t(config_.restructure.max_fraction * double(n)));
     timed(Phase::inspect, [&] {
       exec_.for_each_n(n - 1, InspectQualityFn{bvh_.node_first.data(), bvh_.node_last.data(),
                                                bvh_.node_parent.data(), self().front(kInternalFront).offset_log.data(),
                                                self().front(kExternalFront).offset_log.data(),
-                                               float(config_.restructure_quality * planner_.q_ref()),
-                                               config_.restructure_min_leaves, max_leaves,
+                                               float(config_.restructure.quality * planner_.q_ref()),
+                                               config_.restructure.min_leaves, max_leaves,
                                                restructure_.max_candidates, restructure_.node.data(),
                                                &pairs_.device()->inspect});
     });
@@ -281,7 +281,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // with the histogram sort), and whether it is counted per tree node: for the sort, or for
   // the balance and inspection that read the counts of a front kept as produced.
   bool sorts(FrontOp op) const {
-    return strategy().ordered && (op != FrontOp::update || config_.order_updates || strategy().radix_sort);
+    return strategy().ordered && (op != FrontOp::update || config_.fronts.order_updates || strategy().radix_sort);
   }
   bool counts(FrontOp op) const {
     return histogram_sorted() && (sorts(op) || strategy().balance || strategy().restructure);
@@ -315,16 +315,16 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
           fq.preserve(exec_, pairs_, stage_preserve_, warp_preserve_, plan.probe);
           break;
         case FrontOp::generate:
-          fq.generate(exec_, pairs_, histogram, shares_in_warp(config_.update_warp, fq.query_leaves()));
+          fq.generate(exec_, pairs_, histogram, shares_in_warp(config_.fronts.update_warp, fq.query_leaves()));
           break;
         case FrontOp::update:
           if (plan.in_place)
-            fq.patch(exec_, pairs_, shares_in_warp(config_.update_warp, fq.total()), counts_in_place(), histogram);
+            fq.patch(exec_, pairs_, shares_in_warp(config_.fronts.update_warp, fq.total()), counts_in_place(), histogram);
           else
-            fq.update(exec_, pairs_, counts(op), shares_in_warp(config_.update_warp, fq.total()));
+            fq.update(exec_, pairs_, counts(op), shares_in_warp(config_.fronts.update_warp, fq.total()));
           break;
         case FrontOp::restructure:
-          fq.restructure(exec_, pairs_, histogram, restructure_.view(), shares_in_warp(config_.update_warp, fq.total()));
+          fq.restructure(exec_, pairs_, histogram, restructure_.view(), shares_in_warp(config_.fronts.update_warp, fq.total()));
           break;
       }
     });
@@ -379,7 +379,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   void choose_preserve_launch(uint64_t pairs) {
     const uint64_t fronts = front_nodes();
     stage_preserve_ = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts;
-    warp_preserve_ = shares_in_warp(config_.preserve_warp, fronts);
+    warp_preserve_ = shares_in_warp(config_.fronts.preserve_warp, fronts);
   }
 
   // After a probing frame's read-back, outside its timing: the preserving queries' buffers

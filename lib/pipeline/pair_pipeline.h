@@ -26,14 +26,14 @@ class PairPipeline : public Pipeline {
 
  protected:
   explicit PairPipeline(const PipelineConfig& config)
-      : Pipeline(config.box_precision),
+      : Pipeline(config.boxes.precision),
         config_(config),
-        exec_(ExecOptions{config.dependent_launch}),
-        timer_(exec_, config.phase_timing),
+        exec_(ExecOptions{config.launch.dependent_launch}),
+        timer_(exec_, config.launch.phase_timing),
         mesh_(exec_),
         pairs_(exec_) {
     mesh_.set_box_knobs(config_);
-    if (config_.refit_every == 0) fail("--refit-every must be at least 1");
+    if (config_.tree.refit_every == 0) fail("--refit-every must be at least 1");
   }
 
   // set_topology's part every pipeline shares: the mesh, the pair filters and the pair
@@ -43,7 +43,7 @@ class PairPipeline : public Pipeline {
     mesh_.set_topology(exec_, topology);
     pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);
     pairs_.filter_queries(mesh_.face_object(), mesh_.partners());
-    pairs_.reserve(size_t(config_.pairs_per_triangle * mesh_.num_faces()));
+    pairs_.reserve(size_t(config_.capacity.pairs_per_triangle * mesh_.num_faces()));
     return mesh_.num_faces();
   }
 
@@ -93,7 +93,7 @@ class QueryPipeline : public PairPipeline<Exec, Timer, Counters> {
       const Counters& c = this->pairs_.read_counters(this->exec_);
       const bool settled = settle(c, stats);
       if (!this->pairs_.grow_if_needed() && settled) break;
-      ++stats.query_reruns;
+      ++stats.timing.query_reruns;
     }
     stats.pairs = this->pairs_.count();
     record_timings(this->timer_, stats);

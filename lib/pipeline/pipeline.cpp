@@ -77,10 +77,10 @@ bool config_conservative(const PipelineConfig& config) {
   // The baselines but bvh (which start every frame from the positions) and the per-frame
   // rebuild never keep stale boxes.
   const PipelineKind* kind = find_pipeline_kind(config.name);
-  if (!kind) return config.refit_every <= 1;
+  if (!kind) return config.tree.refit_every <= 1;
   const auto* method = std::get_if<BaselineMethod>(&kind->builds);
   const bool fresh = method ? *method != BaselineMethod::bvh : std::get<FrontStrategy>(kind->builds).rebuild_every_frame;
-  return fresh || config.refit_every <= 1;
+  return fresh || config.tree.refit_every <= 1;
 }
 
 std::unique_ptr<Pipeline> make_pipeline(const PipelineConfig& config) {

@@ -40,53 +40,90 @@ const char* warp_sharing_name(WarpSharing w);
 // Throws cdb::Error naming the known values.
 WarpSharing parse_warp_sharing(const std::string& name);
 
-struct PipelineConfig {
-  std::string name = "bvh";     // see pipeline_names()
-  std::string device = "cuda";  // cuda | cpu
+// The triangle boxes every pipeline and baseline sees, made in face_box (geometry/mesh.h)
+// (docs/design.md "Speed/accuracy knobs").
+struct BoxConfig {
+  // Fat boxes: every triangle box grows by this much (scene units) on each side.
+  // Conservative: a superset of the exact box-overlap pairs.
+  float margin = 0.0f;
+  // Swept boxes: each box bounds the triangle at the previous and the current frame (the
+  // first frame its own positions). Conservative with respect to the discrete pairs.
+  bool swept = false;
+  // Rebased or 16-bit quantized boxes (BoxPrecision).
+  BoxPrecision precision = BoxPrecision::fp32;
+};
+
+// The hierarchy's build and upkeep.
+struct TreeConfig {
   MortonBits morton_bits = MortonBits::b63;
   // bvh: rebuild the hierarchy every this many frames (0: only on the first frame).
   uint32_t rebuild_every = 0;
-  // Initial pair capacity per triangle; the buffer grows (counted, listed after the run) when exceeded.
-  double pairs_per_triangle = 8.0;
-  // Initial front capacity per triangle and kind (internal, external); grows the same way.
-  double front_per_triangle = 8.0;
-  // Front pipelines: when fronts are updated (pipelines b and c balance first) instead of
-  // preserved. 0 (--front-cycle auto): when the measured growth of the steady frames' cost
-  // since the last update has paid for one (pipeline/front_maintenance.h); K: every K-th
-  // frame since the fronts were generated, the paper's fixed cycle.
-  uint32_t front_cycle = 0;
-  // --front-cycle auto: each maintenance runs an update or a generate of new fronts,
-  // whichever measured cheaper last (pipeline/front_maintenance.h); off: always an update
-  // (the paper). The periodic strategy keeps its own alternation. On by default: measured
-  // faster on sphere and within noise elsewhere (docs/front-maintenance.md "Update or
-  // generate").
-  bool regenerate = true;
-  // Co-vertex filtering: pairs of triangles sharing a vertex are not reported.
-  bool skip_adjacent = false;
-  // Pipeline c / restructure (paper §4.1-4.2, docs/design.md "Quality and restructuring").
-  // A node is degraded when its Q (Formula 1) exceeds restructure_quality times Q of the
-  // root right after the last rebuild; candidates are the topmost degraded subtrees of
-  // restructure_min_leaves to restructure_max_fraction * N leaves. Formula 2 on the share
-  // of leaves inside candidates: below threshold_refit only refit, below threshold_build
-  // restructure the candidates, otherwise rebuild.
-  double restructure_quality = 3.0;
-  uint32_t restructure_min_leaves = 32;
-  double restructure_max_fraction = 0.25;
-  double threshold_refit = 0.05;
-  double threshold_build = 0.5;
-  // Speed/accuracy knobs (docs/design.md "Speed/accuracy knobs"), applied in face_box
-  // (geometry/mesh.h), so every pipeline and baseline sees the same boxes.
-  // Fat boxes: every triangle box grows by this much (scene units) on each side.
-  // Conservative: a superset of the exact box-overlap pairs.
-  float box_margin = 0.0f;
-  // Swept boxes: each box bounds the triangle at the previous and the current frame (the
-  // first frame its own positions). Conservative with respect to the discrete pairs.
-  bool swept_boxes = false;
-  // Rebased or 16-bit quantized boxes (BoxPrecision).
-  BoxPrecision box_precision = BoxPrecision::fp32;
   // Front pipelines and bvh: refit only every this many frames (1: every frame), keeping
   // the stale boxes in between. NOT conservative: pairs can be missed. Baselines ignore it.
   uint32_t refit_every = 1;
+  // Refit: trees of up to this many leaves refit their top (the nodes spanning refit
+  // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
+  // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
+  uint32_t refit_top_leaves = kRefitTopMaxLeaves;
+};
+
+// Front maintenance of the front pipelines (pipeline/front_maintenance.h, frame_plan.h).
+struct FrontConfig {
+  // When fronts are updated (pipelines b and c balance first) instead of preserved.
+  // 0 (--front-cycle auto): when the measured growth of the steady frames' cost since the
+  // last update has paid for one; K: every K-th frame since the fronts were generated, the
+  // paper's fixed cycle.
+  uint32_t cycle = 0;
+  // --front-cycle auto: each maintenance runs an update or a generate of new fronts,
+  // whichever measured cheaper last; off: always an update (the paper). The periodic
+  // strategy keeps its own alternation. On by default: measured faster on sphere and within
+  // noise elsewhere (docs/front-maintenance.md "Update or generate").
+  bool regenerate = true;
+  // Ordered pipelines: histogram-sort the front an update produces (the paper). Off: the
+  // update's output is kept in the order its blocks wrote it (each block's nodes together,
+  // so near its input's order), and only generate and restructure sort; b and c still
+  // count the front per node, so their balance before the next update sorts it.
+  bool order_updates = true;
+  // An update writes only what changes, into the current front (holes and an appended
+  // tail: front/operations.h PatchFrontFn); once those changes reach compact_share of the
+  // front's nodes, the next update produces the front whole and ordered again. Off
+  // (default): every update produces the whole front (the paper). Off measured as fast or
+  // faster under --front-cycle auto, on faster only when fronts update every frame
+  // (docs/front-maintenance.md "Updates in place").
+  bool update_in_place = false;
+  double compact_share = 0.5;
+  // The preserves before an update count what it can produce, and the front buffers grow
+  // to that after their frame (pipeline/frame_plan.h, probe); off: an update that outgrows
+  // them grows them inside its frame and runs again.
+  bool update_probe = true;
+  WarpSharing preserve_warp = WarpSharing::automatic;
+  WarpSharing update_warp = WarpSharing::automatic;
+};
+
+// Pipeline c's inspection and Formula 2 (paper §4.1-4.2, docs/design.md "Quality and
+// restructuring"). A node is degraded when its Q (Formula 1) exceeds `quality` times Q of
+// the root right after the last rebuild; candidates are the topmost degraded subtrees of
+// min_leaves to max_fraction * N leaves. Formula 2 on the share of leaves inside
+// candidates: below threshold_refit only refit, below threshold_build restructure the
+// candidates, otherwise rebuild.
+struct RestructureConfig {
+  double quality = 3.0;
+  uint32_t min_leaves = 32;
+  double max_fraction = 0.25;
+  double threshold_refit = 0.05;
+  double threshold_build = 0.5;
+};
+
+// First capacities of the growing buffers; each grows (counted, listed after the run) when
+// exceeded.
+struct CapacityConfig {
+  double pairs_per_triangle = 8.0;
+  // Front nodes per triangle and kind (internal, external).
+  double front_per_triangle = 8.0;
+};
+
+// How kernels are launched and timed.
+struct LaunchConfig {
   // Front pipelines on CUDA: the steady-state frame (refit and preserve, the same kernels
   // with the same arguments frame after frame) is captured once in a CUDA graph and
   // replayed while nothing it launches changes. The host executor ignores it. Off by
@@ -99,29 +136,19 @@ struct PipelineConfig {
   // Time each phase of a frame (refit, preserve, ...) with events; off: only the frame and
   // its upload, so no event stands between two kernels.
   bool phase_timing = true;
-  WarpSharing preserve_warp = WarpSharing::automatic;
-  WarpSharing update_warp = WarpSharing::automatic;
-  // Ordered front pipelines: histogram-sort the front an update produces (the paper). Off:
-  // the update's output is kept in the order its blocks wrote it (each block's nodes
-  // together, so near its input's order), and only generate and restructure sort; b and c
-  // still count the front per node, so their balance before the next update sorts it.
-  bool order_updates = true;
-  // Front pipelines: an update writes only what changes, into the current front (holes and
-  // an appended tail: front/operations.h PatchFrontFn); once those changes reach
-  // compact_share of the front's nodes, the next update produces the front whole and
-  // ordered again. Off (default): every update produces the whole front (the paper). Off
-  // measured as fast or faster under --front-cycle auto, on faster only when fronts update
-  // every frame (docs/front-maintenance.md "Updates in place").
-  bool update_in_place = false;
-  double compact_share = 0.5;
-  // Front pipelines: the preserves before an update count what it can produce, and the
-  // front buffers grow to that after their frame (pipeline/frame_plan.h, probe); off: an
-  // update that outgrows them grows them inside its frame and runs again.
-  bool update_probe = true;
-  // Refit: trees of up to this many leaves refit their top (the nodes spanning refit
-  // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
-  // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
-  uint32_t refit_top_leaves = kRefitTopMaxLeaves;
+};
+
+struct PipelineConfig {
+  std::string name = "bvh";     // see pipeline_names()
+  std::string device = "cuda";  // cuda | cpu
+  // Co-vertex filtering: pairs of triangles sharing a vertex are not reported.
+  bool skip_adjacent = false;
+  BoxConfig boxes;
+  TreeConfig tree;
+  FrontConfig fronts;
+  RestructureConfig restructure;
+  CapacityConfig capacity;
+  LaunchConfig launch;
 };
 
 // Whether a frame builds its hierarchy: the first, and with --rebuild-every K every K-th.
@@ -139,51 +166,68 @@ inline bool refit_due(uint64_t frame, uint32_t refit_every) {
 // pipeline that refits a hierarchy).
 bool config_conservative(const PipelineConfig& config);
 
-struct FrameStats {
-  uint64_t pairs = 0;
+// What a frame cost. Under --repeat the times are the mean over the passes.
+struct FrameTiming {
   std::array<double, kPhaseCount> phase_ms{};
-  double total_ms = 0.0;  // the frame without its upload
+  double total_ms = 0.0;      // the frame without its upload
+  uint32_t repeats = 1;       // passes the times are the mean of
+  double total_noise = 0.0;   // relative standard deviation of total_ms over them (0: one pass)
   uint32_t query_reruns = 0;  // queries re-run because the pair buffer had to grow
   uint32_t host_syncs = 0;    // host-device synchronizations in the frame (target: 1)
-  // --repeat: passes over the frame sequence this frame's times are the mean of, and the
-  // relative standard deviation of its total over those passes (0 with one pass).
-  uint32_t repeats = 1;
-  double total_noise = 0.0;
   // Bytes the frame must move at least (positions and faces read, pairs written): the
   // bandwidth floor's numerator, filled by the frame loop.
   uint64_t bytes_floor = 0;
-  std::string op;             // what the frame did: hierarchy (build/refit) + front operation
   // --cuda-graph: "captured" (the frame recorded its graph, then launched it), "replayed"
   // (it launched a graph recorded earlier) or "" (ran as plain launches).
   std::string graph;
-  uint64_t front_internal = 0, front_external = 0;  // self front sizes after the frame
-  // A split scene's other fronts after the frame (internal + external nodes): T_D's leaves
-  // against T_R, and T_R's self fronts (docs/design.md "Deformable and rigid objects").
-  uint64_t front_inter = 0, front_rigid = 0;
+};
+
+// The front pipelines' fronts after a frame, in nodes.
+struct FrontSizes {
+  uint64_t internal = 0, external = 0;  // the self fronts of T_D
+  // A split scene's other fronts (internal + external nodes): T_D's leaves against T_R, and
+  // T_R's self fronts (docs/design.md "Deformable and rigid objects").
+  uint64_t inter = 0, rigid = 0;
   // --update-in-place: how far the fronts' order has decayed (FrontQuery::disorder), the
   // largest of the queries.
-  double front_disorder = 0.0;
-  double q_root = 0.0;  // Formula 1 at the root (internal / external front nodes), when ordered
-  // Pipeline c: what this frame's inspection found (candidates, their leaves, their mean Q)
-  // and the Formula 2 decision taken at its start on the previous inspection ("" if none).
+  double disorder = 0.0;
+};
+
+// The quality of T_D (paper §4.1): Formula 1 at the root, and in pipeline c what this
+// frame's inspection found (candidates, their leaves, their mean Q) and the Formula 2
+// decision taken at its start on the previous inspection ("" if none).
+struct QualityStats {
+  double q_root = 0.0;  // internal / external front nodes, when ordered
   uint64_t candidates = 0, candidate_leaves = 0;
   double q_candidates = 0.0;
   std::string decision;
-  // --check: this frame's pairs against the exact oracle (recall must be 1 for every
-  // conservative pipeline; precision < 1 means pairs the oracle does not have).
+};
+
+// --check: the frame's pairs against the exact oracle (recall must be 1 for every
+// conservative pipeline; precision < 1 means pairs the oracle does not have).
+struct FrameCheck {
   bool checked = false;
   double recall = 0.0, precision = 0.0;
   uint64_t missed = 0, false_positives = 0;
-  // --check, narrow phase: reported pairs whose triangles are in contact, i.e. within
+  // Narrow phase: reported pairs whose triangles are in contact, i.e. within
   // --contact-distance (0: intersecting; exact tests, lib/narrow), and their share of the
   // reported pairs (1 when there are none).
   uint64_t contacts = 0;
   double contact_precision = 0.0;
-  // --check: reported pairs the discrete oracle lacks (only swept or fat boxes find them)
-  // whose triangles come within --contact-distance at a sampled time of the interval from
-  // the previous frame to this one: contacts of the interval that discrete boxes miss (a
-  // lower bound: narrow/contacts.h count_interval_contacts).
+  // Reported pairs the discrete oracle lacks (only swept or fat boxes find them) whose
+  // triangles come within --contact-distance at a sampled time of the interval from the
+  // previous frame to this one: contacts of the interval that discrete boxes miss (a lower
+  // bound: narrow/contacts.h count_interval_contacts).
   uint64_t discrete_missed_contacts = 0;
+};
+
+struct FrameStats {
+  uint64_t pairs = 0;
+  std::string op;  // what the frame did: hierarchy (build/refit) + front operation
+  FrameTiming timing;
+  FrontSizes fronts;
+  QualityStats quality;
+  FrameCheck check;
 };
 
 class Pipeline {

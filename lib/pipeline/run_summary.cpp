@@ -24,37 +24,37 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
   r.frames = frames.size();
   if (frames.empty()) return r;
   r.warmup = std::min<size_t>(warmup, frames.size() - 1);
-  r.first_ms = frames[0].total_ms;
+  r.first_ms = frames[0].timing.total_ms;
   r.first_op = frames[0].op;
   std::vector<double> total;
   std::array<std::vector<double>, kPhaseCount> ran;
   double pairs = 0, syncs = 0, floor = 0;
   std::vector<double> noise;
   for (size_t f = r.warmup; f < frames.size(); ++f) {
-    total.push_back(frames[f].total_ms);
-    noise.push_back(frames[f].total_noise);
-    syncs += frames[f].host_syncs;
-    floor += double(frames[f].bytes_floor);
-    r.host_syncs_max = std::max(r.host_syncs_max, frames[f].host_syncs);
+    total.push_back(frames[f].timing.total_ms);
+    noise.push_back(frames[f].timing.total_noise);
+    syncs += frames[f].timing.host_syncs;
+    floor += double(frames[f].timing.bytes_floor);
+    r.host_syncs_max = std::max(r.host_syncs_max, frames[f].timing.host_syncs);
     for (size_t p = 0; p < kPhaseCount; ++p)
-      if (frames[f].phase_ms[p] > 0) ran[p].push_back(frames[f].phase_ms[p]);
+      if (frames[f].timing.phase_ms[p] > 0) ran[p].push_back(frames[f].timing.phase_ms[p]);
     pairs += double(frames[f].pairs);
   }
   for (const auto& f : frames) {
-    r.query_reruns += f.query_reruns;
-    r.decided_refit += f.decision == "refit";
-    r.decided_restructure += f.decision == "restructure";
-    r.decided_rebuild += f.decision == "rebuild";
-    if (f.checked) {
+    r.query_reruns += f.timing.query_reruns;
+    r.decided_refit += f.quality.decision == "refit";
+    r.decided_restructure += f.quality.decision == "restructure";
+    r.decided_rebuild += f.quality.decision == "rebuild";
+    if (f.check.checked) {
       ++r.checked_frames;
-      r.recall_min = std::min(r.recall_min, f.recall);
-      r.precision_min = std::min(r.precision_min, f.precision);
-      r.missed += f.missed;
-      r.false_positives += f.false_positives;
-      r.contacts += f.contacts;
-      r.discrete_missed_contacts += f.discrete_missed_contacts;
+      r.recall_min = std::min(r.recall_min, f.check.recall);
+      r.precision_min = std::min(r.precision_min, f.check.precision);
+      r.missed += f.check.missed;
+      r.false_positives += f.check.false_positives;
+      r.contacts += f.check.contacts;
+      r.discrete_missed_contacts += f.check.discrete_missed_contacts;
       r.checked_pairs += f.pairs;
-      r.contact_precision_min = std::min(r.contact_precision_min, f.contact_precision);
+      r.contact_precision_min = std::min(r.contact_precision_min, f.check.contact_precision);
     }
   }
   if (r.checked_pairs) r.contact_precision = double(r.contacts) / double(r.checked_pairs);
@@ -63,7 +63,7 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
   r.pairs_mean = pairs / double(r.total.count);
   r.host_syncs_mean = syncs / double(r.total.count);
   r.bytes_floor_mean = floor / double(r.total.count);
-  r.repeats = frames.back().repeats;
+  r.repeats = frames.back().timing.repeats;
   r.noise_median = stat_of(std::move(noise)).median;
   return r;
 }

@@ -36,7 +36,7 @@ struct RunSummary {
   // Host-device synchronizations per measured frame (target: 1).
   double host_syncs_mean = 0;
   uint32_t host_syncs_max = 0;
-  double bytes_floor_mean = 0;  // per measured frame; see FrameStats::bytes_floor
+  double bytes_floor_mean = 0;  // per measured frame; see FrameTiming::bytes_floor
   uint32_t query_reruns = 0;  // over all frames, warm-up included
   // Formula 2 decisions of pipeline c over all frames.
   size_t decided_refit = 0, decided_restructure = 0, decided_rebuild = 0;
