@@ -445,3 +445,50 @@ TEST(FramePlan, OneOffCostsAreNoRent) {
     EXPECT_EQ(s, "b" + std::string(39, 'p')) << (grew ? "grew" : "recorded");
   }
 }
+
+// A tree that degrades: each update brings the steady frame back only to a floor that rises
+// frame by frame. With --rebuild-degraded the tree rebuilds once the floor's excess over the
+// fresh tree's cost per pair has summed to a build's cost over a steady frame, and the floor
+// starts over; contact that grows with the cost (pairs rising with the floor) is no
+// degradation, and off never rebuilds after the first frame.
+TEST(FramePlan, RebuildsATreeWhoseDegradationPaidForABuild) {
+  const double build = 10.0, rise = 0.05;
+  for (const bool pairs_follow : {false, true})
+  for (const bool on : {true, false}) {
+    PipelineConfig cfg = cycle_config(0);
+    cfg.tree.rebuild_degraded = on;
+    FramePlanner planner(FrontStrategy{}, cfg);
+    int since_build = 0, since_produce = 0;
+    std::string s;
+    for (int f = 0; f < 200; ++f) {
+      const TreeMaintenance before = planner.tree();
+      const FramePlan p = planner.plan(1000, 100);
+      s += letter(p);
+      if (f > 0) {
+        EXPECT_EQ(p.rebuild, before.rebuild_due()) << "frame " << f;
+        if (p.rebuild) EXPECT_GE(before.rent_ms(), before.price_ms()) << "frame " << f;
+      }
+      const double floor = 1.0 + rise * since_build;
+      double ms = build;
+      if (p.rebuild) {
+        since_build = since_produce = 0;
+      } else if (p.changes_fronts()) {
+        ms = floor + 2.0;
+        since_produce = 0;
+      } else {
+        ms = floor + 0.2 * since_produce++;
+      }
+      if (!p.rebuild) ++since_build;
+      const uint64_t pairs = pairs_follow ? uint64_t(1000.0 * floor) : 1000;
+      planner.finish(p, {ms, true, 100, 1.0, {}, false, -1.0, pairs});
+      if (pairs_follow) EXPECT_LT(planner.tree().rent_ms(), 0.5) << "frame " << f;
+    }
+    const size_t rebuilds = size_t(std::count(s.begin() + 1, s.end(), 'b'));
+    if (on && !pairs_follow) {
+      EXPECT_GE(rebuilds, 2u) << s;
+    } else {
+      EXPECT_EQ(rebuilds, 0u) << s;
+    }
+    EXPECT_NE(s.find('u'), std::string::npos) << s;
+  }
+}

@@ -12,6 +12,7 @@
 #include "pipeline/front_counters.h"
 #include "pipeline/front_maintenance.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/tree_maintenance.h"
 
 namespace cdb {
 
@@ -81,10 +82,14 @@ struct FramePlan {
 class FramePlanner {
  public:
   FramePlanner(FrontStrategy strategy, const PipelineConfig& config)
-      : strategy_(strategy), config_(config), maintenance_(config.fronts.cycle, config.fronts.regenerate) {}
+      : strategy_(strategy),
+        config_(config),
+        maintenance_(config.fronts.cycle, config.fronts.regenerate),
+        tree_(config.tree.rebuild_degraded && maintenance_.adaptive() && !strategy.rebuild_every_frame) {}
 
   const FrontStrategy& strategy() const { return strategy_; }
   const FrontMaintenance& maintenance() const { return maintenance_; }
+  const TreeMaintenance& tree() const { return tree_; }
 
   // A new run over the frames: the first frame builds.
   void reset() {
@@ -92,6 +97,7 @@ class FramePlanner {
     pending_ = {};
     q_ref_ = 0.0;
     maintenance_.reset();
+    tree_.reset();
   }
 
   // The next frame's plan, for a tree T_D of `leaves` leaves and fronts of `front_nodes`
@@ -103,7 +109,7 @@ class FramePlanner {
     if (p.decision != Formula2::none) p.restructuring = pending_;
     pending_ = {};
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
-                rebuild_due(frame_, config_.tree.rebuild_every);
+                rebuild_due(frame_, config_.tree.rebuild_every) || tree_.rebuild_due();
     // --refit-every: between refits both trees keep their last boxes (not conservative).
     p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
@@ -140,11 +146,19 @@ class FramePlanner {
     Candidates found;         // what its inspection found (capped at the candidates' buffer)
     bool recorded = false;    // it recorded its frame graph (a one-off cost)
     double generate_per_node_ms = -1.0;  // a build frame: its generate and ordering per front node made
+    uint64_t pairs = 0;       // the pairs it reported
   };
   void finish(const FramePlan& p, const Outcome& o) {
     const FrontOp self = p.op(Query::self);
-    maintenance_.observe(p.steady() && !p.stale, !p.rebuild && self == FrontOp::update, p.rebuild,
-                         o.ran_once && !o.recorded, o.ms, o.front_nodes, !p.rebuild && self == FrontOp::generate);
+    const bool steady = p.steady() && !p.stale, clean = o.ran_once && !o.recorded;
+    maintenance_.observe(steady, !p.rebuild && self == FrontOp::update, p.rebuild, clean, o.ms, o.front_nodes,
+                         !p.rebuild && self == FrontOp::generate);
+    if (p.rebuild)
+      tree_.built(o.ms);
+    else if (p.changes_fronts())
+      tree_.fronts_produced();
+    else if (steady && clean)
+      tree_.steady(o.ms, maintenance_.fresh_ms(), o.pairs);
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
     if (p.rebuild || self == FrontOp::generate) generated_ = frame_;
     if (p.changes_fronts()) {
@@ -189,6 +203,7 @@ class FramePlanner {
   FrontStrategy strategy_;
   PipelineConfig config_;
   FrontMaintenance maintenance_;
+  TreeMaintenance tree_;
   uint64_t frame_ = 0;
   uint64_t generated_ = 0;  // the last frame that generated T_D's self fronts
   uint64_t produced_ = 0;   // the last frame that produced any front

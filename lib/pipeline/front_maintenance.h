@@ -97,6 +97,9 @@ class FrontMaintenance {
     return steady_ > 0 && rent_ms() >= kProbeShare * price_ms(front_nodes);
   }
 
+  // The cheapest steady frame since the fronts were last produced (fresh fronts), in ms.
+  double fresh_ms() const { return steady_min_; }
+
   // The rent paid since the fronts were last produced, in ms.
   double rent_ms() const { return steady_ > 0 ? steady_sum_ - double(steady_) * steady_min_ : 0.0; }
 

@@ -98,7 +98,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     describe(plan, stats);
     const double generate_per_node = time_generate ? price_generate(stats) : -1.0;
     planner_.finish(plan, {stats.timing.total_ms, stats.timing.query_reruns == 0, fronts, stats.quality.q_root, found(plan),
-                           stats.timing.graph == "captured", generate_per_node});
+                           stats.timing.graph == "captured", generate_per_node, stats.pairs});
     choose_preserve_launch(stats.pairs);
     return stats;
   }

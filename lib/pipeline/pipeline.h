@@ -65,6 +65,10 @@ struct TreeConfig {
   // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
+  // Front pipelines under --front-cycle auto: rebuild the tree (and generate every front)
+  // once its degradation has cost as much as a build (pipeline/tree_maintenance.h); off:
+  // only --rebuild-every and pipeline c's Formula 2 rebuild.
+  bool rebuild_degraded = true;
 };
 
 // Front maintenance of the front pipelines (pipeline/front_maintenance.h, frame_plan.h).
