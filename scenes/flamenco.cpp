@@ -5,6 +5,10 @@
 // Here the dancer is assimp's BCN_Epileptic.X (a skinned body, its 3.3 s jump clip looping)
 // and the skirt is `layers` cones of the PBD cloth (pbd_cloth.h) whose waistbands are driven
 // by the skin at the waist, colliding with the whole body's triangles.
+//
+// With `stride` N, one simulated frame in N is output: the `garment` scene, a long one-layer
+// skirt whose frames are far enough apart that the cloth moves several of its boxes' sizes
+// between two of them (incoherent frames, as a simulation's output sampled sparsely).
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -103,6 +107,7 @@ std::unique_ptr<FrameSource> make_flamenco(Params& p, const SceneInputs& inputs)
   const uint32_t layers = p.count32("layers", 3, 1, 16);
   const double flare = p.number("flare", 0.55);
   const std::string body_file = p.text("body", "/usr/share/assimp/models/X/BCN_Epileptic.X");
+  const uint32_t stride = p.count32("stride", 1, 1, 1000);
   p.finish();
   if (c.res < 4) fail("generator 'flamenco', parameter 'res': must be at least 4 (vertices around a layer)");
   if (!(flare >= 0 && flare <= 4)) fail("generator 'flamenco', parameter 'flare': must be between 0 and 4");
@@ -112,11 +117,17 @@ std::unique_ptr<FrameSource> make_flamenco(Params& p, const SceneInputs& inputs)
   ClothSceneSpec s;
   s.frames = c.frames;
   s.warmup = c.warmup;
+  // Every `stride`-th simulated frame is output: the solver takes as many substeps between
+  // two output frames as over `stride` frames, so the cloth moves as at stride 1 and the
+  // output sees its motion `stride` times coarser (incoherent frames at large strides). The
+  // warm-up counts output frames.
   const double dt = s.frame_time;
-  // One body sample per output frame and one past the last (the motion in the last frame).
-  std::vector<std::vector<dvec3>> samples(c.frames + 1);
+  s.frame_time = stride * dt;
+  // One body sample per simulated frame and one past the last (the motion in the last frame).
+  const uint32_t simulated = c.frames * stride;
+  std::vector<std::vector<dvec3>> samples(simulated + 1);
   std::vector<vec3f> f;
-  for (uint32_t k = 0; k <= c.frames; ++k) {
+  for (uint32_t k = 0; k <= simulated; ++k) {
     // The clip loops (BCN's jump ends in its first pose).
     body.at(body.seconds > 0 ? std::fmod(k * dt, body.seconds) : 0.0, f);
     samples[k].reserve(f.size());
@@ -184,13 +195,13 @@ std::unique_ptr<FrameSource> make_flamenco(Params& p, const SceneInputs& inputs)
     q += (1e-3 * height / rows * rng.symmetric()) * radial;
   }
 
-  s.settings.substeps = c.substeps;
+  s.settings.substeps = c.substeps * stride;
   s.settings.friction = 0.3;
   s.settings.thickness = thickness;
   s.settings.bend_compliance = 1e-3;
   s.settings.damping = 0.2;
 
-  auto track = std::make_shared<const BodyTrack>(std::move(samples), dt, c.warmup * dt);
+  auto track = std::make_shared<const BodyTrack>(std::move(samples), dt, c.warmup * s.frame_time);
   auto faces = std::make_shared<const std::vector<Tri>>(body_faces);
   // Vertices up to 3 cm inside the skin are pushed out; deeper ones went through a limb and
   // are left to come out on their own.
@@ -207,12 +218,13 @@ std::unique_ptr<FrameSource> make_flamenco(Params& p, const SceneInputs& inputs)
     col.meshes.push_back({std::make_shared<const MeshSurface>(faces, std::move(x), std::move(v), depth + thickness), depth});
   };
   s.deforming.push_back({"body", body_faces, body.topology.num_vertices,
-                         [track](uint32_t k, std::vector<dvec3>& out) { out = track->sample(k); }});
+                         [track, stride](uint32_t k, std::vector<dvec3>& out) { out = track->sample(k * stride); }});
   const size_t tris = s.cloth_faces.size() + body_faces.size();
   s.description = "flamenco: " + body_file + " (" + std::to_string(body_faces.size()) + " triangles) dancing in a " +
                   std::to_string(layers) + "-layer skirt of " + std::to_string(around) + " x " + std::to_string(rows) +
                   " per layer (" + std::to_string(s.cloth_faces.size()) + " cloth triangles; " + std::to_string(tris) +
-                  " triangles, " + std::to_string(s.frames) + " frames)";
+                  " triangles, " + std::to_string(s.frames) + " frames" +
+                  (stride > 1 ? ", one in " + std::to_string(stride) + " simulated frames" : std::string()) + ")";
   return std::make_unique<ClothSceneSource>(std::move(s));
 }
 

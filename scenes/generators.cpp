@@ -6,6 +6,7 @@
 
 #include "cloth_scenes.h"
 #include "core/error.h"
+#include "crumple.h"
 #include "n_body.h"
 #include "paper_scenes.h"
 #include "params.h"
@@ -146,7 +147,8 @@ class ClothWaveSource final : public GeneratedSource {
 
 const std::vector<std::string>& generator_names() {
   static const std::vector<std::string> names = {"soup",   "cloth-wave", "funnel", "cloth-ball", "flag",
-                                                    "sphere", "n-body",     "flamenco", "dragon"};
+                                                    "sphere", "n-body",     "flamenco", "dragon",
+                                                    "crumple"};
   return names;
 }
 
@@ -160,6 +162,7 @@ std::unique_ptr<FrameSource> make_named(const std::string& name, Params& p, cons
   if (name == "flag") return scene::make_flag(p);
   if (name == "sphere") return scene::make_sphere_hit(p);
   if (name == "n-body") return scene::make_n_body(p);
+  if (name == "crumple") return scene::make_crumple(p);
   if (name == "flamenco" || name == "dragon") {
     if (!inputs) fail("generator '" + name + "' reads packaged files: open it as a scene (a descriptor), not alone");
     return name == "flamenco" ? scene::make_flamenco(p, *inputs) : scene::make_dragon(p, *inputs);

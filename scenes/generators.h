@@ -12,9 +12,9 @@
 
 namespace cdb {
 
-// Known generators: soup, cloth-wave (kinematic); funnel, cloth-ball, flag, sphere (simulated
-// cloth, see cloth_scenes.h); n-body (rigid bodies); flamenco and dragon (built on packaged
-// files, see paper_scenes.h). Unknown parameters are an error that lists the known ones;
+// Known generators: soup, cloth-wave, crumple (kinematic); funnel, cloth-ball, flag, sphere
+// (simulated cloth, see cloth_scenes.h); n-body (rigid bodies); flamenco and dragon (built on
+// packaged files, see paper_scenes.h). Unknown parameters are an error that lists the known ones;
 // out-of-range values and running out of memory are errors naming the parameters.
 // `described`, when given, receives every parameter with its default, range and the value
 // used. `inputs` opens the files flamenco and dragon read; without it they are an error.

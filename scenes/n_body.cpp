@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <optional>
 
 #include "core/error.h"
 #include "dvec.h"
 #include "rigid_shapes.h"
 #include "rng.h"
+#include "stepped_source.h"
 
 namespace cdb::scene {
 namespace {
@@ -35,8 +35,8 @@ Pose pose_of(const Body& b) {
 // resolved one pair at a time in index order, so runs are reproducible.
 class NBody {
  public:
-  NBody(std::vector<Body> bodies, dvec3 box, double gravity, double restitution)
-      : b_(std::move(bodies)), half_(0.5 * box), gravity_(gravity), restitution_(restitution) {
+  NBody(std::vector<Body> bodies, dvec3 box, double gravity, double restitution, uint32_t passes)
+      : b_(std::move(bodies)), half_(0.5 * box), gravity_(gravity), restitution_(restitution), passes_(passes) {
     for (const Body& b : b_) cell_ = std::max(cell_, 2 * b.radius);
   }
 
@@ -49,7 +49,14 @@ class NBody {
         integrate_spin(b, h);
         walls(b);
       }
-      contacts();
+      // One sweep, after the walls, is the paper's N-body, whose bodies are mostly apart.
+      // A pile needs several sweeps to settle, and each ends at the walls: bodies pressed
+      // down by the pile must not sink through the floor.
+      for (uint32_t pass = 0; pass < passes_; ++pass) {
+        contacts();
+        if (passes_ > 1)
+          for (Body& b : b_) walls(b);
+      }
     }
   }
   const std::vector<Body>& bodies() const { return b_; }
@@ -129,10 +136,11 @@ class NBody {
   std::vector<Body> b_;
   dvec3 half_;
   double gravity_, restitution_, cell_ = 0;
+  uint32_t passes_;
   std::vector<std::pair<int64_t, uint32_t>> order_;
 };
 
-class NBodySource final : public FrameSource {
+class NBodySource final : public SteppedSource<NBody> {
  public:
   explicit NBodySource(Params& p) {
     const uint32_t balls = p.count32("spheres", 460, 0, 10000000);
@@ -143,8 +151,15 @@ class NBodySource final : public FrameSource {
     warmup_ = p.count32("warmup", 10, 0, 100000);
     substeps_ = p.count32("substeps", 8, 1, 1000);
     const double speed = p.number("speed", 1.5);
+    const double gravity = p.number("gravity", 2.0);
+    const double restitution = p.number("restitution", 0.9);
+    const double fill = p.number("fill", 0.15);
+    const uint32_t passes = p.count32("passes", 1, 1, 1000);
     const uint64_t seed = p.count_in("seed", 1, 0, scene::kLargestExactCount);
     p.finish();
+    if (!(restitution >= 0 && restitution <= 1)) fail("generator 'n-body', parameter 'restitution': must be between 0 and 1");
+    if (!(fill > 0 && fill <= 0.5)) fail("generator 'n-body', parameter 'fill': must be in (0, 0.5]");
+    if (!(std::abs(gravity) <= 1000)) fail("generator 'n-body', parameter 'gravity': must be between -1000 and 1000");
 
     // Ball radii 0.04..0.06; cones of base radius 0.06 and height 0.12. A cone's body origin
     // is the centre of its bounding sphere, on the axis at height c above the base.
@@ -172,10 +187,10 @@ class NBodySource final : public FrameSource {
       b.spin = 3.0 * dvec3{rng.normal(), rng.normal(), rng.normal()};
       bodies.push_back(b);
     }
-    // A cube holding the bodies at about 15% volume fraction, on a lattice of sites two
+    // A cube holding the bodies at about `fill` volume fraction, on a lattice of sites two
     // largest radii apart taken in a seeded random order.
     const double spacing = 2.2 * std::max(largest, 1e-3);
-    uint32_t side = uint32_t(std::ceil(std::cbrt(volume / 0.15) / spacing));
+    uint32_t side = uint32_t(std::ceil(std::cbrt(volume / fill) / spacing));
     while (uint64_t(side) * side * side < bodies.size()) ++side;
     const double box = side * spacing;
     std::vector<uint32_t> sites(uint64_t(side) * side * side);
@@ -186,7 +201,7 @@ class NBodySource final : public FrameSource {
       bodies[i].x = {(s % side + 0.5) * spacing - box / 2, (s / side % side + 0.5) * spacing - box / 2,
                      (s / side / side + 0.5) * spacing - box / 2};
     }
-    sim_.emplace(std::move(bodies), dvec3{box, box, box}, 2.0, 0.9);
+    sim_.emplace(std::move(bodies), dvec3{box, box, box}, gravity, restitution, passes);
 
     for (const Body& b : sim_->bodies()) {
       append_faces(meshes_[b.shape], topology_.num_vertices, topology_.faces);
@@ -197,25 +212,17 @@ class NBodySource final : public FrameSource {
                    std::to_string(frames_) + " frames)";
   }
 
-  const Topology& topology() const override { return topology_; }
-  uint32_t num_frames() const override { return frames_; }
-  std::string describe() const override { return description_; }
-
-  void positions(uint32_t k, std::vector<vec3d>& out) const override {
-    if (k >= frames_) fail("frame " + std::to_string(k) + " out of range (" + std::to_string(frames_) + " frames)");
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!start_) {
-      start_ = *sim_;
-      for (uint32_t f = 0; f < warmup_; ++f) start_->step(frame_time_, substeps_);
-    }
-    if (!current_ || current_frame_ > k) {
-      current_ = *start_;
-      current_frame_ = 0;
-    }
-    for (; current_frame_ < k; ++current_frame_) current_->step(frame_time_, substeps_);
+ private:
+  NBody first() const override {
+    NBody sim = *sim_;
+    for (uint32_t f = 0; f < warmup_; ++f) sim.step(frame_time_, substeps_);
+    return sim;
+  }
+  void advance(NBody& sim, uint32_t) const override { sim.step(frame_time_, substeps_); }
+  void write(const NBody& sim, std::vector<vec3d>& out) const override {
     out.clear();
     out.reserve(topology_.num_vertices);
-    for (const Body& b : current_->bodies()) {
+    for (const Body& b : sim.bodies()) {
       const Pose pose = pose_of(b);
       const double scale = b.shape == 0 ? b.radius : 1.0;
       for (const dvec3& v : meshes_[b.shape].vertices) {
@@ -225,16 +232,10 @@ class NBodySource final : public FrameSource {
     }
   }
 
- private:
-  Topology topology_;
-  uint32_t frames_ = 1, warmup_ = 0, substeps_ = 1;
+  uint32_t warmup_ = 0, substeps_ = 1;
   double frame_time_ = 1.0 / 30.0;
-  std::string description_;
   std::vector<RigidMesh> meshes_;  // unit ball, cone
   std::optional<NBody> sim_;       // initial state
-  mutable std::mutex mutex_;
-  mutable std::optional<NBody> start_, current_;
-  mutable uint32_t current_frame_ = 0;
 };
 
 }  // namespace
