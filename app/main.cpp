@@ -17,6 +17,7 @@
 #include "help_format.h"
 #include "library_errors.h"
 #include "options.h"
+#include "plan_table.h"
 #include "results_table.h"
 #include "run_command.h"
 #include "scenes_command.h"
@@ -53,6 +54,12 @@ int main(int argc, char** argv) {
                      "results files written by run --out, or directories: every .h5 under them, and the sweep cells that left none")
       ->required();
   report->add_flag("--csv", csv, "CSV instead of Markdown");
+  bool plan = false;
+  report
+      ->add_flag("--plan", plan,
+                 "print one pass's front plan as a plan file for run --front-cycle, instead of the table: the file "
+                 "given is FILE.h5 (pass 0), FILE.h5:PIPELINE or FILE.h5:PIPELINE:PASS, or a plan file to check")
+      ->excludes("--csv");
 
   SweepOptions w;
   CLI::App* sweep = add_sweep_command(app, w);
@@ -71,6 +78,7 @@ int main(int argc, char** argv) {
     if (*scenes.list) return scenes_list(s);
     if (*scenes.info) return scenes_info(s);
     if (*scenes.generate) return scenes_generate(s);
+    if (*report && plan) return print_plan_file(report_files);
     if (*report) return print_results_table(report_files, csv);
     if (*sweep) return sweep_command(w, *run);
     if (*compare) return compare_command(cmp);

@@ -14,18 +14,6 @@
 namespace cdb {
 namespace {
 
-// An option that takes one of `words` into a typed field: CLI11 checks the word (the help
-// lists the words) and `parse` makes the value. The word stays the option's text, which
-// the results file records (cli_params.h), and `shown` is the default the help prints.
-template <class T>
-CLI::Option* add_choice(CLI::App* cmd, const std::string& name, T& field, const std::string& help,
-                        std::vector<std::string> words, std::function<T(const std::string&)> parse,
-                        const std::string& shown) {
-  return cmd->add_option_function<std::string>(name, [&field, parse](const std::string& w) { field = parse(w); }, help)
-      ->check(CLI::IsMember(std::move(words)))
-      ->default_str(shown);
-}
-
 // An on/off option into a bool; CLI11 reads on as true and off as false. Typed TEXT in the
 // help, as the word it takes.
 CLI::Option* add_switch(CLI::App* cmd, const std::string& name, bool& field, const std::string& help) {
@@ -54,19 +42,28 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
                   "bvh pipeline: rebuild every K frames (0: build on the first frame only)")
       ->group(kPipelineGroup)
       ->capture_default_str();
+  // auto and K are cycles; anything else names a recorded plan, read once the pipelines
+  // are known (run_command.cpp).
   cmd->add_option_function<std::string>(
          "--front-cycle",
-         [&c](const std::string& v) { c.fronts.cycle = v == "auto" ? 0u : uint32_t(std::stoul(v)); },
+         [&c, &o](const std::string& v) {
+           const bool cycle = v == "auto" || v.find_first_not_of("0123456789") == std::string::npos;
+           o.front_plan = cycle ? "" : v;
+           c.fronts.cycle = v == "auto" || !cycle ? 0u : uint32_t(std::stoul(v));
+         },
          "front pipelines: when fronts are updated instead of preserved; auto: once the measured growth of "
          "the steady frames' cost since the last update has paid for one (rent or buy); K: every K-th frame "
-         "since the fronts were generated (the paper's fixed cycle)")
+         "since the fronts were generated (the paper's fixed cycle); FILE: replay a recorded plan, every "
+         "frame's build or refit and front operations as recorded: a plan file, or a results file "
+         "FILE.h5[:PIPELINE[:PASS]] (its pipeline's, or PIPELINE's, pass 0 or PASS); {pipeline} in FILE is "
+         "replaced by each pipeline's name (docs/usage.md \"Plans\"); run only")
       ->check(CLI::Validator(
           [](std::string& v) -> std::string {
-            if (v == "auto") return "";
-            const bool digits = !v.empty() && v.size() < 10 && v.find_first_not_of("0123456789") == std::string::npos;
-            return digits && std::stoul(v) > 0 ? "" : "auto or a positive whole number of frames, not " + v;
+            if (v == "auto" || (!v.empty() && v.find_first_not_of("0123456789") != std::string::npos)) return "";
+            const bool positive = !v.empty() && v.size() < 10 && std::stoul(v) > 0;
+            return positive ? "" : "auto, a positive whole number of frames or a plan file, not '" + v + "'";
           },
-          "auto|K"))
+          "auto|K|FILE"))
       ->default_str(c.fronts.cycle ? std::to_string(c.fronts.cycle) : "auto");
   cmd->add_flag("--skip-adjacent", c.skip_adjacent,
                 "co-vertex filtering: do not report pairs of triangles that share a vertex (oracle too)")

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +21,9 @@ struct CommonOptions {
   std::string frames;
   std::string scenes_dir;
   std::vector<std::string> sets;  // generator overrides, key=value
+  // --front-cycle FILE: the recorded plan every front pipeline replays, as given ({pipeline}
+  // not yet replaced); "" for auto and K, which go into config.fronts.cycle.
+  std::string front_plan;
   // The pipeline options are bound straight into it; its name and device are set per
   // pipeline by make_config.
   PipelineConfig config;
@@ -35,6 +39,18 @@ inline constexpr const char* kMeasurementGroup = "Measurement";
 inline constexpr const char* kOutputGroup = "Output";
 // Speed knobs: none changes a pair; each option's help says which devices it applies to.
 inline constexpr const char* kTuningGroup = "Tuning (speed only)";
+
+// An option that takes one of `words` into a typed field: CLI11 checks the word (the help
+// lists the words) and `parse` makes the value. The word stays the option's text, which
+// the results file records (cli_params.h), and `shown` is the default the help prints.
+template <class T>
+CLI::Option* add_choice(CLI::App* cmd, const std::string& name, T& field, const std::string& help,
+                        std::vector<std::string> words, std::function<T(const std::string&)> parse,
+                        const std::string& shown) {
+  return cmd->add_option_function<std::string>(name, [&field, parse](const std::string& w) { field = parse(w); }, help)
+      ->check(CLI::IsMember(std::move(words)))
+      ->default_str(shown);
+}
 
 // Scene, pipeline and accuracy options.
 void add_common(CLI::App* cmd, CommonOptions& o);

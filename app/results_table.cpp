@@ -15,6 +15,7 @@
 #include "damaged_file_guard.h"
 #include "exit_codes.h"
 #include "library_errors.h"
+#include "plan_table.h"
 
 #include "core/error.h"
 #include "core/phase.h"
@@ -203,6 +204,47 @@ std::string csv_cell(const std::string& s) {
   return out + "\"";
 }
 
+// A Markdown table: text columns left-aligned, numbers right-aligned.
+void print_markdown(const std::vector<std::string>& header, const std::vector<bool>& left,
+                    const std::vector<std::vector<std::string>>& table) {
+  auto line = [](const std::vector<std::string>& cells) {
+    std::string s = "|";
+    for (const auto& c : cells) {
+      s += ' ';
+      s += markdown_cell(c);
+      s += " |";
+    }
+    std::printf("%s\n", s.c_str());
+  };
+  line(header);
+  std::string rule = "|";
+  for (const bool l : left) rule += l ? " --- |" : " ---: |";
+  std::printf("%s\n", rule.c_str());
+  for (const auto& cells : table) line(cells);
+}
+
+// The front plans of the files that record them, one row per pass, after the table; a
+// file whose plans cannot be read is named on stderr and makes the exit code 1.
+int print_plans(const std::vector<Row>& rows) {
+  int rc = kExitOk;
+  std::vector<std::vector<std::string>> table;
+  for (const Row& row : rows) {
+    if (!row.unreadable.empty() || !row.r.has_plans) continue;
+    try {
+      const DamagedFileGuard guard("report", row.r.path);
+      for (auto& cells : plan_rows(row.r, read_results_plans(row.r.path))) table.push_back(std::move(cells));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "cdbench: report: %s\n", error_text(e).c_str());
+      rc = kExitFailure;
+    }
+  }
+  if (table.empty()) return rc;
+  std::printf("\nPlans: the frames each pass built the trees, updated, generated (a maintenance, not a build) and "
+              "restructured fronts\n\n");
+  print_markdown(plan_table_header(), {true, true, false, true, true, true}, table);
+  return rc;
+}
+
 }  // namespace
 
 int print_results_table(const std::vector<std::string>& args, bool csv) {
@@ -278,6 +320,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   const bool labels = csv || any([](const ResultsOverview& r) { return !r.label.empty(); });
   const bool hashes = csv || any([](const ResultsOverview& r) { return !r.input_hash.empty(); });
   const bool warnings = csv || any([](const ResultsOverview& r) { return !r.noise_warning.empty(); });
+  const bool plans = any([](const ResultsOverview& r) { return r.has_plans; });
 
   // One list of columns drives the header, the cells and the Markdown alignment.
   const double none = std::nan("");
@@ -330,6 +373,15 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     numeric("contact_precision",
             [&](const Row& row) { return number(has_check(row) ? row.r.contact_precision : none, "%.6f"); });
   }
+  // How the passes' front plans were made, beside the times they qualify.
+  if (csv) {
+    text("repeat_plan", [&read](const Row& row) { return read(row) ? row.r.repeat_plan : ""; });
+    text("plan_source", [&read](const Row& row) { return read(row) ? row.r.plan_source : ""; });
+    numeric("plan_mixed_frames",
+            [&stats](const Row& row) { return stats(row) ? std::to_string(row.r.plan_mixed_frames) : ""; });
+  } else if (plans) {
+    text("plan", [&read](const Row& row) { return read(row) ? plan_summary(row.r) : ""; });
+  }
   numeric("syncs", [&](const Row& row) { return number(stats(row) ? row.r.host_syncs_mean : none, "%.2f"); });
   numeric(csv ? "peak_bytes" : "peak_MiB", [csv](const Row& row) {
     return !row.r.has_summary ? ""
@@ -377,22 +429,11 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     for (const auto& cells : table) line(cells);
     return rc;
   }
-  auto line = [](const std::vector<std::string>& cells) {
-    std::string s = "|";
-    for (const auto& c : cells) {
-      s += ' ';
-      s += markdown_cell(c);
-      s += " |";
-    }
-    std::printf("%s\n", s.c_str());
-  };
-  line(header);
-  // Text left-aligned, numbers right-aligned.
-  std::string rule = "|";
-  for (const Column& c : columns) rule += c.text ? " --- |" : " ---: |";
-  std::printf("%s\n", rule.c_str());
-  for (const auto& cells : table) line(cells);
-  return rc;
+  std::vector<bool> aligned_left;
+  for (const Column& c : columns) aligned_left.push_back(c.text);
+  print_markdown(header, aligned_left, table);
+  const int plans_rc = print_plans(rows);
+  return rc != kExitOk ? rc : plans_rc;
 }
 
 }  // namespace cdb

@@ -21,6 +21,7 @@
 #include "geometry/cached_frames.h"
 #include "geometry/float_spacing.h"
 #include "geometry/hashed_frames.h"
+#include "io/plan_source.h"
 #include "io/results_file.h"
 #include "io/scene_label.h"
 #include "noise_check.h"
@@ -157,6 +158,7 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.precision = box_precision_name(config.boxes.precision);
   run.contact_distance = double(float(r.contact_distance));
   run.contact_substeps = r.contact_substeps;
+  run.repeat_plan = repeat_plan_name(r.loop.repeat_plan);
   run.params_json = nlohmann::json{{"command", "run"},
                                    {"options", cli_options},
                                    {"pipeline_config", to_json(config)},
@@ -168,6 +170,7 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
                                      {"frame_last", range.last},
                                      {"warmup", run.warmup},
                                      {"repeat", r.loop.repeat},
+                                     {"repeat_plan", repeat_plan_name(r.loop.repeat_plan)},
                                      {"max_noise", r.loop.max_noise_pct},
                                      {"cold", run.cold},
                                      {"contact_distance", run.contact_distance},
@@ -220,6 +223,41 @@ std::vector<bool> check_results_paths(const RunOptions& r, const std::vector<std
   return existing;
 }
 
+using PlanOfPipeline = std::vector<std::shared_ptr<const RecordedPlan>>;
+
+// --front-cycle FILE: each pipeline's recorded plan, {pipeline} in FILE replaced by its
+// name; none where --front-cycle is auto or K. A plan that cannot be read is a usage error.
+PlanOfPipeline load_plans(const CommonOptions& o, const std::vector<std::string>& names) {
+  PlanOfPipeline plans(names.size());
+  if (o.front_plan.empty()) return plans;
+  for (size_t p = 0; p < names.size(); ++p) {
+    try {
+      plans[p] = std::make_shared<const RecordedPlan>(load_plan(results_path(o.front_plan, names[p]), names[p]));
+    } catch (const Error& e) {
+      fail_usage(std::string("--front-cycle: ") + e.what());
+    }
+  }
+  return plans;
+}
+
+// Each pipeline gets its plan to replay; one it cannot replay (another pipeline's
+// restructures, a pipeline without fronts) is a usage error.
+void give_plans(const std::vector<std::unique_ptr<Pipeline>>& pipelines, const PlanOfPipeline& plans,
+                const std::vector<std::string>& names) {
+  for (size_t p = 0; p < pipelines.size(); ++p) {
+    if (!plans[p]) continue;
+    bool replays = false;
+    try {
+      replays = pipelines[p]->replay_plan(plans[p]);
+    } catch (const Error& e) {
+      fail_usage(std::string("--front-cycle: ") + e.what());
+    }
+    if (!replays)
+      fail_usage("--front-cycle " + plans[p]->source + ": pipeline " + names[p] +
+                 " has no front plan to replay (only the front pipelines have one)");
+  }
+}
+
 }  // namespace
 
 void check_run_options(const CommonOptions& o, const RunOptions& r, const std::string& device) {
@@ -229,7 +267,8 @@ void check_run_options(const CommonOptions& o, const RunOptions& r, const std::s
     fail_usage("--out " + r.out + ": several pipelines need {pipeline} in the file name");
   // Its form only: the scene, not loaded here, says how many frames there are.
   parse_frame_range(o.frames, UINT32_MAX);
-  if (device == "cpu") make_pipelines(o, names, device);
+  const PlanOfPipeline plans = load_plans(o, names);
+  if (device == "cpu") give_plans(make_pipelines(o, names, device), plans, names);
 }
 
 CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
@@ -265,6 +304,14 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
       ->group(kMeasurementGroup)
       ->check(whole_in(1, UINT32_MAX))
       ->capture_default_str();
+  add_choice<RepeatPlan>(
+      run, "--repeat-plan", r.loop.repeat_plan,
+      "front pipelines under --repeat: replay: the first pass plans (as --front-cycle says) and every later pass "
+      "replays its recorded plan, so each frame's mean is over the same operations; free: every pass plans for "
+      "itself, and frames whose passes ran different operations are marked (op shows them joined by |) and counted",
+      {"replay", "free"}, [](const std::string& w) { return w == "free" ? RepeatPlan::free : RepeatPlan::replay; },
+      repeat_plan_name(r.loop.repeat_plan))
+      ->group(kMeasurementGroup);
   run->add_option("--max-noise", r.loop.max_noise_pct,
                   "stop repeating once the passes' mean frame times agree within this many percent (0: all passes)")
       ->group(kMeasurementGroup)
@@ -312,6 +359,8 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   const std::vector<std::string> names = split_pipelines(r.pipeline);
   const ContactCheck contact = contact_check(r, check_interval(r.check));
   std::vector<std::unique_ptr<Pipeline>> pipelines = make_pipelines(o, names, device);
+  const PlanOfPipeline plans = load_plans(o, names);
+  give_plans(pipelines, plans, names);
   const std::vector<bool> existing = check_results_paths(r, names);
   print_environment(device);
   const std::string busy = host_load_warning();
@@ -325,6 +374,14 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
                " boxes (a box stream), and --check counts contacts of triangles; use `cdbench verify` to compare "
                "with the oracle");
   const FrameRange range = parse_frame_range(o.frames, scene.source->num_frames());
+  for (const auto& plan : plans) {
+    if (!plan) continue;
+    try {
+      check_plan_frames(*plan, range.first, range.last);
+    } catch (const Error& e) {
+      fail_usage(std::string("--front-cycle: ") + e.what());
+    }
+  }
   std::printf("scene: %s — %s\n       %zu triangles, %u vertices, frames %u:%u\n",
               scene.name.c_str(), scene.description.c_str(), topo.faces.size(),
               topo.num_vertices, range.first, range.last);
@@ -363,11 +420,13 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     std::optional<ResultsFile> out;
     if (!one.out.empty()) {
       RunInfo info = run_info(o, one, scene, config, range, cli_options);
+      info.plan_source = plans[p] ? plans[p]->source : "";
       info.copy_gbps = copy_gbps;
       info.precision_warning = spacing_warning;
       out.emplace(one.out, info, existing[p] ? ResultsFile::Placement::staged : ResultsFile::Placement::in_place);
     }
     RunLoopOptions loop = r.loop;
+    loop.plan_source = plans[p] ? plans[p]->source : "";
     loop.frame_lines = !r.quiet;
     loop.list_growth = !r.quiet;
     loop.progress = Progress::mode_for(r.quiet);

@@ -1,10 +1,12 @@
 #include "run_loop.h"
 #include "exit_codes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "library_errors.h"
 #include "noise_check.h"
 #include "narrow/contacts.h"
+#include "pipeline/plan_record.h"
 #include "pipeline/run_summary.h"
 #include "report.h"
 
@@ -51,6 +54,33 @@ std::pair<double, double> mean_and_noise(const std::vector<double>& v) {
   return {mean, std::sqrt(ss / double(v.size() - 1)) / mean};
 }
 
+// A frame's op where its passes ran different operations: the recorded pass's first, then
+// the others', joined by '|'; those that do not fit the results file's text column are
+// counted ("|+2").
+std::string mixed_op(const std::vector<std::string>& ops) {
+  std::string text = ops[0];
+  for (size_t i = 1; i < ops.size(); ++i) {
+    const std::string rest = i + 1 < ops.size() ? "|+" + std::to_string(ops.size() - i - 1) : "";
+    if (text.size() + 1 + ops[i].size() + rest.size() > kTextColumnBytes)
+      return text + "|+" + std::to_string(ops.size() - i);
+    text += "|" + ops[i];
+  }
+  return text;
+}
+
+// A pass's plan, from its frames' plan steps; none when a frame has none (a pipeline
+// without a frame plan).
+std::shared_ptr<const RecordedPlan> plan_of_pass(const std::vector<FrameStats>& pass, uint32_t first,
+                                                 const std::string& source) {
+  auto plan = std::make_shared<RecordedPlan>();
+  plan->source = source;
+  for (size_t k = 0; k < pass.size(); ++k) {
+    if (!pass[k].plan) return nullptr;
+    plan->frames.push_back({first + uint32_t(k), *pass[k].plan, 0});
+  }
+  return plan;
+}
+
 // The times of the passes run before the recording one (--repeat), per frame.
 struct EarlierPasses {
   std::vector<std::vector<FrameStats>> passes;
@@ -68,10 +98,13 @@ struct EarlierPasses {
     return mean_and_noise(means).second;
   }
   // Frame k of the recording pass becomes the mean over all passes; pair counts must agree.
+  // Passes whose plan step differs from the recording pass's are counted (plan_mixed), and
+  // their ops join the frame's op.
   void merge_into(size_t k, uint32_t frame, FrameStats& s) const {
     if (passes.empty()) return;
     std::vector<double> totals{s.timing.total_ms};
     std::array<double, kPhaseCount> phase = s.timing.phase_ms;
+    std::vector<std::string> ops{s.op};
     for (size_t p = 0; p < passes.size(); ++p) {
       const FrameStats& e = passes[p][k];
       if (e.pairs != s.pairs)
@@ -80,7 +113,11 @@ struct EarlierPasses {
              " (--repeat needs a deterministic pipeline)");
       totals.push_back(e.timing.total_ms);
       for (size_t q = 0; q < kPhaseCount; ++q) phase[q] += e.timing.phase_ms[q];
+      if (e.plan == s.plan) continue;
+      ++s.plan_mixed;
+      if (std::find(ops.begin(), ops.end(), e.op) == ops.end()) ops.push_back(e.op);
     }
+    if (ops.size() > 1) s.op = mixed_op(ops);
     const auto [mean, noise] = mean_and_noise(totals);
     s.timing.total_ms = mean;
     s.timing.total_noise = noise;
@@ -93,6 +130,36 @@ struct EarlierPasses {
 // once to bound the triangles, every pair written once.
 uint64_t frame_bytes_floor(const Topology& t, uint64_t pairs) {
   return 12ull * t.num_vertices + 12ull * t.faces.size() + 8ull * pairs;
+}
+
+// One summary line on how the passes' plans were made and whether they agree; none for
+// pipelines without a frame plan.
+void print_plan_line(const std::vector<FrameStats>& frames, const RunLoopOptions& options, uint32_t first) {
+  if (frames.empty() || !frames.front().plan) return;
+  const uint32_t passes = frames.back().repeats;
+  if (!options.plan_source.empty()) {
+    std::printf("  plan        %s replayed %s (--front-cycle)\n", passes > 1 ? "every pass" : "the pass",
+                options.plan_source.c_str());
+    return;
+  }
+  if (passes < 2) return;
+  if (options.repeat_plan == RepeatPlan::replay) {
+    const std::string later = passes == 2 ? "pass 1" : "passes 1 to " + std::to_string(passes - 1);
+    std::printf("  plan        %s replayed pass 0's plan (--repeat-plan replay): each frame's mean is over the same "
+                "operations\n",
+                later.c_str());
+    return;
+  }
+  std::vector<uint32_t> mixed;
+  for (size_t k = 0; k < frames.size(); ++k)
+    if (frames[k].plan_mixed) mixed.push_back(first + uint32_t(k));
+  if (mixed.empty())
+    std::printf("  plan        each pass planned its own (--repeat-plan free); all %u ran the same operations\n",
+                passes);
+  else
+    std::printf("  plan        each pass planned its own (--repeat-plan free): %zu of %zu frames ran different "
+                "operations in different passes (%s), their means mix them; op shows them joined by |\n",
+                mixed.size(), frames.size(), frame_list_text(mixed).c_str());
 }
 
 void print_accuracy_warning(const std::string& why, const std::vector<FrameStats>& frames, uint32_t warmup) {
@@ -155,6 +222,7 @@ class FrameLoop {
     progress_.finish();
     print_summary(frames_, options_.warmup, pipeline_.memory(), options_.copy_gbps, options_.contact,
                   options_.list_growth);
+    print_plan_line(frames_, options_, range_.first);
     if (!options_.accuracy_warning.empty()) print_accuracy_warning(options_.accuracy_warning, frames_, options_.warmup);
     if (const int signal = interrupts_.signal()) return stop_for(signal);
     // After the summary it qualifies; stored so `compare` can flag the run.
@@ -191,11 +259,29 @@ class FrameLoop {
       for (f_ = range_.first; f_ < range_.last && !interrupts_.signal(); ++f_)
         earlier_.passes.back().push_back(run_one(f_));
       if (earlier_.passes.back().size() < frames_per_pass_) break;
+      finish_earlier_pass();
       if (options_.max_noise_pct > 0 && earlier_.count() >= 2 &&
           earlier_.noise_of_means(options_.warmup) < options_.max_noise_pct / 100.0)
         break;
     }
     if (earlier_.count() > 0 && earlier_.passes.back().size() < frames_per_pass_) earlier_.passes.pop_back();
+  }
+
+  // A finished pass before the recording one: its plan into the results file, and under
+  // --repeat-plan replay the first pass's plan handed to the pipeline for the passes after.
+  void finish_earlier_pass() {
+    const uint32_t pass = uint32_t(earlier_.count() - 1);
+    const std::vector<FrameStats>& frames = earlier_.passes.back();
+    record_plan(pass, frames);
+    if (pass > 0 || options_.repeat_plan != RepeatPlan::replay || !options_.plan_source.empty()) return;
+    if (auto plan = plan_of_pass(frames, range_.first, "pass 0")) pipeline_.replay_plan(std::move(plan));
+  }
+
+  // /plans: the plan steps of `frames`, the first frames of pass `pass`.
+  void record_plan(uint32_t pass, const std::vector<FrameStats>& frames) {
+    if (!out_) return;
+    for (size_t k = 0; k < frames.size(); ++k)
+      if (frames[k].plan) out_->append_plan_step(pass, range_.first + uint32_t(k), *frames[k].plan);
   }
 
   // Stopped before the recording pass: the finished passes are the result, the last of
@@ -214,8 +300,10 @@ class FrameLoop {
   }
 
   void run_recording_pass() {
+    const uint32_t pass = uint32_t(earlier_.count());
     for (f_ = range_.first; f_ < range_.last && !interrupts_.signal(); ++f_) {
       frames_.push_back(run_one(f_));
+      if (out_ && frames_.back().plan) out_->append_plan_step(pass, f_, *frames_.back().plan);
       earlier_.merge_into(frames_.size() - 1, f_, frames_.back());
       if (options_.check_every) check(f_);
       record(f_, options_.save_pairs);
@@ -293,6 +381,8 @@ class FrameLoop {
 };
 
 }  // namespace
+
+const char* repeat_plan_name(RepeatPlan p) { return p == RepeatPlan::free ? "free" : "replay"; }
 
 int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, ResultsFile* out,
                const InterruptScope& interrupts, const RunLoopOptions& options, RunResult* result) {

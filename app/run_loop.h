@@ -18,14 +18,27 @@
 
 namespace cdb {
 
-// The run command binds its options --warmup, --save-pairs, --repeat, --max-noise and
-// --cold straight into this struct (run_command.h); the rest is set per pipeline.
+// --repeat-plan: how the passes of a front pipeline plan their frames. replay: the first
+// pass plans (adaptively, or as --front-cycle says) and every later pass replays its
+// recorded plan, so each frame's mean is over the same operations; free: every pass plans
+// for itself, and frames whose passes ran different operations are marked.
+enum class RepeatPlan { replay, free };
+
+const char* repeat_plan_name(RepeatPlan p);
+
+// The run command binds its options --warmup, --save-pairs, --repeat, --repeat-plan,
+// --max-noise and --cold straight into this struct (run_command.h); the rest is set per
+// pipeline.
 struct RunLoopOptions {
   uint32_t warmup = 1;
   bool save_pairs = false;  // each frame's sorted pairs into the results file
   // --repeat: at most this many passes over the frames, each from a fresh pipeline state;
   // the last records, its times the mean over all passes with their noise beside them.
   uint32_t repeat = 1;
+  RepeatPlan repeat_plan = RepeatPlan::replay;
+  // --front-cycle FILE: the plan every pass replays, as named ("" when none; the pipeline
+  // was given it before the run).
+  std::string plan_source;
   // --max-noise, in percent: fewer passes once the passes' mean frame times agree within
   // this relative standard deviation (0: always `repeat` passes).
   double max_noise_pct = 0.0;

@@ -113,6 +113,10 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   const size_t brute_limit = v.brute_limit;
   const std::string device = resolve_device(o.device);
   const bool pairs_only = !v.pairs_dir.empty() || !v.write_pairs_dir.empty();
+  if (!o.front_plan.empty())
+    fail_usage("--front-cycle " + o.front_plan +
+               ": a recorded plan replays on one pipeline; check it with run --pipeline P --front-cycle FILE "
+               "--check every");
   if (!v.pairs_dir.empty() && !std::filesystem::is_directory(v.pairs_dir))
     fail_usage("--pairs " + v.pairs_dir + ": not a directory");
   if (pipelines.empty() && !pairs_only)

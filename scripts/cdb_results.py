@@ -19,7 +19,8 @@ import h5py
 import numpy as np
 
 # 3: label, input_path, input_hash, noise_warning (optional: older files lack them).
-SUPPORTED_SCHEMA = 3
+# 4: /plans, repeat_plan, plan_source, /frames/plan_mixed, /summary plan_mixed_frames (optional).
+SUPPORTED_SCHEMA = 4
 # What `cdbench compare` matches runs on besides the pipeline (app/compare_command.cpp):
 # the options that change the pair set or how time is measured.
 IDENTITY_OPTIONS = ["skip-adjacent", "box-precision", "box-margin", "boxes", "refit-every", "check",

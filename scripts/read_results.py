@@ -15,8 +15,9 @@ import h5py
 import numpy as np
 
 # In step with kResultsSchemaVersion (lib/io/results_file.h); 3 added label, input_path,
-# input_hash and noise_warning, which older files lack (they are printed when present).
-SUPPORTED_SCHEMA = 3
+# input_hash and noise_warning, which older files lack (they are printed when present); 4
+# added each pass's front plan (/plans) and the columns and attributes of --repeat-plan.
+SUPPORTED_SCHEMA = 4
 HEADER_ATTRS = ["scene", "pipeline", "backend", "device_name", "frame_first", "frame_last",
                 "warmup", "triangles", "label", "input_path", "input_hash", "noise_warning", "git_sha",
                 "cdbench_version", "created_utc", "closed_utc"]

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <utility>
 #include <cstring>
+#include <memory>
 #include <set>
 #include <string>
 
@@ -19,6 +20,7 @@
 #include "core/pair_set.h"
 #include "generators.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/plan_record.h"
 
 namespace cdb::test {
 
@@ -358,24 +360,64 @@ inline void check_front_cycles(const std::string& device, const std::string& nam
   }
 }
 
-// Runs one pipeline over every frame of a scene against the oracle's pairs; returns the
-// frames' stats for the caller to check which operations ran.
-inline std::vector<FrameStats> run_exact(const PipelineConfig& cfg, const ExactFrames& exact) {
+// Runs pipeline `p` (made from `cfg`) over every frame of a scene against the oracle's
+// pairs; returns the frames' stats for the caller to check which operations ran.
+inline std::vector<FrameStats> run_exact(Pipeline& p, const PipelineConfig& cfg, const ExactFrames& exact) {
   EXPECT_EQ(cfg.skip_adjacent, exact.skip_adjacent) << "the oracle's pairs were computed for other settings";
-  auto p = make_pipeline(cfg);
-  p->set_topology(exact.topology);
+  p.set_topology(exact.topology);
   std::vector<FrameStats> out;
   for (uint32_t f = 0; f < exact.num_frames(); ++f) {
-    out.push_back(p->run_frame(exact.vertices[f]));
+    out.push_back(p.run_frame(exact.vertices[f]));
     const FrameStats& s = out.back();
     const std::vector<PrimPair>& expected = exact.pairs[f];
     EXPECT_EQ(s.pairs, expected.size()) << cfg.name << " frame " << f << " (" << s.op << ")";
-    const PairSetDiff d = diff_pair_sets(expected, p->sorted_pairs());
+    const PairSetDiff d = diff_pair_sets(expected, p.sorted_pairs());
     EXPECT_TRUE(d.equal()) << cfg.name << " frame " << f << " (" << s.op << "): " << d.missing_count
                            << " missing, " << d.unexpected_count << " unexpected";
     if (!d.equal()) break;
   }
   return out;
+}
+
+inline std::vector<FrameStats> run_exact(const PipelineConfig& cfg, const ExactFrames& exact) {
+  auto p = make_pipeline(cfg);
+  return run_exact(*p, cfg, exact);
+}
+
+// A plan recorded from one run, replayed on a fresh pipeline (pipeline/plan_record.h): the
+// same steps frame by frame, every frame exact. Pipeline c with Formula 2 forced to
+// restructure (its replay restructures what its own inspection finds), and pipeline a's
+// plan on pipeline b, whose own cycle would differ.
+inline void check_replayed_plans(const std::string& device, const ExactFrames& scene) {
+  for (const auto& [recorder, replayer] : {std::pair{"c", "c"}, std::pair{"a", "b"}}) {
+    SCOPED_TRACE(std::string(recorder) + "'s plan on " + replayer);
+    PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
+    cfg.restructure.quality = 0.0;
+    cfg.restructure.min_leaves = 4;
+    cfg.restructure.threshold_refit = 0.0;
+    cfg.restructure.threshold_build = 1.01;
+    cfg.name = recorder;
+    const std::vector<FrameStats> recorded = run_exact(cfg, scene);
+    auto plan = std::make_shared<RecordedPlan>();
+    plan->source = recorder;
+    for (size_t k = 0; k < recorded.size(); ++k) {
+      ASSERT_TRUE(recorded[k].plan.has_value()) << "frame " << k;
+      plan->frames.push_back({uint32_t(k), *recorded[k].plan, 0});
+    }
+    if (cfg.name == std::string("c")) {
+      ASSERT_EQ(plan_outline(*plan).find("restructure: —"), std::string::npos) << plan_outline(*plan);
+    }
+    cfg.name = replayer;
+    cfg.fronts.cycle = 3;  // its own cycle, which the plan overrides
+    auto p = make_pipeline(cfg);
+    ASSERT_TRUE(p->replay_plan(plan));
+    const std::vector<FrameStats> replayed = run_exact(*p, cfg, scene);
+    ASSERT_EQ(replayed.size(), recorded.size());
+    for (size_t k = 0; k < replayed.size(); ++k) {
+      EXPECT_EQ(replayed[k].plan, recorded[k].plan) << "frame " << k;
+      EXPECT_EQ(replayed[k].op, recorded[k].op) << "frame " << k;
+    }
+  }
 }
 
 // Pipeline c with Formula 2 forced into each branch by extreme settings: quality factor 0

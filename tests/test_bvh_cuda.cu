@@ -375,6 +375,11 @@ TEST_P(CudaForcedDecisions, EveryBranchOfFormula2IsExact) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaForcedDecisions, testing::ValuesIn(front_scene_names()), front_scene_name);
 
+TEST(CudaPipelines, ReplayedPlansRunTheRecordedStepsExactly) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_replayed_plans("cuda", exact_frames(*front_scene("funnel", 96, 16)));
+}
+
 // Deformable and rigid objects with declared queries (tests/inter_cases.h): every splitting
 // pipeline exact on every frame, the fronts each query keeps, T_R only refitted, and
 // pipeline c's forced decisions with cross fronts. Failures name scene, pipeline and frame.

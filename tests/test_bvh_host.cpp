@@ -201,6 +201,10 @@ TEST_P(HostForcedDecisions, EveryBranchOfFormula2IsExact) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HostForcedDecisions, testing::ValuesIn(front_scene_names()), front_scene_name);
 
+TEST(HostPipelines, ReplayedPlansRunTheRecordedStepsExactly) {
+  check_replayed_plans("cpu", exact_frames(*front_scene("funnel", 24, 8)));
+}
+
 TEST(HostPipelines, DeclaredQueriesReportOnlyWhatTheSceneAsks) {
   Scene s = open_scene("funnel-inter", default_scenes_dir(), {{"res", 16}, {"frames", 4}, {"segments", 16}, {"ball_level", 1}});
   check_declared_queries("cpu", *s.source);

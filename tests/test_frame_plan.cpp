@@ -7,9 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "error_of.h"
 #include "pipeline/frame_plan.h"
 
 using namespace cdb;
+using cdb::test::error_of;
 
 namespace {
 
@@ -491,4 +493,112 @@ TEST(FramePlan, RebuildsATreeWhoseDegradationPaidForABuild) {
     }
     EXPECT_NE(s.find('u'), std::string::npos) << s;
   }
+}
+
+namespace {
+
+// Plans `frames` frames as schedule() does and records each frame's step.
+template <class Cost>
+RecordedPlan record(FramePlanner& planner, int frames, Cost cost) {
+  RecordedPlan plan;
+  plan.source = "recorded";
+  for (int f = 0; f < frames; ++f) {
+    const FramePlan p = planner.plan(1000, 100);
+    plan.frames.push_back({uint32_t(f), planner.step(p), 0});
+    planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
+  }
+  return plan;
+}
+
+}  // namespace
+
+// A replayed plan runs the recorded operations at the recorded frames, whatever the frames
+// cost this time: the adaptive schedule of degrading fronts, replayed over flat costs that
+// alone would never update.
+TEST(FramePlan, ReplayRunsTheRecordedSteps) {
+  const QuerySet self_only = {true, false, false};
+  int since = 0;
+  FramePlanner adaptive(FrontStrategy{}, cycle_config(0));
+  adaptive.reset(self_only);
+  const RecordedPlan plan = record(adaptive, 40, [&](int, const FramePlan& p) {
+    if (!p.steady()) return (since = 0, p.rebuild ? 10.0 : 3.0);
+    return 1.0 + 0.2 * since++;
+  });
+  ASSERT_EQ(plan_outline(plan).find("update: —"), std::string::npos) << plan_outline(plan);  // it updated
+  for (const PlannedFrame& f : plan.frames) {  // only the running query has an operation
+    EXPECT_TRUE(f.step.op(Query::self).has_value());
+    EXPECT_FALSE(f.step.op(Query::inter).has_value());
+  }
+  FramePlanner replay(FrontStrategy{}, cycle_config(0));
+  replay.replay(std::make_shared<const RecordedPlan>(plan));
+  replay.reset(self_only);
+  ASSERT_TRUE(replay.replays());
+  const RecordedPlan again = record(replay, 40, flat);
+  EXPECT_TRUE(frames_that_differ(plan, again).empty()) << plan_outline(plan) << "\n" << plan_outline(again);
+  FramePlanner decides(FrontStrategy{}, cycle_config(0));
+  decides.reset(self_only);
+  EXPECT_NE(plan_outline(record(decides, 40, flat)), plan_outline(plan));  // the flat costs alone do not update
+  EXPECT_EQ(error_of([&] { replay.plan(1000, 100); }), "recorded: the plan records 40 frames, and the run has more");
+  // Another scene's queries are refused when the run starts.
+  EXPECT_EQ(error_of([&] { replay.reset({true, true, false}); }),
+            "recorded frame 0: query inter runs in this scene, and the plan gives it no operation (the plan was "
+            "recorded on another scene's queries)");
+}
+
+// Pipeline c's restructure replays on the candidates the replay's own inspection found on
+// the frame before; with none found it stops, naming the frame.
+TEST(FramePlan, ReplayedRestructuresUseTheirOwnInspection) {
+  FrontStrategy c;
+  c.balance = c.restructure = true;
+  const RecordedPlan plan = parse_plan(
+      "cdbench-plan 1\n0 build self=generate\n1 refit self=update inspect\n"
+      "2 refit self=restructure decision=restructure\n3 refit self=preserve\n",
+      "c.txt");
+  for (const uint32_t found : {4u, 0u}) {
+    FramePlanner planner(c, cycle_config(0));
+    planner.replay(std::make_shared<const RecordedPlan>(plan));
+    planner.reset({true, false, false});
+    FramePlan p = planner.plan(1000, 100);
+    EXPECT_TRUE(p.rebuild);
+    planner.finish(p, {5.0, true, 100, 2.0, {}});
+    p = planner.plan(1000, 100);
+    EXPECT_TRUE(p.inspect);
+    EXPECT_TRUE(p.balance);  // as the strategy does before every update
+    planner.finish(p, {2.0, true, 100, 2.5, {found, 300}});
+    if (found == 0) {
+      EXPECT_EQ(error_of([&] { planner.plan(1000, 100); }),
+                "c.txt line 4 (frame 2): restructure, but this run's inspection of the frame before found no "
+                "degraded subtree (the recording's did: the two inspections differ)");
+      continue;
+    }
+    p = planner.plan(1000, 100);
+    EXPECT_EQ(p.op(Query::self), FrontOp::restructure);
+    EXPECT_EQ(p.decision, Formula2::restructure);
+    EXPECT_EQ(p.restructuring.count, found);
+    EXPECT_EQ(p.restructuring.leaves, 300u);
+  }
+  // Pipeline a has no restructure: refused before the run.
+  FramePlanner a(FrontStrategy{}, cycle_config(0));
+  EXPECT_EQ(error_of([&] { a.replay(std::make_shared<const RecordedPlan>(plan)); }),
+            "c.txt line 3 (frame 1): restructures, Formula 2 decisions and inspections are pipeline c's (the strategy "
+            "restructure); this pipeline has none");
+  EXPECT_FALSE(a.replays());
+}
+
+// A preserve right before a recorded update probes, so the update's buffers are sized
+// before it, as before a decided update.
+TEST(FramePlan, ReplayProbesBeforeARecordedUpdate) {
+  const RecordedPlan plan = parse_plan(
+      "cdbench-plan 1\n0 build self=generate\n1 refit self=preserve\n2 refit self=preserve\n3 refit self=update\n",
+      "p.txt");
+  FramePlanner planner(FrontStrategy{}, cycle_config(0));
+  planner.replay(std::make_shared<const RecordedPlan>(plan));
+  planner.reset({true, false, false});
+  std::vector<bool> probes;
+  for (int f = 0; f < 4; ++f) {
+    const FramePlan p = planner.plan(1000, 100);
+    probes.push_back(p.probe);
+    planner.finish(p, {1.0, true, 100, 1.0, {}});
+  }
+  EXPECT_EQ(probes, (std::vector<bool>{false, false, true, false}));
 }

@@ -43,7 +43,7 @@ fs::path write_run(const std::string& name) {
 TEST(ResultsSchema3, NewFieldsRoundTrip) {
   const fs::path path = write_run("new.h5");
   const ResultsOverview r = read_results_overview(path);
-  EXPECT_EQ(r.schema_version, 3);
+  EXPECT_EQ(r.schema_version, kResultsSchemaVersion);
   EXPECT_EQ(r.label, "before the change");
   EXPECT_EQ(r.input_path, "/scenes/funnel.json");
   EXPECT_EQ(r.input_hash, "0123456789abcdef");

@@ -12,6 +12,7 @@
 #include "core/phase.h"
 #include "core/utc_time.h"
 #include "io/frame_columns.h"
+#include "io/plan_columns.h"
 #include "io/scene_label.h"
 
 namespace cdb {
@@ -139,6 +140,8 @@ void ResultsFile::create(const RunInfo& info) {
   write_attr(root, "cold", uint64_t(info.cold), at);
   write_attr(root, "contact_distance", info.contact_distance, at);
   write_attr(root, "contact_substeps", uint64_t(info.contact_substeps), at);
+  write_attr(root, "repeat_plan", info.repeat_plan, at);
+  write_attr(root, "plan_source", info.plan_source, at);
   write_attr(root, "host", host_name(), at);
   write_attr(root, "created_utc", utc_now(), at);
 
@@ -147,16 +150,7 @@ void ResultsFile::create(const RunInfo& info) {
   check(H5Tset_strpad(text_type_.get(), H5T_STR_NULLPAD), where_, "set string padding");
 
   frames_ = create_group(root, "frames", where_);
-  const hsize_t empty = 0, unlimited = H5S_UNLIMITED, chunk = kRowsPerChunk;
-  for (const FrameColumn& c : frame_columns()) {
-    const std::string ds = where_ + ": /frames/" + c.name;
-    h5::Handle space = own(H5Screate_simple(1, &empty, &unlimited), H5Sclose, ds, "create dataspace");
-    h5::Handle dcpl = chunked_layout(1, &chunk, ds);
-    columns_.push_back(own(H5Dcreate2(frames_.get(), c.name.c_str(), file_type_of(c.type, text_type_.get()),
-                                      space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
-                           H5Dclose, ds, "create dataset"));
-    write_attr(columns_.back().get(), "description", c.description, ds);
-  }
+  columns_ = create_columns(frames_.get(), "frames", frame_columns());
   check(H5Fflush(root, H5F_SCOPE_GLOBAL), where_, "flush");
   last_flush_ = std::chrono::steady_clock::now();
 }
@@ -164,20 +158,38 @@ void ResultsFile::create(const RunInfo& info) {
 void ResultsFile::append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory) {
   if (!file_) fail(where_ + ": frame " + std::to_string(frame) + ": the results file is already closed");
   try {
-    append_row(frame, stats, memory);
+    append_row(frame_columns(), columns_, rows_, FrameRow{frame, stats, memory}, "frames",
+               "frame " + std::to_string(frame));
   } catch (const h5::IoError& e) {
     io_failed(e);
   }
 }
 
-void ResultsFile::append_row(uint32_t frame, const FrameStats& stats, const MemoryStats& memory) {
-  const FrameRow row{frame, stats, memory};
-  const hsize_t size = rows_ + 1, start = rows_, one = 1;
+template <class Row>
+std::vector<h5::Handle> ResultsFile::create_columns(hid_t group, const std::string& group_name,
+                                                    const std::vector<TableColumn<Row>>& cols) {
+  std::vector<h5::Handle> datasets;
+  const hsize_t empty = 0, unlimited = H5S_UNLIMITED, chunk = kRowsPerChunk;
+  for (const TableColumn<Row>& c : cols) {
+    const std::string ds = where_ + ": /" + group_name + "/" + c.name;
+    h5::Handle space = own(H5Screate_simple(1, &empty, &unlimited), H5Sclose, ds, "create dataspace");
+    h5::Handle dcpl = chunked_layout(1, &chunk, ds);
+    datasets.push_back(own(H5Dcreate2(group, c.name.c_str(), file_type_of(c.type, text_type_.get()), space.get(),
+                                      H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                           H5Dclose, ds, "create dataset"));
+    write_attr(datasets.back().get(), "description", c.description, ds);
+  }
+  return datasets;
+}
+
+template <class Row>
+void ResultsFile::append_row(const std::vector<TableColumn<Row>>& cols, std::vector<h5::Handle>& datasets,
+                             uint64_t& rows, const Row& row, const std::string& group, const std::string& row_name) {
+  const hsize_t size = rows + 1, start = rows, one = 1;
   h5::Handle mem_space = own(H5Screate_simple(1, &one, nullptr), H5Sclose, where_, "create dataspace");
-  const auto& cols = frame_columns();
   for (size_t i = 0; i < cols.size(); ++i) {
-    const std::string at = where_ + ": /frames/" + cols[i].name + " frame " + std::to_string(frame);
-    const hid_t ds = columns_[i].get();
+    const std::string at = where_ + ": /" + group + "/" + cols[i].name + " " + row_name;
+    const hid_t ds = datasets[i].get();
     check(H5Dset_extent(ds, &size), at, "extend dataset");
     h5::Handle file_space = own(H5Dget_space(ds), H5Sclose, at, "get dataspace");
     check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &start, nullptr, &one, nullptr), at,
@@ -214,8 +226,25 @@ void ResultsFile::append_row(uint32_t frame, const FrameStats& stats, const Memo
     }
     check(written, at, "write");
   }
-  ++rows_;
+  ++rows;
   flush_now_and_then();
+}
+
+void ResultsFile::append_plan_step(uint32_t pass, uint32_t frame, const PlanStep& step) {
+  const std::string row = "pass " + std::to_string(pass) + " frame " + std::to_string(frame);
+  if (!file_) fail(where_ + ": " + row + ": the results file is already closed");
+  try {
+    if (!plans_) {
+      plans_ = create_group(file_.get(), "plans", where_);
+      write_attr(plans_.get(), "description",
+                 "front pipelines: per pass over the frames and per frame, what the frame ran (its plan step)",
+                 where_ + ": /plans");
+      plan_columns_ = create_columns(plans_.get(), "plans", plan_columns());
+    }
+    append_row(plan_columns(), plan_columns_, plan_rows_, PlanRow{pass, frame, step}, "plans", row);
+  } catch (const h5::IoError& e) {
+    io_failed(e);
+  }
 }
 
 void ResultsFile::write_pairs(uint32_t frame, const std::vector<PrimPair>& pairs) {
@@ -282,6 +311,7 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
   write_attr(loc, "decisions_refit", uint64_t(s.decided_refit), at);
   write_attr(loc, "decisions_restructure", uint64_t(s.decided_restructure), at);
   write_attr(loc, "decisions_rebuild", uint64_t(s.decided_rebuild), at);
+  write_attr(loc, "plan_mixed_frames", uint64_t(s.plan_mixed_frames), at);
   write_attr(loc, "checked_frames", uint64_t(s.checked_frames), at);
   write_attr(loc, "recall_min", s.checked_frames ? s.recall_min : none, at);
   write_attr(loc, "precision_min", s.checked_frames ? s.precision_min : none, at);
@@ -348,7 +378,9 @@ void ResultsFile::close(const char* status) {
   write_attr(file_.get(), "closed_utc", utc_now(), at);
   write_attr(file_.get(), "status", status, at);
   columns_.clear();
+  plan_columns_.clear();
   pairs_.reset();
+  plans_.reset();
   frames_.reset();
   text_type_.reset();
   // Closed once: the id is gone whether or not HDF5 reports a failure.
@@ -369,7 +401,10 @@ void ResultsFile::io_failed(const h5::IoError& e) {
 void ResultsFile::forget_handles() noexcept {
   for (h5::Handle& c : columns_) c.abandon();
   columns_.clear();
+  for (h5::Handle& c : plan_columns_) c.abandon();
+  plan_columns_.clear();
   pairs_.abandon();
+  plans_.abandon();
   frames_.abandon();
   text_type_.abandon();
   file_.abandon();

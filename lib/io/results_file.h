@@ -16,6 +16,7 @@
 #include "core/pair.h"
 #include "exec/memory.h"
 #include "io/hdf5_handle.h"
+#include "io/table_column.h"
 #include "pipeline/pipeline.h"
 #include "pipeline/run_summary.h"
 
@@ -24,7 +25,9 @@ namespace cdb {
 // 2: scene_label and scene_overrides added, /quality (always empty) dropped, numeric
 // options in params_json stored as numbers.
 // 3: label, input_path, input_hash and noise_warning added (readers treat them as optional).
-inline constexpr int64_t kResultsSchemaVersion = 3;
+// 4: each pass's front plan (/plans), repeat_plan and plan_source, /frames/plan_mixed and
+// /summary plan_mixed_frames added (readers treat them as optional).
+inline constexpr int64_t kResultsSchemaVersion = 4;
 
 // What the caller knows about the run; the writer adds the build (version, commit,
 // compilers), the host and the time.
@@ -55,6 +58,11 @@ struct RunInfo {
   // interval sampled at this many substeps (--contact-substeps).
   double contact_distance = 0.0;
   uint32_t contact_substeps = 0;
+  // --repeat-plan: how the passes' front plans were made (replay: later passes replayed the
+  // first pass's; free: each pass planned its own), and --front-cycle FILE: the plan every
+  // pass replayed ("" when none).
+  std::string repeat_plan = "replay";
+  std::string plan_source;
 };
 
 // Known only once every frame has run.
@@ -82,6 +90,8 @@ class ResultsFile {
   ResultsFile& operator=(const ResultsFile&) = delete;
 
   void append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory);
+  // /plans: what `frame` ran in pass `pass` (0: the first); the group is made by the first.
+  void append_plan_step(uint32_t pass, uint32_t frame, const PlanStep& step);
   // /pairs/frame_NNNN: the frame's sorted pairs as an (n, 2) array of triangle indices.
   void write_pairs(uint32_t frame, const std::vector<PrimPair>& pairs);
   // Writes /summary and what the run learned about itself by its end, marks the file
@@ -103,7 +113,14 @@ class ResultsFile {
 
  private:
   void create(const RunInfo& info);
-  void append_row(uint32_t frame, const FrameStats& stats, const MemoryStats& memory);
+  // One row appended to each of `datasets`, the columns `cols` of `row`; `at` names the
+  // row in messages ("/frames/<column> frame 3").
+  template <class Row>
+  void append_row(const std::vector<TableColumn<Row>>& cols, std::vector<h5::Handle>& datasets, uint64_t& rows,
+                  const Row& row, const std::string& group, const std::string& row_name);
+  template <class Row>
+  std::vector<h5::Handle> create_columns(hid_t group, const std::string& group_name,
+                                         const std::vector<TableColumn<Row>>& cols);
   void write_pair_rows(uint32_t frame, const std::vector<PrimPair>& pairs);
   void write_summary(const RunSummary& summary, const MemoryStats& memory);
   void close(const char* status);
@@ -118,10 +135,11 @@ class ResultsFile {
   std::filesystem::path path_;    // the path written
   std::string where_;  // the path written, for messages
   bool broken_ = false;
-  h5::Handle file_, frames_, pairs_;
-  std::vector<h5::Handle> columns_;  // one dataset per frame_columns() entry
+  h5::Handle file_, frames_, pairs_, plans_;
+  std::vector<h5::Handle> columns_;       // one dataset per frame_columns() entry
+  std::vector<h5::Handle> plan_columns_;  // one dataset per plan_columns() entry
   h5::Handle text_type_;
-  uint64_t rows_ = 0;
+  uint64_t rows_ = 0, plan_rows_ = 0;
   std::chrono::steady_clock::time_point last_flush_;
 };
 

@@ -1,5 +1,6 @@
 #include "io/results_reader.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -44,6 +45,8 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   r.input_path = optional_text("input_path");
   r.input_hash = optional_text("input_hash");
   r.noise_warning = optional_text("noise_warning");
+  r.repeat_plan = optional_text("repeat_plan");
+  r.plan_source = optional_text("plan_source");
   if (h5::has_attr(root, "warmup")) r.warmup = uint64_t(h5::read_int_attr(root, "warmup", at));
   if (h5::has_attr(root, "cold")) r.cold = h5::read_int_attr(root, "cold", at) != 0;
   if (h5::has_attr(root, "params_json")) {
@@ -71,6 +74,7 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
     r.frames_written = rows;
   }
 
+  r.has_plans = H5Lexists(root, "plans", H5P_DEFAULT) > 0;
   if (H5Lexists(root, "summary", H5P_DEFAULT) <= 0) return r;
   const std::string st = where + ": /summary";
   h5::Handle summary = own(H5Gopen2(root, "summary", H5P_DEFAULT), H5Gclose, st, "open group");
@@ -89,6 +93,8 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   r.repeats = h5::has_attr(s, "repeats") ? double(h5::read_int_attr(s, "repeats", st)) : std::nan("");
   r.noise_median = optional_double("noise_median");
   r.host_syncs_mean = optional_double("host_syncs_mean");
+  if (h5::has_attr(s, "plan_mixed_frames"))
+    r.plan_mixed_frames = uint64_t(h5::read_int_attr(s, "plan_mixed_frames", st));
   if (h5::has_attr(s, "checked_frames")) r.checked_frames = uint64_t(h5::read_int_attr(s, "checked_frames", st));
   if (r.checked_frames) {
     r.recall_min = h5::read_double_attr(s, "recall_min", st);
@@ -118,13 +124,14 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
 namespace cdb {
 namespace {
 
-// One /frames column as `T`, converted by HDF5 from whatever numeric type the file stores.
+// One column of a table (/frames, /plans) as `T`, converted by HDF5 from whatever numeric
+// type the file stores.
 template <class T>
-std::vector<T> read_column(hid_t root, const std::string& where, const char* name, hid_t memory_type) {
+std::vector<T> read_column(hid_t root, const std::string& where, const char* name, hid_t memory_type,
+                           const std::string& group = "frames") {
   using h5::own;
-  const std::string ds = where + ": /frames/" + name;
-  h5::Handle d = own(H5Dopen2(root, (std::string("frames/") + name).c_str(), H5P_DEFAULT), H5Dclose, ds,
-                     "open dataset");
+  const std::string path = group + "/" + name, ds = where + ": /" + path;
+  h5::Handle d = own(H5Dopen2(root, path.c_str(), H5P_DEFAULT), H5Dclose, ds, "open dataset");
   h5::Handle space = own(H5Dget_space(d.get()), H5Sclose, ds, "get dataspace");
   hsize_t rows = 0;
   h5::check(H5Sget_simple_extent_dims(space.get(), &rows, nullptr), ds, "get size");
@@ -133,14 +140,45 @@ std::vector<T> read_column(hid_t root, const std::string& where, const char* nam
   return v;
 }
 
+// A text column (fixed-width strings, NUL-padded) of a table.
+std::vector<std::string> read_text_column(hid_t root, const std::string& where, const char* name,
+                                          const std::string& group) {
+  using h5::own;
+  const std::string path = group + "/" + name, ds = where + ": /" + path;
+  h5::Handle d = own(H5Dopen2(root, path.c_str(), H5P_DEFAULT), H5Dclose, ds, "open dataset");
+  h5::Handle type = own(H5Dget_type(d.get()), H5Tclose, ds, "get type");
+  const size_t width = H5Tget_size(type.get());
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) != 0 || width == 0 ||
+      width > 4 * kTextColumnBytes)
+    fail(ds + ": not a column of fixed-width strings");
+  h5::Handle memory = own(H5Tcopy(H5T_C_S1), H5Tclose, ds, "copy string type");
+  h5::check(H5Tset_size(memory.get(), width), ds, "set string size");
+  h5::check(H5Tset_strpad(memory.get(), H5T_STR_NULLPAD), ds, "set string padding");
+  h5::Handle space = own(H5Dget_space(d.get()), H5Sclose, ds, "get dataspace");
+  hsize_t rows = 0;
+  h5::check(H5Sget_simple_extent_dims(space.get(), &rows, nullptr), ds, "get size");
+  std::vector<char> cells(rows * width);
+  if (rows) h5::check(H5Dread(d.get(), memory.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, cells.data()), ds, "read");
+  std::vector<std::string> v;
+  for (hsize_t i = 0; i < rows; ++i) {
+    const char* cell = cells.data() + i * width;
+    v.emplace_back(cell, std::find(cell, cell + width, '\0'));
+  }
+  return v;
+}
+
+// A results file opened for reading; `where` names it in messages.
+h5::Handle open_results(const std::filesystem::path& path, const std::string& where) {
+  h5::silence_library_errors();
+  if (!std::filesystem::is_regular_file(path)) fail(where + ": no such file");
+  return h5::own(H5Fopen(where.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, where, "open results file");
+}
+
 }  // namespace
 
 ResultsFrames read_results_frames(const std::filesystem::path& path) {
-  using h5::own;
-  h5::silence_library_errors();
   const std::string where = path.string();
-  if (!std::filesystem::is_regular_file(path)) fail(where + ": no such file");
-  h5::Handle file = own(H5Fopen(where.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, where, "open results file");
+  const h5::Handle file = open_results(path, where);
   const hid_t root = file.get();
   ResultsFrames f;
   f.frame = read_column<uint64_t>(root, where, "frame", H5T_NATIVE_UINT64);
@@ -159,6 +197,45 @@ ResultsFrames read_results_frames(const std::filesystem::path& path) {
   if (f.repeats.size() != rows || f.total_noise.size() != rows)
     fail(where + ": /frames: repeats and t_total_noise have other lengths than frame");
   return f;
+}
+
+ResultsPlans read_results_plans(const std::filesystem::path& path) {
+  const std::string where = path.string();
+  const h5::Handle file = open_results(path, where);
+  const hid_t root = file.get();
+  ResultsPlans plans;
+  plans.pipeline = h5::read_string_attr(root, "pipeline", where + ": /");
+  if (H5Lexists(root, "plans", H5P_DEFAULT) <= 0) return plans;
+  const std::vector<uint64_t> pass = read_column<uint64_t>(root, where, "pass", H5T_NATIVE_UINT64, "plans");
+  const std::vector<uint64_t> frame = read_column<uint64_t>(root, where, "frame", H5T_NATIVE_UINT64, "plans");
+  const std::vector<uint64_t> inspect = read_column<uint64_t>(root, where, "inspect", H5T_NATIVE_UINT64, "plans");
+  const std::vector<std::string> trees = read_text_column(root, where, "trees", "plans");
+  const std::vector<std::string> decision = read_text_column(root, where, "decision", "plans");
+  std::vector<std::vector<std::string>> ops;
+  for (Query q : kQueries) ops.push_back(read_text_column(root, where, query_name(q), "plans"));
+  const size_t rows = pass.size();
+  bool same_length = frame.size() == rows && inspect.size() == rows && trees.size() == rows && decision.size() == rows;
+  for (const auto& column : ops) same_length = same_length && column.size() == rows;
+  if (!same_length) fail(where + ": /plans: its columns have different lengths");
+  for (size_t i = 0; i < rows; ++i) {
+    const std::string row = where + ": /plans row " + std::to_string(i) + " (pass " + std::to_string(pass[i]) +
+                            ", frame " + std::to_string(frame[i]) + ")";
+    if (pass[i] > plans.passes.size() || (pass[i] + 1 < plans.passes.size()))
+      fail(row + ": the rows are not in pass order");
+    if (pass[i] == plans.passes.size())
+      plans.passes.push_back({where + " (pipeline " + plans.pipeline + ", pass " + std::to_string(pass[i]) + ")", {}});
+    RecordedPlan& plan = plans.passes.back();
+    if (frame[i] > UINT32_MAX || (!plan.frames.empty() && frame[i] != plan.frames.back().frame + 1))
+      fail(row + ": the frames of a pass are not consecutive");
+    // The row as a plan file's fields, read by the plan file's parser.
+    std::string fields = trees[i];
+    for (Query q : kQueries)
+      if (!ops[size_t(q)][i].empty()) fields += std::string(" ") + query_name(q) + "=" + ops[size_t(q)][i];
+    if (!decision[i].empty()) fields += " decision=" + decision[i];
+    if (inspect[i]) fields += " inspect";
+    plan.frames.push_back({uint32_t(frame[i]), parse_plan_step(fields, row), 0});
+  }
+  return plans;
 }
 
 }  // namespace cdb

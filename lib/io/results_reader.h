@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "pipeline/plan_record.h"
+
 namespace cdb {
 
 struct ResultsOverview {
@@ -45,6 +47,11 @@ struct ResultsOverview {
   double recall_min = 0, precision_min = 0, contact_precision = 0;
   // Mean time of each phase that ran, by phase name, without "total".
   std::vector<std::pair<std::string, double>> phase_means;
+  // Schema 4; "" and 0 in older files: --repeat-plan (replay | free), the plan file every
+  // pass replayed (--front-cycle FILE) and the frames whose passes ran different plans.
+  std::string repeat_plan, plan_source;
+  uint64_t plan_mixed_frames = 0;
+  bool has_plans = false;  // the file records its passes' plans (/plans)
 };
 
 ResultsOverview read_results_overview(const std::filesystem::path& path);
@@ -59,5 +66,14 @@ struct ResultsFrames {
 };
 
 ResultsFrames read_results_frames(const std::filesystem::path& path);
+
+// Each pass's front plan (/plans, schema 4): none for pipelines without a frame plan and
+// for older files. Each plan's source names the file, the pipeline and the pass.
+struct ResultsPlans {
+  std::string pipeline;
+  std::vector<RecordedPlan> passes;  // by pass, the first first
+};
+
+ResultsPlans read_results_plans(const std::filesystem::path& path);
 
 }  // namespace cdb

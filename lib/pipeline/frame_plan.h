@@ -4,14 +4,19 @@
 // operation each query runs: (1) generate, (2) preserve, (3) update, with (4) balance before
 // it in pipelines b and c, or (5) restructure in c. Pure host logic over the frame counter,
 // the strategy, the measured frame costs (pipeline/front_maintenance.h) and, in c, what the
-// last quality inspection found.
+// last quality inspection found; or a recorded plan, replayed frame by frame
+// (pipeline/plan_record.h), so that passes, runs and binaries run the same operations.
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <utility>
 
+#include "core/error.h"
 #include "pipeline/front_counters.h"
 #include "pipeline/front_maintenance.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/plan_record.h"
 #include "pipeline/tree_maintenance.h"
 
 namespace cdb {
@@ -25,22 +30,6 @@ struct FrontStrategy {
   bool radix_sort = false;  // order fronts and BVH with a radix sort instead of the histogram (Fig. 6 baseline)
   bool restructure = false;  // pipeline c: inspect quality, Formula 2, (5) restructure
 };
-
-enum class FrontOp { generate, preserve, update, restructure };
-
-inline const char* front_op_name(FrontOp op) {
-  return op == FrontOp::generate   ? "generate"
-         : op == FrontOp::preserve ? "preserve"
-         : op == FrontOp::update   ? "update"
-                                   : "restructure";
-}
-
-// Formula 2 (paper §4.2) on the last inspection's candidates, as a share of the leaves.
-enum class Formula2 { none, refit, restructure, rebuild };
-
-inline const char* formula2_name(Formula2 d) {
-  return d == Formula2::refit ? "refit" : d == Formula2::restructure ? "restructure" : d == Formula2::rebuild ? "rebuild" : "";
-}
 
 // Degraded subtrees found by pipeline c's inspection: how many, and their leaves.
 struct Candidates {
@@ -91,35 +80,35 @@ class FramePlanner {
   const FrontMaintenance& maintenance() const { return maintenance_; }
   const TreeMaintenance& tree() const { return tree_; }
 
-  // A new run over the frames: the first frame builds.
-  void reset() {
+  // A new run over the frames: the first frame builds. `running`: the queries that run in
+  // the scene, which a replayed plan must give operations to, and only those.
+  void reset(const QuerySet& running = {true, true, true}) {
     frame_ = generated_ = produced_ = 0;
     pending_ = {};
     q_ref_ = 0.0;
     maintenance_.reset();
     tree_.reset();
+    running_ = running;
+    if (replay_) check_plan_queries(*replay_, running_);
   }
+
+  // Before a run (reset): each frame runs the recorded step of `plan` instead of deciding
+  // one; nullptr decides again. The plan forces the trees' build, refit or stale boxes,
+  // each query's operation, the Formula 2 decision reported and the inspections; a
+  // restructure restructures what the replay's own inspection on the frame before found.
+  // In-place updates, balance and probes follow the configuration, as when deciding.
+  // Throws Error naming the plan's frame when a step cannot run on this strategy.
+  void replay(std::shared_ptr<const RecordedPlan> plan) {
+    if (plan) check_plan_steps(*plan, {strategy_.restructure, strategy_.rebuild_every_frame, config_.tree.refit_every});
+    replay_ = std::move(plan);
+  }
+  bool replays() const { return replay_ != nullptr; }
 
   // The next frame's plan, for a tree T_D of `leaves` leaves and fronts of `front_nodes`
   // nodes in all, whose order updates in place have decayed by `disorder` (the largest
   // FrontQuery::disorder of the queries).
   FramePlan plan(uint32_t leaves, uint64_t front_nodes, double disorder = 0.0) {
-    FramePlan p;
-    p.decision = formula2(leaves);
-    if (p.decision != Formula2::none) p.restructuring = pending_;
-    pending_ = {};
-    p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
-                rebuild_due(frame_, config_.tree.rebuild_every) || tree_.rebuild_due();
-    // --refit-every: between refits both trees keep their last boxes (not conservative).
-    p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
-    // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
-    // name T_D's leaves, which a rebuild or a restructure renumbers: they regenerate then.
-    // T_R is only refitted after its build, so its self fronts follow the rule.
-    const FrontOp cycle = maintenance_op(p.rebuild, front_nodes);
-    const bool restructure = !p.rebuild && p.decision == Formula2::restructure;
-    p.op(Query::self) = restructure ? FrontOp::restructure : cycle;
-    p.op(Query::inter) = restructure ? FrontOp::generate : cycle;
-    p.op(Query::rigid_self) = cycle;
+    FramePlan p = replay_ ? replayed() : decided(leaves, front_nodes);
     const bool updates = p.updates();
     // In place while the fronts' order has decayed by less than the compact share; the
     // update after produces them whole and ordered.
@@ -127,14 +116,18 @@ class FramePlanner {
     // Balance orders a front by the offsets of the sort that produced it: not one with holes
     // and an appended tail.
     p.balance = strategy_.balance && updates && !p.in_place && disorder == 0.0;
-    // Inspected after a maintenance (the paper's circle 3: an update, or a generate chosen
-    // instead) only: right after a rebuild Q is the reference, and a restructure keeps the
-    // stale front for the next maintenance to refresh.
-    p.inspect = strategy_.restructure && q_ref_ > 0.0 &&
-                (p.op(Query::self) == FrontOp::update || (p.op(Query::self) == FrontOp::generate && !p.rebuild));
-    p.probe = config_.fronts.update_probe && !p.rebuild && cycle == FrontOp::preserve &&
-              maintenance_.update_near(frame_, generated_, produced_, front_nodes);
     return p;
+  }
+
+  // What a plan runs, as a plan records it: the queries that do not run have no operation.
+  PlanStep step(const FramePlan& p) const {
+    PlanStep s;
+    s.trees = p.rebuild ? TreeStep::build : p.stale ? TreeStep::stale : TreeStep::refit;
+    for (Query q : kQueries)
+      if (running_[size_t(q)]) s.op(q) = p.op(q);
+    s.decision = p.decision;
+    s.inspect = p.inspect;
+    return s;
   }
 
   // After the frame ran, what it measured.
@@ -175,6 +168,60 @@ class FramePlanner {
   double q_ref() const { return q_ref_; }
 
  private:
+  // The frame's plan from the frame counter, the measured costs and the last inspection.
+  FramePlan decided(uint32_t leaves, uint64_t front_nodes) {
+    FramePlan p;
+    p.decision = formula2(leaves);
+    if (p.decision != Formula2::none) p.restructuring = pending_;
+    pending_ = {};
+    p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
+                rebuild_due(frame_, config_.tree.rebuild_every) || tree_.rebuild_due();
+    // --refit-every: between refits both trees keep their last boxes (not conservative).
+    p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
+    // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
+    // name T_D's leaves, which a rebuild or a restructure renumbers: they regenerate then.
+    // T_R is only refitted after its build, so its self fronts follow the rule.
+    const FrontOp cycle = maintenance_op(p.rebuild, front_nodes);
+    const bool restructure = !p.rebuild && p.decision == Formula2::restructure;
+    p.op(Query::self) = restructure ? FrontOp::restructure : cycle;
+    p.op(Query::inter) = restructure ? FrontOp::generate : cycle;
+    p.op(Query::rigid_self) = cycle;
+    // Inspected after a maintenance (the paper's circle 3: an update, or a generate chosen
+    // instead) only: right after a rebuild Q is the reference, and a restructure keeps the
+    // stale front for the next maintenance to refresh.
+    p.inspect = strategy_.restructure && q_ref_ > 0.0 &&
+                (p.op(Query::self) == FrontOp::update || (p.op(Query::self) == FrontOp::generate && !p.rebuild));
+    p.probe = config_.fronts.update_probe && !p.rebuild && cycle == FrontOp::preserve &&
+              maintenance_.update_near(frame_, generated_, produced_, front_nodes);
+    return p;
+  }
+
+  // The frame's recorded step (checked by replay and reset), with the candidates this
+  // run's inspection on the frame before found.
+  FramePlan replayed() {
+    const RecordedPlan& r = *replay_;
+    if (frame_ >= r.frames.size())
+      fail(r.source + ": the plan records " + std::to_string(r.frames.size()) + " frames, and the run has more");
+    const PlanStep& s = r.frames[frame_].step;
+    FramePlan p;
+    p.rebuild = s.trees == TreeStep::build;
+    p.stale = s.trees == TreeStep::stale;
+    for (Query q : kQueries) p.op(q) = s.op(q).value_or(FrontOp::preserve);
+    p.decision = s.decision;
+    p.inspect = s.inspect;
+    if (p.op(Query::self) == FrontOp::restructure) {
+      if (pending_.count == 0)
+        fail(r.where(frame_) + ": restructure, but this run's inspection of the frame before found no degraded "
+                               "subtree (the recording's did: the two inspections differ)");
+      p.restructuring = pending_;
+    }
+    pending_ = {};
+    // A preserve before a recorded update probes, as one before a decided update would.
+    p.probe = config_.fronts.update_probe && !p.rebuild && s.runs(FrontOp::preserve) && frame_ + 1 < r.frames.size() &&
+              r.frames[frame_ + 1].step.runs(FrontOp::update);
+    return p;
+  }
+
   // The paper prints the rebuild and restructure branches the other way round; restructuring
   // many subtrees costs more than a rebuild and restructuring few is what it is for, so here
   // a large share rebuilds (docs/design.md).
@@ -208,6 +255,8 @@ class FramePlanner {
   uint64_t generated_ = 0;  // the last frame that generated T_D's self fronts
   uint64_t produced_ = 0;   // the last frame that produced any front
   Candidates pending_;      // found by the last inspection, decided on the next frame
+  QuerySet running_ = {true, true, true};       // the queries that run in the scene
+  std::shared_ptr<const RecordedPlan> replay_;  // the plan replayed, or none
   double q_ref_ = 0.0;      // Q of the root after the last rebuild (pipeline c)
 };
 

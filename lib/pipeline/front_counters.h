@@ -8,6 +8,7 @@
 
 #include "front/front.h"
 #include "front/quality.h"
+#include "pipeline/plan_step.h"
 
 namespace cdb {
 
@@ -34,13 +35,6 @@ struct FrontQueryCounters {
     return s;
   }
 };
-
-// A front pipeline's queries (pipeline/front_pipeline.h): the self fronts of T_D, T_D's
-// leaves against T_R, and the self fronts of T_R. Each indexes its counter slot
-// (FrontCounters::query) and its operation in a frame's plan (FramePlan::op).
-enum class Query { self, inter, rigid_self };
-inline constexpr size_t kQueryCount = 3;
-inline constexpr Query kQueries[kQueryCount] = {Query::self, Query::inter, Query::rigid_self};
 
 struct FrontCounters {
   unsigned long long pairs;

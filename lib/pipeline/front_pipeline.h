@@ -23,7 +23,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "front/quality.h"
@@ -63,9 +65,14 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     for (const auto& fq : queries_) capacity = std::max(capacity, fq.capacity());
     if (strategy().radix_sort) radix_.reserve(exec_, capacity);
     if (strategy().restructure) restructure_.reserve(exec_, bvh_.num_leaves, config_.restructure.min_leaves);
-    planner_.reset();
+    planner_.reset(running_queries());
     stage_preserve_ = warp_preserve_ = true;
     exec_.sync();
+  }
+
+  bool replay_plan(std::shared_ptr<const RecordedPlan> plan) override {
+    planner_.replay(std::move(plan));
+    return true;
   }
 
   // Plan, run, read back, adopt; a frame whose buffers had to grow runs its front pass again.
@@ -108,6 +115,12 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   FrontQuery<Exec>& self() { return query(Query::self); }
   const FrontQuery<Exec>& self() const { return queries_[size_t(Query::self)]; }
   const FrontStrategy& strategy() const { return planner_.strategy(); }
+
+  QuerySet running_queries() const {
+    QuerySet running{};
+    for (Query q : kQueries) running[size_t(q)] = queries_[size_t(q)].active();
+    return running;
+  }
 
   uint64_t front_nodes() const {
     uint64_t n = 0;
@@ -171,6 +184,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   void describe(const FramePlan& plan, FrameStats& stats) const {
     stats.pairs = pairs_.count();
     stats.quality.decision = formula2_name(plan.decision);
+    stats.plan = planner_.step(plan);
     stats.fronts.internal = self().live(kInternalFront);
     stats.fronts.external = self().live(kExternalFront);
     stats.fronts.inter = queries_[size_t(Query::inter)].live_total();

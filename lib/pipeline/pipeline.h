@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "exec/memory.h"
 #include "geometry/mesh.h"
 #include "geometry/position_rounding.h"
+#include "pipeline/plan_step.h"
 
 namespace cdb {
 
@@ -228,16 +230,29 @@ struct FrameCheck {
 struct FrameStats {
   uint64_t pairs = 0;
   std::string op;  // what the frame did: hierarchy (build/refit) + front operation
+  // Front pipelines: the frame's plan step (pipeline/plan_step.h), recorded per pass in the
+  // results file and replayed by later passes; none for pipelines without a frame plan.
+  std::optional<PlanStep> plan;
+  // --repeat: passes whose plan step at this frame differs from the recorded pass's (0: every
+  // pass ran the same operations, so the frame's mean is over like work).
+  uint32_t plan_mixed = 0;
   FrameTiming timing;
   FrontSizes fronts;
   QualityStats quality;
   FrameCheck check;
 };
 
+struct RecordedPlan;  // pipeline/plan_record.h
+
 class Pipeline {
  public:
   virtual ~Pipeline() = default;
   virtual void set_topology(const Topology& topology) = 0;
+  // Front pipelines, from the next set_topology on: every frame runs its step of `plan`
+  // instead of planning its own (FramePlanner::replay; nullptr: plan again). Throws Error
+  // naming the plan's frame when a step cannot run on this pipeline. False for pipelines
+  // without a frame plan, which ignore it.
+  virtual bool replay_plan(std::shared_ptr<const RecordedPlan>) { return false; }
   // A frame of float positions, run as they are.
   virtual FrameStats run_frame(const std::vector<vec3f>& vertices) = 0;
   // A frame as the scene holds it, in double: rounded to floats as the box precision says

@@ -42,6 +42,7 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
   }
   for (const auto& f : frames) {
     r.query_reruns += f.timing.query_reruns;
+    r.plan_mixed_frames += f.plan_mixed > 0;
     r.decided_refit += f.quality.decision == "refit";
     r.decided_restructure += f.quality.decision == "restructure";
     r.decided_rebuild += f.quality.decision == "rebuild";

@@ -38,6 +38,9 @@ struct RunSummary {
   uint32_t host_syncs_max = 0;
   double bytes_floor_mean = 0;  // per measured frame; see FrameTiming::bytes_floor
   uint32_t query_reruns = 0;  // over all frames, warm-up included
+  // --repeat: frames whose passes ran different plan steps (FrameStats::plan_mixed), warm-up
+  // included.
+  size_t plan_mixed_frames = 0;
   // Formula 2 decisions of pipeline c over all frames.
   size_t decided_refit = 0, decided_restructure = 0, decided_rebuild = 0;
   // --check over all checked frames, warm-up included.

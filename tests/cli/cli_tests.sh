@@ -15,7 +15,7 @@ check "verify with sweep oracle" 0 "sort-and-sweep" -- "$cdbench" verify --devic
 check "unknown pipeline" 2 "unknown pipeline 'nope'" -- "$cdbench" run --device cpu --pipeline nope
 check "front cycle auto" 0 "summary: 2 frames measured" -- "$cdbench" run --device cpu --quiet --frames 0:3 --front-cycle auto
 check "front cycle K" 0 "summary: 2 frames measured" -- "$cdbench" run --device cpu --quiet --frames 0:3 --front-cycle 3
-check "front cycle neither auto nor K" 2 "auto or a positive whole number of frames, not 0" -- "$cdbench" run --device cpu --frames 0:3 --front-cycle 0
+check "front cycle neither auto nor K" 2 "auto, a positive whole number of frames or a plan file, not '0'" -- "$cdbench" run --device cpu --frames 0:3 --front-cycle 0
 check "unknown scene" 2 "unknown scene 'nowhere'" -- "$cdbench" run --device cpu --scene nowhere
 check "frame range past the end" 2 "only 20 frames" -- "$cdbench" run --device cpu --frames 0:99
 check "bad frame range" 2 "expected A:B" -- "$cdbench" run --device cpu --frames x:y
@@ -196,11 +196,11 @@ check "run with --set writes a results file" 0 "results: " -- \
 attrs() { "$python" -c "import h5py, json, sys; f = h5py.File(sys.argv[1]); print(json.dumps({k: (v.decode() if isinstance(v, bytes) else v.item() if hasattr(v, 'item') else v) for k, v in f.attrs.items()}, sort_keys=True)); print('groups', sorted(f.keys()))" "$1"; }
 check "scene label attribute" 0 '"scene_label": "funnel\[res=24\]"' -- attrs "$out/funnel-res24.h5"
 check "scene overrides attribute" 0 '"scene_overrides": "\{\\"res\\":24\}"' -- attrs "$out/funnel-res24.h5"
-check "schema version 3" 0 '"schema_version": 3' -- attrs "$out/funnel-res24.h5"
+check "schema version 4" 0 '"schema_version": 4' -- attrs "$out/funnel-res24.h5"
 cp "$out/funnel-res24.h5" "$tmp/future.h5"
 "$python" -c "import h5py, sys; f = h5py.File(sys.argv[1], 'r+'); f.attrs['schema_version'] = 99; f.close()" "$tmp/future.h5"
-check "report refuses a newer schema" 1 "future.h5: schema_version 99 is not one this cdbench reads \\(1 to 3\\)" -- "$cdbench" report "$tmp/future.h5"
-check "no /quality group" 0 "^groups \['frames', 'summary'\]$" -- attrs "$out/funnel-res24.h5"
+check "report refuses a newer schema" 1 "future.h5: schema_version 99 is not one this cdbench reads \\(1 to 4\\)" -- "$cdbench" report "$tmp/future.h5"
+check "no /quality group; pipeline c's plans" 0 "^groups \['frames', 'plans', 'summary'\]$" -- attrs "$out/funnel-res24.h5"
 check "description of what ran" 0 '"scene_description": "funnel: .*\(funnel\[res=24\]\)"' -- attrs "$out/funnel-res24.h5"
 check "numbers in params_json are numbers" 0 "^int int float str list \['res=24'\]$" -- "$python" -c "
 import h5py, json, sys
