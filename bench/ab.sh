@@ -10,10 +10,7 @@
 #   SCENES     (default: funnel cloth-ball cloth-100k n-body)
 #   PIPELINES  (default: every pipeline but brute)
 set -uo pipefail
-bundle=${BUNDLE:-$PWD/.devbundle}
-export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-export CDBENCH_SCENES=$PWD/scenes
-out=${OUT:-/tmp/out}
+source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
 mkdir -p "$out/ab"
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$out/ab/gpu.txt"
 pipelines=${PIPELINES:-bvh,unordered,static,periodic,restructure,reference,a,b,c,radix-order,sweep,hash,grid}

@@ -5,10 +5,8 @@
 # tests: all by default, the long ones (suite CudaLong, ctest bvh_cuda_long) included;
 # -CudaLong.* runs what ctest's label gpu runs.
 set -uo pipefail
-export LD_LIBRARY_PATH=$PWD/.devbundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-export CDBENCH_SCENES=$PWD/scenes
-bin=$PWD/.devbundle/bin
-out=${OUT:-/tmp/out}
+source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
+bin=$bundle/bin
 mkdir -p "$out"
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem --format=csv | tee "$out/gpu.txt"
 if [[ "${SKIP_TESTS:-0}" != 1 ]]; then

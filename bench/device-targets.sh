@@ -9,11 +9,8 @@
 #   TARGET_GROUPS  which groups run (default: all): steady cloth coherent nbody scaling
 #   NCU=1          also profile the kernels behind each bottleneck into $OUT/ncu-*.csv
 set -uo pipefail
-bundle=${BUNDLE:-$PWD/.devbundle}
-export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-export CDBENCH_SCENES=$PWD/scenes
+source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
 bin=$bundle/bin/cdbench
-out=${OUT:-/tmp/out}
 mkdir -p "$out/targets"
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem --format=csv | tee "$out/gpu.txt"
 

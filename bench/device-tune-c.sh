@@ -3,10 +3,8 @@
 # and Formula 2 thresholds, next to static (b), on each scene, for docs/results.md.
 # TUNE_SCENES, TUNE_QUALITY and TUNE_REFIT choose the cells.
 set -uo pipefail
-export LD_LIBRARY_PATH=$PWD/.devbundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-export CDBENCH_SCENES=$PWD/scenes
-bin=$PWD/.devbundle/bin
-out=${OUT:-/tmp/out}
+source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
+bin=$bundle/bin
 mkdir -p "$out"
 for s in ${TUNE_SCENES:-cloth-ball n-body cloth-100k funnel-large}; do
   "$bin/cdbench" scenes generate "$s" --out "/tmp/frames-$s" >/dev/null

@@ -10,10 +10,7 @@
 #
 #   CELLS  which cells run (default: all): wave128 wave512 wave708 spheres sphere cloth-ball funnel
 set -uo pipefail
-bundle=${BUNDLE:-$PWD/.devbundle}
-export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-export CDBENCH_SCENES=$PWD/scenes
-out=${OUT:-/tmp/out}
+source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
 mkdir -p "$out/maintenance"
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$out/maintenance/gpu.txt"
 

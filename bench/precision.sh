@@ -11,10 +11,7 @@
 #
 #   CELLS  which cells run (default: all): cost-ball cost-1m check-ball check-ball-far check-nbody
 set -uo pipefail
-bundle=${BUNDLE:-$PWD/.devbundle}
-export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-export CDBENCH_SCENES=$PWD/scenes
-out=${OUT:-/tmp/out}
+source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
 mkdir -p "$out/precision"
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$out/precision/gpu.txt"
 bin=$bundle/bin/cdbench

@@ -6,10 +6,8 @@
 # (sprouts shared in warps) and replay recorded frames; periodic generates and restructure
 # restructures, both spread over warps.
 set -uo pipefail
-bundle=${BUNDLE:-$PWD/.devbundle}
-export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-export CDBENCH_SCENES=$PWD/scenes
-top=${OUT:-/tmp/out}
+source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
+top=$out
 out=$top/sanitize
 mkdir -p "$out"
 pipelines=${PIPELINES:-a,b,c,unordered,periodic,restructure,radix-order,reference,bvh,grid,hash,sweep}

@@ -8,11 +8,8 @@
 #   PROFILE_PIPES   pipelines of the timed runs (default b,c)
 #   NCU_PIPE        the pipeline profiled (default c)
 set -uo pipefail
-bundle=${BUNDLE:-$PWD/.devbundle}
-export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-export CDBENCH_SCENES=$PWD/scenes
+source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
 bin=$bundle/bin/cdbench
-out=${OUT:-/tmp/out}
 h5=$out/update-h5
 mkdir -p "$h5"
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee "$out/gpu.txt"

@@ -266,6 +266,13 @@ def incomplete_lines(incomplete):
     return lines
 
 
+def print_report(lines, incomplete):
+    """Prints a report's Markdown lines, then the list of the incomplete files it left out;
+    returns the exit status, 0."""
+    print("\n".join(lines + incomplete_lines(incomplete)))
+    return 0
+
+
 def report_incomplete(incomplete, tool):
     for r in incomplete:
         print(f"{tool}: {r.path}: {r.incomplete_reason()}; left out", file=sys.stderr)

@@ -72,9 +72,7 @@ def main():
         lines = ["Fitted exponent k of ms/frame ~ c * triangles^k (least squares on log-log)", ""]
         lines += cdb_results.markdown_table(
             ["pipeline", "sizes", "triangles", "mean ms/frame", "exponent k"], rows)
-        lines += cdb_results.incomplete_lines(incomplete)
-        print("\n".join(lines))
-        return 0
+        return cdb_results.print_report(lines, incomplete)
 
     return cdb_results.run_main(body)
 

@@ -45,9 +45,7 @@ def main():
             lines.append("")
         if not lines:
             lines = ["No complete run."]
-        lines += cdb_results.incomplete_lines(incomplete)
-        print("\n".join(lines))
-        return 0
+        return cdb_results.print_report(lines, incomplete)
 
     return cdb_results.run_main(body)
 

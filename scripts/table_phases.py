@@ -58,9 +58,7 @@ def main():
             lines += [f"### {pipeline}", ""]
             lines += cdb_results.markdown_table(header, rows)
             lines.append("")
-        lines += cdb_results.incomplete_lines(incomplete)
-        print("\n".join(lines))
-        return 0
+        return cdb_results.print_report(lines, incomplete)
 
     return cdb_results.run_main(body)
 

@@ -70,9 +70,7 @@ def main():
              "radix sort (ms)", "radix / histogram (mean)", "frames (hist / radix)"], rows)
         if not rows:
             lines = ["No complete run of a histogram or radix front pipeline."]
-        lines += cdb_results.incomplete_lines(incomplete)
-        print("\n".join(lines))
-        return 0
+        return cdb_results.print_report(lines, incomplete)
 
     return cdb_results.run_main(body)
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
+#include "error_of.h"
 #include "io/pairs_file.h"
 
 namespace cdb {
@@ -30,14 +30,19 @@ class PairsFile : public testing::Test {
     std::ofstream(p, std::ios::binary) << bytes;
     return p;
   }
-  // The message of the cdb::Error reading `file` throws, or "" when it reads.
+  // The message of the cdb::Error reading `file` throws.
   static std::string error_of(const fs::path& file, uint32_t faces) {
-    try {
-      read_pairs_file(file, faces);
-    } catch (const Error& e) {
-      return e.what();
-    }
-    return "";
+    return test::error_of([&] { read_pairs_file(file, faces); });
+  }
+  // The names of the directory's files matched to frames [first, last), in frame order.
+  std::vector<std::string> matched(uint32_t first, uint32_t last) const {
+    std::vector<std::string> names;
+    for (const fs::path& p : pairs_files_for_frames(dir_, first, last)) names.push_back(p.filename().string());
+    return names;
+  }
+  // The message of the cdb::Error matching them throws.
+  std::string match_error(uint32_t first, uint32_t last) const {
+    return test::error_of([&] { pairs_files_for_frames(dir_, first, last); });
   }
   fs::path dir_;
 };
@@ -111,40 +116,19 @@ TEST_F(PairsFile, WrittenFilesReadBackInBothFormats) {
 TEST_F(PairsFile, NumberedFilesMatchTheirFramesAndOthersAreLeftAlone) {
   for (const char* name : {"frame_0.txt", "frame_0001.txt", "frame_2.bin", "frame_03.txt", "frame_9.txt"})
     write(name, "");
-  const std::vector<fs::path> files = pairs_files_for_frames(dir_, 1, 4);
-  ASSERT_EQ(files.size(), 3u);
-  EXPECT_EQ(files[0].filename(), "frame_0001.txt");
-  EXPECT_EQ(files[1].filename(), "frame_2.bin");
-  EXPECT_EQ(files[2].filename(), "frame_03.txt");
-  try {
-    pairs_files_for_frames(dir_, 3, 6);
-    FAIL() << "frame 4 has no file";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("no pairs file for frame 4 (e.g. frame_0004.txt)"), std::string::npos)
-        << e.what();
-  }
+  EXPECT_EQ(matched(1, 4), (std::vector<std::string>{"frame_0001.txt", "frame_2.bin", "frame_03.txt"}));
+  const std::string missing = match_error(3, 6);
+  EXPECT_NE(missing.find("no pairs file for frame 4 (e.g. frame_0004.txt)"), std::string::npos) << missing;
   write("frame_002.txt", "");
-  try {
-    pairs_files_for_frames(dir_, 0, 3);
-    FAIL() << "frame 2 has two files";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("two pairs files for frame 2"), std::string::npos) << e.what();
-  }
+  const std::string twice = match_error(0, 3);
+  EXPECT_NE(twice.find("two pairs files for frame 2"), std::string::npos) << twice;
 }
 
 TEST_F(PairsFile, OtherNamesAreTakenInNaturalOrderOnePerFrame) {
   for (const char* name : {"out10.txt", "out9.txt", "out11.txt", ".hidden"}) write(name, "");
-  const std::vector<fs::path> files = pairs_files_for_frames(dir_, 5, 8);
-  ASSERT_EQ(files.size(), 3u);
-  EXPECT_EQ(files[0].filename(), "out9.txt");
-  EXPECT_EQ(files[1].filename(), "out10.txt");
-  EXPECT_EQ(files[2].filename(), "out11.txt");
-  try {
-    pairs_files_for_frames(dir_, 0, 4);
-    FAIL() << "3 files for 4 frames";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("3 files for the 4 frames 0:4"), std::string::npos) << e.what();
-  }
+  EXPECT_EQ(matched(5, 8), (std::vector<std::string>{"out9.txt", "out10.txt", "out11.txt"}));
+  const std::string short_of = match_error(0, 4);
+  EXPECT_NE(short_of.find("3 files for the 4 frames 0:4"), std::string::npos) << short_of;
 }
 
 }  // namespace

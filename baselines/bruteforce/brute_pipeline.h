@@ -3,6 +3,7 @@
 #include <string>
 
 #include "bruteforce/brute_force.h"
+#include "common/face_boxes.h"
 #include "pipeline/pair_pipeline.h"
 
 namespace cdb {
@@ -10,25 +11,19 @@ namespace cdb {
 template <class Exec, class Timer>
 class BrutePipeline final : public QueryPipeline<Exec, Timer> {
  public:
-  explicit BrutePipeline(const PipelineConfig& config) : QueryPipeline<Exec, Timer>(config) {
-    lo_.bind(this->exec_.memory(), "brute.lo");
-    hi_.bind(this->exec_.memory(), "brute.hi");
-  }
+  explicit BrutePipeline(const PipelineConfig& config) : QueryPipeline<Exec, Timer>(config), boxes_(this->exec_.memory(), "brute") {}
 
  private:
-  void reserve(uint32_t faces) override {
-    lo_.reserve(faces);
-    hi_.reserve(faces);
-  }
+  void reserve(uint32_t faces) override { boxes_.reserve_faces(faces); }
   std::string prepare(const MeshView& mesh) override {
-    this->timed(Phase::boxes, [&] { this->exec_.for_each_n(mesh.num_faces, FaceBoxFn{mesh, lo_.data(), hi_.data()}); });
+    this->timed(Phase::boxes, [&] { face_boxes(this->exec_, boxes_, mesh); });
     return "none";
   }
   void query(const MeshView& mesh) override {
-    brute_force_pairs(this->exec_, mesh.num_faces, lo_.data(), hi_.data(), this->pairs_.sink());
+    brute_force_pairs(this->exec_, mesh.num_faces, boxes_.lo.data(), boxes_.hi.data(), this->pairs_.sink());
   }
 
-  Array<vec4f> lo_, hi_;
+  FaceBoxes boxes_;
 };
 
 }  // namespace cdb

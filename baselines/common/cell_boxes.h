@@ -1,26 +1,24 @@
 #pragma once
 // What the cell baselines (grid and hash) keep per box, and the steps they share on it:
-// the face boxes, the scene statistics (scene_stats.h) and, per box, the count of its cell
-// entries and the offset of its first one. Each baseline's workspace derives from this and
-// adds its cells, entries and sort.
+// the face boxes (face_boxes.h), the scene statistics (scene_stats.h) and, per box, the
+// count of its cell entries and the offset of its first one. Each baseline's workspace
+// derives from this and adds its cells, entries and sort.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
+#include "common/face_boxes.h"
 #include "common/scene_stats.h"
 #include "exec/memory.h"
-#include "geometry/mesh.h"
 
 namespace cdb {
 
 template <class Exec>
-struct CellBoxes {
+struct CellBoxes : FaceBoxes {
   // Buffers are named "<prefix>.<array>" in the growth log.
-  CellBoxes(Exec& exec, const std::string& prefix) {
+  CellBoxes(Exec& exec, const std::string& prefix) : FaceBoxes(exec.memory(), prefix) {
     MemoryResource& mr = exec.memory();
-    lo.bind(mr, prefix + ".lo");
-    hi.bind(mr, prefix + ".hi");
     counts.bind(mr, prefix + ".counts");
     offsets.bind(mr, prefix + ".offsets");
     scene.bind(mr, prefix + ".scene");
@@ -28,7 +26,7 @@ struct CellBoxes {
   }
 
   void reserve_boxes(uint32_t n) {
-    for (auto* a : {&lo, &hi}) a->reserve(n);
+    reserve_faces(n);
     for (auto* a : {&counts, &offsets}) a->reserve(n);
     scene.reserve(1);
   }
@@ -38,16 +36,10 @@ struct CellBoxes {
     return std::max(exec.scan_temp_bytes(n), exec.template reduce_temp_bytes_of<SceneStats>(n));
   }
 
-  Array<vec4f> lo, hi;
   Array<uint32_t> counts, offsets;
   Array<SceneStats> scene;
   Array<std::byte> temp;
 };
-
-template <class Exec>
-void face_boxes(Exec& exec, CellBoxes<Exec>& b, const MeshView& mesh) {
-  exec.for_each_n(mesh.num_faces, FaceBoxFn{mesh, b.lo.data(), b.hi.data()});
-}
 
 template <class Exec>
 void reduce_scene_stats(Exec& exec, CellBoxes<Exec>& b, uint32_t n) {

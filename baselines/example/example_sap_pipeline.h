@@ -4,7 +4,8 @@
 // the executor (its boxes follow every box option), the frame's upload, timing and one
 // read-back, and the pair buffer, which applies --skip-adjacent and declared queries as
 // pairs are emitted and grows, with the query run again, when a frame's pairs outgrow it.
-// A method fills in four steps: reserve, prepare, query, and optionally build/settle.
+// A method fills in four steps: reserve, prepare, query, and optionally build/settle. The
+// boxes and their sort are the baselines' (common/sorted_boxes.h); the walk is the method's.
 #include <string>
 
 #include "example/example_sap.h"
@@ -15,7 +16,7 @@ namespace cdb {
 template <class Exec, class Timer>
 class ExampleSap final : public QueryPipeline<Exec, Timer> {
  public:
-  explicit ExampleSap(const PipelineConfig& config) : QueryPipeline<Exec, Timer>(config), sap_(this->exec_) {}
+  explicit ExampleSap(const PipelineConfig& config) : QueryPipeline<Exec, Timer>(config), sap_(this->exec_, "example-sap") {}
 
  private:
   // Every buffer is sized here, before the first frame; frames allocate nothing (a pair
@@ -23,15 +24,15 @@ class ExampleSap final : public QueryPipeline<Exec, Timer> {
   void reserve(uint32_t faces) override { sap_.reserve(this->exec_, faces); }
   // Boxes and the sort, once a frame; a query re-run after the pair buffer grew reuses them.
   std::string prepare(const MeshView& mesh) override {
-    this->timed(Phase::boxes, [&] { example_sap_boxes(this->exec_, sap_, mesh); });
-    this->timed(Phase::build, [&] { example_sap_sort(this->exec_, sap_, mesh.num_faces); });
+    this->timed(Phase::boxes, [&] { face_boxes(this->exec_, sap_, mesh); });
+    this->timed(Phase::build, [&] { sort_boxes(this->exec_, sap_, mesh.num_faces, MinX{}); });
     return "sort";
   }
   void query(const MeshView& mesh) override {
     example_sap_pairs(this->exec_, sap_, mesh.num_faces, this->pairs_.sink());
   }
 
-  ExampleSapWorkspace<Exec> sap_;
+  SortedBoxes<Exec> sap_;
 };
 
 }  // namespace cdb

@@ -11,8 +11,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "common/sorted_boxes.h"
 #include "core/aabb.h"
-#include "core/float_bits.h"
 #include "core/pair_sink.h"
 #include "exec/balance.h"
 #include "exec/memory.h"
@@ -85,23 +85,10 @@ CDB_HD_INLINE float axis_of(const vec4f& v, uint32_t axis) {
   return axis == 0 ? v.x : axis == 1 ? v.y : v.z;
 }
 
-// Float to an unsigned integer of the same order (sign bit flipped for positives, all bits
-// for negatives). -0 sorts just before +0; they compare equal as floats, so the sorted
-// minima stay non-decreasing, which is all the sweep needs.
-CDB_HD_INLINE uint32_t ordered_key(float f) {
-  const uint32_t bits = float_bits(f);
-  return (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
-}
-
-struct SweepKeyFn {
-  const vec4f* lo;
+// The sort's coordinate: along the axis picked on the device.
+struct PickedAxis {
   const uint32_t* axis;
-  uint64_t* keys;
-  uint32_t* iota;
-  CDB_HD void operator()(uint32_t i) const {
-    keys[i] = ordered_key(axis_of(lo[i], *axis));
-    iota[i] = i;
-  }
+  CDB_HD float operator()(const vec4f& v) const { return axis_of(v, *axis); }
 };
 
 struct SweepFn {
@@ -131,46 +118,30 @@ struct SweepFn {
 // Workspace of the sweep, sized once from the triangle count; a larger scene later is a
 // logged growth.
 template <class Exec>
-struct SweepAndPrune {
-  explicit SweepAndPrune(Exec& exec) {
+struct SweepAndPrune : SortedBoxes<Exec> {
+  explicit SweepAndPrune(Exec& exec) : SortedBoxes<Exec>(exec, "sweep") {
     MemoryResource& mr = exec.memory();
-    lo.bind(mr, "sweep.lo");
-    hi.bind(mr, "sweep.hi");
     sorted_lo.bind(mr, "sweep.sorted_lo");
     sorted_hi.bind(mr, "sweep.sorted_hi");
-    keys.bind(mr, "sweep.keys");
-    sorted_keys.bind(mr, "sweep.sorted_keys");
-    iota.bind(mr, "sweep.iota");
-    order.bind(mr, "sweep.order");
     moments.bind(mr, "sweep.moments");
     axis.bind(mr, "sweep.axis");
-    temp.bind(mr, "sweep.temp");
   }
 
   void reserve(Exec& exec, uint32_t n) {
-    for (auto* a : {&lo, &hi, &sorted_lo, &sorted_hi}) a->reserve(n);
-    keys.reserve(n);
-    sorted_keys.reserve(n);
-    iota.reserve(n);
-    order.reserve(n);
+    SortedBoxes<Exec>::reserve(exec, n, exec.template reduce_temp_bytes_of<CentroidMoments>(n));
+    for (auto* a : {&sorted_lo, &sorted_hi}) a->reserve(n);
     moments.reserve(1);
     axis.reserve(1);
-    const size_t sort_bytes = exec.sort_temp_bytes(n);
-    const size_t reduce_bytes = exec.template reduce_temp_bytes_of<CentroidMoments>(n);
-    temp.reserve(sort_bytes > reduce_bytes ? sort_bytes : reduce_bytes);
   }
 
-  Array<vec4f> lo, hi, sorted_lo, sorted_hi;
-  Array<uint64_t> keys, sorted_keys;
-  Array<uint32_t> iota, order;
+  Array<vec4f> sorted_lo, sorted_hi;
   Array<CentroidMoments> moments;
   Array<uint32_t> axis;
-  Array<std::byte> temp;
 };
 
 template <class Exec>
 void sweep_boxes(Exec& exec, SweepAndPrune<Exec>& s, const MeshView& mesh) {
-  exec.for_each_n(mesh.num_faces, FaceBoxFn{mesh, s.lo.data(), s.hi.data()});
+  face_boxes(exec, s, mesh);
 }
 
 // Axis choice, keys, sort, gather.
@@ -180,9 +151,7 @@ void sweep_sort(Exec& exec, SweepAndPrune<Exec>& s, uint32_t n) {
   exec.reduce(n, CentroidMomentsFn{s.lo.data(), s.hi.data()}, MomentsSum{}, CentroidMoments{},
               s.moments.data(), s.temp.data(), s.temp.size());
   exec.for_each_n(1, PickAxisFn{s.moments.data(), n, s.axis.data()});
-  exec.for_each_n(n, SweepKeyFn{s.lo.data(), s.axis.data(), s.keys.data(), s.iota.data()});
-  exec.sort_pairs(s.keys.data(), s.sorted_keys.data(), s.iota.data(), s.order.data(), n, 32,
-                  s.temp.data(), s.temp.size());
+  sort_boxes(exec, s, n, PickedAxis{s.axis.data()});
   exec.for_each_n(n, GatherBoxesFn{s.order.data(), s.lo.data(), s.hi.data(),
                                     s.sorted_lo.data(), s.sorted_hi.data()});
 }

@@ -18,12 +18,6 @@ namespace {
 
 enum class BoxFormat { f32, f64, npy };
 
-std::string lower_extension(const std::filesystem::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  return ext;
-}
-
 BoxFormat format_of(const std::filesystem::path& file) {
   const std::string ext = lower_extension(file);
   return ext == ".boxes" ? BoxFormat::f32 : ext == ".boxes64" ? BoxFormat::f64 : BoxFormat::npy;

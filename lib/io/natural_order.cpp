@@ -38,6 +38,12 @@ bool natural_less(std::string_view a, std::string_view b) {
   return a < b;
 }
 
+std::string lower_extension(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext;
+}
+
 std::vector<std::filesystem::path> frame_files(const std::filesystem::path& dir,
                                                const std::function<bool(const std::filesystem::path&)>& is_frame) {
   namespace fs = std::filesystem;

@@ -4,7 +4,6 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -19,9 +18,7 @@ size_t read_mesh_file(const std::filesystem::path& file, Topology& topology,
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
     fail(file.string() + ": " + (ec ? ec.message() : std::string("no such file")));
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  if (ext == ".obj") return read_obj_file(file, topology, positions, frame);
+  if (lower_extension(file) == ".obj") return read_obj_file(file, topology, positions, frame);
   Assimp::Importer importer;
   // Read as is, count the polygons, then triangulate them only: no vertex joining, no
   // degenerate removal, no reordering, so the file's faces keep their order.
@@ -58,11 +55,7 @@ namespace {
 class MeshSequence final : public FrameSource {
  public:
   explicit MeshSequence(const std::filesystem::path& dir) : dir_(dir) {
-    files_ = frame_files(dir, [](const std::filesystem::path& p) {
-      std::string ext = p.extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-      return ext == ".obj";
-    });
+    files_ = frame_files(dir, [](const std::filesystem::path& p) { return lower_extension(p) == ".obj"; });
     if (files_.empty()) fail(dir.string() + ": no .obj frames in this directory");
     std::vector<vec3d> positions;
     const size_t polygons = read_mesh_file(files_[0], topology_, positions, 0);

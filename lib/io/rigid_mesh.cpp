@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "geometry/position_rounding.h"
 #include "io/keyframe_mesh.h"
+#include "io/natural_order.h"
 #include "io/obj_sequence.h"
 #include "io/quaternion.h"
 
@@ -76,9 +77,7 @@ class RigidMeshSource final : public FrameSource {
 StaticMesh load_static_mesh(const std::filesystem::path& file, double scale, bool center) {
   Topology topology;
   std::vector<vec3d> positions;
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  if (ext == ".obj") {
+  if (lower_extension(file) == ".obj") {
     // The plain reader: assimp's OBJ numbers can be ulps off.
     read_mesh_file(file, topology, positions);
   } else {

@@ -235,11 +235,7 @@ std::unique_ptr<FrameSource> open_crowd(const DescriptorObject& c, const std::fi
 // rather than read as either, which would silently drop the other's files.
 std::unique_ptr<FrameSource> open_frame_directory(const std::filesystem::path& dir) {
   const auto box_files = frame_files(dir, is_box_frame_file);
-  const auto mesh_files = frame_files(dir, [](const std::filesystem::path& p) {
-    std::string ext = p.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-    return ext == ".obj";
-  });
+  const auto mesh_files = frame_files(dir, [](const std::filesystem::path& p) { return lower_extension(p) == ".obj"; });
   const std::filesystem::path box_file = box_files.empty() ? "" : box_files.back();
   const std::filesystem::path mesh_file = mesh_files.empty() ? "" : mesh_files.back();
   if (!box_file.empty() && !mesh_file.empty())

@@ -2,11 +2,7 @@
 # The GPU machine's scripts (bench/) on small CPU results and on the committed H100 results:
 # perf_targets.py's A/B tables, ab_phases.py on a printed log, steady_breakdown.py.
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-python=/usr/bin/python3
-[[ -x $python ]] || python=python3
-source "$root/tests/cli/harness.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 export OMP_NUM_THREADS=1
 res=$tmp/results

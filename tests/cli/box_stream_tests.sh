@@ -4,11 +4,7 @@
 # triangles are refused, and the worked example (an OBJ cloth sequence and an OBJ collider
 # sequence as parts with declared queries) runs as the documentation's steps say.
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-python=/usr/bin/python3
-[[ -x $python ]] || python=python3
-source "$root/tests/cli/harness.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 # 300 boxes drifting over 4 frames, in the three formats; the .npy frames alternate the
 # (N, 6) and (N, 2, 3) shapes. Coordinates on a 1/32 grid, so boxes also touch exactly.

@@ -1,12 +1,8 @@
 #!/usr/bin/env bash
 # CLI smoke and bad-input tests: exit codes and messages that name the file, frame and field.
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-python=/usr/bin/python3
-[[ -x $python ]] || python=python3
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 read_results=("$python" "$root/scripts/read_results.py")
-source "$root/tests/cli/harness.sh"
 
 check "run default scene on cpu" 0 "summary: 19 frames measured" -- "$cdbench" run --device cpu --quiet
 check "run prints environment" 0 "commit [0-9a-f]+" -- "$cdbench" run --device cpu --quiet --frames 0:2

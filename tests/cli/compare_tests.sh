@@ -2,11 +2,7 @@
 # cdbench compare, report's commit/label columns and stable CSV, run --label/--json, the
 # scripts' schema and baseline matching: small funnel runs on the CPU.
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-python=/usr/bin/python3
-[[ -x $python ]] || python=python3
-source "$root/tests/cli/harness.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 scene=(--device cpu --scene funnel --set res=16 --frames 0:6 --quiet)
 run() {  # run OUT ARGS...: one run into OUT, its output kept in $tmp/run.out

@@ -3,11 +3,7 @@
 # interval contacts that discrete boxes miss (a discrete run finds none), the fields reach the
 # results file, and bad values are refused.
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-python=/usr/bin/python3
-[[ -x $python ]] || python=python3
-source "$root/tests/cli/harness.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 # Contacts between triangles sharing no vertex on the default scene (funnel), two frames, with
 # boxes as fat as the distance so that the pairs within it are reported.

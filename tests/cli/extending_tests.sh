@@ -2,9 +2,7 @@
 # docs/extending.md: the example pipeline through the CLI, and an outside method's pairs
 # checked against the oracle (verify --write-pairs, verify --pairs), frame by frame.
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-source "$root/tests/cli/harness.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 scene=(--device cpu --scene funnel --set res=16 --frames 0:6)
 
@@ -82,8 +80,6 @@ check "natural order matches step0 .. step25" 0 "pairs frame 2 step10.txt: exact
 
 # An outside program (tests/cli/outside_pairs.py, nothing of cdbench) reads the exported
 # OBJ frames, builds its boxes as the doc says, and its pairs are exactly the oracle's.
-python=/usr/bin/python3
-[[ -x $python ]] || python=python3
 check "export the frames as OBJ" 0 "wrote 3 frames of funnel" -- "$cdbench" scenes generate funnel --set res=4 --set frames=3 --out "$tmp/objs"
 "$python" "$root/tests/cli/outside_pairs.py" "$tmp/objs" "$tmp/outside" || fail "outside_pairs.py failed"
 check "an outside program's pairs verify" 0 "the pairs match the oracle" -- "$cdbench" verify --device cpu --scene "$tmp/objs" --pairs "$tmp/outside"

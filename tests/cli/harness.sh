@@ -1,5 +1,12 @@
-# Shared by the CLI test scripts (sourced): a temporary directory, the failure count and
-# the checks that print "ok" or "FAIL" lines.
+# Shared by the CLI test scripts (sourced, with no arguments of its own, so $1 is the
+# script's: the cdbench binary, as tests/CMakeLists.txt passes it): the repository root, a
+# python3 (/usr/bin/python3 first, the one the scripts of docs/plots.md use, with h5py,
+# numpy and matplotlib), a temporary directory, the failure count and the checks that
+# print "ok" or "FAIL" lines.
+cdbench=$1
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+python=/usr/bin/python3
+[[ -x $python ]] || python=python3
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 failures=0

@@ -4,11 +4,7 @@
 # pipelines must miss pairs (recall < 1, with the warning line), fat, swept and q16 boxes
 # must not (recall 1, precision < 1); scripts/plot_pareto.py must draw them and tabulate them.
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-python=/usr/bin/python3
-[[ -x $python ]] || python=python3
-source "$root/tests/cli/harness.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 hasnt() {  # hasnt NAME FILE PATTERN: no line of FILE matches PATTERN
   if grep -qE -- "$3" "$2"; then fail "$1: '$3' in $2"; else echo "ok   $1"; fi
 }

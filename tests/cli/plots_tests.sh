@@ -2,11 +2,7 @@
 # Tables and plots from HDF5: small CPU results, scripts/make_report.sh on them, then the
 # report's tables, PNGs, exponents, the incomplete file and bad input are checked.
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-python=/usr/bin/python3
-[[ -x $python ]] || python=python3
-source "$root/tests/cli/harness.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 res=$tmp/results
 # One thread: the numbers do not matter here, and OpenMP threads waiting on a busy machine

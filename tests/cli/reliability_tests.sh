@@ -2,9 +2,7 @@
 # Results files never overwrite finished work nor claim more than they hold; bad OBJ frames
 # and reused output directories are refused. Exit codes as docs/usage.md gives them.
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-source "$root/tests/cli/harness.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 d=$tmp/res
 mkdir -p "$d"

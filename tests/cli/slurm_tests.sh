@@ -7,9 +7,7 @@
 # cells not complete. When the packages cannot be installed or the daemons cannot start,
 # the test fails with their logs; it does not skip.
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-source "$root/tests/cli/harness.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 if ! bash "$root/scripts/install-deps.sh" --slurm; then
   echo "FAIL cannot install slurmctld, slurmd and munge (scripts/install-deps.sh --slurm; needs root or sudo)"

@@ -2,9 +2,7 @@
 # cdbench sweep: expansion, one process per cell, resuming, failed cells, Slurm script, and
 # report over a directory. Runs sweeps/ci-small.json (2 tiny scenes x 3 pipelines on the CPU).
 set -u
-cdbench=$1
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-source "$root/tests/cli/harness.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 count() {  # count NAME WANT PATTERN: lines of the last output matching PATTERN
   local n; n=$(grep -cE -- "$3" "$tmp/out")
   if [[ $n -ne $2 ]]; then
