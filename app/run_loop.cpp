@@ -136,7 +136,7 @@ uint64_t frame_bytes_floor(const Topology& t, uint64_t pairs) {
 // pipelines without a frame plan.
 void print_plan_line(const std::vector<FrameStats>& frames, const RunLoopOptions& options, uint32_t first) {
   if (frames.empty() || !frames.front().plan) return;
-  const uint32_t passes = frames.back().repeats;
+  const uint32_t passes = frames.back().timing.repeats;
   if (!options.plan_source.empty()) {
     std::printf("  plan        %s replayed %s (--front-cycle)\n", passes > 1 ? "every pass" : "the pass",
                 options.plan_source.c_str());

@@ -40,7 +40,9 @@ run() {
       run "${entry#*=}" "$out/${entry%%=*}" repeat "$s" c --repeat 2
       run "${entry#*=}" "$out/${entry%%=*}" single "$s" c
     done
+    # One archive, refreshed after each scene: the device tool brings back only a few files,
+    # and what a cut-short call finished still comes back.
+    tar -C "$out" -cJf "${OUT:-/tmp/out}/anchors-h5.tar.xz" .
   done
 } 2>&1 | tee "$out/anchors.log"
-# One archive: the device tool brings back only a few files.
 tar -C "$out" -cJf "${OUT:-/tmp/out}/anchors-h5.tar.xz" . && rm -rf "$out"

@@ -54,7 +54,7 @@ fs::path write_run(const std::string& name) {
     for (size_t k = 0; k < passes[p].size(); ++k) out.append_plan_step(uint32_t(p), uint32_t(3 + k), passes[p][k]);
   std::vector<FrameStats> frames(4);
   for (size_t k = 0; k < frames.size(); ++k) {
-    frames[k].total_ms = 1.0;
+    frames[k].timing.total_ms = 1.0;
     frames[k].plan = passes[1][k];
     frames[k].plan_mixed = k >= 2;
     out.append_frame(uint32_t(3 + k), frames[k], MemoryStats{});
