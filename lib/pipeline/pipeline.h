@@ -70,7 +70,7 @@ struct TreeConfig {
   // Front pipelines under --front-cycle auto: rebuild the tree (and generate every front)
   // once its degradation has cost as much as a build (pipeline/tree_maintenance.h); off:
   // only --rebuild-every and pipeline c's Formula 2 rebuild.
-  bool rebuild_degraded = true;
+  bool rebuild_degraded = false;
 };
 
 // Front maintenance of the front pipelines (pipeline/front_maintenance.h, frame_plan.h).
