@@ -1,14 +1,16 @@
-// A square sheet squeezed to a fraction of its size and churned onto itself.
+// A square sheet squeezed towards its middle and churned onto itself.
 //
-// The sheet is carried by a smooth velocity field over the run (scene time 0 to 1): a
-// squeeze drawing every point towards the vertical axis, so that the sheet's extent ends at
-// `squeeze` of its size; folds lifting it out of its plane where the squeeze gathers it;
-// and vortex tubes, most with horizontal axes, that roll the folds over onto the sheet. The
-// flow of a smooth field is one-to-one, so the sheet folds onto itself more and more but
-// never passes through itself, as a simulation with self-collision keeps it (each step
-// moves a vertex far less than the field changes over, so the stepped map stays one-to-one
-// too). Parts of the sheet far apart at frame 0 end up lying on each other: a hierarchy
-// built on frame 0 goes stale while its pairs grow.
+// The sheet is carried by a smooth velocity field over the run (scene time 0 to 1; frame 0
+// at `start`, so the sheet is already gathered a little): a squeeze drawing every point
+// towards the vertical axis, to `squeeze` of its distance by the end (folds and vortices
+// keep the sheet wider: at 0.4 it ends about half its width, its area within about 15% of
+// the flat sheet's, as cloth's); folds lifting it out of its plane where the squeeze
+// gathers it; and vortex tubes, most with horizontal axes, that roll the folds over onto
+// the sheet. The flow of a smooth field is one-to-one, so the smooth sheet folds onto itself
+// more and more but never passes through itself, as a simulation with self-collision keeps
+// it; only the mesh's flat triangles can cut each other where folds touch, fewer the finer
+// the mesh (none at 256x256). Parts of the sheet far apart at frame 0 end up lying on each
+// other: a hierarchy built on frame 0 goes stale while the pairs grow.
 #include "crumple.h"
 
 #include <cmath>
@@ -115,8 +117,8 @@ class CrumpleSource final : public SteppedSource<std::vector<dvec3>> {
     char text[64];
     std::snprintf(text, sizeof text, "%g%%", 100 * squeeze);
     description_ = "crumple: " + std::to_string(res) + "x" + std::to_string(res) + " sheet (" +
-                   std::to_string(topology_.faces.size()) + " triangles) squeezed to " + text +
-                   " of its size and churned onto itself, " + std::to_string(frames_) + " frames";
+                   std::to_string(topology_.faces.size()) + " triangles) squeezed (every point drawn to " + text +
+                   " of its distance from the middle) and churned onto itself, " + std::to_string(frames_) + " frames";
   }
 
  private:

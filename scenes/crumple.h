@@ -1,5 +1,5 @@
 #pragma once
-// A square sheet squeezed to a fraction of its size and churned onto itself: its folds lie
+// A square sheet squeezed towards its middle and churned onto itself: its folds lie
 // over one another more and more, and parts of the sheet far apart at frame 0 end up in
 // contact, so a hierarchy built on frame 0 goes stale (see crumple.cpp).
 #include <memory>
