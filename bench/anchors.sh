@@ -10,11 +10,10 @@
 #
 #   ANCHOR_SCENES  scenes to run (default: all seven below)
 set -uo pipefail
-bundle=${BUNDLE:-$PWD/.devbundle}
-export LD_LIBRARY_PATH=$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-export CDBENCH_SCENES=$PWD/scenes
+source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
 bin=$bundle/bin/cdbench
-out=${OUT:-/tmp/out}/anchors
+archive=$out/anchors-h5.tar.xz
+out=$out/anchors
 frames=${FRAMES_DIR:-/tmp/anchor-frames}
 mkdir -p "$out" "$frames"
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv | tee "$out/gpu.txt"
@@ -42,7 +41,7 @@ run() {
     done
     # One archive, refreshed after each scene: the device tool brings back only a few files,
     # and what a cut-short call finished still comes back.
-    tar -C "$out" -cJf "${OUT:-/tmp/out}/anchors-h5.tar.xz" .
+    tar -C "$out" -cJf "$archive" .
   done
 } 2>&1 | tee "$out/anchors.log"
-tar -C "$out" -cJf "${OUT:-/tmp/out}/anchors-h5.tar.xz" . && rm -rf "$out"
+tar -C "$out" -cJf "$archive" . && rm -rf "$out"
