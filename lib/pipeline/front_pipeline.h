@@ -64,7 +64,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     size_t capacity = 0;
     for (const auto& fq : queries_) capacity = std::max(capacity, fq.capacity());
     if (strategy().radix_sort) radix_.reserve(exec_, capacity);
-    if (strategy().restructure) restructure_.reserve(exec_, bvh_.num_leaves, config_.restructure_min_leaves);
+    if (strategy().restructure) restructure_.reserve(bvh_.num_leaves, config_.restructure_min_leaves);
     planner_.reset();
     stage_preserve_ = warp_preserve_ = true;
     exec_.sync();
