@@ -473,7 +473,7 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
   const MeshView mesh = m.view();
   std::vector<vec3f> v;
   const uint32_t n = uint32_t(topo.faces.size());
-  rs.reserve(exec, n, 2);
+  rs.reserve(n, 2);
   for (uint32_t f = 0; f < source.num_frames(); ++f) {
     source.frame(f, v);
     m.upload(exec, v);

@@ -126,7 +126,8 @@ struct Lbvh {
   // so internal nodes of segment l occupy [offset_log[l], offset_log[l+1]).
   Array<uint32_t> count_log, offset_log;
 
-  // Build scratch: boxes in input order, Morton keys, the unordered tree.
+  // Build scratch: boxes in input order, Morton keys, the unordered tree. A restructure,
+  // which replaces a build on its frame, borrows part of it (bvh/restructure.h).
   Array<vec4f> prim_lo, prim_hi;
   Array<Aabb<float>> centroid_box;
   Array<uint64_t> morton, morton_sorted;

@@ -14,6 +14,13 @@ struct BufferGrowth {
   size_t first_count = 0, last_count = 0;
 };
 
+// Bytes one buffer name held (a name may stand for several buffers of one kind, e.g. both
+// queries' of a tree).
+struct BufferBytes {
+  std::string buffer;
+  size_t bytes = 0;
+};
+
 // Accounting every executor's allocator shares: bytes in use, peak, and how many times a
 // buffer had to grow after the run started, per buffer. Nothing is printed while frames
 // run: the CLI sums the growths up at the end of a run.
@@ -23,23 +30,34 @@ struct MemoryStats {
   size_t allocations = 0;
   size_t growths = 0;
   std::vector<BufferGrowth> grown;  // one entry per buffer name, in the order they first grew
+  // What each buffer held when the peak was reached, in the order the buffers were first
+  // allocated: where the peak goes (tests, docs/design.md "Memory").
+  std::vector<BufferBytes> at_peak;
 };
 
 class MemoryResource {
  public:
   virtual ~MemoryResource() = default;
   virtual bool is_device() const = 0;
-  void* allocate(size_t bytes) {
+  // `name` tallies the bytes per buffer. Allocations are few (set_topology, then growth
+  // after a read-back), so the tally's linear search and the copy at each new peak cost a
+  // frame nothing.
+  void* allocate(size_t bytes, const std::string& name = "unnamed") {
     void* p = do_allocate(bytes);
     stats_.current_bytes += bytes;
-    if (stats_.current_bytes > stats_.peak_bytes) stats_.peak_bytes = stats_.current_bytes;
+    held(name) += bytes;
+    if (stats_.current_bytes > stats_.peak_bytes) {
+      stats_.peak_bytes = stats_.current_bytes;
+      stats_.at_peak = live_;
+    }
     ++stats_.allocations;
     return p;
   }
-  void deallocate(void* p, size_t bytes) {
+  void deallocate(void* p, size_t bytes, const std::string& name = "unnamed") {
     if (!p) return;
     do_deallocate(p, bytes);
     stats_.current_bytes -= bytes;
+    held(name) -= bytes;
   }
   void note_growth(const char* what, size_t old_count, size_t new_count) {
     ++stats_.growths;
@@ -56,7 +74,14 @@ class MemoryResource {
  private:
   virtual void* do_allocate(size_t bytes) = 0;
   virtual void do_deallocate(void* p, size_t bytes) = 0;
+  size_t& held(const std::string& name) {
+    for (BufferBytes& b : live_)
+      if (b.buffer == name) return b.bytes;
+    live_.push_back({name, 0});
+    return live_.back().bytes;
+  }
   MemoryStats stats_;
+  std::vector<BufferBytes> live_;  // bytes each buffer name holds now
 };
 
 // A typed buffer in an executor's memory. Contents are not preserved when it grows: every
@@ -90,7 +115,7 @@ class Array {
     }
     const size_t old = capacity_;
     release();
-    ptr_ = static_cast<T*>(mr_->allocate(n * sizeof(T)));
+    ptr_ = static_cast<T*>(mr_->allocate(n * sizeof(T), name_));
     capacity_ = n;
     size_ = n;
     if (old > 0) mr_->note_growth(name_.c_str(), old, n);
@@ -104,7 +129,7 @@ class Array {
 
  private:
   void release() {
-    if (ptr_) mr_->deallocate(ptr_, capacity_ * sizeof(T));
+    if (ptr_) mr_->deallocate(ptr_, capacity_ * sizeof(T), name_);
     ptr_ = nullptr;
     capacity_ = size_ = 0;
   }

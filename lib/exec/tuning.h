@@ -62,6 +62,18 @@ inline constexpr double kBuildPerUpdate = 8.0;
 // seven scenes (H100).
 inline constexpr double kProbeShare = 0.5;
 
+// --- Front buffers (pipeline/front_query.h) ---
+// Spare over a probe's update bound: the fronts' buffers grow to bound + bound / this when
+// they hold less. It covers the motion from the probed frame to the update's. Measured: on
+// the falling spheres (fixed cycles 10, 20, 30; host executor) an update made at most 4.4%
+// more than the bound of the frame before it. A quarter would hold the 522K cloth's
+// internal fronts 1.2M nodes (19 MiB) larger.
+inline constexpr size_t kProbeSpareDiv = 8;
+// Spare over a produced front that did not fit, when its buffers grow: the run again fits
+// exactly, the spare is for the fronts that the next frames produce before a probe sizes
+// them (generates after a rebuild, restructures). Not measured apart: the probe's spare.
+inline constexpr size_t kRegrowSpareDiv = 8;
+
 // --- Baselines ---
 // Cell entries per box before the first frame's count (grid and hash); a short guess
 // re-runs frame 0 only. Not measured: a box covers 1 to 8 cells of its level.

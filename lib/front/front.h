@@ -74,8 +74,14 @@ struct FrontSink {
 
 };
 
-// One kind of front: current (ordered or not), the append target of the last operation,
-// and the ordered copy the histogram sort scatters into.
+// One kind of front: the current front (ordered or not) and the append target of the last
+// operation. The histogram sort scatters a produced front from the append target straight
+// into the current arrays, but only where every append of the frame fit (ScatterFrontFn,
+// FrameFit): then the frame runs no operation again and the current front, which the
+// operation has read already, is dead; a frame that overflowed keeps it for its re-run.
+// Balance scatters the other way and swaps the two. So a front node costs 17 bytes of
+// capacity: prim and node on each side, and the produced node's mark (a third, sorted copy
+// made it 25). All five arrays keep one capacity (capacity()), which the swaps rely on.
 template <class Exec>
 struct FrontArrays {
   // `name` tells the fronts of one query apart in the growth log ("front", "inter_front").
@@ -86,25 +92,30 @@ struct FrontArrays {
     raw_prim.bind(mr, k + "raw_prim");
     raw_node.bind(mr, k + "raw_node");
     raw_mark.bind(mr, k + "raw_mark");
-    sorted_prim.bind(mr, k + "sorted_prim");
-    sorted_node.bind(mr, k + "sorted_node");
     order_counts.bind(mr, k + "order_counts");
     offset_log.bind(mr, k + "offset_log");
     tail_counts.bind(mr, k + "tail_counts");
     tail_offset_log.bind(mr, k + "tail_offset_log");
   }
-  // Capacity for front nodes (all buffers of the kind) and segment count (BVH nodes).
-  void reserve(size_t capacity, size_t segments) {
-    for (auto* a : {&prim, &node, &raw_prim, &raw_node, &sorted_prim, &sorted_node})
-      a->reserve(capacity);
+  // Capacity for front nodes (all five arrays) and segment count (BVH nodes); `tails`: the
+  // counters of the tails that updates in place append (--update-in-place only).
+  void reserve(size_t capacity, size_t segments, bool tails) {
+    for (auto* a : {&prim, &node, &raw_prim, &raw_node}) a->reserve(capacity);
     raw_mark.reserve(capacity);
     segments_ = segments;
     order_counts.reserve(3 * segments + 1);
     offset_log.reserve(segments + 1);
-    tail_counts.reserve(3 * segments + 1);
-    tail_offset_log.reserve(segments + 1);
+    if (tails) {
+      tail_counts.reserve(3 * segments + 1);
+      tail_offset_log.reserve(segments + 1);
+    }
   }
-  size_t capacity() const { return prim.capacity(); }
+  size_t capacity() const {
+    size_t c = raw_mark.capacity();
+    for (auto* a : {&prim, &node, &raw_prim, &raw_node}) c = a->capacity() < c ? a->capacity() : c;
+    return c;
+  }
+  bool has_tails() const { return tail_counts.capacity() >= 3 * segments_ + 1; }
 
   // The histogram sort's counters, in one buffer so that one fill zeroes them all before a
   // front is produced: the count log (front nodes per BVH node, segments + 1 entries, its
@@ -122,7 +133,6 @@ struct FrontArrays {
   Array<uint32_t> prim, node;          // the current front
   Array<uint32_t> raw_prim, raw_node;  // produced by generate/update, unordered
   Array<uint8_t> raw_mark;
-  Array<uint32_t> sorted_prim, sorted_node;
   Array<uint32_t> order_counts;  // count log and cursors (count_log(), cursor_front(), cursor_back())
   Array<uint32_t> offset_log;    // the count log's exclusive scan
   Array<uint32_t> tail_counts;      // an appended tail's count log and cursors (tail_count_log(), ...)

@@ -29,6 +29,28 @@ struct SegmentScatter {
   }
 };
 
+// Whether every append of a frame so far fit its buffer: the pairs and the fronts each
+// query produced, as counted on the device (each count may exceed its capacity: the frame
+// then grows the buffer and runs again). A scatter into a current front runs only when all
+// fit, so that a frame which runs again finds its current fronts untouched. Every thread
+// reads the same few counts: one cached load each.
+struct FrameFit {
+  static constexpr uint32_t kMax = 8;  // the pairs and two kinds of each of three queries, with room
+  const unsigned long long* count[kMax];
+  unsigned long long capacity[kMax];
+  uint32_t n = 0;
+  void add(const unsigned long long* c, unsigned long long cap) {
+    count[n] = c;
+    capacity[n] = cap;
+    ++n;
+  }
+  CDB_HD_INLINE bool fits() const {
+    for (uint32_t k = 0; k < n; ++k)
+      if (*count[k] > capacity[k]) return false;
+    return true;
+  }
+};
+
 struct ScatterFrontFn {
   const unsigned long long* count;  // produced front size (device), may exceed capacity
   unsigned long long capacity;      // past it the front is being regrown: scatter nothing
@@ -36,9 +58,10 @@ struct ScatterFrontFn {
   const uint32_t* node;
   const uint8_t* mark;
   SegmentScatter to;
+  FrameFit fit{};  // the frame's other appends, where the scatter overwrites a current front
   CDB_HD void operator()(uint32_t e) const {
     const unsigned long long n = *count;
-    if (n > capacity || e >= n) return;
+    if (n > capacity || e >= n || !fit.fits()) return;
     to.place(prim[e], node[e], mark[e] != 0);
   }
 };
@@ -64,12 +87,12 @@ void for_both_kinds(Exec& exec, const F& internal, size_t n_internal, const F& e
   exec.for_each_n(n_internal + n_external, BothKinds<F>{internal, external, uint32_t(n_internal)});
 }
 
-// A scatter of front f into its sorted arrays by f's offset log. Its cursors must be zero:
-// the fill of f's order counts before the front was produced zeroed them with the count log
-// (FrontQuery::produce_sink), or zero_cursors did.
+// A scatter by front f's offset log into `prim` and `node` (f's current arrays, or its raw
+// ones for balance). Its cursors must be zero: the fill of f's order counts before the front
+// was produced zeroed them with the count log (FrontQuery::produce_sink), or zero_cursors did.
 template <class Exec>
-SegmentScatter segment_scatter(FrontArrays<Exec>& f) {
-  return {f.offset_log.data(), f.cursor_front(), f.cursor_back(), f.sorted_prim.data(), f.sorted_node.data()};
+SegmentScatter segment_scatter(FrontArrays<Exec>& f, Array<uint32_t>& prim, Array<uint32_t>& node) {
+  return {f.offset_log.data(), f.cursor_front(), f.cursor_back(), prim.data(), node.data()};
 }
 
 // Zeroes f's cursors (both sides, one fill) for a scatter of a front that was not just

@@ -56,10 +56,10 @@ struct RadixScratch {
   Array<std::byte> temp;
 };
 
-// Sorts n front nodes (prim, node, mark) into f.sorted_*; key_bits covers 2 * segments.
+// Sorts n front nodes (prim, node, mark) into out_prim, out_node; key_bits covers 2 * segments.
 template <class Exec>
-void radix_order_front(Exec& exec, FrontArrays<Exec>& f, RadixScratch<Exec>& r, size_t n, int key_bits,
-                       const uint32_t* prim, const uint32_t* node, const uint8_t* mark) {
+void radix_order_front(Exec& exec, RadixScratch<Exec>& r, size_t n, int key_bits, const uint32_t* prim,
+                       const uint32_t* node, const uint8_t* mark, uint32_t* out_prim, uint32_t* out_node) {
   if (n == 0) return;
   // Counted growth, with headroom. The sort's temporary storage is checked apart: a second
   // set_topology re-reserves the arrays for the initial capacity, which leaves the keys
@@ -69,7 +69,7 @@ void radix_order_front(Exec& exec, FrontArrays<Exec>& f, RadixScratch<Exec>& r, 
   exec.for_each_n(n, RadixKeyFn{node, mark, r.keys.data(), r.iota.data()});
   exec.sort_pairs(r.keys.data(), r.keys_sorted.data(), r.iota.data(), r.perm.data(), n, key_bits,
                   r.temp.data(), r.temp.size());
-  exec.for_each_n(n, GatherFrontFn{r.perm.data(), prim, node, f.sorted_prim.data(), f.sorted_node.data()});
+  exec.for_each_n(n, GatherFrontFn{r.perm.data(), prim, node, out_prim, out_node});
 }
 
 }  // namespace cdb

@@ -267,6 +267,7 @@ class PairBuffer {
     return true;
   }
   uint64_t count() const { return last_.pairs; }
+  size_t capacity() const { return pairs_.capacity(); }
   std::vector<PrimPair> sorted_pairs(Exec& exec) const {
     std::vector<PrimPair> out(count());
     exec.copy_to_host(out.data(), pairs_.data(), out.size());

@@ -17,15 +17,15 @@ struct FrontQueryCounters {
   // Front nodes the frame's operation produced, per kind (FrontKind); may exceed the
   // capacity: the caller grows and runs the operation again.
   unsigned long long produced[2];
-  // A probing preserve's count of the stop nodes its descents met, per kind: with the front's
-  // own nodes, a bound on what an update of that front produces (FrontQuery::update_bound).
-  // Spread over kStopSlots slots by block, so that the warps of a launch do not all add to
-  // one address.
-  unsigned long long stops[kStopSlots][2];
-  // An update in place's front nodes dropped where they lay, per kind, spread as `stops`.
+  // A probing preserve's count of what an update of its front yields at most, per kind
+  // (PreserveFrontFn: its descents' stop nodes and the nodes that do not descend), read by
+  // FrontQuery::update_bound. Spread over kStopSlots slots by block, so that the warps of a
+  // launch do not all add to one address.
+  unsigned long long yield[kStopSlots][2];
+  // An update in place's front nodes dropped where they lay, per kind, spread as `yield`.
   unsigned long long dropped[kStopSlots][2];
 
-  unsigned long long stops_of(int kind) const { return sum_of(stops, kind); }
+  unsigned long long yield_of(int kind) const { return sum_of(yield, kind); }
   unsigned long long dropped_of(int kind) const { return sum_of(dropped, kind); }
 
  private:

@@ -58,13 +58,15 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.tree.refit_top_leaves;
     bvh_.reserve(exec_, mesh_.deformable().count);
     rigid_bvh_.reserve(exec_, mesh_.rigid().count);
-    query(Query::self).plan(bvh_, bvh_, split.deformable_self, config_.capacity.front_per_triangle);
-    query(Query::inter).plan(bvh_, rigid_bvh_, split.cross, config_.capacity.front_per_triangle);
-    query(Query::rigid_self).plan(rigid_bvh_, rigid_bvh_, split.rigid_self, config_.capacity.front_per_triangle);
+    const double per = config_.capacity.front_per_triangle;
+    const bool in_place = config_.fronts.update_in_place, probed = config_.fronts.update_probe;
+    query(Query::self).plan(bvh_, bvh_, split.deformable_self, per, in_place, probed);
+    query(Query::inter).plan(bvh_, rigid_bvh_, split.cross, per, in_place, probed);
+    query(Query::rigid_self).plan(rigid_bvh_, rigid_bvh_, split.rigid_self, per, in_place, probed);
     size_t capacity = 0;
     for (const auto& fq : queries_) capacity = std::max(capacity, fq.capacity());
     if (strategy().radix_sort) radix_.reserve(exec_, capacity);
-    if (strategy().restructure) restructure_.reserve(exec_, bvh_.num_leaves, config_.restructure.min_leaves);
+    if (strategy().restructure) restructure_.reserve(bvh_.num_leaves, config_.restructure.min_leaves);
     planner_.reset(running_queries());
     stage_preserve_ = warp_preserve_ = true;
     exec_.sync();
@@ -172,7 +174,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       again = again || !kept;
     }
     for (Query q : kQueries)
-      if (run.op(q) != FrontOp::preserve) again = query(q).grow_if_needed(c) || again;
+      if (run.op(q) != FrontOp::preserve) again = query(q).grow_if_needed(exec_, c) || again;
     if (again) return false;
     for (Query q : kQueries)
       if (run.op(q) != FrontOp::preserve) query(q).adopt(exec_, c, sorts(run.op(q)));
@@ -362,28 +364,43 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   }
 
   // The ordering of the fronts the plan's operations produced: by radix sort, which needs
-  // their sizes on the host (one more read-back on these frames), or by histogram.
+  // their sizes on the host (one more read-back on these frames), or by histogram. Either
+  // writes into the current fronts only where all of the frame's appends fit (FrontArrays).
   void order_produced(const FramePlan& plan) {
     if (strategy().radix_sort) {
       const FrontCounters& c = pairs_.read_counters(exec_);
+      bool fits = c.pairs <= pairs_.capacity();
+      for (Query q : kQueries)
+        if (plan.op(q) != FrontOp::preserve) fits = fits && query(q).fits(c, plan.patches(q));
       timed(Phase::front_order, [&] {
         for (Query q : kQueries)
-          if (plan.produces(q)) query(q).radix_order(exec_, radix_, c);
+          if (plan.produces(q)) query(q).radix_order(exec_, radix_, c, fits);
       });
       return;
     }
     bool any = false;
     for (Query q : kQueries) any = any || (plan.produces(q) && counts(plan.op(q)));
     if (!any) return;
+    const FrameFit fit = frame_fit(plan);
     timed(Phase::front_order, [&] {
       for (Query q : kQueries) {
         if (!plan.produces(q)) continue;
         if (sorts(plan.op(q)))
-          query(q).order(exec_, pairs_);
+          query(q).order(exec_, pairs_, fit);
         else if (counts(plan.op(q)))
           query(q).offsets(exec_);
       }
     });
+  }
+
+  // The counts of every append the plan's operations make (pairs, produced fronts, tails of
+  // updates in place), against their buffers, for the scatters into current fronts.
+  FrameFit frame_fit(const FramePlan& plan) {
+    FrameFit fit;
+    fit.add(&pairs_.device()->pairs, pairs_.capacity());
+    for (Query q : kQueries)
+      if (plan.op(q) != FrontOp::preserve) query(q).add_to_fit(fit, pairs_, plan.patches(q));
+    return fit;
   }
 
   // Preserve stages its pairs per block while blocks produce enough of them to pay for the

@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "exec/tuning.h"
 #include "front/front.h"
 #include "front/operations.h"
 #include "front/ordering.h"
@@ -32,17 +33,22 @@ class FrontQuery {
   }
 
   // Query leaves come from `leaves`, front nodes from `tree` (the same tree: self fronts).
-  // Both trees must be reserved for their leaf counts already.
-  void plan(Lbvh<Exec>& leaves, Lbvh<Exec>& tree, bool active, double front_per_triangle) {
+  // Both trees must be reserved for their leaf counts already. `in_place`: updates may run
+  // in place (--update-in-place), which needs the tails' counters and more room (below).
+  // `probed`: updates are sized by probes before they run (--update-probe).
+  void plan(Lbvh<Exec>& leaves, Lbvh<Exec>& tree, bool active, double front_per_triangle, bool in_place,
+            bool probed) {
     leaves_ = &leaves;
     tree_ = &tree;
     active_ = active;
+    in_place_ = in_place;
+    probed_ = probed;
     for (auto& f : front_) f.size = 0;
     ++revision_;
     dropped_[0] = dropped_[1] = appended_[0] = appended_[1] = 0;
     if (!active_) return;
     const size_t cap = std::max<size_t>(1024, size_t(front_per_triangle * leaves.num_leaves));
-    for (int k = 0; k < 2; ++k) front_[k].reserve(cap, std::max<size_t>(segments(k), 1));
+    for (int k = 0; k < 2; ++k) front_[k].reserve(cap, std::max<size_t>(segments(k), 1), in_place);
   }
 
   bool active() const { return active_; }
@@ -97,38 +103,38 @@ class FrontQuery {
 
   // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch;
   // pairs staged per block or appended directly (`staged`, core/append_stage.h). `probe`:
-  // also count the stop nodes of the descents, for update_bound.
+  // also count what an update of the fronts yields at most, for update_bound.
   void preserve(Exec& exec, Pairs& pairs, bool staged, bool share_in_warp, bool probe) {
     if (!active_) return;
     if (probe)
-      preserve_with(exec, PreserveFrontFn<true>{{}, pairs.sink(), {}, {}, share_in_warp, &counters(pairs)->stops[0][0]},
+      preserve_with(exec, PreserveFrontFn<true>{{}, pairs.sink(), {}, {}, share_in_warp, &counters(pairs)->yield[0][0]},
                     staged);
     else
       preserve_with(exec, PreserveFrontFn<false>{{}, pairs.sink(), {}, {}, share_in_warp}, staged);
   }
 
-  // What an update of the current fronts can produce at most, per kind, after a probing
-  // preserve of them counted the stop nodes of their descents (`c`): a front node that
-  // overlaps sprouts into its descent's stop nodes; one that misses is kept or climbs to an
-  // ancestor (internal) or is dropped, so it yields at most one node, internal unless it is
-  // a leaf kept as it is.
+  // The room an update of the current fronts needs at most, per kind, after a probing
+  // preserve of them counted what it yields (`c`, PreserveFrontFn): that yield, or, for an
+  // update in place, which appends all but the first node of each kind a front node yields
+  // behind the front's entries, the entries and the yield.
   uint64_t update_bound(const FrontCounters& c, int kind) const {
-    const FrontQueryCounters& q = c.query[index_];
-    return q.stops_of(kind) + (kind == kInternalFront ? total() : size(kExternalFront));
+    const uint64_t yield = c.query[index_].yield_of(kind);
+    return in_place_ ? size(kind) + yield : yield;
   }
 
-  // After a probing preserve: the buffers of a kind that cannot hold update_bound with an
-  // eighth to spare grow to hold it with a quarter, so that the coming update produces its
+  // After a probing preserve: the buffers of a kind that cannot hold update_bound with
+  // kProbeSpareDiv to spare grow to hold it so, so that the coming update produces its
   // fronts in one run. The bound holds for the probed frame's geometry; the update runs on
   // a later frame, whose motion the spare covers, and past it the update grows and runs
-  // again as before (docs/design.md "Constants and their measurements").
-  // True if a buffer grew.
+  // again as before (docs/design.md "Constants and their measurements"). Probes run on
+  // every steady frame before an update, so the buffers follow the bound up in steps
+  // between frames. True if a buffer grew.
   bool reserve_for_update(Exec& exec, const FrontCounters& c) {
     if (!active_) return false;
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
       const size_t need = size_t(update_bound(c, k));
-      grew = reserve_headroom(exec, front_[k], need + need / 8, need + need / 4) || grew;
+      grew = reserve_headroom(exec, front_[k], need + need / kProbeSpareDiv) || grew;
     }
     revision_ += grew;
     return grew;
@@ -158,6 +164,7 @@ class FrontQuery {
   // otherwise they are appended to the front's end as produced.
   void patch(Exec& exec, Pairs& pairs, bool share_in_warp, bool counted, bool sort_tail) {
     if (!active_) return;
+    if (sort_tail && !front_[0].has_tails()) fail("an update in place ran on fronts planned without it");
     FrontSink append{};
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
@@ -251,17 +258,32 @@ class FrontQuery {
   }
 
   // Histogram sort of the produced fronts (sizes on the device in the counters): both
-  // kinds' count logs scanned together, then one scatter launch for both.
-  void order(Exec& exec, Pairs& pairs) {
+  // kinds' count logs scanned together, then one scatter launch for both, into the current
+  // arrays where all of the frame's appends fit (`fit`, FrontArrays).
+  void order(Exec& exec, Pairs& pairs, const FrameFit& fit) {
     if (!active_) return;
     offsets(exec);
     auto scatter = [&](int k) {
       FrontArrays<Exec>& f = front_[k];
-      return ScatterFrontFn{&counters(pairs)->produced[k], f.raw_prim.capacity(), f.raw_prim.data(),
-                            f.raw_node.data(), f.raw_mark.data(), segment_scatter(f)};
+      return ScatterFrontFn{&counters(pairs)->produced[k], f.capacity(), f.raw_prim.data(), f.raw_node.data(),
+                            f.raw_mark.data(), segment_scatter(f, f.prim, f.node), fit};
     };
-    for_both_kinds(exec, scatter(kInternalFront), front_[kInternalFront].raw_prim.capacity(), scatter(kExternalFront),
-                   front_[kExternalFront].raw_prim.capacity());
+    for_both_kinds(exec, scatter(kInternalFront), front_[kInternalFront].capacity(), scatter(kExternalFront),
+                   front_[kExternalFront].capacity());
+  }
+
+  // Adds the counts of what this frame's operation appends, against the room it had, to
+  // `fit`: the fronts it produced, or the tails an update in place (`patching`) appended.
+  void add_to_fit(FrameFit& fit, Pairs& pairs, bool patching) {
+    if (!active_) return;
+    for (int k = 0; k < 2; ++k) fit.add(&counters(pairs)->produced[k], patching ? append_room(k) : front_[k].capacity());
+  }
+  // The same on the host, from the frame's read-back: whether this query's appends fit.
+  bool fits(const FrontCounters& c, bool patching) const {
+    if (!active_) return true;
+    for (int k = 0; k < 2; ++k)
+      if (c.query[index_].produced[k] > (patching ? append_room(k) : front_[k].capacity())) return false;
+    return true;
   }
 
   // The produced fronts' offset logs alone (the count logs' scans), for fronts kept in the
@@ -274,29 +296,31 @@ class FrontQuery {
                              tree_->temp.size());
   }
 
-  // Radix sort of the produced fronts, with their sizes read back (`c`).
-  void radix_order(Exec& exec, RadixScratch<Exec>& radix, const FrontCounters& c) {
-    if (!active_) return;
+  // Radix sort of the produced fronts, with their sizes read back (`c`), into the current
+  // arrays; nothing where some append of the frame did not fit (`frame_fits`): the frame
+  // runs again from the current fronts.
+  void radix_order(Exec& exec, RadixScratch<Exec>& radix, const FrontCounters& c, bool frame_fits) {
+    if (!active_ || !frame_fits) return;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
-      if (c.query[index_].produced[k] <= f.raw_prim.capacity())
-        radix_order_front(exec, f, radix, size_t(c.query[index_].produced[k]), key_bits(k), f.raw_prim.data(),
-                          f.raw_node.data(), f.raw_mark.data());
+      radix_order_front(exec, radix, size_t(c.query[index_].produced[k]), key_bits(k), f.raw_prim.data(),
+                        f.raw_node.data(), f.raw_mark.data(), f.prim.data(), f.node.data());
     }
   }
 
   // (4) Balance: mark each current front node with the branch it will take, then reorder
-  // the current front by node key and mark. The front's content is unchanged. With the
-  // histogram sort, the front keeps the offset log of the operation that produced it (every
-  // operation that changes a front counts it again, sorted or not), so one pass marks and
-  // scatters.
+  // the current front by node key and mark, into the raw arrays, which then swap with the
+  // current ones (the update after produces into the old current arrays). The front's
+  // content is unchanged. With the histogram sort, the front keeps the offset log of the
+  // operation that produced it (every operation that changes a front counts it again,
+  // sorted or not), so one pass marks and scatters.
   void balance(Exec& exec, RadixScratch<Exec>* radix) {
     if (!active_) return;
     if (!radix) {
       auto mark = [&](int k) {
         FrontArrays<Exec>& f = front_[k];
         zero_cursors(exec, f);
-        return MarkScatterFrontFn{view(), f.prim.data(), f.node.data(), segment_scatter(f)};
+        return MarkScatterFrontFn{view(), f.prim.data(), f.node.data(), segment_scatter(f, f.raw_prim, f.raw_node)};
       };
       for_both_kinds(exec, mark(kInternalFront), front_[kInternalFront].size, mark(kExternalFront),
                      front_[kExternalFront].size);
@@ -305,50 +329,43 @@ class FrontQuery {
       FrontArrays<Exec>& f = front_[k];
       if (radix) {
         exec.for_each_n(f.size, MarkFrontFn{view(), f.prim.data(), f.node.data(), f.raw_mark.data()});
-        radix_order_front(exec, f, *radix, f.size, key_bits(k), f.prim.data(), f.node.data(),
-                          f.raw_mark.data());
+        radix_order_front(exec, *radix, f.size, key_bits(k), f.prim.data(), f.node.data(), f.raw_mark.data(),
+                          f.raw_prim.data(), f.raw_node.data());
       }
-      std::swap(f.prim, f.sorted_prim);
-      std::swap(f.node, f.sorted_node);
-      match_capacity(f);
+      std::swap(f.prim, f.raw_prim);
+      std::swap(f.node, f.raw_node);
     }
     ++revision_;
   }
 
-  // After a read-back: grow each kind whose produced front did not fit; true if one grew
-  // (the caller re-runs the frame's front pass from the untouched current fronts).
-  bool grow_if_needed(const FrontCounters& c) {
+  // After a read-back: grow each kind whose produced front did not fit, keeping the current
+  // front; true if one grew (the caller re-runs the frame's front pass from the untouched
+  // current fronts).
+  bool grow_if_needed(Exec& exec, const FrontCounters& c) {
     if (!active_) return false;
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
-      FrontArrays<Exec>& f = front_[k];
-      const unsigned long long need = c.query[index_].produced[k];
-      if (need <= f.raw_prim.capacity()) continue;
-      const size_t cap = size_t(need + need / 4);
-      for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node}) a->reserve(cap);
-      f.raw_mark.reserve(cap);
-      grew = true;
+      const size_t need = size_t(c.query[index_].produced[k]);
+      grew = reserve_headroom(exec, front_[k], need, need + need / kRegrowSpareDiv) || grew;
     }
     revision_ += grew;
     return grew;
   }
 
-  // The produced fronts become current: the sorted copies, or the raw ones if unordered.
+  // The produced fronts become current: ordered ones were scattered into the current
+  // arrays already (order, radix_order); unordered ones are the raw arrays, swapped in.
   void adopt(Exec& exec, const FrontCounters& c, bool ordered) {
     if (!active_) return;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
-      if (ordered) {
-        std::swap(f.prim, f.sorted_prim);
-        std::swap(f.node, f.sorted_node);
-      } else {
+      if (!ordered) {
         std::swap(f.prim, f.raw_prim);
         std::swap(f.node, f.raw_node);
       }
       f.size = size_t(c.query[index_].produced[k]);
       dropped_[k] = appended_[k] = 0;
-      match_capacity(f);
-      reserve_headroom(exec, f, f.size + f.size / 4, f.size + f.size / 2);
+      // Without probes an update may outgrow the front it starts from: room ahead for it.
+      if (!probed_) reserve_headroom(exec, f, f.size + f.size / 4, f.size + f.size / 2);
     }
     ++revision_;
   }
@@ -358,9 +375,7 @@ class FrontQuery {
   // its raw arrays (where a sorted tail is produced first) hold too.
   size_t append_room(int k) const {
     const FrontArrays<Exec>& f = front_[k];
-    const size_t cap = std::min({f.prim.capacity(), f.node.capacity(), f.raw_prim.capacity(), f.raw_node.capacity(),
-                                 f.raw_mark.capacity()});
-    return cap > f.size ? cap - f.size : 0;
+    return f.capacity() > f.size ? f.capacity() - f.size : 0;
   }
 
   // The count logs and the scatter's cursors (front.h, order_counts): one fill a kind.
@@ -384,7 +399,7 @@ class FrontQuery {
       s.prim[k] = f.raw_prim.data();
       s.node[k] = f.raw_node.data();
       s.mark[k] = f.raw_mark.data();
-      s.capacity[k] = f.raw_prim.capacity();
+      s.capacity[k] = f.capacity();
       s.count_log[k] = histogram ? f.count_log() : nullptr;
     }
     s.count = counters(pairs)->produced;
@@ -409,40 +424,30 @@ class FrontQuery {
       exec.for_each_n(total() << shift, both, Balance::uneven);
   }
 
-  // Every buffer of a kind holds `need` nodes, or all grow to `want`, the current front
-  // copied into its larger buffer. After an adopt, `need` is the front with a quarter to
-  // spare and `want` with half: the next update, which may sprout more than it prunes, then
-  // mostly fits the first time instead of growing and running again (fronts grow by more
-  // than a quarter in some single updates), and balance, which swaps the current front with
-  // a scratch copy, finds the scratch as large and allocates nothing inside a frame. After a
-  // probe, `need` is what the update can produce (reserve_for_update). This runs after the
-  // frame's read-back, outside its timing, and only when a buffer is short; true if so.
+  // The arrays of a kind hold `need` nodes, or all grow to `want`, the current front copied
+  // into its larger arrays (a frame that overflowed runs again from it). Without probes,
+  // after an adopt, `need` is the front with a quarter to spare and `want` with half: the
+  // next update, which may sprout more than it prunes, then mostly fits the first time
+  // instead of growing and running again (fronts grow by more than a quarter in some single
+  // updates). With probes the update is sized before it runs (reserve_for_update), and an
+  // adopted front keeps no spare: every front it produced fit already. All five arrays grow
+  // together: balance and adopt swap the current arrays with the raw ones. This runs after
+  // the frame's read-back, outside its timing, and only when an array is short; true if so.
   static bool reserve_headroom(Exec& exec, FrontArrays<Exec>& f, size_t need, size_t want) {
-    auto kept = {&f.prim, &f.node};
-    auto scratch = {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node};
-    size_t least = f.raw_mark.capacity();
-    for (auto* a : kept) least = std::min(least, a->capacity());
-    for (auto* a : scratch) least = std::min(least, a->capacity());
-    if (least >= need) return false;
-    for (auto* a : scratch)
-      if (a->capacity() < want) a->reserve(want);
-    if (f.raw_mark.capacity() < want) f.raw_mark.reserve(want);
+    if (f.capacity() >= need) return false;
+    // The raw arrays hold nothing between frames: they grow first and the current front is
+    // copied into them, so each array is allocated once at its new size.
+    for (auto* a : {&f.raw_prim, &f.raw_node}) a->reserve(want);
+    f.raw_mark.reserve(want);
     for (auto [current, spare] : {std::pair{&f.prim, &f.raw_prim}, std::pair{&f.node, &f.raw_node}}) {
-      if (current->capacity() >= want) continue;
       exec.copy(spare->data(), current->data(), f.size);
       std::swap(*current, *spare);
       spare->reserve(want);
     }
     return true;
   }
-
-  // Scratch buffers swapped with the current front keep up with its capacity, so a front
-  // that grew does not make its next operation overflow again. Contents are scratch.
-  static void match_capacity(FrontArrays<Exec>& f) {
-    const size_t cap = std::max({f.prim.capacity(), f.raw_prim.capacity(), f.sorted_prim.capacity()});
-    for (auto* a : {&f.raw_prim, &f.raw_node, &f.sorted_prim, &f.sorted_node})
-      if (a->capacity() < cap) a->reserve(cap);
-    if (f.raw_mark.capacity() < cap) f.raw_mark.reserve(cap);
+  static bool reserve_headroom(Exec& exec, FrontArrays<Exec>& f, size_t need) {
+    return reserve_headroom(exec, f, need, need);
   }
 
   FrontArrays<Exec> front_[2];
@@ -455,6 +460,8 @@ class FrontQuery {
   size_t index_;
   uint64_t revision_ = 0;
   bool active_ = false;
+  bool in_place_ = false;  // updates may run in place (plan)
+  bool probed_ = true;     // updates are sized by probes (plan)
 };
 
 }  // namespace cdb

@@ -1,0 +1,164 @@
+// Memory accounting (exec/memory.h) and the front pipelines' buffer sizing
+// (pipeline/front_query.h, docs/design.md "Memory"): the peak and what each buffer held at
+// it, a peak of pipeline c bounded by what its fronts needed, and growth that stays counted.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "bruteforce/sweep_oracle.h"
+#include "core/pair_set.h"
+#include "exec/host_exec.h"
+#include "exec/memory.h"
+#include "generators.h"
+#include "pipeline/pipeline.h"
+
+namespace cdb::test {
+namespace {
+
+size_t bytes_of(const MemoryStats& m, const std::string& buffer) {
+  for (const BufferBytes& b : m.at_peak)
+    if (b.buffer == buffer) return b.bytes;
+  return 0;
+}
+
+size_t sum_at_peak(const MemoryStats& m, const std::string& prefix = "") {
+  size_t sum = 0;
+  for (const BufferBytes& b : m.at_peak)
+    if (b.buffer.compare(0, prefix.size(), prefix) == 0) sum += b.bytes;
+  return sum;
+}
+
+// Bytes at the peak of one kind's front nodes: the arrays sized in front nodes, not the
+// per-tree-node counters of its ordering.
+size_t node_bytes(const MemoryStats& m, const std::string& kind) {
+  size_t sum = 0;
+  for (const char* a : {"prim", "node", "raw_prim", "raw_node", "raw_mark"}) sum += bytes_of(m, kind + "." + a);
+  return sum;
+}
+
+}  // namespace
+
+// The peak, the bytes each named buffer held at it (the sum is the peak), and a growth
+// after a buffer's first reservation counted with its sizes.
+TEST(MemoryStats, PeakBreakdownAndGrowths) {
+  HostExec exec;
+  MemoryStats m;
+  {
+    Array<uint32_t> a(exec.memory(), "a");
+    Array<uint64_t> b(exec.memory(), "b");
+    a.reserve(100);
+    b.reserve(50);
+    a.reserve(80);  // fits: no allocation, no growth
+    EXPECT_EQ(exec.memory().stats().growths, 0u);
+    a.reserve(400);  // the old 400 bytes go before the new 1600 come
+    b.reserve(10);
+    m = exec.memory().stats();
+  }
+  EXPECT_EQ(m.peak_bytes, 400 * 4 + 50 * 8);
+  EXPECT_EQ(m.current_bytes, 400 * 4 + 50 * 8);
+  EXPECT_EQ(sum_at_peak(m), m.peak_bytes);
+  EXPECT_EQ(bytes_of(m, "a"), 1600u);
+  EXPECT_EQ(bytes_of(m, "b"), 400u);
+  EXPECT_EQ(m.allocations, 3u);
+  EXPECT_EQ(m.growths, 1u);
+  ASSERT_EQ(m.grown.size(), 1u);
+  EXPECT_EQ(m.grown[0].buffer, "a");
+  EXPECT_EQ(m.grown[0].first_count, 100u);
+  EXPECT_EQ(m.grown[0].last_count, 400u);
+  EXPECT_EQ(exec.memory().stats().current_bytes, 0u);
+}
+
+// Pipeline c on a cloth whose rolling edge makes each update sprout (fixed cycle: the same
+// plan on every machine): at the peak each kind's front arrays hold no more than 17 bytes
+// a node (the current front and the produced one with its marks) for at most 1.4 times the
+// largest front of that kind any frame made. The probe's bound, its spare and the spare of
+// a front that outgrew its buffers stay inside that; before, the current, produced and
+// sorted copies (25 bytes a node) sized for a bound that took every node for a possible
+// node of each kind held up to 2 times the fronts. The whole peak stays within the bvh
+// pipeline's (the tree, pairs, mesh) plus those fronts, their ordering counters and the
+// restructure's scratch.
+TEST(MemoryStats, FrontPipelinePeakFollowsTheFrontsItMade) {
+  auto wave = make_generator("cloth-wave", {{"res", 48}, {"frames", 16}});
+  const Topology& topo = wave->topology();
+  const size_t tris = topo.faces.size();
+  PipelineConfig cfg;
+  cfg.device = "cpu";
+  cfg.name = "c";
+  cfg.fronts.cycle = 5;
+  cfg.capacity.front_per_triangle = 0.5;  // below the need: the first frame measures it
+  cfg.launch.phase_timing = false;
+  PipelineConfig tree_only = cfg;
+  tree_only.name = "bvh";
+  auto c = make_pipeline(cfg);
+  auto bvh = make_pipeline(tree_only);
+  c->set_topology(topo);
+  bvh->set_topology(topo);
+  std::vector<vec3f> v;
+  uint64_t most_internal = 0, most_external = 0, updates = 0;
+  for (uint32_t f = 0; f < wave->num_frames(); ++f) {
+    wave->frame(f, v);
+    const FrameStats s = c->run_frame(v);
+    bvh->run_frame(v);
+    most_internal = std::max(most_internal, s.fronts.internal);
+    most_external = std::max(most_external, s.fronts.external);
+    updates += s.op.find("+update") != std::string::npos;
+    if (f > 0 && s.op.find("+update") != std::string::npos) {
+      EXPECT_EQ(s.query_reruns, 0u) << "frame " << f << ": the probe did not size the update";
+    }
+  }
+  ASSERT_GE(updates, 2u);
+  const MemoryStats m = c->memory();
+  EXPECT_EQ(sum_at_peak(m), m.peak_bytes);
+  for (const auto& [kind, most] : {std::pair{std::string("front_internal"), most_internal},
+                                   std::pair{std::string("front_external"), most_external}}) {
+    const size_t capacity = bytes_of(m, kind + ".prim") / sizeof(uint32_t);
+    EXPECT_EQ(node_bytes(m, kind), 17 * capacity) << kind;
+    EXPECT_LE(double(capacity), 1.4 * double(most)) << kind << ": " << capacity << " nodes held for " << most;
+  }
+  const size_t fronts = sum_at_peak(m, "front_") + sum_at_peak(m, "inter_front_") + sum_at_peak(m, "rigid_front_");
+  const size_t ordering = 2 * 4 * 4 * tris;  // per kind: count log, two cursors, offset log
+  const size_t others = m.peak_bytes - fronts;
+  EXPECT_LE(fronts, 17 * size_t(1.4 * double(most_internal + most_external)) + ordering);
+  EXPECT_LE(others, bvh->memory().peak_bytes + sum_at_peak(m, "restructure.") + sum_at_peak(m, "rigid_bvh."));
+}
+
+// Growth stays counted and logged, never truncated: fronts and pairs that start far too
+// small grow on the first frame, which runs its query again and reports every pair.
+TEST(MemoryStats, FrontGrowthIsCountedAndExact) {
+  auto wave = make_generator("cloth-wave", {{"res", 24}, {"frames", 3}});
+  const Topology& topo = wave->topology();
+  for (const char* name : {"a", "c"}) {
+    PipelineConfig cfg;
+    cfg.device = "cpu";
+    cfg.name = name;
+    cfg.fronts.cycle = 2;
+    cfg.capacity.pairs_per_triangle = 0.01;
+    cfg.capacity.front_per_triangle = 0.01;
+    auto p = make_pipeline(cfg);
+    p->set_topology(topo);
+    std::vector<vec3f> v;
+    for (uint32_t f = 0; f < wave->num_frames(); ++f) {
+      wave->frame(f, v);
+      const FrameStats s = p->run_frame(v);
+      if (f == 0) {
+        EXPECT_GE(s.query_reruns, 1u) << name;
+      }
+      const PairSetDiff d = diff_pair_sets(sweep_oracle_pairs(topo, v, false), p->sorted_pairs());
+      EXPECT_TRUE(d.equal()) << name << " frame " << f << ": " << d.missing_count << " missing";
+    }
+    const MemoryStats m = p->memory();
+    EXPECT_GE(m.growths, 3u) << name;
+    size_t front_growths = 0;
+    for (const BufferGrowth& g : m.grown) {
+      EXPECT_LT(g.first_count, g.last_count) << name << " " << g.buffer;
+      front_growths += g.buffer.rfind("front_", 0) == 0 ? g.times : 0;
+    }
+    EXPECT_GE(front_growths, 5u) << name << ": the five arrays of a kind grow together";
+    EXPECT_EQ(sum_at_peak(m), m.peak_bytes) << name;
+  }
+}
+
+}  // namespace cdb::test
