@@ -448,45 +448,43 @@ TEST(FramePlan, OneOffCostsAreNoRent) {
   }
 }
 
-// A tree that degrades: each update brings the steady frame back only to a floor that rises
-// frame by frame. With --rebuild-degraded the tree rebuilds once the floor's excess over the
-// fresh tree's cost per pair has summed to a build's cost over a steady frame, and the floor
-// starts over; contact that grows with the cost (pairs rising with the floor) is no
-// degradation, and off never rebuilds after the first frame.
-TEST(FramePlan, RebuildsATreeWhoseDegradationPaidForABuild) {
-  const double build = 10.0, rise = 0.05;
-  for (const bool pairs_follow : {false, true})
-  for (const bool on : {true, false}) {
+// A tree that degrades: the probes before each maintenance count an update would make more
+// front nodes per pair the longer since the build. With --rebuild-degraded G a maintenance
+// rebuilds once the last probe's count exceeds G times the nodes per pair after the build,
+// and updates below it; a tree that keeps its quality, G = 0 and --update-probe off never
+// rebuild after the first frame.
+TEST(FramePlan, RebuildsATreeWhoseUpdatesWouldOutgrowItsFronts) {
+  enum Case { degrading, keeps_quality, off, unprobed };
+  for (const Case c : {degrading, keeps_quality, off, unprobed}) {
     PipelineConfig cfg = cycle_config(0);
-    cfg.tree.rebuild_degraded = on;
+    cfg.tree.rebuild_degraded = c == off ? 0.0 : 1.5;
+    cfg.fronts.update_probe = c != unprobed;
     FramePlanner planner(FrontStrategy{}, cfg);
-    int since_build = 0, since_produce = 0;
+    const uint64_t pairs = 1000;
+    uint64_t nodes = 0, since_build = 0, since_produce = 0;
     std::string s;
     for (int f = 0; f < 200; ++f) {
       const TreeMaintenance before = planner.tree();
-      const FramePlan p = planner.plan(1000, 100);
+      const FramePlan p = planner.plan(1000, nodes);
       s += letter(p);
-      if (f > 0) {
-        EXPECT_EQ(p.rebuild, before.rebuild_due()) << "frame " << f;
-        if (p.rebuild) EXPECT_GE(before.rent_ms(), before.price_ms()) << "frame " << f;
-      }
-      const double floor = 1.0 + rise * since_build;
-      double ms = build;
+      const bool degraded = before.probed_per_pair() > 1.5 * before.fresh_per_pair();
+      if (f > 0 && p.rebuild) EXPECT_TRUE(degraded) << "frame " << f << " " << s;
+      if (p.op(Query::self) == FrontOp::update && c == degrading) EXPECT_FALSE(degraded) << "frame " << f;
+      const double grown = c == degrading ? 1.0 + 0.05 * double(since_build) : 1.1;
+      const uint64_t yield = p.probe ? uint64_t(double(2 * pairs) * grown) : 0;
+      const double ms = p.rebuild ? 10.0 : p.changes_fronts() ? 3.0 : 1.0 + 0.2 * double(since_produce);
+      planner.finish(p, {ms, true, nodes, 1.0, {}, false, -1.0, pairs, yield});
       if (p.rebuild) {
+        nodes = 2 * pairs;
         since_build = since_produce = 0;
-      } else if (p.changes_fronts()) {
-        ms = floor + 2.0;
-        since_produce = 0;
       } else {
-        ms = floor + 0.2 * since_produce++;
+        ++since_build;
+        since_produce = p.changes_fronts() ? 0 : since_produce + 1;
+        if (p.changes_fronts()) nodes = uint64_t(double(2 * pairs) * grown);
       }
-      if (!p.rebuild) ++since_build;
-      const uint64_t pairs = pairs_follow ? uint64_t(1000.0 * floor) : 1000;
-      planner.finish(p, {ms, true, 100, 1.0, {}, false, -1.0, pairs});
-      if (pairs_follow) EXPECT_LT(planner.tree().rent_ms(), 0.5) << "frame " << f;
     }
     const size_t rebuilds = size_t(std::count(s.begin() + 1, s.end(), 'b'));
-    if (on && !pairs_follow) {
+    if (c == degrading) {
       EXPECT_GE(rebuilds, 2u) << s;
     } else {
       EXPECT_EQ(rebuilds, 0u) << s;

@@ -106,7 +106,7 @@ TEST(MemoryStats, FrontPipelinePeakFollowsTheFrontsItMade) {
     most_external = std::max(most_external, s.fronts.external);
     updates += s.op.find("+update") != std::string::npos;
     if (f > 0 && s.op.find("+update") != std::string::npos) {
-      EXPECT_EQ(s.query_reruns, 0u) << "frame " << f << ": the probe did not size the update";
+      EXPECT_EQ(s.timing.query_reruns, 0u) << "frame " << f << ": the probe did not size the update";
     }
   }
   ASSERT_GE(updates, 2u);
@@ -144,7 +144,7 @@ TEST(MemoryStats, FrontGrowthIsCountedAndExact) {
       wave->frame(f, v);
       const FrameStats s = p->run_frame(v);
       if (f == 0) {
-        EXPECT_GE(s.query_reruns, 1u) << name;
+        EXPECT_GE(s.timing.query_reruns, 1u) << name;
       }
       const PairSetDiff d = diff_pair_sets(sweep_oracle_pairs(topo, v, false), p->sorted_pairs());
       EXPECT_TRUE(d.equal()) << name << " frame " << f << ": " << d.missing_count << " missing";

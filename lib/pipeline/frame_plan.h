@@ -74,7 +74,7 @@ class FramePlanner {
       : strategy_(strategy),
         config_(config),
         maintenance_(config.fronts.cycle, config.fronts.regenerate),
-        tree_(config.tree.rebuild_degraded && maintenance_.adaptive() && !strategy.rebuild_every_frame) {}
+        tree_(maintenance_.adaptive() && !strategy.rebuild_every_frame ? config.tree.rebuild_degraded : 0.0) {}
 
   const FrontStrategy& strategy() const { return strategy_; }
   const FrontMaintenance& maintenance() const { return maintenance_; }
@@ -140,18 +140,18 @@ class FramePlanner {
     bool recorded = false;    // it recorded its frame graph (a one-off cost)
     double generate_per_node_ms = -1.0;  // a build frame: its generate and ordering per front node made
     uint64_t pairs = 0;       // the pairs it reported
+    uint64_t update_yield = 0;  // a probing frame: the front nodes an update would make at most
   };
   void finish(const FramePlan& p, const Outcome& o) {
     const FrontOp self = p.op(Query::self);
     const bool steady = p.steady() && !p.stale, clean = o.ran_once && !o.recorded;
     maintenance_.observe(steady, !p.rebuild && self == FrontOp::update, p.rebuild, clean, o.ms, o.front_nodes,
                          !p.rebuild && self == FrontOp::generate);
+    tree_.observe(o.front_nodes, o.pairs, o.update_yield);
     if (p.rebuild)
-      tree_.built(o.ms);
+      tree_.built();
     else if (p.changes_fronts())
       tree_.fronts_produced();
-    else if (steady && clean)
-      tree_.steady(o.ms, maintenance_.fresh_ms(), o.pairs);
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
     if (p.rebuild || self == FrontOp::generate) generated_ = frame_;
     if (p.changes_fronts()) {
@@ -174,8 +174,10 @@ class FramePlanner {
     p.decision = formula2(leaves);
     if (p.decision != Formula2::none) p.restructuring = pending_;
     pending_ = {};
+    // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h).
+    const bool maintain = maintenance_op(false, front_nodes) != FrontOp::preserve;
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
-                rebuild_due(frame_, config_.tree.rebuild_every) || tree_.rebuild_due();
+                rebuild_due(frame_, config_.tree.rebuild_every) || (maintain && tree_.rebuild_due());
     // --refit-every: between refits both trees keep their last boxes (not conservative).
     p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts

@@ -1,69 +1,62 @@
 #pragma once
-// When a front pipeline rebuilds its hierarchy on its own (--tree-rebuild auto): rent or buy
-// on the tree's degradation, beside the fronts' (pipeline/front_maintenance.h).
+// When a front pipeline rebuilds its hierarchy on its own (--rebuild-degraded G): a
+// maintenance due (pipeline/front_maintenance.h) rebuilds the tree and generates every
+// front, instead of updating the fronts on the refitted tree, once an update would make
+// fronts of more than G times the nodes per pair the fronts had right after the last build.
 //
 // A refitted tree degrades as the geometry drifts from the one it was built on: its boxes
 // grow and overlap, so a front that finds the same pairs needs more nodes. An update or a
-// generate fits the fronts to the tree, not the tree to the scene, so the steady frame right
-// after one stays dear: the fronts' rent starts over while the tree's share of the cost
-// stays. That share is what this rent measures. Each steady frame pays the cheapest steady
-// frame since the fronts were last produced (fresh fronts, so what the tree costs) over what
-// a steady frame cost per pair on the fresh tree, times the frame's pairs: contact that
-// grows with the scene raises the expected cost and is not rent. The tree is rebuilt (and
-// every front generated) once the rent paid reaches what the last build frame cost over a
-// steady frame after it. Scenes whose tree keeps its quality, where an update brings the
-// steady frame back, pay no rent and never rebuild.
+// generate fits the fronts to the tree, not the tree to the scene: on a degraded tree it
+// makes large fronts, and every steady frame after it pays for them. A rebuild frame costs
+// about what an update frame costs and brings the fronts back to a build's size (figures:
+// docs/front-maintenance.md "Rebuilding a degraded tree"). The size of an update is known
+// before it runs: the preserves before an update probe what it yields at most
+// (FrontQuery::reserve_for_update). Nodes per pair divides out contact that grows with the
+// scene. A maintenance with no probe before it (--update-probe off, or rent that reached the
+// price in one frame) updates as before.
 #include <algorithm>
 #include <cstdint>
-#include <limits>
 
 namespace cdb {
 
 class TreeMaintenance {
  public:
-  explicit TreeMaintenance(bool enabled = false) : enabled_(enabled) {}
+  // growth: G above; 0 never rebuilds.
+  explicit TreeMaintenance(double growth = 0.0) : growth_(growth) {}
 
-  void reset() { *this = TreeMaintenance(enabled_); }
+  void reset() { *this = TreeMaintenance(growth_); }
 
-  bool rebuild_due() const { return enabled_ && priced_ && rent_ms_ >= price_ms_; }
+  // Whether a maintenance due now should rebuild the tree instead.
+  bool rebuild_due() const { return growth_ > 0.0 && fresh_ > 0.0 && probed_ > growth_ * fresh_; }
 
-  double rent_ms() const { return rent_ms_; }
-  double price_ms() const { return price_ms_; }
+  // Front nodes per pair right after the last build, and what the last probe since the
+  // fronts were produced says an update would make (0: not measured).
+  double fresh_per_pair() const { return fresh_; }
+  double probed_per_pair() const { return probed_; }
 
-  // A frame that built the tree, at cost `ms`: the rent starts over, priced by the next
-  // steady frame.
-  void built(double ms) {
-    build_ms_ = ms;
-    rent_ms_ = 0.0;
-    priced_ = false;
-    fresh_stretch_ = true;
-    fresh_per_pair_ = std::numeric_limits<double>::infinity();
+  // The tree was built and every front generated: the next frame measures their size.
+  void built() {
+    fresh_pending_ = true;
+    probed_ = 0.0;
   }
 
-  // The fronts were produced again (update, generate, restructure) on the same tree: the
-  // steady frames after it no longer measure the fresh tree.
-  void fronts_produced() { fresh_stretch_ = false; }
+  // The fronts were produced again on the same tree: the last probe no longer describes them.
+  void fronts_produced() { probed_ = 0.0; }
 
-  // A steady frame of `pairs` pairs at `ms`; `fronts_fresh_ms`: the cheapest steady frame
-  // since the fronts were last produced (this one included).
-  void steady(double ms, double fronts_fresh_ms, uint64_t pairs) {
+  // A frame that started from fronts of `front_nodes` nodes and reported `pairs`; `yield`:
+  // the nodes its probe counted an update would make, or 0 if it did not probe.
+  void observe(uint64_t front_nodes, uint64_t pairs, uint64_t yield) {
     const double n = double(std::max<uint64_t>(pairs, 1));
-    if (!priced_) {
-      price_ms_ = std::max(0.0, build_ms_ - ms);
-      priced_ = true;
-    }
-    if (fresh_stretch_) fresh_per_pair_ = std::min(fresh_per_pair_, ms / n);
-    rent_ms_ += std::max(0.0, fronts_fresh_ms - fresh_per_pair_ * n);
+    if (fresh_pending_) fresh_ = double(front_nodes) / n;
+    fresh_pending_ = false;
+    if (yield > 0) probed_ = double(yield) / n;
   }
 
  private:
-  bool enabled_;
-  bool priced_ = false;        // a steady frame after the build measured the price
-  bool fresh_stretch_ = true;  // no front produced since the build
-  double build_ms_ = 0.0;
-  double price_ms_ = 0.0;
-  double rent_ms_ = 0.0;
-  double fresh_per_pair_ = std::numeric_limits<double>::infinity();
+  double growth_;
+  bool fresh_pending_ = false;
+  double fresh_ = 0.0;
+  double probed_ = 0.0;
 };
 
 }  // namespace cdb
