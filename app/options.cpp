@@ -153,14 +153,12 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       ->group(kTuningGroup)
       ->check(finite_at_least(0))
       ->capture_default_str();
-  cmd->add_option("--rebuild-degraded", c.tree.rebuild_degraded,
-                  "front pipelines with --front-cycle auto: a maintenance rebuilds the tree and generates every "
-                  "front instead of updating once the probe before it counts an update would make fronts of more "
-                  "than this many times the nodes per pair of the fronts after the last build; 0: only "
-                  "--rebuild-every and pipeline c's Formula 2 rebuild")
-      ->group(kTuningGroup)
-      ->check(finite_at_least(0))
-      ->capture_default_str();
+  add_switch(cmd, "--rebuild-degraded", c.tree.rebuild_degraded,
+             "front pipelines with --front-cycle auto: a maintenance rebuilds the tree and generates every front "
+             "instead of updating when the steady frames its smaller fronts save (the probe before it counts what "
+             "the update would make) pay for the rebuild; off: only --rebuild-every and pipeline c's Formula 2 "
+             "rebuild")
+      ->group(kTuningGroup);
   add_switch(cmd, "--regenerate", c.fronts.regenerate,
              "front pipelines with --front-cycle auto: each maintenance runs an update of the fronts or a generate "
              "of new ones, whichever measured cheaper per front node last (a generate is tried once the first "

@@ -3,7 +3,7 @@
 # (docs/results.md "Against the strongest peer"). Each scene is generated once as OBJ frames,
 # so a second binary without its generator runs the very same frames; then, per scene:
 # c, a, b, grid and bvh as the bar measured them (--phase-timing off --repeat 2), c once
-# more in a single pass (its p95 without averaging), and c with --rebuild-degraded 0.
+# more in a single pass (its p95 without averaging), and c with --rebuild-degraded off.
 # With BASE_BIN="NAME=PATH ..." each other binary runs c (both ways) right after, on the
 # same GPU. Files: $OUT/anchors/BINARY/MODE-SCENE-PIPELINE.h5; bench/anchors_report.py
 # makes the tables.
@@ -34,7 +34,7 @@ run() {
     [[ -d "$frames/$s" ]] || "$bin" scenes generate "$s" --out "$frames/$s" > /dev/null || continue
     run "$bin" "$out/new" repeat "$s" c,a,b,grid,bvh --repeat 2
     run "$bin" "$out/new" single "$s" c
-    run "$bin" "$out/new" keep-tree "$s" c --repeat 2 --rebuild-degraded 0
+    run "$bin" "$out/new" keep-tree "$s" c --repeat 2 --rebuild-degraded off
     for entry in ${BASE_BIN:-}; do
       run "${entry#*=}" "$out/${entry%%=*}" repeat "$s" c --repeat 2
       run "${entry#*=}" "$out/${entry%%=*}" single "$s" c

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The tables of bench/anchors.sh: per scene, c (mean, median, p95; a single pass's median
-and p95), a, b, grid and bvh means, c with --rebuild-degraded 0, each base binary's c, the
+and p95), a, b, grid and bvh means, c with --rebuild-degraded off, each base binary's c, the
 ratio base / new, the pairs and c's peak memory.
 
   bench/anchors_report.py DIR [--base NAME ...] > tables.md

@@ -61,11 +61,10 @@ inline constexpr double kBuildPerUpdate = 8.0;
 // Probing starts at this share of an update's price. Measured: updates that ran twice, on
 // seven scenes (H100).
 inline constexpr double kProbeShare = 0.5;
-// Default of --rebuild-degraded: a maintenance rebuilds once an update would make fronts of
-// this many times the nodes per pair after the build. Measured: fronts after an update over
-// those after the build, per pair: 1.05-1.13 (cloth wave), 1.25-1.45 (crumple), 1.8
-// (funnel), 3.0 (garment, spheres) (H200; docs/front-maintenance.md).
-inline constexpr double kRebuildDegradedGrowth = 1.5;
+// Before a rebuild frame after the first was measured, a rebuild costs this many steady
+// frames (pipeline/tree_maintenance.h). Measured: later rebuild frames over the steady frames
+// before them, 5-6.5 on funnel, spheres, crumple and garment (H200).
+inline constexpr double kRebuildPerSteady = 6.0;
 
 // --- Front buffers (pipeline/front_query.h) ---
 // Spare over a probe's update bound: the fronts' buffers grow to bound + bound / this when

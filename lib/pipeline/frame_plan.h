@@ -74,7 +74,7 @@ class FramePlanner {
       : strategy_(strategy),
         config_(config),
         maintenance_(config.fronts.cycle, config.fronts.regenerate),
-        tree_(maintenance_.adaptive() && !strategy.rebuild_every_frame ? config.tree.rebuild_degraded : 0.0) {}
+        tree_(config.tree.rebuild_degraded && maintenance_.adaptive() && !strategy.rebuild_every_frame) {}
 
   const FrontStrategy& strategy() const { return strategy_; }
   const FrontMaintenance& maintenance() const { return maintenance_; }
@@ -147,9 +147,9 @@ class FramePlanner {
     const bool steady = p.steady() && !p.stale, clean = o.ran_once && !o.recorded;
     maintenance_.observe(steady, !p.rebuild && self == FrontOp::update, p.rebuild, clean, o.ms, o.front_nodes,
                          !p.rebuild && self == FrontOp::generate);
-    tree_.observe(o.front_nodes, o.pairs, o.update_yield);
+    tree_.observe(o.front_nodes, o.pairs, o.update_yield, steady && clean ? o.ms : -1.0);
     if (p.rebuild)
-      tree_.built();
+      tree_.built(o.ms, clean && frame_ > 0);
     else if (p.changes_fronts())
       tree_.fronts_produced();
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
@@ -177,7 +177,9 @@ class FramePlanner {
     // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h).
     const bool maintain = maintenance_op(false, front_nodes) != FrontOp::preserve;
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
-                rebuild_due(frame_, config_.tree.rebuild_every) || (maintain && tree_.rebuild_due());
+                rebuild_due(frame_, config_.tree.rebuild_every) ||
+                (maintain && tree_.rebuild_due(maintenance_.fresh_ms(), maintenance_.price_ms(front_nodes),
+                                               frame_ - produced_));
     // --refit-every: between refits both trees keep their last boxes (not conservative).
     p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts

@@ -12,7 +12,6 @@
 #include "core/morton.h"
 #include "core/pair.h"
 #include "core/phase.h"
-#include "exec/tuning.h"
 #include "exec/memory.h"
 #include "geometry/mesh.h"
 #include "geometry/position_rounding.h"
@@ -69,10 +68,9 @@ struct TreeConfig {
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
   // Front pipelines under --front-cycle auto: a maintenance rebuilds the tree (and generates
-  // every front) instead of updating once the update would make fronts of more than this
-  // many times the nodes per pair of the fronts after the last build
-  // (pipeline/tree_maintenance.h); 0: only --rebuild-every and pipeline c's Formula 2.
-  double rebuild_degraded = kRebuildDegradedGrowth;
+  // every front) instead of updating when the steady frames its smaller fronts save pay for
+  // it (pipeline/tree_maintenance.h); off: only --rebuild-every and pipeline c's Formula 2.
+  bool rebuild_degraded = true;
 };
 
 // Front maintenance of the front pipelines (pipeline/front_maintenance.h, frame_plan.h).
