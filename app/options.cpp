@@ -155,9 +155,9 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       ->capture_default_str();
   add_switch(cmd, "--rebuild-degraded", c.tree.rebuild_degraded,
              "front pipelines with --front-cycle auto: a maintenance rebuilds the tree and generates every front "
-             "instead of updating when the steady frames its smaller fronts save (the probe before it counts what "
-             "the update would make) pay for the rebuild; off: only --rebuild-every and pipeline c's Formula 2 "
-             "rebuild")
+             "instead of updating once the rent the fronts paid on the tree since the build (the share of each "
+             "steady frame by which they hold more nodes per pair than after it) reaches a rebuild's cost over an "
+             "update's; off: only --rebuild-every and pipeline c's Formula 2 rebuild")
       ->group(kTuningGroup);
   add_switch(cmd, "--regenerate", c.fronts.regenerate,
              "front pipelines with --front-cycle auto: each maintenance runs an update of the fronts or a generate "

@@ -140,18 +140,14 @@ class FramePlanner {
     bool recorded = false;    // it recorded its frame graph (a one-off cost)
     double generate_per_node_ms = -1.0;  // a build frame: its generate and ordering per front node made
     uint64_t pairs = 0;       // the pairs it reported
-    uint64_t update_yield = 0;  // a probing frame: the front nodes an update would make at most
   };
   void finish(const FramePlan& p, const Outcome& o) {
     const FrontOp self = p.op(Query::self);
     const bool steady = p.steady() && !p.stale, clean = o.ran_once && !o.recorded;
     maintenance_.observe(steady, !p.rebuild && self == FrontOp::update, p.rebuild, clean, o.ms, o.front_nodes,
                          !p.rebuild && self == FrontOp::generate);
-    tree_.observe(o.front_nodes, o.pairs, o.update_yield, steady && clean ? o.ms : -1.0);
-    if (p.rebuild)
-      tree_.built(o.ms, clean && frame_ > 0);
-    else if (p.changes_fronts())
-      tree_.fronts_produced();
+    tree_.observe(o.front_nodes, o.pairs, steady && clean ? o.ms : -1.0);
+    if (p.rebuild) tree_.built(o.ms, clean && frame_ > 0);
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
     if (p.rebuild || self == FrontOp::generate) generated_ = frame_;
     if (p.changes_fronts()) {
@@ -178,8 +174,7 @@ class FramePlanner {
     const bool maintain = maintenance_op(false, front_nodes) != FrontOp::preserve;
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
                 rebuild_due(frame_, config_.tree.rebuild_every) ||
-                (maintain && tree_.rebuild_due(maintenance_.fresh_ms(), maintenance_.price_ms(front_nodes),
-                                               frame_ - produced_));
+                (maintain && tree_.rebuild_due(maintenance_.fresh_ms(), maintenance_.price_ms(front_nodes)));
     // --refit-every: between refits both trees keep their last boxes (not conservative).
     p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts

@@ -107,7 +107,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     describe(plan, stats);
     const double generate_per_node = time_generate ? price_generate(stats) : -1.0;
     planner_.finish(plan, {stats.timing.total_ms, stats.timing.query_reruns == 0, fronts, stats.quality.q_root, found(plan),
-                           stats.timing.graph == "captured", generate_per_node, stats.pairs, update_yield(plan)});
+                           stats.timing.graph == "captured", generate_per_node, stats.pairs});
     choose_preserve_launch(stats.pairs);
     return stats;
   }
@@ -122,14 +122,6 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     QuerySet running{};
     for (Query q : kQueries) running[size_t(q)] = queries_[size_t(q)].active();
     return running;
-  }
-
-  // A probing frame's count of the front nodes the queries' updates would make at most.
-  uint64_t update_yield(const FramePlan& plan) const {
-    uint64_t n = 0;
-    if (plan.probe)
-      for (const auto& fq : queries_) n += fq.update_yield(pairs_.last_counters());
-    return n;
   }
 
   uint64_t front_nodes() const {

@@ -68,8 +68,8 @@ struct TreeConfig {
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
   // Front pipelines under --front-cycle auto: a maintenance rebuilds the tree (and generates
-  // every front) instead of updating when the steady frames its smaller fronts save pay for
-  // it (pipeline/tree_maintenance.h); off: only --rebuild-every and pipeline c's Formula 2.
+  // every front) instead of updating once the rent the fronts paid on the degraded tree pays
+  // for it (pipeline/tree_maintenance.h); off: only --rebuild-every and pipeline c's Formula 2.
   bool rebuild_degraded = true;
 };
 
