@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "core/error.h"
-#include "io/natural_order.h"
+#include "io/input_files.h"
 #include "io/obj_reader.h"
 
 namespace cdb {

@@ -1,6 +1,6 @@
 #pragma once
 // A directory of OBJ files, one per frame in natural name order (f2.obj before f10.obj;
-// io/natural_order.h), read by io/obj_reader.h. Frame 0 fixes the topology; every later
+// io/input_files.h), read by io/obj_reader.h. Frame 0 fixes the topology; every later
 // frame must match it (the same faces, vertex count) and be finite, which is checked for all
 // frames when the directory is opened.
 #include <cstdint>

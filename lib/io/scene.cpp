@@ -16,7 +16,7 @@
 #include "io/composed_scene.h"
 #include "io/descriptor_object.h"
 #include "io/frame_cache.h"
-#include "io/natural_order.h"
+#include "io/input_files.h"
 #include "io/keyframe_mesh.h"
 #include "io/obj_sequence.h"
 #include "io/placed_scene.h"
