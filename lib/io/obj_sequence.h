@@ -15,6 +15,11 @@ namespace cdb {
 
 std::unique_ptr<FrameSource> open_mesh_sequence(const std::filesystem::path& dir);
 
+// Writes a scene's frames as such a directory (frame_0000.obj, ...; created if needed,
+// frames of the same names overwritten) that reads back to the same triangles in the same
+// order and the same positions. Throws naming the file on a write failure.
+void write_obj_sequence(const FrameSource& source, const std::filesystem::path& out_dir);
+
 // Reads one mesh file: all its meshes' triangles in file order, no vertex merging, no
 // dropping of degenerate faces; polygons are triangulated (their count is returned, so the
 // caller can say so). Throws naming the file (and `frame`, when >= 0) on any failure.
