@@ -48,8 +48,7 @@ void flatten(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent
                              : node->mName.length ? node->mName.C_Str()
                                                   : file_stem;
     std::string name = stem;
-    for (int dup = 2; names.count(name); ++dup) name = stem + "#" + std::to_string(dup);
-    names.insert(name);
+    for (int dup = 2; !names.insert(name).second; ++dup) name = stem + "#" + std::to_string(dup);
     out.objects.push_back({name, first_face, num_faces, false});
   }
   for (unsigned c = 0; c < node->mNumChildren; ++c)

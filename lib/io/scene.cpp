@@ -261,7 +261,7 @@ std::unique_ptr<FrameSource> open_source(const DescriptorObject& o, const std::f
   if (o.has("animation")) {
     const AnimationOptions a =
         animation_options(o.object("animation", {"file", "fps", "frames", "start", "clip"}), descriptor);
-    return opened_at(o.at("animation"), [&] { return open_animated_mesh(a); });
+    return opened_at(o.at("animation"), [&] { return open_animated_clip(a); });
   }
   if (o.has("keyframes"))
     return open_keyframes(o.object("keyframes", {"file", "first", "frames", "subframes"}), descriptor);
