@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 #include "geometry/float_spacing.h"
-#include "io/obj_writer.h"
+#include "io/obj_sequence.h"
 #include "io/scene.h"
 #include "io/scene_label.h"
 #include "options.h"

@@ -167,7 +167,7 @@ std::vector<vec3f> two_bone_positions(double t) {
 
 TEST(AnimatedMesh, TwoBoneGltfMatchesClosedForm) {
   const fs::path file = write_two_bone_gltf();
-  auto source = open_animated_mesh({file, 4.0, 0, 0.0, 0, ""});
+  auto source = open_animated_clip({file, 4.0, 0, 0.0, 0, ""});
   const Topology& t = source->topology();
   ASSERT_EQ(t.faces.size(), 4u) << source->describe();
   ASSERT_EQ(t.num_vertices, 12u);
@@ -188,7 +188,7 @@ TEST(AnimatedMesh, TwoBoneGltfMatchesClosedForm) {
     }
   }
   // Past the clip's end every channel holds its last key.
-  auto late = open_animated_mesh({file, 4.0, 3, 2.0, 0, "wave"});
+  auto late = open_animated_clip({file, 4.0, 3, 2.0, 0, "wave"});
   late->frame(2, got);
   const auto end = two_bone_positions(1.0);
   for (size_t v = 0; v < end.size(); ++v) EXPECT_NEAR(got[v].x, end[v].x, 1e-5) << "vertex " << v;
@@ -317,7 +317,7 @@ class AnimatedModels : public testing::TestWithParam<ModelCase> {};
 TEST_P(AnimatedModels, MatchesPlainReferenceEveryFrame) {
   const fs::path file = kModels / GetParam().file;
   if (!fs::exists(file)) GTEST_SKIP() << kNoModels;
-  auto source = open_animated_mesh({file, GetParam().fps, 0, 0.0, GetParam().clip, ""});
+  auto source = open_animated_clip({file, GetParam().fps, 0, 0.0, GetParam().clip, ""});
   Assimp::Importer importer;
   const aiScene* sc = importer.ReadFile(file.string(), aiProcess_Triangulate);
   ASSERT_TRUE(sc);
@@ -368,7 +368,7 @@ ModelCase{"FBX/animation_with_skeleton.fbx", 0, 24},
 TEST(AnimatedMesh, MorphCubeBlendsItsTargets) {
   const fs::path file = kModels / "glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf";
   if (!fs::exists(file)) GTEST_SKIP() << kNoModels;
-  auto source = open_animated_mesh({file, 10, 0, 0.0, 0, ""});
+  auto source = open_animated_clip({file, 10, 0, 0.0, 0, ""});
   Assimp::Importer importer;
   const aiScene* sc = importer.ReadFile(file.string(), aiProcess_Triangulate);
   ASSERT_TRUE(sc && sc->mNumMeshes == 1 && sc->mMeshes[0]->mNumAnimMeshes == 2);
@@ -485,7 +485,7 @@ TEST(AnimatedMesh, ErrorsNameTheFileAndField) {
   std::ofstream(d.dir / "broken.gltf") << "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": 3}";
   const std::string broken = open(with("file", "broken.gltf"));
   EXPECT_NE(broken.find("broken.gltf: cannot read"), std::string::npos) << broken;
-  EXPECT_NE(error_of([&] { open_animated_mesh({d.dir / "absent.glb", 30, 0, 0, 0, ""}); }).find("absent.glb: no such file"),
+  EXPECT_NE(error_of([&] { open_animated_clip({d.dir / "absent.glb", 30, 0, 0, 0, ""}); }).find("absent.glb: no such file"),
             std::string::npos);
 }
 
@@ -493,7 +493,7 @@ TEST(AnimatedMesh, ErrorsNameTheFileAndField) {
 TEST(AnimatedMesh, ModelBoneWithoutNodeIsAnError) {
   const fs::path file = kModels / "X/anim_test.x";
   if (!fs::exists(file)) GTEST_SKIP() << kNoModels;
-  EXPECT_NE(error_of([&] { open_animated_mesh({file, 30, 0, 0, 0, ""}); })
+  EXPECT_NE(error_of([&] { open_animated_clip({file, 30, 0, 0, 0, ""}); })
                 .find("anim_test.x: mesh 'pCylinder1' bone 'joint3': no node of that name"),
             std::string::npos);
 }

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "io/natural_order.h"
+#include "io/input_files.h"
 #include "io/obj_sequence.h"
 
 namespace cdb::test {

@@ -14,7 +14,7 @@
 
 #include "core/error.h"
 #include "generators.h"
-#include "io/frame_columns.h"
+#include "io/results_columns.h"
 #include "io/results_file.h"
 #include "io/results_reader.h"
 #include "io/scene_label.h"

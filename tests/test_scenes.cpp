@@ -14,7 +14,6 @@
 #include "generators.h"
 #include "io/frame_cache.h"
 #include "io/obj_sequence.h"
-#include "io/obj_writer.h"
 
 namespace cdb::test {
 namespace {

@@ -139,12 +139,11 @@ class AnimatedMesh final : public AnimatedClip {
   }
 
   void pick_clip() {
+    if (scene_->mNumAnimations == 0) fail(file_ + ": no animation in this file");
     std::string names;
     for (unsigned a = 0; a < scene_->mNumAnimations; ++a)
       names += (names.empty() ? "" : ", ") + std::to_string(a) + " '" +
                std::string(scene_->mAnimations[a]->mName.C_Str()) + "'";
-    if (names.empty()) names = "none";
-    if (scene_->mNumAnimations == 0) fail(file_ + ": no animation in this file");
     if (!options_.clip_name.empty()) {
       for (unsigned a = 0; a < scene_->mNumAnimations && !anim_; ++a)
         if (options_.clip_name == scene_->mAnimations[a]->mName.C_Str()) anim_ = scene_->mAnimations[a];
@@ -203,11 +202,9 @@ class AnimatedMesh final : public AnimatedClip {
         topology_.num_vertices += welded;
         instances_.push_back(std::move(in));
         // Names must be unique for the descriptor's queries to name them.
-        std::string name = mesh->mName.length ? mesh->mName.C_Str() : node->mName.C_Str();
-        if (name.empty()) name = "mesh" + std::to_string(node->mMeshes[i]);
-        for (int dup = 2; used_names.count(name); ++dup)
-          name = (mesh->mName.length ? mesh->mName.C_Str() : node->mName.C_Str()) + std::string("#") + std::to_string(dup);
-        used_names.insert(name);
+        const std::string stem = mesh->mName.length ? mesh->mName.C_Str() : node->mName.C_Str();
+        std::string name = stem.empty() ? "mesh" + std::to_string(node->mMeshes[i]) : stem;
+        for (int dup = 2; !used_names.insert(name).second; ++dup) name = stem + "#" + std::to_string(dup);
         topology_.objects.push_back({name, first_face, num_faces, false});
       }
     }
@@ -332,10 +329,6 @@ class AnimatedMesh final : public AnimatedClip {
 
 std::unique_ptr<AnimatedClip> open_animated_clip(const AnimationOptions& options) {
   return std::make_unique<AnimatedMesh>(options);
-}
-
-std::unique_ptr<FrameSource> open_animated_mesh(const AnimationOptions& options) {
-  return open_animated_clip(options);
 }
 
 }  // namespace cdb

@@ -34,6 +34,5 @@ class AnimatedClip : public FrameSource {
 // named after the mesh, else its node. Throws cdb::Error naming the file (and the clip,
 // mesh, bone or frame) on any failure.
 std::unique_ptr<AnimatedClip> open_animated_clip(const AnimationOptions& options);
-std::unique_ptr<FrameSource> open_animated_mesh(const AnimationOptions& options);
 
 }  // namespace cdb

@@ -3,6 +3,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -66,12 +67,9 @@ std::filesystem::path extract_from_archive(const std::filesystem::path& archive,
     fail(name + ": member '" + member + "': must be a relative path inside the archive");
   // One directory per archive version: its path, size and modification time.
   std::string key = std::filesystem::absolute(archive).string();
-  for (char& c : key)
-    if (c == '/') c = '_';
-  key += '-';
-  key += std::to_string(std::filesystem::file_size(archive));
-  key += '-';
-  key += std::to_string(std::filesystem::last_write_time(archive).time_since_epoch().count());
+  std::replace(key.begin(), key.end(), '/', '_');
+  key += "-" + std::to_string(std::filesystem::file_size(archive)) + "-" +
+         std::to_string(std::filesystem::last_write_time(archive).time_since_epoch().count());
   const std::filesystem::path out = scene_cache_dir() / "extracted" / key / member;
   if (std::filesystem::is_regular_file(out)) return out;
 

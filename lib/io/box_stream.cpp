@@ -4,45 +4,22 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <string>
 
 #include "core/error.h"
-#include "io/natural_order.h"
+#include "io/input_files.h"
 #include "io/npy_header.h"
 
 namespace cdb {
 namespace {
 
-enum class BoxFormat { f32, f64, npy };
-
-BoxFormat format_of(const std::filesystem::path& file) {
-  const std::string ext = lower_extension(file);
-  return ext == ".boxes" ? BoxFormat::f32 : ext == ".boxes64" ? BoxFormat::f64 : BoxFormat::npy;
-}
-
 constexpr const char* kFieldNames[6] = {"min.x", "min.y", "min.z", "max.x", "max.y", "max.z"};
-
-// Little-endian bytes to a float of either width, whatever the host's byte order.
-double decode(const char* p, bool f64) {
-  uint64_t bits = 0;
-  const int bytes = f64 ? 8 : 4;
-  for (int i = 0; i < bytes; ++i) bits |= uint64_t(uint8_t(p[i])) << (8 * i);
-  return f64 ? std::bit_cast<double>(bits) : double(std::bit_cast<float>(uint32_t(bits)));
-}
 
 std::string number_text(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9g", x);
   return buf;
-}
-
-std::string read_all(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail(file.string() + ": cannot open");
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // Where the coordinates start, their width and the box count, from the format's framing.
@@ -72,21 +49,16 @@ Layout npy_layout(const std::string& bytes, const std::string& where) {
   return l;
 }
 
-}  // namespace
-
-bool is_box_frame_file(const std::filesystem::path& file) {
-  const std::string ext = lower_extension(file);
-  return ext == ".boxes" || ext == ".boxes64" || ext == ".npy";
-}
-
+// One frame's boxes, 6 coordinates each in the order above, widened to double; `frame`
+// is only for messages.
 void read_box_frame(const std::filesystem::path& file, uint32_t frame, std::vector<double>& boxes) {
   const std::string where = file.string() + ": frame " + std::to_string(frame);
-  const std::string bytes = read_all(file);
+  const std::string bytes = read_file(file);
   Layout l;
-  if (format_of(file) == BoxFormat::npy) {
+  if (lower_extension(file) == ".npy") {
     l = npy_layout(bytes, where);
   } else {
-    l.f64 = format_of(file) == BoxFormat::f64;
+    l.f64 = lower_extension(file) == ".boxes64";
     const size_t record = l.f64 ? 48 : 24;
     if (bytes.size() % record)
       fail(where + ": " + std::to_string(bytes.size()) + " bytes is not a whole number of boxes (" +
@@ -98,30 +70,31 @@ void read_box_frame(const std::filesystem::path& file, uint32_t frame, std::vect
   // Two vertices per box, numbered in 32 bits.
   if (l.boxes > UINT32_MAX / 2)
     fail(where + ": " + std::to_string(l.boxes) + " boxes exceed 32-bit vertex indices (2 per box)");
-  const size_t width = l.f64 ? 8 : 4;
   boxes.resize(l.boxes * 6);
-  for (size_t i = 0; i < boxes.size(); ++i) boxes[i] = decode(bytes.data() + l.offset + i * width, l.f64);
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const uint64_t bits = little_endian(bytes.data() + l.offset + i * (l.f64 ? 8 : 4), l.f64 ? 8 : 4);
+    boxes[i] = l.f64 ? std::bit_cast<double>(bits) : std::bit_cast<float>(uint32_t(bits));
+  }
+  const double float_max = std::numeric_limits<float>::max();
   for (size_t b = 0; b < l.boxes; ++b) {
     const double* c = boxes.data() + 6 * b;
+    const auto refuse = [&](int a, const std::string& why) {
+      fail(where + ", box " + std::to_string(b) + ": " + kFieldNames[a] + why);
+    };
     for (int a = 0; a < 6; ++a)
-      if (!std::isfinite(c[a]))
-        fail(where + ", box " + std::to_string(b) + ": " + kFieldNames[a] + " is " + number_text(c[a]) +
-             " (coordinates must be finite)");
+      if (!std::isfinite(c[a])) refuse(a, " is " + number_text(c[a]) + " (coordinates must be finite)");
     // The pipelines hold boxes in float: past +-FLT_MAX a corner rounds to infinity, which
     // was found only after frame 0 ran; refused here, before any frame is timed.
     for (int a = 0; a < 6; ++a)
-      if (std::fabs(c[a]) > double(std::numeric_limits<float>::max()))
-        fail(where + ", box " + std::to_string(b) + ": " + kFieldNames[a] + " is " + number_text(c[a]) +
-             ", beyond float range (magnitudes up to " + number_text(double(std::numeric_limits<float>::max())) +
-             "): boxes are computed in float; scale the boxes down or move them nearer the origin");
+      if (std::fabs(c[a]) > float_max)
+        refuse(a, " is " + number_text(c[a]) + ", beyond float range (magnitudes up to " + number_text(float_max) +
+                      "): boxes are computed in float; scale the boxes down or move them nearer the origin");
     for (int a = 0; a < 3; ++a)
       if (c[a] > c[a + 3])
-        fail(where + ", box " + std::to_string(b) + ": " + kFieldNames[a] + " " + number_text(c[a]) + " > " +
-             kFieldNames[a + 3] + " " + number_text(c[a + 3]) + " (min must not exceed max)");
+        refuse(a, " " + number_text(c[a]) + " > " + kFieldNames[a + 3] + " " + number_text(c[a + 3]) +
+                      " (min must not exceed max)");
   }
 }
-
-namespace {
 
 class BoxStream final : public FrameSource {
  public:
@@ -173,6 +146,11 @@ class BoxStream final : public FrameSource {
 };
 
 }  // namespace
+
+bool is_box_frame_file(const std::filesystem::path& file) {
+  const std::string ext = lower_extension(file);
+  return ext == ".boxes" || ext == ".boxes64" || ext == ".npy";
+}
 
 std::unique_ptr<FrameSource> open_box_stream(const std::filesystem::path& dir) {
   return std::make_unique<BoxStream>(dir);

@@ -1,10 +1,7 @@
 #pragma once
 // A box stream: a directory of per-frame primitive boxes, as simulators export them instead
-// of meshes. One file per frame in natural name order (io/natural_order.h), all of one format:
-//   .boxes    little-endian float32 min.x min.y min.z max.x max.y max.z per box (24 bytes),
-//             no header: the box count is the file size / 24;
-//   .boxes64  the same in float64 (48 bytes per box);
-//   .npy      NumPy format 1.0-3.0, dtype '<f4' or '<f8', shape (N, 6) or (N, 2, 3), C order.
+// of meshes, one file per frame in natural name order, all .boxes (float32 min.xyz max.xyz
+// per box), .boxes64 (float64) or .npy (docs/usage.md "Your own data" has the formats).
 // Box i becomes two vertices, 2i its min corner and 2i + 1 its max corner, and the degenerate
 // face (2i, 2i+1, 2i+1): the box of that triangle (core/aabb.h triangle_box, min and max of
 // its corners) is the input box exactly, so every pipeline, the oracle, margins, swept boxes
@@ -15,7 +12,6 @@
 // empty frame; each error names the file, the frame and the box.
 #include <filesystem>
 #include <memory>
-#include <vector>
 
 #include "geometry/frame_source.h"
 
@@ -23,10 +19,6 @@ namespace cdb {
 
 // Whether the file's extension is one of a box frame's (.boxes, .boxes64, .npy; any case).
 bool is_box_frame_file(const std::filesystem::path& file);
-
-// One frame's boxes, 6 coordinates each in the order above, widened to double; `frame`
-// is only for messages. Throws cdb::Error naming the file, frame and box on bad data.
-void read_box_frame(const std::filesystem::path& file, uint32_t frame, std::vector<double>& boxes);
 
 std::unique_ptr<FrameSource> open_box_stream(const std::filesystem::path& dir);
 

@@ -38,16 +38,9 @@ DescriptorObject::DescriptorObject(const nlohmann::json& j, std::string where,
   std::string list;
   for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
   if (!j_.is_object()) fail(where_ + ": must be an object with " + list);
-  for (auto it = j_.begin(); it != j_.end(); ++it) {
-    bool ok = false;
-    for (const std::string& k : known) ok = ok || it.key() == k;
-    if (!ok) fail(at(it.key()) + ": unknown key (" + list + ")");
-  }
-}
-
-std::string DescriptorObject::at(const std::string& key) const {
-  // The root's `where` is "file: ", so its keys read "file: /key".
-  return where_ + "/" + key;
+  for (auto it = j_.begin(); it != j_.end(); ++it)
+    if (std::find(known.begin(), known.end(), it.key()) == known.end())
+      fail(at(it.key()) + ": unknown key (" + list + ")");
 }
 
 DescriptorObject DescriptorObject::object(const char* key, const std::vector<std::string>& known) const {
@@ -147,11 +140,9 @@ nlohmann::json parse_json_file(std::istream& in, const std::string& where) {
       case json::parse_event_t::key: {
         const std::string key = parsed.get<std::string>();
         std::vector<std::string>& keys = levels.back().keys;
-        if (duplicate.empty() && std::find(keys.begin(), keys.end(), key) != keys.end()) {
-          levels.back().keys.push_back(key);
+        if (duplicate.empty() && std::find(keys.begin(), keys.end(), key) != keys.end())
           duplicate = "key \"" + key + "\" appears twice in the object at " + json_path(levels) +
                       " (JSON readers keep only one of the two): remove one";
-        }
         keys.push_back(key);
         break;
       }
@@ -162,14 +153,10 @@ nlohmann::json parse_json_file(std::istream& in, const std::string& where) {
   json j;
   try {
     j = json::parse(in, callback);
-  } catch (const json::parse_error& e) {
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error
-    // while parsing object - ..." without the bracketed code.
-    const std::string what = e.what();
-    const size_t close = what.find("] ");
-    fail(where + ": malformed JSON: " + (close == std::string::npos ? what : what.substr(close + 2)));
   } catch (const json::exception& e) {
-    // 406: a number beyond double's range ("1e400").
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error
+    // while parsing object - ..." without the bracketed code; 406 is a number beyond
+    // double's range ("1e400").
     const std::string what = e.what();
     const size_t close = what.find("] ");
     fail(where + ": malformed JSON: " + (close == std::string::npos ? what : what.substr(close + 2)) +

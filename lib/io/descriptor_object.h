@@ -21,8 +21,9 @@ class DescriptorObject {
 
   bool has(const char* key) const { return j_.contains(key); }
   const nlohmann::json& raw(const char* key) const { return j_.at(key); }
-  // "file: /path/key": the prefix of every message about `key`.
-  std::string at(const std::string& key) const;
+  // "file: /path/key": the prefix of every message about `key` (the root's `where` is
+  // "file: ", so its keys read "file: /key").
+  std::string at(const std::string& key) const { return where_ + "/" + key; }
   const std::string& where() const { return where_; }
   DescriptorObject object(const char* key, const std::vector<std::string>& known) const;
 

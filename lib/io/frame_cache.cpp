@@ -18,26 +18,15 @@
 namespace cdb {
 namespace {
 
-uint64_t fnv1a(const std::string& s) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
 // This binary's identity: a rebuilt cdbench may simulate differently, even at one sha.
 std::string binary_identity() {
+  const std::string sha = build_info().git_sha;
   std::error_code ec;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  std::string id = build_info().git_sha;
-  if (!ec) {
-    const auto size = std::filesystem::file_size(exe, ec);
-    const auto time = std::filesystem::last_write_time(exe, ec);
-    if (!ec) {
-      id.append("/").append(std::to_string(size));
-      id.append("/").append(std::to_string(time.time_since_epoch().count()));
-    }
-  }
-  return id;
+  if (ec) return sha;
+  const auto size = std::filesystem::file_size(exe, ec);
+  const auto time = std::filesystem::last_write_time(exe, ec);
+  return ec ? sha : sha + "/" + std::to_string(size) + "/" + std::to_string(time.time_since_epoch().count());
 }
 
 // 03: a checksum of the positions (02 had none, 01 held floats).
@@ -102,23 +91,17 @@ class DiskCachedFrames final : public FrameSource {
     std::error_code ec;
     std::filesystem::create_directories(dir_, ec);
     const std::filesystem::path part = file.string() + ".part" + std::to_string(getpid());
-    {
-      std::ofstream os(part, std::ios::binary | std::ios::trunc);
-      FrameHeader h{};
-      std::copy(kMagic, kMagic + 8, h.magic);
-      h.frame = k;
-      h.num_vertices = uint32_t(v.size());
-      h.checksum = positions_checksum(v);
-      os.write(reinterpret_cast<const char*>(&h), sizeof h);
-      os.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(vec3d)));
-      if (!os) {
-        std::filesystem::remove(part, ec);
-        warn_once();
-        return;
-      }
-    }
-    std::filesystem::rename(part, file, ec);
-    if (ec) {
+    FrameHeader h{};
+    std::copy(kMagic, kMagic + 8, h.magic);
+    h.frame = k;
+    h.num_vertices = uint32_t(v.size());
+    h.checksum = positions_checksum(v);
+    std::ofstream os(part, std::ios::binary | std::ios::trunc);
+    os.write(reinterpret_cast<const char*>(&h), sizeof h);
+    os.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(vec3d)));
+    os.close();
+    if (os) std::filesystem::rename(part, file, ec);
+    if (!os || ec) {
       std::filesystem::remove(part, ec);
       warn_once();
     }
@@ -151,10 +134,10 @@ std::unique_ptr<FrameSource> cache_frames(std::unique_ptr<FrameSource> source, c
                                           const std::filesystem::path& dir, uint64_t max_bytes) {
   const uint64_t bytes = uint64_t(source->topology().num_vertices) * sizeof(vec3d) * source->num_frames();
   if (dir.empty() || bytes > max_bytes) return source;
-  char key[17];
-  std::snprintf(key, sizeof key, "%016llx",
-                static_cast<unsigned long long>(fnv1a(identity + "\n" + binary_identity())));
-  return std::make_unique<DiskCachedFrames>(std::move(source), dir / "frames" / key);
+  const std::string key = identity + "\n" + binary_identity();
+  ContentHash h;
+  h.add_bytes(key.data(), key.size());
+  return std::make_unique<DiskCachedFrames>(std::move(source), dir / "frames" / hash_hex(h.value()));
 }
 
 }  // namespace cdb

@@ -29,6 +29,14 @@ void silence_library_errors() {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
 }
 
+namespace {
+
+struct LibraryFailure {
+  std::string reason;    // the system's text for the errno when there is one, else HDF5's innermost
+  int error_number = 0;  // the errno HDF5 recorded, 0 when none
+};
+
+// What HDF5's current error stack says went wrong, and clears it.
 LibraryFailure library_failure() {
   LibraryFailure failure;
   // Walking downward ends at the deepest entry, the most specific reason. The POSIX driver
@@ -53,25 +61,6 @@ LibraryFailure library_failure() {
   }
   return failure;
 }
-
-std::string library_reason() { return library_failure().reason; }
-
-hid_t check(hid_t result, const std::string& where, const char* what) {
-  if (result < 0) {
-    const LibraryFailure f = library_failure();
-    const std::string message = where + ": " + what + " failed" + (f.reason.empty() ? "" : ": " + f.reason);
-    if (f.error_number) throw IoError(message, f.reason);
-    fail(message);
-  }
-  return result;
-}
-
-Handle own(hid_t id, Handle::Closer close, const std::string& where, const char* what) {
-  check(id, where, what);
-  return Handle(id, close);
-}
-
-namespace {
 
 // A scalar attribute, replacing one of the same name.
 void write_scalar(hid_t loc, const char* name, hid_t file_type, hid_t mem_type, const void* value,
@@ -101,6 +90,21 @@ T read_number(hid_t loc, const char* name, hid_t mem_type, const std::string& wh
 
 }  // namespace
 
+hid_t check(hid_t result, const std::string& where, const char* what) {
+  if (result < 0) {
+    const LibraryFailure f = library_failure();
+    const std::string message = where + ": " + what + " failed" + (f.reason.empty() ? "" : ": " + f.reason);
+    if (f.error_number) throw IoError(message, f.reason);
+    fail(message);
+  }
+  return result;
+}
+
+Handle own(hid_t id, Handle::Closer close, const std::string& where, const char* what) {
+  check(id, where, what);
+  return Handle(id, close);
+}
+
 void write_attr(hid_t loc, const char* name, const std::string& value, const std::string& where) {
   const std::string at = where + " attribute '" + name + "'";
   Handle type = own(H5Tcopy(H5T_C_S1), H5Tclose, at, "copy string type");
@@ -108,10 +112,6 @@ void write_attr(hid_t loc, const char* name, const std::string& value, const std
   check(H5Tset_cset(type.get(), H5T_CSET_UTF8), at, "set character set");
   const char* text = value.c_str();
   write_scalar(loc, name, type.get(), type.get(), &text, where);
-}
-
-void write_attr(hid_t loc, const char* name, const char* value, const std::string& where) {
-  write_attr(loc, name, std::string(value), where);
 }
 
 void write_attr(hid_t loc, const char* name, double value, const std::string& where) {

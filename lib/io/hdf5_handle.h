@@ -49,16 +49,6 @@ class Handle {
 // system to close, since flushing HDF5's cache again after a failed write crashes.
 void silence_library_errors();
 
-// What HDF5's current error stack says went wrong, and clears it.
-struct LibraryFailure {
-  std::string reason;  // the system's text for the errno when there is one, else HDF5's innermost
-  int error_number = 0;  // the errno HDF5 recorded, 0 when none
-};
-LibraryFailure library_failure();
-
-// The reason of library_failure() ("" when the stack is empty).
-std::string library_reason();
-
 // Throws "WHERE: WHAT failed: <reason>" when an HDF5 call returned a negative value: an
 // IoError when the failure carries an errno, Error otherwise.
 hid_t check(hid_t result, const std::string& where, const char* what);
@@ -69,7 +59,6 @@ Handle own(hid_t id, Handle::Closer close, const std::string& where, const char*
 // Attributes on a file, group or dataset. A string attribute is variable-length UTF-8 and
 // replaces one of the same name; numbers are stored in the type given.
 void write_attr(hid_t loc, const char* name, const std::string& value, const std::string& where);
-void write_attr(hid_t loc, const char* name, const char* value, const std::string& where);
 void write_attr(hid_t loc, const char* name, double value, const std::string& where);
 void write_attr(hid_t loc, const char* name, int64_t value, const std::string& where);
 void write_attr(hid_t loc, const char* name, uint64_t value, const std::string& where);

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/float_bits.h"
+#include "io/input_files.h"
 
 namespace cdb {
 namespace {
@@ -47,8 +48,7 @@ void flatten(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent
                              : node->mName.length ? node->mName.C_Str()
                                                   : file_stem;
     std::string name = stem;
-    for (int dup = 2; names.count(name); ++dup) name = stem + "#" + std::to_string(dup);
-    names.insert(name);
+    for (int dup = 2; !names.insert(name).second; ++dup) name = stem + "#" + std::to_string(dup);
     out.objects.push_back({name, first_face, num_faces, false});
   }
   for (unsigned c = 0; c < node->mNumChildren; ++c)
@@ -70,8 +70,6 @@ FlatKeyframe import_keyframe(const std::string& file, uint32_t keyframe) {
   if (flat.faces.empty()) fail(file + ": keyframe " + std::to_string(keyframe) + ": no triangles");
   return flat;
 }
-
-uint32_t read_u32_le(const unsigned char* p) { return p[0] | p[1] << 8 | p[2] << 16 | uint32_t(p[3]) << 24; }
 
 class KeyframeMesh final : public FrameSource {
  public:
@@ -178,16 +176,16 @@ uint32_t keyframes_in_header(const std::filesystem::path& file) {
   // MD2: "IDP2", then 32-bit little-endian fields; the frame count is the 11th. MD3: "IDP3",
   // version, a 64-byte name, flags, then the frame count.
   std::ifstream in(file, std::ios::binary);
-  unsigned char header[80] = {};
-  in.read(reinterpret_cast<char*>(header), sizeof header);
+  char header[80] = {};
+  in.read(header, sizeof header);
   const auto got = in.gcount();
   if (got >= 4 && std::memcmp(header, "IDP2", 4) == 0) {
     if (got < 44) fail(file.string() + ": MD2 header cut short");
-    return read_u32_le(header + 40);
+    return uint32_t(little_endian(header + 40, 4));
   }
   if (got >= 4 && std::memcmp(header, "IDP3", 4) == 0) {
     if (got < 80) fail(file.string() + ": MD3 header cut short");
-    return read_u32_le(header + 76);
+    return uint32_t(little_endian(header + 76, 4));
   }
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "io/input_files.h"
 
 namespace cdb {
 namespace {
@@ -102,12 +103,6 @@ class DictParser {
   size_t p_ = 0;
 };
 
-uint32_t little_endian(std::string_view b, size_t at, size_t bytes) {
-  uint32_t v = 0;
-  for (size_t i = 0; i < bytes; ++i) v |= uint32_t(uint8_t(b[at + i])) << (8 * i);
-  return v;
-}
-
 }  // namespace
 
 NpyHeader parse_npy_header(std::string_view bytes, const std::string& where) {
@@ -121,7 +116,7 @@ NpyHeader parse_npy_header(std::string_view bytes, const std::string& where) {
   // Version 1 stores the header length in 2 bytes, versions 2 and 3 in 4.
   const size_t length_bytes = major == 1 ? 2 : 4, text_at = 8 + length_bytes;
   if (bytes.size() < text_at) fail(where + ": truncated .npy header");
-  const size_t text_length = little_endian(bytes, 8, length_bytes);
+  const size_t text_length = little_endian(bytes.data() + 8, length_bytes);
   if (bytes.size() < text_at + text_length)
     fail(where + ": truncated .npy header (" + std::to_string(text_length) + " header bytes announced, " +
          std::to_string(bytes.size() - text_at) + " in the file)");

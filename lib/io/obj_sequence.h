@@ -1,6 +1,6 @@
 #pragma once
 // A directory of OBJ files, one per frame in natural name order (f2.obj before f10.obj;
-// io/natural_order.h), read by io/obj_reader.h. Frame 0 fixes the topology; every later
+// io/input_files.h), read by io/obj_reader.h. Frame 0 fixes the topology; every later
 // frame must match it (the same faces, vertex count) and be finite, which is checked for all
 // frames when the directory is opened.
 #include <cstdint>
@@ -14,6 +14,11 @@
 namespace cdb {
 
 std::unique_ptr<FrameSource> open_mesh_sequence(const std::filesystem::path& dir);
+
+// Writes a scene's frames as such a directory (frame_0000.obj, ...; created if needed,
+// frames of the same names overwritten) that reads back to the same triangles in the same
+// order and the same positions. Throws naming the file on a write failure.
+void write_obj_sequence(const FrameSource& source, const std::filesystem::path& out_dir);
 
 // Reads one mesh file: all its meshes' triangles in file order, no vertex merging, no
 // dropping of degenerate faces; polygons are triangulated (their count is returned, so the

@@ -4,8 +4,6 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <memory>
 #include <optional>
@@ -13,7 +11,7 @@
 
 #include "core/error.h"
 #include "core/pair_set.h"
-#include "io/natural_order.h"
+#include "io/input_files.h"
 
 namespace cdb {
 namespace {
@@ -45,14 +43,6 @@ void check_pair(uint32_t i, uint32_t j, uint32_t num_faces, const std::filesyste
       fail(where(file, format, entry) + ": triangle " + (t == UINT32_MAX ? std::string(">= 2^32-1") : std::to_string(t)) +
            " out of range (the scene has " + std::to_string(num_faces) + " triangles, 0-based)");
   if (i == j) fail(where(file, format, entry) + ": triangle " + std::to_string(i) + " paired with itself");
-}
-
-std::string read_whole(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail(file.string() + ": cannot open pairs file");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail(file.string() + ": read failed");
-  return bytes;
 }
 
 void parse_text(const std::string& text, uint32_t num_faces, const std::filesystem::path& file,
@@ -92,10 +82,10 @@ void parse_binary(const std::string& bytes, uint32_t num_faces, const std::files
   const size_t n = bytes.size() / 8;
   out.reserve(n);
   for (size_t k = 0; k < n; ++k) {
-    uint32_t ij[2];
-    std::memcpy(ij, bytes.data() + 8 * k, sizeof ij);
-    check_pair(ij[0], ij[1], num_faces, file, PairsFormat::binary, k);
-    out.push_back(make_pair_ordered(ij[0], ij[1]));
+    const uint32_t i = uint32_t(little_endian(bytes.data() + 8 * k, 4));
+    const uint32_t j = uint32_t(little_endian(bytes.data() + 8 * k + 4, 4));
+    check_pair(i, j, num_faces, file, PairsFormat::binary, k);
+    out.push_back(make_pair_ordered(i, j));
   }
 }
 
@@ -111,11 +101,12 @@ std::optional<uint32_t> frame_number(const std::string& name) {
   return n;
 }
 
-}  // namespace
-
+// .bin is binary, any other name text.
 PairsFormat pairs_format_of(const std::filesystem::path& file) {
   return file.extension() == ".bin" ? PairsFormat::binary : PairsFormat::text;
 }
+
+}  // namespace
 
 std::string pairs_file_name(uint32_t frame, PairsFormat format) {
   char name[32];
@@ -124,7 +115,7 @@ std::string pairs_file_name(uint32_t frame, PairsFormat format) {
 }
 
 PairsRead read_pairs_file(const std::filesystem::path& file, uint32_t num_faces, size_t keep) {
-  const std::string bytes = read_whole(file);
+  const std::string bytes = read_file(file, " pairs file");
   PairsRead r;
   std::vector<PrimPair> listed;
   if (pairs_format_of(file) == PairsFormat::binary)

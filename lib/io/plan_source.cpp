@@ -4,10 +4,10 @@
 #include <charconv>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "core/error.h"
+#include "io/input_files.h"
 #include "io/results_reader.h"
 
 namespace cdb {
@@ -20,14 +20,6 @@ bool is_hdf5(const fs::path& path) {
   char head[8] = {};
   std::ifstream in(path, std::ios::binary);
   return in.read(head, sizeof head) && std::equal(head, head + 8, kSignature);
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path.string() + ": cannot open the plan file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 RecordedPlan results_plan(const std::string& file, const std::vector<std::string>& selector,
@@ -73,7 +65,7 @@ RecordedPlan load_plan(const std::string& spec, const std::string& pipeline) {
   if (is_hdf5(file)) return results_plan(file, selector, pipeline);
   if (!selector.empty())
     fail(spec + ": " + file + " is a plan file, not a results file: only a results file takes :PIPELINE[:PASS]");
-  return parse_plan(read_text(file), file);
+  return parse_plan(read_file(file, " the plan file"), file);
 }
 
 }  // namespace cdb

@@ -11,8 +11,7 @@
 #include "core/error.h"
 #include "core/phase.h"
 #include "core/utc_time.h"
-#include "io/frame_columns.h"
-#include "io/plan_columns.h"
+#include "io/results_columns.h"
 #include "io/scene_label.h"
 
 namespace cdb {
@@ -155,14 +154,19 @@ void ResultsFile::create(const RunInfo& info) {
   last_flush_ = std::chrono::steady_clock::now();
 }
 
-void ResultsFile::append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory) {
-  if (!file_) fail(where_ + ": frame " + std::to_string(frame) + ": the results file is already closed");
+template <class Write>
+void ResultsFile::writing(const std::string& what, Write write) {
+  if (!file_) fail(where_ + ": " + what + (what.empty() ? "" : ": ") + "the results file is already closed");
   try {
-    append_row(frame_columns(), columns_, rows_, FrameRow{frame, stats, memory}, "frames",
-               "frame " + std::to_string(frame));
+    write();
   } catch (const h5::IoError& e) {
     io_failed(e);
   }
+}
+
+void ResultsFile::append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory) {
+  const std::string row = "frame " + std::to_string(frame);
+  writing(row, [&] { append_row(frame_columns(), columns_, rows_, FrameRow{frame, stats, memory}, "frames", row); });
 }
 
 template <class Row>
@@ -194,37 +198,26 @@ void ResultsFile::append_row(const std::vector<TableColumn<Row>>& cols, std::vec
     h5::Handle file_space = own(H5Dget_space(ds), H5Sclose, at, "get dataspace");
     check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &start, nullptr, &one, nullptr), at,
           "select row");
+    // The value in the memory type HDF5 converts to the column's.
     const ColumnValue v = cols[i].value(row);
-    herr_t written = -1;
-    switch (cols[i].type) {
-      case ColumnType::u32: {
-        const uint64_t x = std::get<uint64_t>(v);
-        if (x > std::numeric_limits<uint32_t>::max()) fail(at + ": value " + std::to_string(x) + " does not fit 32 bits");
-        const uint32_t narrow = uint32_t(x);
-        written = H5Dwrite(ds, H5T_NATIVE_UINT32, mem_space.get(), file_space.get(), H5P_DEFAULT, &narrow);
-        break;
-      }
-      case ColumnType::u64: {
-        const uint64_t x = std::get<uint64_t>(v);
-        written = H5Dwrite(ds, H5T_NATIVE_UINT64, mem_space.get(), file_space.get(), H5P_DEFAULT, &x);
-        break;
-      }
-      case ColumnType::f64: {
-        const double x = std::get<double>(v);
-        written = H5Dwrite(ds, H5T_NATIVE_DOUBLE, mem_space.get(), file_space.get(), H5P_DEFAULT, &x);
-        break;
-      }
-      case ColumnType::text: {
-        const std::string& s = std::get<std::string>(v);
-        if (s.size() > kTextColumnBytes)
-          fail(at + ": '" + s + "' is longer than " + std::to_string(kTextColumnBytes) + " bytes");
-        char cell[kTextColumnBytes] = {};
-        s.copy(cell, s.size());
-        written = H5Dwrite(ds, text_type_.get(), mem_space.get(), file_space.get(), H5P_DEFAULT, cell);
-        break;
-      }
+    uint32_t narrow = 0;
+    char cell[kTextColumnBytes] = {};
+    hid_t type = H5T_NATIVE_UINT64;
+    const void* data = std::get_if<uint64_t>(&v);
+    if (cols[i].type == ColumnType::u32) {
+      const uint64_t x = std::get<uint64_t>(v);
+      if (x > std::numeric_limits<uint32_t>::max()) fail(at + ": value " + std::to_string(x) + " does not fit 32 bits");
+      narrow = uint32_t(x), type = H5T_NATIVE_UINT32, data = &narrow;
+    } else if (cols[i].type == ColumnType::f64) {
+      type = H5T_NATIVE_DOUBLE, data = &std::get<double>(v);
+    } else if (cols[i].type == ColumnType::text) {
+      const std::string& text = std::get<std::string>(v);
+      if (text.size() > kTextColumnBytes)
+        fail(at + ": '" + text + "' is longer than " + std::to_string(kTextColumnBytes) + " bytes");
+      text.copy(cell, text.size());
+      type = text_type_.get(), data = cell;
     }
-    check(written, at, "write");
+    check(H5Dwrite(ds, type, mem_space.get(), file_space.get(), H5P_DEFAULT, data), at, "write");
   }
   ++rows;
   flush_now_and_then();
@@ -232,8 +225,7 @@ void ResultsFile::append_row(const std::vector<TableColumn<Row>>& cols, std::vec
 
 void ResultsFile::append_plan_step(uint32_t pass, uint32_t frame, const PlanStep& step) {
   const std::string row = "pass " + std::to_string(pass) + " frame " + std::to_string(frame);
-  if (!file_) fail(where_ + ": " + row + ": the results file is already closed");
-  try {
+  writing(row, [&] {
     if (!plans_) {
       plans_ = create_group(file_.get(), "plans", where_);
       write_attr(plans_.get(), "description",
@@ -242,42 +234,33 @@ void ResultsFile::append_plan_step(uint32_t pass, uint32_t frame, const PlanStep
       plan_columns_ = create_columns(plans_.get(), "plans", plan_columns());
     }
     append_row(plan_columns(), plan_columns_, plan_rows_, PlanRow{pass, frame, step}, "plans", row);
-  } catch (const h5::IoError& e) {
-    io_failed(e);
-  }
+  });
 }
 
 void ResultsFile::write_pairs(uint32_t frame, const std::vector<PrimPair>& pairs) {
-  if (!file_) fail(where_ + ": frame " + std::to_string(frame) + ": the results file is already closed");
-  try {
-    write_pair_rows(frame, pairs);
-  } catch (const h5::IoError& e) {
-    io_failed(e);
-  }
-}
-
-void ResultsFile::write_pair_rows(uint32_t frame, const std::vector<PrimPair>& pairs) {
-  if (!pairs_) {
-    pairs_ = create_group(file_.get(), "pairs", where_);
-    write_attr(pairs_.get(), "description",
-               "per frame: sorted pairs (a, b), a < b, of 0-based triangle indices in the input's face order",
-               where_ + ": /pairs");
-  }
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04u", frame);
-  const std::string at = where_ + ": /pairs/" + name;
-  const hsize_t dims[2] = {pairs.size(), 2}, maxdims[2] = {H5S_UNLIMITED, 2};
-  const hsize_t chunk[2] = {std::max<hsize_t>(1, std::min<hsize_t>(pairs.size(), 1 << 16)), 2};
-  h5::Handle space = own(H5Screate_simple(2, dims, maxdims), H5Sclose, at, "create dataspace");
-  h5::Handle dcpl = chunked_layout(2, chunk, at);
-  h5::Handle ds = own(H5Dcreate2(pairs_.get(), name, H5T_STD_U32LE, space.get(), H5P_DEFAULT, dcpl.get(),
-                                 H5P_DEFAULT),
-                      H5Dclose, at, "create dataset");
-  static_assert(sizeof(PrimPair) == 2 * sizeof(uint32_t), "pairs are written as (n, 2) uint32");
-  if (!pairs.empty())
-    check(H5Dwrite(ds.get(), H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, pairs.data()), at, "write");
-  write_attr(ds.get(), "frame", uint64_t(frame), at);
-  flush_now_and_then();
+  writing("frame " + std::to_string(frame), [&] {
+    if (!pairs_) {
+      pairs_ = create_group(file_.get(), "pairs", where_);
+      write_attr(pairs_.get(), "description",
+                 "per frame: sorted pairs (a, b), a < b, of 0-based triangle indices in the input's face order",
+                 where_ + ": /pairs");
+    }
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04u", frame);
+    const std::string at = where_ + ": /pairs/" + name;
+    const hsize_t dims[2] = {pairs.size(), 2}, maxdims[2] = {H5S_UNLIMITED, 2};
+    const hsize_t chunk[2] = {std::max<hsize_t>(1, std::min<hsize_t>(pairs.size(), 1 << 16)), 2};
+    h5::Handle space = own(H5Screate_simple(2, dims, maxdims), H5Sclose, at, "create dataspace");
+    h5::Handle dcpl = chunked_layout(2, chunk, at);
+    h5::Handle ds = own(H5Dcreate2(pairs_.get(), name, H5T_STD_U32LE, space.get(), H5P_DEFAULT, dcpl.get(),
+                                   H5P_DEFAULT),
+                        H5Dclose, at, "create dataset");
+    static_assert(sizeof(PrimPair) == 2 * sizeof(uint32_t), "pairs are written as (n, 2) uint32");
+    if (!pairs.empty())
+      check(H5Dwrite(ds.get(), H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, pairs.data()), at, "write");
+    write_attr(ds.get(), "frame", uint64_t(frame), at);
+    flush_now_and_then();
+  });
 }
 
 void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) {
@@ -328,15 +311,12 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
 }
 
 void ResultsFile::finish(const RunSummary& summary, const MemoryStats& memory, const RunFindings& findings) {
-  if (!file_) fail(where_ + ": the results file is already closed");
-  try {
+  writing("", [&] {
     write_summary(summary, memory);
     write_attr(file_.get(), "input_hash", findings.input_hash, where_ + ": /");
     write_attr(file_.get(), "noise_warning", findings.noise_warning, where_ + ": /");
     close("complete");
-  } catch (const h5::IoError& e) {
-    io_failed(e);
-  }
+  });
   if (path_ == target_) return;
   // Complete: only now does it take the place of the file it replaces.
   std::error_code ec;
@@ -351,26 +331,24 @@ void ResultsFile::finish(const RunSummary& summary, const MemoryStats& memory, c
 void ResultsFile::abandon(const RunSummary& summary, const MemoryStats& memory,
                           const std::string& error) noexcept {
   if (!file_) return;
-  try {
-    write_attr(file_.get(), "error", error, where_ + ": /");
-    write_summary(summary, memory);
-  } catch (const h5::IoError& e) {
-    broken_ = true;
-    forget_handles();
-    std::fprintf(stderr, "cdbench: writing results to %s failed: %s\n", where_.c_str(), e.reason.c_str());
-    return;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "cdbench: %s\n", e.what());
-  }
-  try {
-    close("incomplete");
-  } catch (const h5::IoError& e) {
-    broken_ = true;
-    forget_handles();
-    std::fprintf(stderr, "cdbench: writing results to %s failed: %s\n", where_.c_str(), e.reason.c_str());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "cdbench: %s\n", e.what());
-  }
+  // Each step's failure is printed; after a system-side one nothing more can be written.
+  const auto attempt = [&](auto step) {
+    try {
+      step();
+    } catch (const h5::IoError& e) {
+      broken_ = true;
+      forget_handles();
+      std::fprintf(stderr, "cdbench: writing results to %s failed: %s\n", where_.c_str(), e.reason.c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "cdbench: %s\n", e.what());
+    }
+    return !broken_;
+  };
+  if (attempt([&] {
+        write_attr(file_.get(), "error", error, where_ + ": /");
+        write_summary(summary, memory);
+      }))
+    attempt([&] { close("incomplete"); });
 }
 
 void ResultsFile::close(const char* status) {
@@ -384,12 +362,7 @@ void ResultsFile::close(const char* status) {
   frames_.reset();
   text_type_.reset();
   // Closed once: the id is gone whether or not HDF5 reports a failure.
-  if (!file_.reset()) {
-    const h5::LibraryFailure f = h5::library_failure();
-    const std::string message = where_ + ": closing the results file failed: " + f.reason;
-    if (f.error_number) throw h5::IoError(message, f.reason);
-    fail(message);
-  }
+  check(file_.reset() ? 0 : -1, where_, "closing the results file");
 }
 
 void ResultsFile::io_failed(const h5::IoError& e) {

@@ -16,7 +16,7 @@
 #include "core/pair.h"
 #include "exec/memory.h"
 #include "io/hdf5_handle.h"
-#include "io/table_column.h"
+#include "io/results_columns.h"
 #include "pipeline/pipeline.h"
 #include "pipeline/run_summary.h"
 
@@ -113,6 +113,10 @@ class ResultsFile {
 
  private:
   void create(const RunInfo& info);
+  // Runs `write` on the open file, failing as io_failed does on a system-side error; `what`
+  // names the write ("frame 3") when the file is already closed.
+  template <class Write>
+  void writing(const std::string& what, Write write);
   // One row appended to each of `datasets`, the columns `cols` of `row`; `at` names the
   // row in messages ("/frames/<column> frame 3").
   template <class Row>
@@ -121,7 +125,6 @@ class ResultsFile {
   template <class Row>
   std::vector<h5::Handle> create_columns(hid_t group, const std::string& group_name,
                                          const std::vector<TableColumn<Row>>& cols);
-  void write_pair_rows(uint32_t frame, const std::vector<PrimPair>& pairs);
   void write_summary(const RunSummary& summary, const MemoryStats& memory);
   void close(const char* status);
   void flush_now_and_then();

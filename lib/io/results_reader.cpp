@@ -9,16 +9,69 @@
 #include "io/scene_label.h"
 
 namespace cdb {
+namespace {
+
+// The length of a table's column.
+hsize_t rows_of(hid_t dataset, const std::string& ds) {
+  h5::Handle space = h5::own(H5Dget_space(dataset), H5Sclose, ds, "get dataspace");
+  hsize_t rows = 0;
+  h5::check(H5Sget_simple_extent_dims(space.get(), &rows, nullptr), ds, "get size");
+  return rows;
+}
+
+// One column of a table (/frames, /plans) as `T`, converted by HDF5 from whatever numeric
+// type the file stores.
+template <class T>
+std::vector<T> read_column(hid_t root, const std::string& where, const char* name, hid_t memory_type,
+                           const std::string& group = "frames") {
+  using h5::own;
+  const std::string path = group + "/" + name, ds = where + ": /" + path;
+  h5::Handle d = own(H5Dopen2(root, path.c_str(), H5P_DEFAULT), H5Dclose, ds, "open dataset");
+  const hsize_t rows = rows_of(d.get(), ds);
+  std::vector<T> v(rows);
+  if (rows) h5::check(H5Dread(d.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), ds, "read");
+  return v;
+}
+
+// A text column (fixed-width strings, NUL-padded) of a table.
+std::vector<std::string> read_text_column(hid_t root, const std::string& where, const char* name,
+                                          const std::string& group) {
+  using h5::own;
+  const std::string path = group + "/" + name, ds = where + ": /" + path;
+  h5::Handle d = own(H5Dopen2(root, path.c_str(), H5P_DEFAULT), H5Dclose, ds, "open dataset");
+  h5::Handle type = own(H5Dget_type(d.get()), H5Tclose, ds, "get type");
+  const size_t width = H5Tget_size(type.get());
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) != 0 || width == 0 ||
+      width > 4 * kTextColumnBytes)
+    fail(ds + ": not a column of fixed-width strings");
+  h5::Handle memory = own(H5Tcopy(H5T_C_S1), H5Tclose, ds, "copy string type");
+  h5::check(H5Tset_size(memory.get(), width), ds, "set string size");
+  h5::check(H5Tset_strpad(memory.get(), H5T_STR_NULLPAD), ds, "set string padding");
+  const hsize_t rows = rows_of(d.get(), ds);
+  std::vector<char> cells(rows * width);
+  if (rows) h5::check(H5Dread(d.get(), memory.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, cells.data()), ds, "read");
+  std::vector<std::string> v;
+  for (hsize_t i = 0; i < rows; ++i) {
+    const char* cell = cells.data() + i * width;
+    v.emplace_back(cell, std::find(cell, cell + width, '\0'));
+  }
+  return v;
+}
+
+// A results file opened for reading; `where` names it in messages.
+h5::Handle open_results(const std::filesystem::path& path, const std::string& where) {
+  h5::silence_library_errors();
+  if (!std::filesystem::is_regular_file(path)) fail(where + ": no such file");
+  return h5::own(H5Fopen(where.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, where, "open results file");
+}
+
+}  // namespace
 
 ResultsOverview read_results_overview(const std::filesystem::path& path) {
-  using h5::own;
-  h5::silence_library_errors();
   ResultsOverview r;
   r.path = path.string();
   const std::string where = r.path;
-  if (!std::filesystem::is_regular_file(path)) fail(where + ": no such file");
-  h5::Handle file = own(H5Fopen(where.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, where,
-                        "open results file");
+  const h5::Handle file = open_results(path, where);
   const hid_t root = file.get();
   const std::string at = where + ": /";
   if (!h5::has_attr(root, "schema_version")) fail(where + ": not a cdbench results file (no schema_version)");
@@ -65,19 +118,14 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
     r.scene_label = scene_label(r.scene, parse_set_overrides(sets));
   }
 
-  {
-    const std::string ds = where + ": /frames/frame";
-    h5::Handle d = own(H5Dopen2(root, "frames/frame", H5P_DEFAULT), H5Dclose, ds, "open dataset");
-    h5::Handle space = own(H5Dget_space(d.get()), H5Sclose, ds, "get dataspace");
-    hsize_t rows = 0;
-    h5::check(H5Sget_simple_extent_dims(space.get(), &rows, nullptr), ds, "get size");
-    r.frames_written = rows;
-  }
+  const std::string ds = where + ": /frames/frame";
+  const h5::Handle frames = h5::own(H5Dopen2(root, "frames/frame", H5P_DEFAULT), H5Dclose, ds, "open dataset");
+  r.frames_written = rows_of(frames.get(), ds);
 
   r.has_plans = H5Lexists(root, "plans", H5P_DEFAULT) > 0;
   if (H5Lexists(root, "summary", H5P_DEFAULT) <= 0) return r;
   const std::string st = where + ": /summary";
-  h5::Handle summary = own(H5Gopen2(root, "summary", H5P_DEFAULT), H5Gclose, st, "open group");
+  h5::Handle summary = h5::own(H5Gopen2(root, "summary", H5P_DEFAULT), H5Gclose, st, "open group");
   const hid_t s = summary.get();
   r.has_summary = true;
   r.measured_frames = uint64_t(h5::read_int_attr(s, "measured_frames", st));
@@ -118,63 +166,6 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   }
   return r;
 }
-
-}  // namespace cdb
-
-namespace cdb {
-namespace {
-
-// One column of a table (/frames, /plans) as `T`, converted by HDF5 from whatever numeric
-// type the file stores.
-template <class T>
-std::vector<T> read_column(hid_t root, const std::string& where, const char* name, hid_t memory_type,
-                           const std::string& group = "frames") {
-  using h5::own;
-  const std::string path = group + "/" + name, ds = where + ": /" + path;
-  h5::Handle d = own(H5Dopen2(root, path.c_str(), H5P_DEFAULT), H5Dclose, ds, "open dataset");
-  h5::Handle space = own(H5Dget_space(d.get()), H5Sclose, ds, "get dataspace");
-  hsize_t rows = 0;
-  h5::check(H5Sget_simple_extent_dims(space.get(), &rows, nullptr), ds, "get size");
-  std::vector<T> v(rows);
-  if (rows) h5::check(H5Dread(d.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), ds, "read");
-  return v;
-}
-
-// A text column (fixed-width strings, NUL-padded) of a table.
-std::vector<std::string> read_text_column(hid_t root, const std::string& where, const char* name,
-                                          const std::string& group) {
-  using h5::own;
-  const std::string path = group + "/" + name, ds = where + ": /" + path;
-  h5::Handle d = own(H5Dopen2(root, path.c_str(), H5P_DEFAULT), H5Dclose, ds, "open dataset");
-  h5::Handle type = own(H5Dget_type(d.get()), H5Tclose, ds, "get type");
-  const size_t width = H5Tget_size(type.get());
-  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) != 0 || width == 0 ||
-      width > 4 * kTextColumnBytes)
-    fail(ds + ": not a column of fixed-width strings");
-  h5::Handle memory = own(H5Tcopy(H5T_C_S1), H5Tclose, ds, "copy string type");
-  h5::check(H5Tset_size(memory.get(), width), ds, "set string size");
-  h5::check(H5Tset_strpad(memory.get(), H5T_STR_NULLPAD), ds, "set string padding");
-  h5::Handle space = own(H5Dget_space(d.get()), H5Sclose, ds, "get dataspace");
-  hsize_t rows = 0;
-  h5::check(H5Sget_simple_extent_dims(space.get(), &rows, nullptr), ds, "get size");
-  std::vector<char> cells(rows * width);
-  if (rows) h5::check(H5Dread(d.get(), memory.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, cells.data()), ds, "read");
-  std::vector<std::string> v;
-  for (hsize_t i = 0; i < rows; ++i) {
-    const char* cell = cells.data() + i * width;
-    v.emplace_back(cell, std::find(cell, cell + width, '\0'));
-  }
-  return v;
-}
-
-// A results file opened for reading; `where` names it in messages.
-h5::Handle open_results(const std::filesystem::path& path, const std::string& where) {
-  h5::silence_library_errors();
-  if (!std::filesystem::is_regular_file(path)) fail(where + ": no such file");
-  return h5::own(H5Fopen(where.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, where, "open results file");
-}
-
-}  // namespace
 
 ResultsFrames read_results_frames(const std::filesystem::path& path) {
   const std::string where = path.string();

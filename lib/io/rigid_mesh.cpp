@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "geometry/position_rounding.h"
 #include "io/keyframe_mesh.h"
-#include "io/natural_order.h"
+#include "io/input_files.h"
 #include "io/obj_sequence.h"
 #include "io/quaternion.h"
 

@@ -16,7 +16,7 @@
 #include "io/composed_scene.h"
 #include "io/descriptor_object.h"
 #include "io/frame_cache.h"
-#include "io/natural_order.h"
+#include "io/input_files.h"
 #include "io/keyframe_mesh.h"
 #include "io/obj_sequence.h"
 #include "io/placed_scene.h"
@@ -111,7 +111,6 @@ std::unique_ptr<FrameSource> declare_queries(std::unique_ptr<FrameSource> source
     for (size_t k = 0; k < objs.size(); ++k) {
       const std::string at = file + ": /objects/" + std::to_string(k);
       const auto& o = objs[k];
-      if (!o.is_object()) fail(at + ": must be an object");
       const DescriptorObject object(o, at, {"name", "faces", "rigid"});
       std::string name = object.text("name");
       if (!o.contains("faces") || !o["faces"].is_array() || o["faces"].size() != 2 ||
@@ -154,21 +153,6 @@ std::unique_ptr<FrameSource> declare_queries(std::unique_ptr<FrameSource> source
   return std::make_unique<DeclaredQueries>(std::move(source), std::move(topo));
 }
 
-// The keys of the sources that appear both at the top level and as parts.
-const std::vector<std::string>& animation_keys() {
-  static const std::vector<std::string> keys = {"file", "fps", "frames", "start", "clip"};
-  return keys;
-}
-const std::vector<std::string>& keyframe_keys() {
-  static const std::vector<std::string> keys = {"file", "first", "frames", "subframes"};
-  return keys;
-}
-const std::vector<std::string>& crowd_keys() {
-  static const std::vector<std::string> keys = {"animation", "count", "columns", "spacing",
-                                                "phase_step", "up", "frames", "objects"};
-  return keys;
-}
-
 // "animation": {"file", "fps", "frames", "start", "clip"}: one animated file sampled at fps.
 AnimationOptions animation_options(const DescriptorObject& a, const std::filesystem::path& descriptor) {
   AnimationOptions o;
@@ -186,11 +170,6 @@ AnimationOptions animation_options(const DescriptorObject& a, const std::filesys
     else fail(a.at("clip") + ": must be a clip index or name");
   }
   return o;
-}
-
-std::unique_ptr<FrameSource> open_animation(const DescriptorObject& a, const std::filesystem::path& descriptor) {
-  const AnimationOptions o = animation_options(a, descriptor);
-  return opened_at(a.where(), [&] { return open_animated_mesh(o); });
 }
 
 // "keyframes": {"file", "first", "frames", "subframes"}: a per-vertex keyframe file (MD2, MD3, ...).
@@ -255,6 +234,45 @@ std::unique_ptr<FrameSource> open_directory_key(const DescriptorObject& o, const
   return opened_at(o.at(key), [&] {
     return std::string(key) == "boxes" ? open_box_stream(dir) : open_frame_directory(dir);
   });
+}
+
+// The source `o` names by its one key among generator (with params), animation,
+// keyframes, crowd, frames and boxes; `name` is the scene's or the part's and `where` names
+// it in a generator's errors. `overrides` (--set) replace a generator's parameters or a
+// crowd's keys. At the top level (`parameters` given) a generator's parameters are kept
+// and its frames cached on disk.
+std::unique_ptr<FrameSource> open_source(const DescriptorObject& o, const std::filesystem::path& descriptor,
+                                         const std::string& name, const std::string& where,
+                                         const nlohmann::json& overrides = nlohmann::json::object(),
+                                         std::vector<GeneratorParameter>* parameters = nullptr) {
+  if (o.has("generator")) {
+    const std::string generator = o.text("generator");
+    nlohmann::json params = o.has("params") ? o.raw("params") : nlohmann::json::object();
+    if (!params.is_object()) fail(o.at("params") + ": must be an object");
+    params.update(overrides);
+    const LoaderInputs inputs(descriptor.parent_path());
+    return opened_at(where, [&] {
+      std::unique_ptr<FrameSource> made = make_generator(generator, params, parameters, &inputs);
+      if (!parameters) return made;
+      // The files it read are part of what it made: another package version is another key.
+      return cache_frames(std::move(made), generator + " " + params.dump() + inputs.identity(), frame_cache_dir());
+    });
+  }
+  if (o.has("animation")) {
+    const AnimationOptions a =
+        animation_options(o.object("animation", {"file", "fps", "frames", "start", "clip"}), descriptor);
+    return opened_at(o.at("animation"), [&] { return open_animated_clip(a); });
+  }
+  if (o.has("keyframes"))
+    return open_keyframes(o.object("keyframes", {"file", "first", "frames", "subframes"}), descriptor);
+  if (o.has("crowd")) {
+    nlohmann::json crowd = o.raw("crowd");
+    if (crowd.is_object()) crowd.update(overrides);
+    const DescriptorObject c(crowd, o.at("crowd"),
+                             {"animation", "count", "columns", "spacing", "phase_step", "up", "frames", "objects"});
+    return open_crowd(c, descriptor, name);
+  }
+  return open_directory_key(o, o.has("frames") ? "frames" : "boxes", descriptor);
 }
 
 scene::dvec3 dvec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
@@ -342,20 +360,8 @@ std::unique_ptr<FrameSource> open_parts(const DescriptorObject& root, const std:
       fail(p.where() + ": needs exactly one of generator, animation, keyframes, crowd, frames, boxes, mesh");
     if (p.has("params") && !p.has("generator")) fail(p.at("params") + ": only with generator");
     if (p.has("motion") && !p.has("mesh")) fail(p.at("motion") + ": only with mesh");
-    if (p.has("generator")) {
-      const std::string generator = p.text("generator");
-      const nlohmann::json params = p.has("params") ? p.raw("params") : nlohmann::json::object();
-      if (!params.is_object()) fail(p.at("params") + ": must be an object");
-      const LoaderInputs inputs(descriptor.parent_path());
-      part.source = opened_at(p.where(), [&] { return make_generator(generator, params, nullptr, &inputs); });
-    } else if (p.has("animation")) {
-      part.source = open_animation(p.object("animation", animation_keys()), descriptor);
-    } else if (p.has("keyframes")) {
-      part.source = open_keyframes(p.object("keyframes", keyframe_keys()), descriptor);
-    } else if (p.has("crowd")) {
-      part.source = open_crowd(p.object("crowd", crowd_keys()), descriptor, part.name);
-    } else if (p.has("frames") || p.has("boxes")) {
-      part.source = open_directory_key(p, p.has("frames") ? "frames" : "boxes", descriptor);
+    if (!p.has("mesh")) {
+      part.source = open_source(p, descriptor, part.name, p.where());
     } else {
       part.mesh = static_mesh(p.object("mesh", {"file", "archive", "member", "scale", "center"}), descriptor,
                               part.origin);
@@ -416,33 +422,8 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   if (root.has("frame_count") && !root.has("parts")) fail(file.string() + ": /frame_count: only valid with /parts");
   if (!overrides.empty() && !root.has("generator") && !root.has("crowd"))
     fail_usage(file.string() + ": parameters can only be set on a procedural scene or a crowd");
-  if (root.has("generator")) {
-    const std::string generator = root.text("generator");
-    nlohmann::json params = j.contains("params") ? j["params"] : nlohmann::json::object();
-    if (!params.is_object()) fail(file.string() + ": /params: must be an object");
-    for (auto it = overrides.begin(); it != overrides.end(); ++it) params[it.key()] = it.value();
-    const LoaderInputs inputs(file.parent_path());
-    s.source = opened_at(file.string(), [&] {
-      std::unique_ptr<FrameSource> made = make_generator(generator, params, &s.parameters, &inputs);
-      // The files it read are part of what it made: another package version is another key.
-      return cache_frames(std::move(made), generator + " " + params.dump() + inputs.identity(), frame_cache_dir());
-    });
-  } else if (root.has("animation")) {
-    s.source = open_animation(root.object("animation", animation_keys()), file);
-  } else if (root.has("keyframes")) {
-    s.source = open_keyframes(root.object("keyframes", keyframe_keys()), file);
-  } else if (root.has("crowd")) {
-    // Overrides (--set count=200) replace the crowd's own keys.
-    nlohmann::json crowd = j["crowd"];
-    if (crowd.is_object())
-      for (auto it = overrides.begin(); it != overrides.end(); ++it) crowd[it.key()] = it.value();
-    const DescriptorObject c(crowd, root.at("crowd"), crowd_keys());
-    s.source = open_crowd(c, file, s.name);
-  } else if (root.has("parts")) {
-    s.source = open_parts(root, file);
-  } else {
-    s.source = open_directory_key(root, root.has("frames") ? "frames" : "boxes", file);
-  }
+  s.source = root.has("parts") ? open_parts(root, file)
+                                : open_source(root, file, s.name, file.string(), overrides, &s.parameters);
   if (j.contains("objects") || j.contains("queries"))
     s.source = declare_queries(std::move(s.source), j, file.string());
   if (root.has("placement")) {
@@ -461,24 +442,6 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   }
   return s;
 }
-
-}  // namespace
-
-std::filesystem::path default_scenes_dir() {
-  if (const char* env = std::getenv("CDBENCH_SCENES")) return env;
-  return CDB_SCENES_DIR;
-}
-
-std::vector<std::string> list_scenes(const std::filesystem::path& scenes_dir) {
-  std::vector<std::string> names;
-  if (std::filesystem::is_directory(scenes_dir))
-    for (const auto& e : std::filesystem::directory_iterator(scenes_dir))
-      if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-namespace {
 
 Scene open_unplaced(const std::string& spec, const std::filesystem::path& scenes_dir,
                     const nlohmann::json& overrides) {
@@ -499,10 +462,24 @@ Scene open_unplaced(const std::string& spec, const std::filesystem::path& scenes
   std::string known;
   for (const auto& n : list_scenes(scenes_dir)) known += (known.empty() ? "" : ", ") + n;
   fail_usage("unknown scene '" + spec + "': not a directory of mesh or box frames, not a .json descriptor, and not in " +
-       scenes_dir.string() + " (known: " + known + ")");
+             scenes_dir.string() + " (known: " + known + ")");
 }
 
 }  // namespace
+
+std::filesystem::path default_scenes_dir() {
+  if (const char* env = std::getenv("CDBENCH_SCENES")) return env;
+  return CDB_SCENES_DIR;
+}
+
+std::vector<std::string> list_scenes(const std::filesystem::path& scenes_dir) {
+  std::vector<std::string> names;
+  if (std::filesystem::is_directory(scenes_dir))
+    for (const auto& e : std::filesystem::directory_iterator(scenes_dir))
+      if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
 
 Scene open_scene(const std::string& spec, const std::filesystem::path& scenes_dir,
                  const nlohmann::json& overrides) {

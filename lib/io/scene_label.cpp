@@ -7,14 +7,11 @@ namespace cdb {
 std::string scene_label(const std::string& name, const nlohmann::json& overrides) {
   if (!overrides.is_object() || overrides.empty()) return name;
   std::string label = name + "[";
-  bool first = true;
   // nlohmann::json objects iterate in key order, so the label does not depend on the order
   // the options were given in.
-  for (auto it = overrides.begin(); it != overrides.end(); ++it) {
-    if (!first) label += ",";
-    first = false;
-    label += it.key() + "=" + (it.value().is_string() ? it.value().get<std::string>() : it.value().dump());
-  }
+  for (auto it = overrides.begin(); it != overrides.end(); ++it)
+    label += (it == overrides.begin() ? "" : ",") + it.key() + "=" +
+             (it.value().is_string() ? it.value().get<std::string>() : it.value().dump());
   return label + "]";
 }
 

@@ -149,12 +149,10 @@ std::string frame_list_text(const std::vector<uint32_t>& frames) {
   for (size_t i = 0; i < frames.size();) {
     size_t j = i;
     while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
-    if (!text.empty()) text.push_back(',');
-    text.append(std::to_string(frames[i]));
-    if (j > i) {
-      text.push_back(j - i >= 2 ? '-' : ',');  // runs of three or more as a range
-      text.append(std::to_string(frames[j]));
-    }
+    if (!text.empty()) text += ',';
+    text += std::to_string(frames[i]);
+    // Runs of three or more as a range.
+    if (j > i) text.append(1, j - i >= 2 ? '-' : ',').append(std::to_string(frames[j]));
     i = j + 1;
   }
   return text;
@@ -250,9 +248,8 @@ void check_plan_queries(const RecordedPlan& plan, const QuerySet& running) {
     for (Query q : kQueries) {
       const bool given = plan.frames[k].step.op(q).has_value();
       if (given == running[size_t(q)]) continue;
-      fail(plan.where(k) + ": " +
-           (given ? std::string("query ") + query_name(q) + " does not run in this scene"
-                  : std::string("query ") + query_name(q) + " runs in this scene, and the plan gives it no operation") +
+      fail(plan.where(k) + ": query " + query_name(q) +
+           (given ? " does not run in this scene" : " runs in this scene, and the plan gives it no operation") +
            " (the plan was recorded on another scene's queries)");
     }
 }

@@ -2,22 +2,9 @@
 // The plan one pass of a front pipeline ran, frame by frame: recorded by the run (the
 // results file's /plans), written as a plan file (`cdbench report --plan`), read back and
 // replayed (`run --front-cycle FILE`, FramePlanner::replay), so that passes, runs and
-// binaries can run the same operations at the same frames.
-//
-// A plan file is text, one line per frame (docs/usage.md "Plans"):
-//
-//   cdbench-plan 1
-//   # a comment; blank lines and text after '#' are ignored
-//   0 build self=generate
-//   1 refit self=preserve
-//   2 refit self=update inspect
-//   3 refit self=restructure inter=generate decision=restructure
-//
-// The first line is the header. Then per frame, fields separated by blanks: the frame
-// index (consecutive from the first frame line), the trees (build | refit | stale), each
-// running query's operation QUERY=OP (self | inter | rigid_self = generate | preserve |
-// update | restructure), decision=D where Formula 2 decided (refit | restructure |
-// rebuild), and inspect where pipeline c inspected the tree's quality.
+// binaries can run the same operations at the same frames. A plan file is text: the header
+// "cdbench-plan 1", then one line per frame, e.g. "2 refit self=update inspect" (the
+// fields are in docs/usage.md "Plans").
 #include <cstddef>
 #include <cstdint>
 #include <string>

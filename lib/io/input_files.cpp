@@ -1,6 +1,8 @@
-#include "io/natural_order.h"
+#include "io/input_files.h"
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <system_error>
 
 #include "core/error.h"
@@ -74,6 +76,14 @@ std::vector<std::filesystem::path> frame_files(const std::filesystem::path& dir,
     return natural_less(a.filename().native(), b.filename().native());
   });
   return files;
+}
+
+std::string read_file(const std::filesystem::path& file, const std::string& what) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) fail(file.string() + ": cannot open" + what);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) fail(file.string() + ": read failed");
+  return bytes;
 }
 
 }  // namespace cdb
