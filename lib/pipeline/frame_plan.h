@@ -170,11 +170,13 @@ class FramePlanner {
     p.decision = formula2(leaves);
     if (p.decision != Formula2::none) p.restructuring = pending_;
     pending_ = {};
-    // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h).
+    // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h),
+    // once an update was measured: before, its price comes from the first frame's build.
     const bool maintain = maintenance_op(false, front_nodes) != FrontOp::preserve;
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
                 rebuild_due(frame_, config_.tree.rebuild_every) ||
-                (maintain && tree_.rebuild_due(maintenance_.fresh_ms(), maintenance_.price_ms(front_nodes)));
+                (maintain && maintenance_.priced() &&
+                 tree_.rebuild_due(maintenance_.fresh_ms(), maintenance_.price_ms(front_nodes)));
     // --refit-every: between refits both trees keep their last boxes (not conservative).
     p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts

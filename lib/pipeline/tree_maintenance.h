@@ -15,8 +15,10 @@
 // leaves the fronts' size as the last maintenance made it, so R is measured, not guessed).
 // The rebuild's cost over a steady frame is the last rebuild frame's after the first (the
 // first pays first-launch costs), or before one ran, kRebuildPerSteady steady frames; the
-// update's is the maintenance price. Fronts right after a build pay no rent, so the first
-// maintenance after one updates: the tree shows its degradation in what the update makes.
+// update's is the maintenance price, once an update was measured (before, it comes from the
+// first frame, which also pays first-launch costs: the planner updates). Fronts right after a
+// build pay no rent, so the first maintenance after one updates: the tree shows its
+// degradation in what the update makes.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
