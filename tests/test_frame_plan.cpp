@@ -493,7 +493,9 @@ TEST(FramePlan, RebuildsATreeWhoseUpdatesOutgrowItsFronts) {
     for (int f = 0; f < 200; ++f) {
       const FramePlan p = planner.plan(1000, nodes);
       s += letter(p);
-      if (f > 0 && p.rebuild) EXPECT_GE(maintenances_since_build, 1u) << "frame " << f << " " << s;
+      if (f > 0 && p.rebuild) {
+        EXPECT_GE(maintenances_since_build, 1u) << "frame " << f << " " << s;
+      }
       const double grown = c == keeps_quality ? 1.0 : 1.0 + 0.1 * double(since_build);
       const double rebuild_ms = f == 0 ? 20.0 : c == dear_rebuild ? 100.0 : 5.0;
       const double ms = p.rebuild ? rebuild_ms : p.changes_fronts() ? 3.0 : grown + 0.2 * double(since_produce);
@@ -511,7 +513,9 @@ TEST(FramePlan, RebuildsATreeWhoseUpdatesOutgrowItsFronts) {
       }
     }
     rebuilds[c] = size_t(std::count(s.begin() + 1, s.end(), 'b'));
-    if (c == keeps_quality || c == off) EXPECT_EQ(rebuilds[c], 0u) << s;
+    if (c == keeps_quality || c == off) {
+      EXPECT_EQ(rebuilds[c], 0u) << s;
+    }
     EXPECT_NE(s.find('u'), std::string::npos) << s;
   }
   EXPECT_GE(rebuilds[degrading], 3u);
