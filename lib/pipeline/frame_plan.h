@@ -172,17 +172,17 @@ class FramePlanner {
     pending_ = {};
     // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h),
     // once an update was measured: before, its price comes from the first frame's build.
-    const bool maintain = maintenance_op(false, front_nodes) != FrontOp::preserve;
+    const FrontOp due = maintenance_op(front_nodes);
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
                 rebuild_due(frame_, config_.tree.rebuild_every) ||
-                (maintain && maintenance_.priced() &&
+                (due != FrontOp::preserve && maintenance_.priced() &&
                  tree_.rebuild_due(maintenance_.fresh_ms(), maintenance_.price_ms(front_nodes)));
     // --refit-every: between refits both trees keep their last boxes (not conservative).
     p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
     // name T_D's leaves, which a rebuild or a restructure renumbers: they regenerate then.
     // T_R is only refitted after its build, so its self fronts follow the rule.
-    const FrontOp cycle = maintenance_op(p.rebuild, front_nodes);
+    const FrontOp cycle = p.rebuild ? FrontOp::generate : due;
     const bool restructure = !p.rebuild && p.decision == Formula2::restructure;
     p.op(Query::self) = restructure ? FrontOp::restructure : cycle;
     p.op(Query::inter) = restructure ? FrontOp::generate : cycle;
@@ -234,8 +234,8 @@ class FramePlanner {
                                              : Formula2::rebuild;
   }
 
-  FrontOp maintenance_op(bool rebuilt, uint64_t front_nodes) const {
-    if (rebuilt) return FrontOp::generate;
+  // What the maintenance rule runs on a refitted tree this frame (preserve: none due).
+  FrontOp maintenance_op(uint64_t front_nodes) const {
     if (!maintenance_.update_due(frame_, generated_, produced_, front_nodes)) return FrontOp::preserve;
     // periodic: every second maintenance generates. With a fixed cycle that is every second
     // cycle since the last generate; adaptively, the maintenance after an update.
