@@ -469,9 +469,68 @@ TEST(FramePlan, RebuildsOnceTheRentPaysForIt) {
       tree.built(c.rebuild_ms, true);
       for (int f = 0; f < 3; ++f) tree.observe(uint64_t(c.fresh * double(pairs)), pairs, c.steady_ms);
       EXPECT_FALSE(tree.rebuild_due(c.steady_ms, c.update_ms)) << c.scene << ": fresh fronts pay no rent";
+      tree.maintained();
       for (int f = 0; f < 3; ++f) tree.observe(uint64_t(c.updated * double(pairs)), pairs, c.steady_ms);
       EXPECT_EQ(tree.rebuild_due(c.steady_ms, c.update_ms), enabled && c.rebuilds) << c.scene;
     }
+  }
+}
+
+// The first maintenance after a build, which has no update or rebuild measured on this tree
+// to price: it rebuilds where the probe before it counts that an update would grow the fronts
+// by more than kFirstUpdateGrowth (2-2.7x on the garment and the spheres), and updates where
+// it would grow them a little (1.03-1.55x on the cloths, funnel, crumple) or where no probe
+// ran. Later maintenances follow the rent, not the probe.
+TEST(FramePlan, FirstMaintenanceRebuildsWhereAnUpdateWouldOutgrowTheBuild) {
+  const uint64_t pairs = 1000000, fresh = 3 * pairs;
+  for (const double growth : {3.0, 1.2}) {
+    TreeMaintenance tree(true);
+    tree.built(1.0, true);
+    tree.observe(fresh, pairs, 0.1);
+    EXPECT_FALSE(tree.rebuild_due(0.1, -1.0)) << growth << ": no probe yet";
+    tree.observe(fresh, pairs, 0.1, uint64_t(growth * double(fresh)));
+    EXPECT_DOUBLE_EQ(tree.probed_growth(), growth);
+    EXPECT_EQ(tree.rebuild_due(0.1, -1.0), growth > kFirstUpdateGrowth) << growth;
+    TreeMaintenance off(false);
+    off.built(1.0, true);
+    off.observe(fresh, pairs, 0.1, uint64_t(growth * double(fresh)));
+    EXPECT_FALSE(off.rebuild_due(0.1, -1.0));
+    tree.maintained();
+    EXPECT_FALSE(tree.rebuild_due(0.1, -1.0)) << growth << ": after a maintenance the rent decides";
+    tree.observe(fresh, pairs, 0.1, uint64_t(3.0 * double(fresh)));
+    EXPECT_FALSE(tree.rebuild_due(0.1, -1.0)) << growth << ": unpriced rent";
+  }
+
+  // A front within one wave of resident threads counts a wave (the funnel: 204K nodes against
+  // 270K resident threads): a probe that counts twice its nodes counts 1.5 waves, so it
+  // updates; one that spills far past the wave rebuilds.
+  for (const uint64_t yield : {408000ull, 3000000ull}) {
+    TreeMaintenance tree(true);
+    tree.reset(270000);
+    tree.built(1.0, true);
+    tree.observe(204000, 72000, 0.032);
+    tree.observe(204000, 72000, 0.032, yield);
+    EXPECT_EQ(tree.rebuild_due(0.032, -1.0), double(yield) > kFirstUpdateGrowth * 270000) << yield;
+  }
+
+  // Through the planner: the frames before the first maintenance probe; their yield decides it.
+  for (const double growth : {3.0, 1.2}) {
+    PipelineConfig cfg = cycle_config(0);
+    cfg.tree.rebuild_degraded = true;
+    FramePlanner planner(FrontStrategy{}, cfg);
+    std::string s;
+    bool probed = false;
+    for (int f = 0; f < 40 && s.find_first_of("ub", 1) == std::string::npos; ++f) {
+      const FramePlan p = planner.plan(1000, fresh);
+      s += letter(p);
+      probed = probed || p.probe;
+      FramePlanner::Outcome o{p.rebuild ? 10.0 : 1.0 + 0.1 * f, true, fresh, 1.0, {}};
+      o.pairs = pairs;
+      o.update_yield = p.probe ? uint64_t(growth * double(fresh)) : 0;
+      planner.finish(p, o);
+    }
+    EXPECT_TRUE(probed) << s;
+    EXPECT_EQ(s.back(), growth > kFirstUpdateGrowth ? 'b' : 'u') << growth << " " << s;
   }
 }
 

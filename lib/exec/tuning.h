@@ -65,6 +65,11 @@ inline constexpr double kProbeShare = 0.5;
 // frames (pipeline/tree_maintenance.h). Measured: later rebuild frames over the steady frames
 // before them, 5-6.5 on funnel, spheres, crumple and garment (H200).
 inline constexpr double kRebuildPerSteady = 6.0;
+// The first maintenance after a build rebuilds where the probe counts an update would grow
+// the fronts (at least a wave each) more than this. Measured: the probes before first updates
+// count 1.03-1.1x on the 32K cloth, 1.29x crumple, 1.1-1.55x funnel, 2.0x spheres (host) and
+// first updates grow the garment's 2.2-2.7x (H200).
+inline constexpr double kFirstUpdateGrowth = 1.75;
 
 // --- Front buffers (pipeline/front_query.h) ---
 // Spare over a probe's update bound: the fronts' buffers grow to bound + bound / this when

@@ -81,13 +81,14 @@ class FramePlanner {
   const TreeMaintenance& tree() const { return tree_; }
 
   // A new run over the frames: the first frame builds. `running`: the queries that run in
-  // the scene, which a replayed plan must give operations to, and only those.
-  void reset(const QuerySet& running = {true, true, true}) {
+  // the scene, which a replayed plan must give operations to, and only those; `wave`: the
+  // device's resident threads (TreeMaintenance).
+  void reset(const QuerySet& running = {true, true, true}, uint64_t wave = 1) {
     frame_ = generated_ = produced_ = 0;
     pending_ = {};
     q_ref_ = 0.0;
     maintenance_.reset();
-    tree_.reset();
+    tree_.reset(wave);
     running_ = running;
     if (replay_) check_plan_queries(*replay_, running_);
   }
@@ -140,14 +141,16 @@ class FramePlanner {
     bool recorded = false;    // it recorded its frame graph (a one-off cost)
     double generate_per_node_ms = -1.0;  // a build frame: its generate and ordering per front node made
     uint64_t pairs = 0;       // the pairs it reported
+    uint64_t update_yield = 0;  // a probing frame: the front nodes an update would make at most
   };
   void finish(const FramePlan& p, const Outcome& o) {
     const FrontOp self = p.op(Query::self);
     const bool steady = p.steady() && !p.stale, clean = o.ran_once && !o.recorded;
     maintenance_.observe(steady, !p.rebuild && self == FrontOp::update, p.rebuild, clean, o.ms, o.front_nodes,
                          !p.rebuild && self == FrontOp::generate);
-    tree_.observe(o.front_nodes, o.pairs, steady && clean ? o.ms : -1.0);
+    tree_.observe(o.front_nodes, o.pairs, steady && clean ? o.ms : -1.0, p.probe ? o.update_yield : 0);
     if (p.rebuild) tree_.built(o.ms, clean && frame_ > 0);
+    if (!p.rebuild && p.changes_fronts()) tree_.maintained();
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
     if (p.rebuild || self == FrontOp::generate) generated_ = frame_;
     if (p.changes_fronts()) {
@@ -170,13 +173,14 @@ class FramePlanner {
     p.decision = formula2(leaves);
     if (p.decision != Formula2::none) p.restructuring = pending_;
     pending_ = {};
-    // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h),
-    // once an update was measured: before, its price comes from the first frame's build.
+    // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h);
+    // an update's price counts once an update was measured: before, it comes from the build.
     const FrontOp due = maintenance_op(front_nodes);
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
                 rebuild_due(frame_, config_.tree.rebuild_every) ||
-                (due != FrontOp::preserve && maintenance_.priced() &&
-                 tree_.rebuild_due(maintenance_.fresh_ms(), maintenance_.price_ms(front_nodes)));
+                (due != FrontOp::preserve &&
+                 tree_.rebuild_due(maintenance_.fresh_ms(),
+                                   maintenance_.priced() ? maintenance_.price_ms(front_nodes) : -1.0));
     // --refit-every: between refits both trees keep their last boxes (not conservative).
     p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts

@@ -67,7 +67,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     for (const auto& fq : queries_) capacity = std::max(capacity, fq.capacity());
     if (strategy().radix_sort) radix_.reserve(exec_, capacity);
     if (strategy().restructure) restructure_.reserve(bvh_.num_leaves, config_.restructure.min_leaves);
-    planner_.reset(running_queries());
+    planner_.reset(running_queries(), exec_.resident_threads());
     stage_preserve_ = warp_preserve_ = true;
     exec_.sync();
   }
@@ -107,7 +107,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     describe(plan, stats);
     const double generate_per_node = time_generate ? price_generate(stats) : -1.0;
     planner_.finish(plan, {stats.timing.total_ms, stats.timing.query_reruns == 0, fronts, stats.quality.q_root, found(plan),
-                           stats.timing.graph == "captured", generate_per_node, stats.pairs});
+                           stats.timing.graph == "captured", generate_per_node, stats.pairs, update_yield(plan)});
     choose_preserve_launch(stats.pairs);
     return stats;
   }
@@ -117,6 +117,14 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   FrontQuery<Exec>& self() { return query(Query::self); }
   const FrontQuery<Exec>& self() const { return queries_[size_t(Query::self)]; }
   const FrontStrategy& strategy() const { return planner_.strategy(); }
+
+  // A probing frame: the front nodes an update of every query's fronts would make at most.
+  uint64_t update_yield(const FramePlan& plan) const {
+    uint64_t n = 0;
+    if (plan.probe)
+      for (const auto& fq : queries_) n += fq.update_yield(pairs_.last_counters());
+    return n;
+  }
 
   QuerySet running_queries() const {
     QuerySet running{};

@@ -122,6 +122,11 @@ class FrontQuery {
     return in_place_ ? size(kind) + yield : yield;
   }
 
+  // After a probing preserve: the front nodes an update of the current fronts makes at most.
+  uint64_t update_yield(const FrontCounters& c) const {
+    return active_ ? c.query[index_].yield_of(kInternalFront) + c.query[index_].yield_of(kExternalFront) : 0;
+  }
+
   // After a probing preserve: the buffers of a kind that cannot hold update_bound with
   // kProbeSpareDiv to spare grow to hold it so, so that the coming update produces its
   // fronts in one run. The bound holds for the probed frame's geometry; the update runs on
