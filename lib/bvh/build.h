@@ -163,19 +163,9 @@ struct ApetreiBuildFn {
 // The build scratch of an Lbvh as Apetrei's climb sees it, with `keys` sorted by leaf.
 template <class Exec>
 ApetreiTree apetrei_tree(Lbvh<Exec>& bvh, const uint64_t* keys) {
-  return {keys,
-          bvh.leaf_lo.data(),
-          bvh.leaf_hi.data(),
-          bvh.build_lo.data(),
-          bvh.build_hi.data(),
-          bvh.build_left.data(),
-          bvh.build_right.data(),
-          bvh.leaf_parent.data(),
-          bvh.build_parent.data(),
-          bvh.build_first.data(),
-          bvh.build_last.data(),
-          bvh.other_bound.data(),
-          bvh.count_log.data()};
+  return {keys, bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.build_lo.data(), bvh.build_hi.data(),
+          bvh.build_left.data(), bvh.build_right.data(), bvh.leaf_parent.data(), bvh.build_parent.data(),
+          bvh.build_first.data(), bvh.build_last.data(), bvh.other_bound.data(), bvh.count_log.data()};
 }
 
 // Rebuilds the hierarchy over a subset of the mesh's faces: boxes, Morton codes, radix

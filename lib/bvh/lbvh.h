@@ -19,51 +19,26 @@ struct Lbvh {
   // `name` prefixes the buffers' names in the growth log (a scene may have two trees).
   explicit Lbvh(Exec& exec, const std::string& name = "bvh") {
     MemoryResource& mr = exec.memory();
-    leaf_lo.bind(mr, name + ".leaf_lo");
-    leaf_hi.bind(mr, name + ".leaf_hi");
-    leaf_prim.bind(mr, name + ".leaf_prim");
-    leaf_parent.bind(mr, name + ".leaf_parent");
-    leaf_escape.bind(mr, name + ".leaf_escape");
-    node_lo.bind(mr, name + ".node_lo");
-    node_hi.bind(mr, name + ".node_hi");
-    node_left.bind(mr, name + ".node_left");
-    node_right.bind(mr, name + ".node_right");
-    node_parent.bind(mr, name + ".node_parent");
-    node_escape.bind(mr, name + ".node_escape");
-    node_first.bind(mr, name + ".node_first");
-    node_last.bind(mr, name + ".node_last");
-    count_log.bind(mr, name + ".count_log");
-    offset_log.bind(mr, name + ".offset_log");
-    prim_lo.bind(mr, name + ".prim_lo");
-    prim_hi.bind(mr, name + ".prim_hi");
-    centroid_box.bind(mr, name + ".centroid_box");
-    morton.bind(mr, name + ".morton");
-    morton_sorted.bind(mr, name + ".morton_sorted");
-    prim_iota.bind(mr, name + ".prim_iota");
-    build_lo.bind(mr, name + ".build_lo");
-    build_hi.bind(mr, name + ".build_hi");
-    build_left.bind(mr, name + ".build_left");
-    build_right.bind(mr, name + ".build_right");
-    build_parent.bind(mr, name + ".build_parent");
-    build_first.bind(mr, name + ".build_first");
-    build_last.bind(mr, name + ".build_last");
-    other_bound.bind(mr, name + ".other_bound");
-    new_index.bind(mr, name + ".new_index");
-    refit_flag.bind(mr, name + ".refit_flag");
-    tile_start.bind(mr, name + ".tile_start");
-    tile_scan.bind(mr, name + ".tile_scan");
-    tile_first.bind(mr, name + ".tile_first");
-    tile_count.bind(mr, name + ".tile_count");
-    span_flag.bind(mr, name + ".span_flag");
-    span_scan.bind(mr, name + ".span_scan");
-    span_count.bind(mr, name + ".span_count");
-    span_node.bind(mr, name + ".span_node");
-    span_parent.bind(mr, name + ".span_parent");
-    span_child.bind(mr, name + ".span_child");
-    span_depth.bind(mr, name + ".span_depth");
-    span_lo.bind(mr, name + ".span_lo");
-    span_hi.bind(mr, name + ".span_hi");
-    temp.bind(mr, name + ".temp");
+    const std::string p = name + ".";
+    bind_arrays<vec4f>(mr, p, {{&leaf_lo, "leaf_lo"}, {&leaf_hi, "leaf_hi"}, {&node_lo, "node_lo"},
+                               {&node_hi, "node_hi"}, {&prim_lo, "prim_lo"}, {&prim_hi, "prim_hi"},
+                               {&build_lo, "build_lo"}, {&build_hi, "build_hi"}, {&span_lo, "span_lo"},
+                               {&span_hi, "span_hi"}});
+    bind_arrays<uint32_t>(mr, p, {{&leaf_prim, "leaf_prim"}, {&leaf_parent, "leaf_parent"},
+                                  {&leaf_escape, "leaf_escape"}, {&node_left, "node_left"}, {&node_right, "node_right"},
+                                  {&node_parent, "node_parent"}, {&node_escape, "node_escape"},
+                                  {&node_first, "node_first"}, {&node_last, "node_last"}, {&count_log, "count_log"},
+                                  {&offset_log, "offset_log"}, {&prim_iota, "prim_iota"}, {&build_left, "build_left"},
+                                  {&build_right, "build_right"}, {&build_parent, "build_parent"},
+                                  {&build_first, "build_first"}, {&build_last, "build_last"},
+                                  {&other_bound, "other_bound"}, {&new_index, "new_index"}, {&refit_flag, "refit_flag"},
+                                  {&tile_start, "tile_start"}, {&tile_scan, "tile_scan"}, {&tile_first, "tile_first"},
+                                  {&tile_count, "tile_count"}, {&span_flag, "span_flag"}, {&span_scan, "span_scan"},
+                                  {&span_count, "span_count"}, {&span_node, "span_node"}, {&span_parent, "span_parent"},
+                                  {&span_child, "span_child"}, {&span_depth, "span_depth"}});
+    bind_arrays<uint64_t>(mr, p, {{&morton, "morton"}, {&morton_sorted, "morton_sorted"}});
+    centroid_box.bind(mr, p + "centroid_box");
+    temp.bind(mr, p + "temp");
   }
 
   void reserve(Exec& exec, uint32_t n) {
@@ -71,16 +46,14 @@ struct Lbvh {
     const size_t internal = n > 1 ? n - 1 : 0;
     for (auto* a : {&leaf_lo, &leaf_hi, &prim_lo, &prim_hi, &build_lo, &build_hi}) a->reserve(n);
     for (auto* a : {&node_lo, &node_hi}) a->reserve(internal);
-    for (auto* a : {&leaf_prim, &leaf_parent, &leaf_escape, &prim_iota}) a->reserve(n);
+    for (auto* a : {&leaf_prim, &leaf_parent, &leaf_escape, &prim_iota, &tile_start, &tile_scan}) a->reserve(n);
     for (auto* a : {&node_left, &node_right, &node_parent, &node_escape, &node_first, &node_last,
                     &build_left, &build_right, &build_parent, &build_first, &build_last,
                     &other_bound, &new_index, &refit_flag})
       a->reserve(internal);
     // refit.h counts arrivals without resetting them: every build zeroes them here.
     exec.fill(refit_flag.data(), internal, 0u);
-    tile_start.reserve(n);
-    tile_scan.reserve(n);
-    tile_first.reserve(size_t(n) + 1);
+    for (auto* a : {&tile_first, &count_log, &offset_log}) a->reserve(size_t(n) + 1);
     tile_count.reserve(1);
     if (refit_top_fits()) {
       for (auto* a : {&span_flag, &span_scan, &span_node, &span_parent, &span_depth}) a->reserve(internal);
@@ -89,10 +62,7 @@ struct Lbvh {
       span_hi.reserve(2 * internal);
       span_count.reserve(2);
     }
-    count_log.reserve(size_t(n) + 1);
-    offset_log.reserve(size_t(n) + 1);
-    morton.reserve(n);
-    morton_sorted.reserve(n);
+    for (auto* a : {&morton, &morton_sorted}) a->reserve(n);
     centroid_box.reserve(1);
     size_t t = exec.sort_temp_bytes(n);
     t = t > exec.scan_temp_bytes(size_t(n) + 1) ? t : exec.scan_temp_bytes(size_t(n) + 1);

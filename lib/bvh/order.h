@@ -129,20 +129,17 @@ struct SingleLeafFn {
 
 // A one-leaf tree: no internal node, nothing after the leaf (both orders).
 template <class Exec>
-void link_single_leaf(Exec& exec, Lbvh<Exec>& bvh) {
+void order_single_leaf(Exec& exec, Lbvh<Exec>& bvh) {
   exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data(), bvh.leaf_prim.data(),
                                   bvh.leaf_lo.data(), bvh.leaf_hi.data()});
+  index_refit(exec, bvh);
 }
 
 template <class Exec>
 void order_depth_first(Exec& exec, Lbvh<Exec>& bvh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
-  if (n == 1) {
-    link_single_leaf(exec, bvh);
-    index_refit(exec, bvh);
-    return;
-  }
+  if (n == 1) return order_single_leaf(exec, bvh);
   exec.exclusive_scan(bvh.count_log.data(), bvh.offset_log.data(), size_t(n) + 1,
                       bvh.temp.data(), bvh.temp.size());
   const DepthFirstLayout layout = depth_first_layout(bvh);
@@ -177,11 +174,7 @@ template <class Exec>
 void order_depth_first_radix(Exec& exec, Lbvh<Exec>& bvh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
-  if (n == 1) {
-    link_single_leaf(exec, bvh);
-    index_refit(exec, bvh);
-    return;
-  }
+  if (n == 1) return order_single_leaf(exec, bvh);
   // Build scratch that is free once the climb is done: keys in morton/morton_sorted, node
   // numbers in prim_iota and other_bound.
   exec.for_each_n(n - 1, DepthFirstKeyFn{bvh.build_first.data(), bvh.build_last.data(),

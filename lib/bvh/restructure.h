@@ -52,29 +52,21 @@ template <class Exec>
 struct RestructureScratch {
   explicit RestructureScratch(Exec& exec) {
     MemoryResource& mr = exec.memory();
-    node.bind(mr, "restructure.candidate_node");
-    first.bind(mr, "restructure.candidate_first");
-    last.bind(mr, "restructure.candidate_last");
-    escape.bind(mr, "restructure.candidate_escape");
-    parent.bind(mr, "restructure.candidate_parent");
-    size.bind(mr, "restructure.candidate_size");
-    base.bind(mr, "restructure.candidate_base");
-    leaf_tag.bind(mr, "restructure.leaf_tag");
-    leaf_slot.bind(mr, "restructure.leaf_slot");
+    bind_arrays<uint32_t>(mr, "restructure.", {{&node, "candidate_node"}, {&first, "candidate_first"},
+                                               {&last, "candidate_last"}, {&escape, "candidate_escape"},
+                                               {&parent, "candidate_parent"}, {&size, "candidate_size"},
+                                               {&base, "candidate_base"}, {&leaf_tag, "leaf_tag"},
+                                               {&leaf_slot, "leaf_slot"}, {&old_leaf_sorted, "old_leaf_sorted"},
+                                               {&new_leaf, "new_leaf"}, {&moved_prim, "moved_prim"}});
     keys_sorted.bind(mr, "restructure.keys_sorted");
-    old_leaf_sorted.bind(mr, "restructure.old_leaf_sorted");
-    new_leaf.bind(mr, "restructure.new_leaf");
-    moved_prim.bind(mr, "restructure.moved_prim");
   }
 
   // Candidates are disjoint subtrees of at least min_leaves leaves each.
   void reserve(uint32_t num_leaves, uint32_t min_leaves) {
     max_candidates = num_leaves / (min_leaves > 1 ? min_leaves : 1) + 1;
     for (auto* a : {&node, &first, &last, &escape, &parent}) a->reserve(max_candidates);
-    size.reserve(size_t(max_candidates) + 1);
-    base.reserve(size_t(max_candidates) + 1);
-    leaf_tag.reserve(size_t(num_leaves) + 1);
-    leaf_slot.reserve(size_t(num_leaves) + 1);
+    for (auto* a : {&size, &base}) a->reserve(size_t(max_candidates) + 1);
+    for (auto* a : {&leaf_tag, &leaf_slot}) a->reserve(size_t(num_leaves) + 1);
     keys_sorted.reserve(num_leaves);
     for (auto* a : {&old_leaf_sorted, &new_leaf, &moved_prim}) a->reserve(num_leaves);
   }

@@ -19,9 +19,9 @@
 // pairs per front node say it pays (FrontQuery::preserve). Smaller stages lost; the
 // leaf-per-thread query of bvh and the brute force produce thousands of pairs per block,
 // far past any stage, and lost staged: they append directly (docs/design.md "Constants
-// and their measurements" has the figures). The order
-// within an output changes, never the set: pairs are a set, and produced fronts are sorted
-// afterwards (histogram or radix) or used in any order.
+// and their measurements" has the figures). The order within an output changes, never the
+// set: pairs are a set, and produced fronts are sorted afterwards (histogram or radix) or
+// used in any order.
 //
 // The host executor passes no stage (null): sinks then append to the counters directly.
 #include <cstdint>

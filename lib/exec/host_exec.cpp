@@ -8,25 +8,26 @@
 namespace cdb {
 
 namespace {
-// Below kParallelScanMin (exec/tuning.h) elements a scan runs on one thread: the second pass
-// over the chunks would cost more than it saves.
-
 // First index of chunk c of n elements split into `chunks` near-equal runs.
 size_t chunk_begin(size_t n, size_t chunks, size_t c) { return n * c / chunks; }
+
+// out[i] = run + in[begin] + ... + in[i - 1] for i in [begin, end), on one thread; in and out
+// may be the same array.
+void serial_scan(const uint32_t* in, uint32_t* out, size_t begin, size_t end, uint32_t run) {
+  for (size_t i = begin; i < end; ++i) {
+    const uint32_t v = in[i];
+    out[i] = run;
+    run += v;
+  }
+}
 }  // namespace
 
 void HostExec::exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void* temp,
                               size_t temp_bytes) const {
   if (temp_bytes < scan_temp_bytes(n)) fail("host scan: temporary storage too small");
-  if (n < kParallelScanMin) {
-    uint32_t sum = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const uint32_t v = in[i];
-      out[i] = sum;
-      sum += v;
-    }
-    return;
-  }
+  // Below kParallelScanMin (exec/tuning.h) elements one thread: the second pass over the
+  // chunks would cost more than it saves.
+  if (n < kParallelScanMin) return serial_scan(in, out, 0, n, 0);
   // Sums modulo 2^32 are associative, so chunking gives the serial scan's bits.
   auto* offset = static_cast<uint32_t*>(temp);
   const int64_t chunks = int64_t(kScanChunks);
@@ -37,22 +38,10 @@ void HostExec::exclusive_scan(const uint32_t* in, uint32_t* out, size_t n, void*
     for (size_t i = chunk_begin(n, kScanChunks, size_t(c)); i < end; ++i) sum += in[i];
     offset[c] = sum;
   }
-  uint32_t sum = 0;
-  for (int64_t c = 0; c < chunks; ++c) {
-    const uint32_t s = offset[c];
-    offset[c] = sum;
-    sum += s;
-  }
+  serial_scan(offset, offset, 0, kScanChunks, 0);
 #pragma omp parallel for schedule(static)
-  for (int64_t c = 0; c < chunks; ++c) {
-    uint32_t run = offset[c];
-    const size_t end = chunk_begin(n, kScanChunks, size_t(c) + 1);
-    for (size_t i = chunk_begin(n, kScanChunks, size_t(c)); i < end; ++i) {
-      const uint32_t v = in[i];
-      out[i] = run;
-      run += v;
-    }
-  }
+  for (int64_t c = 0; c < chunks; ++c)
+    serial_scan(in, out, chunk_begin(n, kScanChunks, size_t(c)), chunk_begin(n, kScanChunks, size_t(c) + 1), offset[c]);
 }
 
 namespace {

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <initializer_list>
 #include <string>
 #include <utility>
 #include <vector>
@@ -146,5 +147,12 @@ class Array {
   size_t size_ = 0;
   size_t capacity_ = 0;
 };
+
+// Binds each (array, name) of `arrays` to `mr`, named prefix + name.
+template <class T>
+void bind_arrays(MemoryResource& mr, const std::string& prefix,
+                 std::initializer_list<std::pair<Array<T>*, const char*>> arrays) {
+  for (const auto& [array, name] : arrays) array->bind(mr, prefix + name);
+}
 
 }  // namespace cdb

@@ -70,13 +70,12 @@ class AnimatedMesh final : public AnimatedClip {
     collect_nodes(scene_->mRootNode, UINT32_MAX);
     collect_instances();
     if (anim_->mTicksPerSecond > 0) ticks_per_second_ = anim_->mTicksPerSecond;
-    const double clip_seconds = anim_->mDuration / ticks_per_second_;
     num_frames_ = o.frames;
     if (num_frames_ == 0) {
-      if (o.start > clip_seconds)
+      if (o.start > clip_seconds())
         fail(file_ + ": start " + std::to_string(o.start) + " s is past the end of clip '" + clip_name_ + "' (" +
-             std::to_string(clip_seconds) + " s)");
-      num_frames_ = uint32_t(std::floor((clip_seconds - o.start) * o.fps + 1e-9)) + 1;
+             std::to_string(clip_seconds()) + " s)");
+      num_frames_ = uint32_t(std::floor((clip_seconds() - o.start) * o.fps + 1e-9)) + 1;
     }
   }
 
@@ -285,14 +284,12 @@ class AnimatedMesh final : public AnimatedClip {
     std::vector<double> w(m->mNumAnimMeshes, 0.0);
     if (in.morph) {
       const auto [i, f] = bracket(in.morph->mKeys, in.morph->mNumKeys, ticks);
-      const aiMeshMorphKey& a = in.morph->mKeys[i];
-      for (unsigned j = 0; j < a.mNumValuesAndWeights; ++j)
-        if (a.mValues[j] < w.size()) w[a.mValues[j]] += (1 - f) * a.mWeights[j];
-      if (f > 0) {
-        const aiMeshMorphKey& b = in.morph->mKeys[i + 1];
-        for (unsigned j = 0; j < b.mNumValuesAndWeights; ++j)
-          if (b.mValues[j] < w.size()) w[b.mValues[j]] += f * b.mWeights[j];
-      }
+      const auto add = [&](const aiMeshMorphKey& key, double share) {
+        for (unsigned j = 0; j < key.mNumValuesAndWeights; ++j)
+          if (key.mValues[j] < w.size()) w[key.mValues[j]] += share * key.mWeights[j];
+      };
+      add(in.morph->mKeys[i], 1 - f);
+      if (f > 0) add(in.morph->mKeys[i + 1], f);
     } else {
       for (unsigned t = 0; t < m->mNumAnimMeshes; ++t) w[t] = m->mAnimMeshes[t]->mWeight;
     }

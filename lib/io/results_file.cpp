@@ -357,10 +357,7 @@ void ResultsFile::close(const char* status) {
   write_attr(file_.get(), "status", status, at);
   columns_.clear();
   plan_columns_.clear();
-  pairs_.reset();
-  plans_.reset();
-  frames_.reset();
-  text_type_.reset();
+  for (h5::Handle* h : {&pairs_, &plans_, &frames_, &text_type_}) h->reset();
   // Closed once: the id is gone whether or not HDF5 reports a failure.
   check(file_.reset() ? 0 : -1, where_, "closing the results file");
 }
@@ -372,15 +369,11 @@ void ResultsFile::io_failed(const h5::IoError& e) {
 }
 
 void ResultsFile::forget_handles() noexcept {
-  for (h5::Handle& c : columns_) c.abandon();
-  columns_.clear();
-  for (h5::Handle& c : plan_columns_) c.abandon();
-  plan_columns_.clear();
-  pairs_.abandon();
-  plans_.abandon();
-  frames_.abandon();
-  text_type_.abandon();
-  file_.abandon();
+  for (std::vector<h5::Handle>* columns : {&columns_, &plan_columns_}) {
+    for (h5::Handle& c : *columns) c.abandon();
+    columns->clear();
+  }
+  for (h5::Handle* h : {&pairs_, &plans_, &frames_, &text_type_, &file_}) h->abandon();
 }
 
 void ResultsFile::flush_now_and_then() {

@@ -429,8 +429,8 @@ Scene open_descriptor(const std::filesystem::path& file, const nlohmann::json& o
   if (root.has("placement")) {
     const DescriptorObject p = root.object("placement", {"scale", "offset"});
     nlohmann::json keys = nlohmann::json::object();
-    if (p.has("scale")) keys["placement.scale"] = j["placement"]["scale"];
-    if (p.has("offset")) keys["placement.offset"] = j["placement"]["offset"];
+    for (const char* key : {"scale", "offset"})
+      if (p.has(key)) keys[std::string("placement.") + key] = p.raw(key);
     s.source = place_scene(std::move(s.source), parse_placement(keys, file.string() + ": /"));
   }
   // The descriptor's own description states its default sizes; with overrides the

@@ -15,10 +15,6 @@ CudaDeviceInfo cuda_device_info() {
   return info;
 }
 
-}  // namespace cdb
-
-namespace cdb {
-
 std::unique_ptr<DeviceProbe> make_cuda_probe() {
   fail("--device cuda: this cdbench was built without CUDA (no nvcc found at configure time)");
 }

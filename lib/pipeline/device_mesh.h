@@ -51,22 +51,20 @@ class DeviceMesh {
       grid_.reserve(1);
       grid_temp_.reserve(exec.reduce_temp_bytes(num_vertices_));
     }
-    faces_.reserve(num_faces_);
-    exec.copy_from_host(faces_.data(), topology.faces.data(), num_faces_);
+    const auto upload_table = [&exec](auto& array, const auto& table) {
+      array.reserve(table.size());
+      exec.copy_from_host(array.data(), table.data(), table.size());
+    };
+    upload_table(faces_, topology.faces);
     queries_declared_ = topology.queries.declared;
     if (queries_declared_) {
       const PairFilterTables t = pair_filter_tables(topology.objects, topology.queries, num_faces_);
-      face_object_.reserve(t.face_object.size());
-      partners_.reserve(t.partners.size());
-      exec.copy_from_host(face_object_.data(), t.face_object.data(), t.face_object.size());
-      exec.copy_from_host(partners_.data(), t.partners.data(), t.partners.size());
+      upload_table(face_object_, t.face_object);
+      upload_table(partners_, t.partners);
     }
     split_ = split_objects(topology);
-    deformable_faces_.reserve(split_.deformable_faces.size());
-    rigid_faces_.reserve(split_.rigid_faces.size());
-    exec.copy_from_host(deformable_faces_.data(), split_.deformable_faces.data(),
-                        split_.deformable_faces.size());
-    exec.copy_from_host(rigid_faces_.data(), split_.rigid_faces.data(), split_.rigid_faces.size());
+    upload_table(deformable_faces_, split_.deformable_faces);
+    upload_table(rigid_faces_, split_.rigid_faces);
   }
   // Which trees and traversals the scene's queries need (geometry/object_split.h).
   const ObjectSplit& split() const { return split_; }
@@ -147,6 +145,14 @@ class DeviceMesh {
   bool uploaded_ = false, have_previous_ = false;
 };
 
+// Runs `work` as phase p of the frame's timing.
+template <class Timer, class F>
+void time_phase(Timer& timer, Phase p, F&& work) {
+  timer.start(p);
+  work();
+  timer.stop(p);
+}
+
 // Starts a frame's timing and uploads its vertices (timed apart: upload is left out of the
 // frame total, since simulators hold their vertices on the device already); with q16 boxes
 // the frame's grid follows, in the boxes phase, for every pipeline and baseline alike.
@@ -154,14 +160,8 @@ template <class Exec, class Timer>
 MeshView begin_frame(Exec& exec, Timer& timer, DeviceMesh<Exec>& mesh,
                      const std::vector<vec3f>& vertices) {
   timer.start_frame();
-  timer.start(Phase::upload);
-  mesh.upload(exec, vertices);
-  timer.stop(Phase::upload);
-  if (mesh.quantized()) {
-    timer.start(Phase::boxes);
-    mesh.update_grid(exec);
-    timer.stop(Phase::boxes);
-  }
+  time_phase(timer, Phase::upload, [&] { mesh.upload(exec, vertices); });
+  if (mesh.quantized()) time_phase(timer, Phase::boxes, [&] { mesh.update_grid(exec); });
   return mesh.view();
 }
 
@@ -181,20 +181,12 @@ std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const Me
                              FaceSubset faces, bool rebuild, MortonBits bits, bool radix_order = false,
                              const uint32_t* face_group = nullptr) {
   if (!rebuild) {
-    timer.start(Phase::refit);
-    refit(exec, bvh, mesh);
-    timer.stop(Phase::refit);
+    time_phase(timer, Phase::refit, [&] { refit(exec, bvh, mesh); });
     return "refit";
   }
-  timer.start(Phase::build);
-  build_hierarchy(exec, bvh, mesh, bits, faces, face_group);
-  timer.stop(Phase::build);
-  timer.start(Phase::order);
-  if (radix_order)
-    order_depth_first_radix(exec, bvh);
-  else
-    order_depth_first(exec, bvh);
-  timer.stop(Phase::order);
+  time_phase(timer, Phase::build, [&] { build_hierarchy(exec, bvh, mesh, bits, faces, face_group); });
+  time_phase(timer, Phase::order,
+             [&] { radix_order ? order_depth_first_radix(exec, bvh) : order_depth_first(exec, bvh); });
   return "build";
 }
 
@@ -246,26 +238,14 @@ class PairBuffer {
   const Counters& last_counters() const { return last_; }
   // After a read-back: if the pairs did not fit, grow to the measured need
   // (counted) and say so; the caller re-runs the query.
-  bool grow_if_needed() {
-    const uint64_t need = count();
-    if (need <= pairs_.capacity()) return false;
-    pairs_.reserve(size_t(need + need / 4));
-    ++revision_;
-    return true;
-  }
+  bool grow_if_needed() { return count() > pairs_.capacity() && grow_past_count(); }
   // Before a frame, outside its timing: when the last frame's pairs filled more than seven
   // eighths of the buffer, it grows to a quarter past them, so that a count that grows from
   // frame to frame is met between frames instead of overflowing one and running its query
   // twice (docs/design.md "Constants and their measurements"). The buffer holds the last
-  // frame's pairs, which are read
-  // between frames (sorted_pairs) and dead once the next frame starts. True if it grew.
-  bool reserve_ahead() {
-    const uint64_t last = count();
-    if (last <= pairs_.capacity() - pairs_.capacity() / 8) return false;
-    pairs_.reserve(size_t(last + last / 4));
-    ++revision_;
-    return true;
-  }
+  // frame's pairs, which are read between frames (sorted_pairs) and dead once the next frame
+  // starts. True if it grew.
+  bool reserve_ahead() { return count() > pairs_.capacity() - pairs_.capacity() / 8 && grow_past_count(); }
   uint64_t count() const { return last_.pairs; }
   size_t capacity() const { return pairs_.capacity(); }
   std::vector<PrimPair> sorted_pairs(Exec& exec) const {
@@ -276,6 +256,13 @@ class PairBuffer {
   }
 
  private:
+  // Grows to a quarter past the last frame's pair count; true.
+  bool grow_past_count() {
+    pairs_.reserve(size_t(count() + count() / 4));
+    ++revision_;
+    return true;
+  }
+
   Array<PrimPair> pairs_;
   Array<unsigned long long> counters_;
   const uint32_t* skip_adjacent_faces_ = nullptr;

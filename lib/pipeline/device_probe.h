@@ -22,8 +22,7 @@ class DeviceProbe {
 // For --device cuda or cpu (fails like make_pipeline on an unknown or absent device).
 std::unique_ptr<DeviceProbe> make_device_probe(const std::string& device);
 
-// Per-backend factories (host_backend.cpp, cuda_backend.cu or cuda_backend_absent.cpp).
-std::unique_ptr<DeviceProbe> make_host_probe();
+// The CUDA backend's (cuda_backend.cu or cuda_backend_absent.cpp).
 std::unique_ptr<DeviceProbe> make_cuda_probe();
 
 }  // namespace cdb

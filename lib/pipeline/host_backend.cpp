@@ -1,4 +1,3 @@
-#include "core/error.h"
 #include "exec/host_exec.h"
 #include "pipeline/registry.h"
 

@@ -51,10 +51,8 @@ class HostProbe final : public DeviceProbe {
 
 }  // namespace
 
-std::unique_ptr<DeviceProbe> make_host_probe() { return std::make_unique<HostProbe>(); }
-
 std::unique_ptr<DeviceProbe> make_device_probe(const std::string& device) {
-  if (device == "cpu") return make_host_probe();
+  if (device == "cpu") return std::make_unique<HostProbe>();
   if (device == "cuda") return make_cuda_probe();
   fail("unknown device '" + device + "' (known: cuda, cpu)");
 }

@@ -49,11 +49,7 @@ class PairPipeline : public Pipeline {
 
   // Runs `work` as phase p of the frame's timing.
   template <class F>
-  void timed(Phase p, F&& work) {
-    timer_.start(p);
-    work();
-    timer_.stop(p);
-  }
+  void timed(Phase p, F&& work) { time_phase(timer_, p, work); }
 
   PipelineConfig config_;
   Exec exec_;

@@ -89,13 +89,9 @@ std::unique_ptr<Pipeline> make_pipeline(const PipelineConfig& config) {
     for (const auto& n : pipeline_names()) list += (list.empty() ? "" : ", ") + n;
     fail("unknown pipeline '" + config.name + "' (known: " + list + ")");
   }
-  std::unique_ptr<Pipeline> p;
-  if (config.device == "cpu")
-    p = make_host_pipeline(config);
-  else if (config.device == "cuda")
-    p = make_cuda_pipeline(config);
-  else
+  if (config.device != "cpu" && config.device != "cuda")
     fail("unknown device '" + config.device + "' (known: cuda, cpu)");
+  std::unique_ptr<Pipeline> p = config.device == "cpu" ? make_host_pipeline(config) : make_cuda_pipeline(config);
   if (!p) fail("pipeline '" + config.name + "' is not available on " + config.device);
   return p;
 }

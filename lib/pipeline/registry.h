@@ -18,18 +18,12 @@ namespace cdb {
 template <class Exec, class Timer>
 std::unique_ptr<Pipeline> make_baseline_on(const PipelineConfig& c, BaselineMethod method) {
   switch (method) {
-    case BaselineMethod::bvh:
-      return std::make_unique<BvhPipeline<Exec, Timer>>(c);
-    case BaselineMethod::sweep:
-      return std::make_unique<SweepPipeline<Exec, Timer>>(c);
-    case BaselineMethod::grid:
-      return std::make_unique<GridPipeline<Exec, Timer>>(c);
-    case BaselineMethod::hash:
-      return std::make_unique<HashPipeline<Exec, Timer>>(c);
-    case BaselineMethod::brute:
-      return std::make_unique<BrutePipeline<Exec, Timer>>(c);
-    case BaselineMethod::example_sap:
-      return std::make_unique<ExampleSap<Exec, Timer>>(c);
+    case BaselineMethod::bvh: return std::make_unique<BvhPipeline<Exec, Timer>>(c);
+    case BaselineMethod::sweep: return std::make_unique<SweepPipeline<Exec, Timer>>(c);
+    case BaselineMethod::grid: return std::make_unique<GridPipeline<Exec, Timer>>(c);
+    case BaselineMethod::hash: return std::make_unique<HashPipeline<Exec, Timer>>(c);
+    case BaselineMethod::brute: return std::make_unique<BrutePipeline<Exec, Timer>>(c);
+    case BaselineMethod::example_sap: return std::make_unique<ExampleSap<Exec, Timer>>(c);
   }
   return nullptr;
 }
