@@ -61,15 +61,12 @@ inline constexpr double kBuildPerUpdate = 8.0;
 // Probing starts at this share of an update's price. Measured: updates that ran twice, on
 // seven scenes (H100).
 inline constexpr double kProbeShare = 0.5;
-// Before a rebuild frame after the first was measured, a rebuild costs this many steady
-// frames (pipeline/tree_maintenance.h). Measured: later rebuild frames over the steady frames
-// before them, 5-6.5 on funnel, spheres, crumple and garment (H200).
-inline constexpr double kRebuildPerSteady = 6.0;
-// The first maintenance after a build rebuilds where the probe counts an update would grow
-// the fronts (at least a wave each) more than this. Measured: the probes before first updates
-// count 1.03-1.1x on the 32K cloth, 1.29x crumple, 1.1-1.55x funnel, 2.0x spheres (host) and
-// first updates grow the garment's 2.2-2.7x (H200).
-inline constexpr double kFirstUpdateGrowth = 1.75;
+// A maintenance rebuilds where the probe counts an update would make fronts of more than
+// this many times what a rebuild would (pipeline/tree_maintenance.h). Measured: updates grow
+// the fronts per pair 1.05-1.9x on the cloths, funnel, crumple and cloth-ball, 2-3x on the
+// garment and the falling spheres (H200); 1.5 rebuilt the funnel and crumple, 2.5 missed
+// the garment's first maintenance.
+inline constexpr double kRebuildGrowth = 2.0;
 
 // --- Front buffers (pipeline/front_query.h) ---
 // Spare over a probe's update bound: the fronts' buffers grow to bound + bound / this when

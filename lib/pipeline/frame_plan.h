@@ -148,8 +148,8 @@ class FramePlanner {
     const bool steady = p.steady() && !p.stale, clean = o.ran_once && !o.recorded;
     maintenance_.observe(steady, !p.rebuild && self == FrontOp::update, p.rebuild, clean, o.ms, o.front_nodes,
                          !p.rebuild && self == FrontOp::generate);
-    tree_.observe(o.front_nodes, o.pairs, steady && clean ? o.ms : -1.0, p.probe ? o.update_yield : 0);
-    if (p.rebuild) tree_.built(o.ms, clean && frame_ > 0);
+    tree_.observe(o.front_nodes, o.pairs, p.probe ? o.update_yield : 0);
+    if (p.rebuild) tree_.built();
     if (!p.rebuild && p.changes_fronts()) tree_.maintained();
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
     if (p.rebuild || self == FrontOp::generate) generated_ = frame_;
@@ -173,14 +173,10 @@ class FramePlanner {
     p.decision = formula2(leaves);
     if (p.decision != Formula2::none) p.restructuring = pending_;
     pending_ = {};
-    // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h);
-    // an update's price counts once an update was measured: before, it comes from the build.
+    // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h).
     const FrontOp due = maintenance_op(front_nodes);
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
-                rebuild_due(frame_, config_.tree.rebuild_every) ||
-                (due != FrontOp::preserve &&
-                 tree_.rebuild_due(maintenance_.fresh_ms(),
-                                   maintenance_.priced() ? maintenance_.price_ms(front_nodes) : -1.0));
+                rebuild_due(frame_, config_.tree.rebuild_every) || (due != FrontOp::preserve && tree_.rebuild_due());
     // --refit-every: between refits both trees keep their last boxes (not conservative).
     p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
