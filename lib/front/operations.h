@@ -200,8 +200,8 @@ struct PreserveFrontFn {
   CDB_HD_INLINE void count_stops(const uint32_t (&met)[2]) const { add_to_slots(yield, met); }
 #if defined(__CUDACC__)
   // The descents after the first steps, shared out in the warp; `met` holds what this lane's
-  // first step counted, added to the slots once with the descents' stops (a second add per
-  // warp made the probing preserve 1.7x a plain one on cloth-ball).
+  // first step counted, added to the slots once with the descents' stops: a second add per
+  // warp made the probing preserve markedly dearer (docs/experiments.md).
   __device__ void rest_in_warp(const TraversalTask& t, Stage* stage, uint32_t (&met)[2]) const {
     if constexpr (kCountStops) {
       traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t, uint32_t stop) { count_stop(met, stop); });

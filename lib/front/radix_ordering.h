@@ -45,8 +45,10 @@ struct RadixScratch {
     temp.bind(mr, "radix.temp");
   }
   void reserve(Exec& exec, size_t capacity) {
-    for (auto* a : {&keys, &keys_sorted}) a->reserve(capacity);
-    for (auto* a : {&iota, &perm}) a->reserve(capacity);
+    keys.reserve(capacity);
+    keys_sorted.reserve(capacity);
+    iota.reserve(capacity);
+    perm.reserve(capacity);
     temp.reserve(std::max<size_t>(256, exec.sort_temp_bytes(capacity)));
   }
   Array<uint64_t> keys, keys_sorted;

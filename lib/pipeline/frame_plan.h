@@ -78,7 +78,6 @@ class FramePlanner {
 
   const FrontStrategy& strategy() const { return strategy_; }
   const FrontMaintenance& maintenance() const { return maintenance_; }
-  const TreeMaintenance& tree() const { return tree_; }
 
   // A new run over the frames: the first frame builds. `running`: the queries that run in
   // the scene, which a replayed plan must give operations to, and only those; `wave`: the

@@ -14,16 +14,11 @@
 // or thins with the scene). The maintenance rebuilds when the update's count is more than
 // kRebuildGrowth times the rebuild's. Each counts at least one wave of the device's resident
 // threads: a preserve spreads a smaller front over a wave (front/warp_traversal.h), so it
-// costs a wave's latency however many nodes it has (the funnel's steady frame stays
-// 0.032-0.035 ms from 204K to 339K nodes, H200).
+// costs a wave's latency however many nodes it has.
 //
-// Where the tree keeps its quality an update grows the fronts per pair by 1.05-1.9x (the
-// cloths, the funnel, crumple, cloth-ball); on the garment and the falling spheres by 2-3x.
-// A rebuild is no cure for every growth: on cloth-ball a tree rebuilt on the draped cloth
-// degrades within four frames and its updates cost 1-1.6 ms against 0.2 on the tree of the
-// flat cloth, so rebuilding there ran its front pipelines at 0.4x (H200). Rules that priced
-// a rebuild by measured rent or by measured stretches rebuilt cloth-ball too
-// (docs/experiments.md).
+// A rebuild is no cure for every growth: a tree rebuilt on a folded cloth groups folds that
+// slide apart and can degrade faster than the refitted tree of the mesh as built (cloth-ball;
+// the figures, and the rules tried, are in docs/front-maintenance.md).
 #include <algorithm>
 #include <cstdint>
 
