@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs on the GPU machine from a device bundle (.devbundle, see ../shared/tools/device-bundle):
+# Runs on the GPU machine from a device bundle (.devbundle/: bin/ and the libraries its binaries load):
 # GPU tests, verify of every pipeline on the CUDA executor, and benchmarks. Logs go to $OUT.
 # BENCH_SCENES / BENCH_PIPELINES choose the benchmark cells. GPU_TEST_FILTER chooses the GPU
 # tests: all by default, the long ones (suite CudaLong, ctest bvh_cuda_long) included;
