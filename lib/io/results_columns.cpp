@@ -27,6 +27,7 @@ const std::vector<FrameColumn>& frame_columns() {
         {"front_ext", T::u64, "external front nodes after the frame", [](R r) -> ColumnValue { return r.stats.fronts.external; }},
         {"front_inter", T::u64, "split scene: front nodes of the deformable leaves against the rigid tree after the frame", [](R r) -> ColumnValue { return r.stats.fronts.inter; }},
         {"front_disorder", T::f64, "front pipelines: entries changed by updates in place since the fronts were last produced whole (holes plus appended nodes), as a share of their nodes; the largest of the queries", [](R r) -> ColumnValue { return r.stats.fronts.disorder; }},
+        {"rebuild_growth", T::f64, "--front-cycle auto: on a frame that probed before a maintenance, the front nodes an update would make over those a rebuild would (0: no probe)", [](R r) -> ColumnValue { return r.stats.fronts.rebuild_growth; }},
         {"front_rigid", T::u64, "split scene: self front nodes of the rigid tree after the frame", [](R r) -> ColumnValue { return r.stats.fronts.rigid; }},
         {"q_root", T::f64, "Formula 1 at the root (ordered pipelines; else 0)", [](R r) -> ColumnValue { return r.stats.quality.q_root; }},
         {"candidates", T::u64, "pipeline c: restructure candidates found by this frame's inspection", [](R r) -> ColumnValue { return r.stats.quality.candidates; }},

@@ -78,6 +78,8 @@ class FramePlanner {
 
   const FrontStrategy& strategy() const { return strategy_; }
   const FrontMaintenance& maintenance() const { return maintenance_; }
+  // The last probe's count of an update over a rebuild (TreeMaintenance::probed_growth).
+  double probed_growth() const { return tree_.probed_growth(); }
 
   // A new run over the frames: the first frame builds. `running`: the queries that run in
   // the scene, which a replayed plan must give operations to, and only those; `wave`: the

@@ -108,6 +108,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     const double generate_per_node = time_generate ? price_generate(stats) : -1.0;
     planner_.finish(plan, {stats.timing.total_ms, stats.timing.query_reruns == 0, fronts, stats.quality.q_root, found(plan),
                            stats.timing.graph == "captured", generate_per_node, stats.pairs, update_yield(plan)});
+    if (plan.probe) stats.fronts.rebuild_growth = planner_.probed_growth();
     choose_preserve_launch(stats.pairs);
     return stats;
   }

@@ -197,6 +197,9 @@ struct FrontSizes {
   // --update-in-place: how far the fronts' order has decayed (FrontQuery::disorder), the
   // largest of the queries.
   double disorder = 0.0;
+  // --front-cycle auto: on a frame that probed before a maintenance, the front nodes an
+  // update would make over those a rebuild would (pipeline/tree_maintenance.h; 0: no probe).
+  double rebuild_growth = 0.0;
 };
 
 // The quality of T_D (paper §4.1): Formula 1 at the root, and in pipeline c what this
