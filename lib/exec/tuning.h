@@ -67,10 +67,8 @@ inline constexpr double kProbeShare = 0.5;
 // garment and the falling spheres (H200); 1.5 rebuilt the funnel and crumple, 2.5 missed
 // the garment's first maintenance.
 inline constexpr double kRebuildGrowth = 2.0;
-// ... and where that growth, less one, came at more than this much a frame since the tree
-// was built. Measured at the probes that crossed kRebuildGrowth (host replays of H200
-// plans): 0.047 on cloth-ball's tree of the flat cloth, 0.14-0.38 on the spheres, garment
-// and n-body; Morton trees rebuilt on the draped cloth then grew at 0.2-0.7.
+// ... and where that growth, less one, came at more than this much a frame since the build.
+// Measured by host replays of H200 plans at the probes that crossed kRebuildGrowth.
 inline constexpr double kRebuildRate = 0.08;
 
 // --- Front buffers (pipeline/front_query.h) ---
