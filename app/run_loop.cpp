@@ -74,6 +74,7 @@ std::shared_ptr<const RecordedPlan> plan_of_pass(const std::vector<FrameStats>& 
                                                  const std::string& source) {
   auto plan = std::make_shared<RecordedPlan>();
   plan->source = source;
+  plan->records_probes = true;
   for (size_t k = 0; k < pass.size(); ++k) {
     if (!pass[k].plan) return nullptr;
     plan->frames.push_back({first + uint32_t(k), *pass[k].plan, 0});

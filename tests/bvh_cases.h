@@ -400,6 +400,7 @@ inline void check_replayed_plans(const std::string& device, const ExactFrames& s
     const std::vector<FrameStats> recorded = run_exact(cfg, scene);
     auto plan = std::make_shared<RecordedPlan>();
     plan->source = recorder;
+    plan->records_probes = true;
     for (size_t k = 0; k < recorded.size(); ++k) {
       ASSERT_TRUE(recorded[k].plan.has_value()) << "frame " << k;
       plan->frames.push_back({uint32_t(k), *recorded[k].plan, 0});

@@ -550,6 +550,7 @@ template <class Cost>
 RecordedPlan record(FramePlanner& planner, int frames, Cost cost) {
   RecordedPlan plan;
   plan.source = "recorded";
+  plan.records_probes = true;
   for (int f = 0; f < frames; ++f) {
     const FramePlan p = planner.plan(1000, 100);
     plan.frames.push_back({uint32_t(f), planner.step(p), 0});
@@ -633,20 +634,36 @@ TEST(FramePlan, ReplayedRestructuresUseTheirOwnInspection) {
   EXPECT_FALSE(a.replays());
 }
 
-// A preserve right before a recorded update probes, so the update's buffers are sized
-// before it, as before a decided update.
-TEST(FramePlan, ReplayProbesBeforeARecordedUpdate) {
-  const RecordedPlan plan = parse_plan(
-      "cdbench-plan 1\n0 build self=generate\n1 refit self=preserve\n2 refit self=preserve\n3 refit self=update\n",
-      "p.txt");
-  FramePlanner planner(FrontStrategy{}, cycle_config(0));
+namespace {
+
+// Which frames probe when a planner with --update-probe `update_probe` replays `text`.
+std::vector<bool> replayed_probes(const std::string& text, bool update_probe = true) {
+  PipelineConfig cfg = cycle_config(0);
+  cfg.fronts.update_probe = update_probe;
+  FramePlanner planner(FrontStrategy{}, cfg);
+  const RecordedPlan plan = parse_plan(text, "p.txt");
   planner.replay(std::make_shared<const RecordedPlan>(plan));
   planner.reset({true, false, false});
   std::vector<bool> probes;
-  for (int f = 0; f < 4; ++f) {
+  for (size_t f = 0; f < plan.frames.size(); ++f) {
     const FramePlan p = planner.plan(1000, 100);
     probes.push_back(p.probe);
     planner.finish(p, {1.0, true, 100, 1.0, {}});
   }
-  EXPECT_EQ(probes, (std::vector<bool>{false, false, true, false}));
+  return probes;
+}
+
+}  // namespace
+
+// A plan that records no probe (recorded before probes were) probes on the preserve before
+// each recorded update; one that records them replays them where they are, a rebuild's
+// included, and --update-probe off still turns them off.
+TEST(FramePlan, ReplayProbesWhereThePlanSays) {
+  const std::string h = "cdbench-plan 1\n0 build self=generate\n";
+  EXPECT_EQ(replayed_probes(h + "1 refit self=preserve\n2 refit self=preserve\n3 refit self=update\n"),
+            (std::vector<bool>{false, false, true, false}));
+  const std::string recorded = h + "1 refit self=preserve probe\n2 refit self=preserve probe\n3 build self=generate\n"
+                                   "4 refit self=preserve\n5 refit self=update\n";
+  EXPECT_EQ(replayed_probes(recorded), (std::vector<bool>{false, true, true, false, false, false}));
+  EXPECT_EQ(replayed_probes(recorded, false), std::vector<bool>(6, false));
 }

@@ -53,7 +53,7 @@ TEST(PlanRecord, TextRoundTrip) {
       "# recorded by hand\n"
       "\n"
       "4 build self=generate inter=generate\n"
-      "5 refit self=preserve inter=preserve   # steady\n"
+      "5 refit self=preserve inter=preserve probe   # steady\n"
       "6 refit self=update inter=update inspect\n"
       "7 refit self=restructure inter=generate decision=restructure\n"
       "8\tstale self=preserve inter=preserve\n";
@@ -63,6 +63,10 @@ TEST(PlanRecord, TextRoundTrip) {
   EXPECT_EQ(plan.frames[0].line, 4u);
   EXPECT_EQ(plan.frames[2].step.op(Query::inter), FrontOp::update);
   EXPECT_TRUE(plan.frames[2].step.inspect);
+  EXPECT_TRUE(plan.frames[1].step.probe);
+  EXPECT_FALSE(plan.frames[2].step.probe);
+  EXPECT_TRUE(plan.records_probes);
+  EXPECT_FALSE(parse_plan("cdbench-plan 1\n0 build self=generate\n1 refit self=update\n", "p.txt").records_probes);
   EXPECT_FALSE(plan.frames[2].step.op(Query::rigid_self).has_value());
   EXPECT_EQ(plan.frames[3].step.decision, Formula2::restructure);
   EXPECT_EQ(plan.frames[4].step.trees, TreeStep::stale);
@@ -75,6 +79,8 @@ TEST(PlanRecord, TextRoundTrip) {
     EXPECT_EQ(again.frames[k].step, plan.frames[k].step) << "frame " << k;
   }
   EXPECT_EQ(format_plan(plan).substr(0, 15), "cdbench-plan 1\n");
+  EXPECT_TRUE(again.records_probes);
+  EXPECT_EQ(format_plan_step(plan.frames[1].step), "refit self=preserve inter=preserve probe");
 }
 
 TEST(PlanRecord, ParseErrorsNameTheFileLineAndField) {
@@ -101,8 +107,9 @@ TEST(PlanRecord, ParseErrorsNameTheFileLineAndField) {
       {h + "1 refit self=update decision=maybe\n",
        "p.txt line 3 field 4 ('decision=maybe'): unknown decision 'maybe' (refit, restructure, rebuild)"},
       {h + "1 refit self=update inspected\n",
-       "p.txt line 3 field 4 ('inspected'): expected QUERY=OP (self, inter, rigid_self), decision=D or inspect"},
+       "p.txt line 3 field 4 ('inspected'): expected QUERY=OP (self, inter, rigid_self), decision=D, inspect or probe"},
       {h + "1 refit self=update inspect inspect\n", "p.txt line 3 field 5 ('inspect'): inspect given twice"},
+      {h + "1 refit self=preserve probe probe\n", "p.txt line 3 field 5 ('probe'): probe given twice"},
   };
   for (const auto& c : cases) EXPECT_EQ(error_of([&] { parse_plan(c.text, "p.txt"); }), c.error) << c.text;
 }
@@ -167,6 +174,13 @@ TEST(PlanRecord, StepsAPipelineCannotRunAreRefused) {
   p.frames[1].step.inspect = true;
   EXPECT_EQ(error(p, kPipelineC),
             "plan.txt frame 1: an inspection follows an update or a generate of the self fronts on a refitted tree");
+  for (const size_t k : {size_t(0), size_t(1)}) {
+    p = plan_of("bup");
+    p.frames[k].step.probe = true;
+    EXPECT_EQ(error(p, kPipelineC), "plan.txt frame " + std::to_string(k) +
+                                        ": a probe counts what an update of preserved fronts would make: it needs a "
+                                        "preserve on a refitted tree");
+  }
   p = plan_of("bup");
   p.frames[2].step.decision = Formula2::rebuild;
   EXPECT_EQ(error(p, kPipelineC), "plan.txt frame 2: decision=rebuild must build the trees");

@@ -70,6 +70,7 @@ const std::vector<PlanColumn>& plan_columns() {
                    [q](R r) -> ColumnValue { return std::string(r.step.op(q) ? front_op_name(*r.step.op(q)) : ""); }});
     c.push_back({"decision", T::text, "pipeline c: the Formula 2 decision taken at the frame's start (refit, restructure, rebuild; empty: none)", [](R r) -> ColumnValue { return std::string(formula2_name(r.step.decision)); }});
     c.push_back({"inspect", T::u32, "pipeline c: 1 when the frame inspected the tree's quality", [](R r) -> ColumnValue { return uint64_t(r.step.inspect); }});
+    c.push_back({"probe", T::u32, "1 when the frame's preserve counted what an update would make (the probe before a maintenance)", [](R r) -> ColumnValue { return uint64_t(r.step.probe); }});
     return c;
   }();
   return columns;

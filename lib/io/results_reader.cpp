@@ -200,12 +200,18 @@ ResultsPlans read_results_plans(const std::filesystem::path& path) {
   const std::vector<uint64_t> pass = read_column<uint64_t>(root, where, "pass", H5T_NATIVE_UINT64, "plans");
   const std::vector<uint64_t> frame = read_column<uint64_t>(root, where, "frame", H5T_NATIVE_UINT64, "plans");
   const std::vector<uint64_t> inspect = read_column<uint64_t>(root, where, "inspect", H5T_NATIVE_UINT64, "plans");
+  // Files written before plans recorded their probes have no probe column.
+  const bool records_probes = H5Lexists(root, "plans/probe", H5P_DEFAULT) > 0;
+  const std::vector<uint64_t> probe = records_probes
+                                          ? read_column<uint64_t>(root, where, "probe", H5T_NATIVE_UINT64, "plans")
+                                          : std::vector<uint64_t>(pass.size(), 0);
   const std::vector<std::string> trees = read_text_column(root, where, "trees", "plans");
   const std::vector<std::string> decision = read_text_column(root, where, "decision", "plans");
   std::vector<std::vector<std::string>> ops;
   for (Query q : kQueries) ops.push_back(read_text_column(root, where, query_name(q), "plans"));
   const size_t rows = pass.size();
-  bool same_length = frame.size() == rows && inspect.size() == rows && trees.size() == rows && decision.size() == rows;
+  bool same_length = frame.size() == rows && inspect.size() == rows && probe.size() == rows && trees.size() == rows &&
+                     decision.size() == rows;
   for (const auto& column : ops) same_length = same_length && column.size() == rows;
   if (!same_length) fail(where + ": /plans: its columns have different lengths");
   for (size_t i = 0; i < rows; ++i) {
@@ -214,7 +220,8 @@ ResultsPlans read_results_plans(const std::filesystem::path& path) {
     if (pass[i] > plans.passes.size() || (pass[i] + 1 < plans.passes.size()))
       fail(row + ": the rows are not in pass order");
     if (pass[i] == plans.passes.size())
-      plans.passes.push_back({where + " (pipeline " + plans.pipeline + ", pass " + std::to_string(pass[i]) + ")", {}});
+      plans.passes.push_back(
+          {where + " (pipeline " + plans.pipeline + ", pass " + std::to_string(pass[i]) + ")", {}, records_probes});
     RecordedPlan& plan = plans.passes.back();
     if (frame[i] > UINT32_MAX || (!plan.frames.empty() && frame[i] != plan.frames.back().frame + 1))
       fail(row + ": the frames of a pass are not consecutive");
@@ -224,6 +231,7 @@ ResultsPlans read_results_plans(const std::filesystem::path& path) {
       if (!ops[size_t(q)][i].empty()) fields += std::string(" ") + query_name(q) + "=" + ops[size_t(q)][i];
     if (!decision[i].empty()) fields += " decision=" + decision[i];
     if (inspect[i]) fields += " inspect";
+    if (probe[i]) fields += " probe";
     plan.frames.push_back({uint32_t(frame[i]), parse_plan_step(fields, row), 0});
   }
   return plans;

@@ -129,6 +129,7 @@ class FramePlanner {
       if (running_[size_t(q)]) s.op(q) = p.op(q);
     s.decision = p.decision;
     s.inspect = p.inspect;
+    s.probe = p.probe;
     return s;
   }
 
@@ -193,7 +194,8 @@ class FramePlanner {
     // stale front for the next maintenance to refresh.
     p.inspect = strategy_.restructure && q_ref_ > 0.0 &&
                 (p.op(Query::self) == FrontOp::update || (p.op(Query::self) == FrontOp::generate && !p.rebuild));
-    p.probe = config_.fronts.update_probe && !p.rebuild && cycle == FrontOp::preserve &&
+    // The probe rides on a preserve (a restructure frame's self fronts do not preserve).
+    p.probe = config_.fronts.update_probe && !p.rebuild && step(p).runs(FrontOp::preserve) &&
               maintenance_.update_near(frame_, generated_, produced_, front_nodes);
     return p;
   }
@@ -218,9 +220,12 @@ class FramePlanner {
       p.restructuring = pending_;
     }
     pending_ = {};
-    // A preserve before a recorded update probes, as one before a decided update would.
-    p.probe = config_.fronts.update_probe && !p.rebuild && s.runs(FrontOp::preserve) && frame_ + 1 < r.frames.size() &&
-              r.frames[frame_ + 1].step.runs(FrontOp::update);
+    // The recorded probes; in a plan that records none, a preserve before a recorded update
+    // probes, as one before a decided update would.
+    const bool probed = r.records_probes ? s.probe
+                                         : !p.rebuild && s.runs(FrontOp::preserve) && frame_ + 1 < r.frames.size() &&
+                                               r.frames[frame_ + 1].step.runs(FrontOp::update);
+    p.probe = config_.fronts.update_probe && probed;
     return p;
   }
 

@@ -57,6 +57,7 @@ std::string format_plan_step(const PlanStep& s) {
     if (s.op(q)) text += std::string(" ") + query_name(q) + "=" + front_op_name(*s.op(q));
   if (s.decision != Formula2::none) text += std::string(" decision=") + formula2_name(s.decision);
   if (s.inspect) text += " inspect";
+  if (s.probe) text += " probe";
   return text;
 }
 
@@ -73,15 +74,16 @@ PlanStep parse_plan_step(const std::string& text, const std::string& where, size
       s.trees = *trees;
       continue;
     }
-    if (f == "inspect") {
-      if (s.inspect) fail(at + "inspect given twice");
-      s.inspect = true;
+    if (f == "inspect" || f == "probe") {
+      bool& flag = f == "inspect" ? s.inspect : s.probe;
+      if (flag) fail(at + f + " given twice");
+      flag = true;
       continue;
     }
     const size_t eq = f.find('=');
     const std::string key = f.substr(0, eq), value = eq == std::string::npos ? "" : f.substr(eq + 1);
     if (eq == std::string::npos)
-      fail(at + "expected QUERY=OP (self, inter, rigid_self), decision=D or inspect");
+      fail(at + "expected QUERY=OP (self, inter, rigid_self), decision=D, inspect or probe");
     if (key == "decision") {
       const std::optional<Formula2> d = named(value, kDecisions, formula2_name);
       if (!d) fail(at + "unknown decision '" + quoted(value) + "' (refit, restructure, rebuild)");
@@ -137,6 +139,7 @@ RecordedPlan parse_plan(const std::string& text, const std::string& source) {
            std::to_string(plan.frames.back().frame) + ": a plan lists consecutive frames");
     const size_t rest = content.find(fields[0]) + fields[0].size();
     plan.frames.push_back({*frame, parse_plan_step(content.substr(rest), at, 2), number});
+    plan.records_probes = plan.records_probes || plan.frames.back().step.probe;
   }
   if (!header) fail(source + ": not a cdbench plan file: empty (expected the header '" + kPlanFileHeader + "')");
   if (plan.frames.empty()) fail(source + ": the plan has no frames (one line per frame after the header)");
@@ -233,6 +236,8 @@ void check_plan_steps(const RecordedPlan& plan, const ReplayTarget& target) {
     const std::optional<FrontOp> self = s.op(Query::self);
     if (s.inspect && !(self == FrontOp::update || (self == FrontOp::generate && !built)))
       refuse("an inspection follows an update or a generate of the self fronts on a refitted tree");
+    if (s.probe && (built || !s.runs(FrontOp::preserve)))
+      refuse("a probe counts what an update of preserved fronts would make: it needs a preserve on a refitted tree");
     // Stale boxes only where the run's own --refit-every keeps them, so a replay is as
     // conservative as the run's configuration says.
     const bool stale_here = !built && !target.rebuild_every_frame && !refit_due(k, target.refit_every);

@@ -26,6 +26,9 @@ struct RecordedPlan {
   // Where it came from, for messages: a plan file's path, or "r.h5 (pipeline c, pass 0)".
   std::string source;
   std::vector<PlannedFrame> frames;  // consecutive frames, in order
+  // Whether the steps say which frames probed; plans without (recorded before they did, or
+  // written naming no probe) probe on the preserve before each update.
+  bool records_probes = false;
 
   // The k-th frame for a message: "plan.txt line 5 (frame 4)", or "r.h5 (pipeline c, pass
   // 0) frame 4".

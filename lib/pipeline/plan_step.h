@@ -53,6 +53,7 @@ struct PlanStep {
   std::array<std::optional<FrontOp>, kQueryCount> ops{};
   Formula2 decision = Formula2::none;  // taken at the frame's start on the last inspection
   bool inspect = false;                // pipeline c inspected T_D's quality after the frame's operations
+  bool probe = false;                  // a preserve that counted what an update would make (FrontQuery::update_yield)
 
   const std::optional<FrontOp>& op(Query q) const { return ops[size_t(q)]; }
   std::optional<FrontOp>& op(Query q) { return ops[size_t(q)]; }

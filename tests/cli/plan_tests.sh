@@ -77,7 +77,9 @@ degraded=(--restructure-quality 0 --restructure-min-leaves 8)
 check "a plan of every operation replays exactly" 0 "check +8 frames against the oracle: recall min 1\.000000" -- \
   "$cdbench" run "${scene[@]}" --frames 0:8 "${degraded[@]}" --front-cycle "$d/hand.txt" --check every --out "$d/hand.h5"
 "$cdbench" report --plan "$d/hand.h5" >"$d/hand-ran.txt"
-same_steps "the hand plan's steps ran as written" "$d/hand.txt" "$d/hand-ran.txt"
+# A plan that names no probe probes on the preserve before each update, and records it.
+sed -E 's/^([15] refit self=preserve)$/\1 probe/' "$d/hand.txt" >"$d/hand-probed.txt"
+same_steps "the hand plan's steps ran as written, with the probes before its updates" "$d/hand-probed.txt" "$d/hand-ran.txt"
 check "report's outline of the hand plan" 0 "\| build: 0; update: 2,6; generate: 4; restructure: 3 \|" -- "$cdbench" report "$d/hand.h5"
 check "a recorded pipeline a plan replays on b" 0 "check +8 frames" -- \
   "$cdbench" run "${scene[@]}" --frames 0:8 --pipeline a --out "$d/a.h5" --check every
@@ -107,7 +109,7 @@ check "free passes: plan_mixed, op and the summary agree with /plans" 0 "^consis
 import h5py, sys
 f = h5py.File(sys.argv[1], 'r')
 p, fr = f['plans'], f['frames']
-cols = ['trees', 'self', 'inter', 'rigid_self', 'decision', 'inspect']
+cols = ['trees', 'self', 'inter', 'rigid_self', 'decision', 'inspect', 'probe']
 rows = {(int(a), int(b)): tuple(p[c][i] for c in cols) for i, (a, b) in enumerate(zip(p['pass'][()], p['frame'][()]))}
 last = max(a for a, _ in rows)
 ok = last == 2
