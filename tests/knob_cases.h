@@ -330,6 +330,45 @@ inline void check_update_probe(const std::string& device) {
     }
 }
 
+// A probing preserve's count (FrontSizes::update_yield) is what the host counts on the same
+// fronts, with traversals shared in warps or not, on scenes with many pairs a front node
+// (their preserve stages its pairs and counts per block) and few (it appends and counts per
+// warp); and it bounds the fronts the update after it makes on the same geometry (each
+// frame but the first given twice, --front-cycle 2).
+inline void check_probe_counts(const std::string& device) {
+  for (const auto& scene : {"soup", "cloth_wave", "funnel"}) {
+    const ExactFrames frames = exact_frames(*front_scene(scene, 24, 5));
+    for (WarpSharing warp : {WarpSharing::on, WarpSharing::off}) {
+      std::vector<std::vector<FrameStats>> runs;
+      for (const std::string& on : {device, std::string("cpu")}) {
+        PipelineConfig cfg = config_for(on, 0.5, 0.05, 2);
+        cfg.name = "a";
+        cfg.fronts.preserve_warp = warp;
+        auto p = make_pipeline(cfg);
+        p->set_topology(frames.topology);
+        runs.emplace_back();
+        for (uint32_t k = 0; k < 2 * frames.num_frames() - 1; ++k) runs.back().push_back(p->run_frame(frames.vertices[(k + 1) / 2]));
+      }
+      uint32_t probes = 0;
+      for (size_t k = 0; k < runs[0].size(); ++k) {
+        const FrameStats &s = runs[0][k], &host = runs[1][k];
+        const std::string where = std::string(scene) + (warp == WarpSharing::on ? " in warps" : " alone") + " frame " +
+                                  std::to_string(k) + " (" + s.op + ")";
+        EXPECT_EQ(s.fronts.update_yield, host.fronts.update_yield) << where;
+        if (s.fronts.update_yield == 0) continue;
+        ++probes;
+        ASSERT_LT(k + 1, runs[0].size()) << where << ": a probe on the last frame";
+        const FrameStats& next = runs[0][k + 1];
+        ASSERT_NE(next.op.find("+update"), std::string::npos) << where << ": no update after the probe";
+        EXPECT_LE(next.fronts.internal + next.fronts.external + next.fronts.inter + next.fronts.rigid,
+                  s.fronts.update_yield)
+            << where << ": the update made more front nodes than the probe counted";
+      }
+      EXPECT_GT(probes, 0u) << scene;
+    }
+  }
+}
+
 // The pair buffer grows between frames once a frame's pairs fill seven eighths of it: a
 // soup drawn together a little more each frame (its pairs grow 3-8% a frame, past twice the
 // first frame's) overflows it only on the first frame, for every pipeline, and stays exact.

@@ -306,6 +306,11 @@ TEST(CudaKnobs, ProbedUpdatesRunOnce) {
   check_update_probe("cuda");
 }
 
+TEST(CudaKnobs, ProbeCountsMatchTheHost) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_probe_counts("cuda");
+}
+
 // Every front cycle (1, 2, 3, 5 and auto) on each front scene, against the scene's oracle
 // pairs computed once.
 class CudaFrontCycles : public testing::TestWithParam<std::string> {

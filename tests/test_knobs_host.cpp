@@ -218,6 +218,8 @@ TEST(HostKnobs, UpdateVariantsKeepEveryPipelineExact) { check_update_knobs("cpu"
 
 TEST(HostKnobs, ProbedUpdatesRunOnce) { check_update_probe("cpu"); }
 
+TEST(HostKnobs, ProbeCountsBoundTheUpdate) { check_probe_counts("cpu"); }
+
 TEST(HostKnobs, PairBufferGrowsBetweenFrames) { check_pairs_grown_ahead("cpu"); }
 
 }  // namespace cdb::test

@@ -124,4 +124,19 @@ struct PairFrontStage {
 #endif
 };
 
+// What a probing preserve stages: its pairs, and per front kind the stop nodes its block's
+// warps counted (PreserveFrontFn<true>), added to the global slots once per block at the
+// flush instead of once per warp: the slots are a few addresses that every warp of the
+// launch added to.
+struct PairCountStage {
+  PairStage pairs;
+  unsigned long long met[2];
+#if defined(__CUDACC__)
+  __device__ void reset() {
+    pairs.reset();
+    met[0] = met[1] = 0;
+  }
+#endif
+};
+
 }  // namespace cdb

@@ -5,6 +5,7 @@
 // serve self fronts (leaf i of a tree against that tree) and cross fronts (leaf i of T_D
 // against T_R, docs/design.md "Deformable and rigid objects"); FrontView says which.
 #include <cstdint>
+#include <type_traits>
 
 #include "bvh/bvh_view.h"
 #include "bvh/traverse.h"
@@ -108,22 +109,29 @@ struct GenerateFrontFn {
 #endif
 };
 
-// Adds a lane's two counts (one per front kind) to kStopSlots slots of two: on the GPU into
-// its block's slot, once per warp and kind where the warp reduction exists (sm_80 and
-// later), else once per lane; on the host to the first slot.
-CDB_HD_INLINE void add_to_slots(unsigned long long* slots, const uint32_t (&n)[2]) {
-#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ < 800
-  unsigned long long* slot = slots + 2 * (blockIdx.x % kStopSlots);
+#if defined(__CUDACC__)
+// Adds the lanes' two counts (one per front kind) to to[0] and to[1]: once per warp and kind
+// where the warp reduction exists (sm_80 and later), else once per lane.
+__device__ inline void add_in_warp(unsigned long long* to, const uint32_t (&n)[2]) {
+#if __CUDA_ARCH__ < 800
   for (int k = 0; k < 2; ++k)
-    if (n[k]) atomicAdd(&slot[k], static_cast<unsigned long long>(n[k]));
-#elif defined(__CUDA_ARCH__)
+    if (n[k]) atomicAdd(&to[k], static_cast<unsigned long long>(n[k]));
+#else
   const unsigned active = __activemask();
   if (!__any_sync(active, (n[0] | n[1]) != 0)) return;
-  unsigned long long* slot = slots + 2 * (blockIdx.x % kStopSlots);
   for (int k = 0; k < 2; ++k) {
     const uint32_t sum = __reduce_add_sync(active, n[k]);
-    if ((threadIdx.x & 31u) == unsigned(__ffs(active) - 1) && sum) atomicAdd(&slot[k], static_cast<unsigned long long>(sum));
+    if ((threadIdx.x & 31u) == unsigned(__ffs(active) - 1) && sum) atomicAdd(&to[k], static_cast<unsigned long long>(sum));
   }
+#endif
+}
+#endif
+
+// Adds a lane's two counts (one per front kind) to kStopSlots slots of two: on the GPU into
+// its block's slot (add_in_warp), on the host to the first slot.
+CDB_HD_INLINE void add_to_slots(unsigned long long* slots, const uint32_t (&n)[2]) {
+#if defined(__CUDA_ARCH__)
+  add_in_warp(slots + 2 * (blockIdx.x % kStopSlots), n);
 #else
   for (int k = 0; k < 2; ++k)
     if (n[k]) atomic_add_relaxed(&slots[k], static_cast<unsigned long long>(n[k]));
@@ -156,7 +164,8 @@ CDB_HD_INLINE TraversalTask front_node_step(const FrontView& view, const PairSin
 // each kind was 1.5 times the internal front the 522K cloth's update made.
 template <bool kCountStops>
 struct PreserveFrontFn {
-  using Stage = PairStage;
+  // A probe's block adds its counts to the slots once (PairCountStage).
+  using Stage = std::conditional_t<kCountStops, PairCountStage, PairStage>;
   static constexpr bool kWarpTraversal = true;
   FrontView view;
   PairSink pairs;
@@ -164,7 +173,12 @@ struct PreserveFrontFn {
   const uint32_t* node;
   bool share_in_warp = true;          // on the GPU: each lane alone when false
   unsigned long long* yield = nullptr;  // kCountStops: the count slots
-  CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage); }
+  CDB_HD PairSink pair_sink(Stage* stage) const {
+    if constexpr (kCountStops)
+      return pairs.staged(stage ? &stage->pairs : nullptr);
+    else
+      return pairs.staged(stage);
+  }
   // Front node e's own test: its pair if it is a leaf that overlaps, and the rest; with
   // kCountStops, what e yields to an update unless it descends is added to `met`.
   CDB_HD TraversalTask first_step(uint32_t e, Stage* stage, uint32_t (&met)[2]) const {
@@ -189,7 +203,7 @@ struct PreserveFrontFn {
                  if constexpr (kCountStops) count_stop(met, stop);
                });
     }
-    if constexpr (kCountStops) count_stops(met);
+    if constexpr (kCountStops) count_stops(met, stage);
   }
   // Counted per kind without indexing `met` by a value, which would put it in local memory.
   CDB_HD_INLINE static void count_stop(uint32_t (&met)[2], uint32_t stop) {
@@ -197,7 +211,16 @@ struct PreserveFrontFn {
     met[kExternalFront] += external;
     met[kInternalFront] += 1u - external;
   }
-  CDB_HD_INLINE void count_stops(const uint32_t (&met)[2]) const { add_to_slots(yield, met); }
+  // Into the block's stage where there is one, else straight to the slots.
+  CDB_HD_INLINE void count_stops(const uint32_t (&met)[2], Stage* stage) const {
+#if defined(__CUDA_ARCH__)
+    if (stage) {
+      add_in_warp(stage->met, met);
+      return;
+    }
+#endif
+    add_to_slots(yield, met);
+  }
 #if defined(__CUDACC__)
   // The descents after the first steps, shared out in the warp; `met` holds what this lane's
   // first step counted, added to the slots once with the descents' stops: a second add per
@@ -205,12 +228,25 @@ struct PreserveFrontFn {
   __device__ void rest_in_warp(const TraversalTask& t, Stage* stage, uint32_t (&met)[2]) const {
     if constexpr (kCountStops) {
       traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t, uint32_t stop) { count_stop(met, stop); });
-      count_stops(met);
+      count_stops(met, stage);
     } else {
       traverse_in_warp(view.tree.bvh, t, pair_sink(stage));
     }
   }
-  __device__ void flush(Stage& s) const { pairs.flush(s); }
+  __device__ void flush(Stage& s) const {
+    if constexpr (kCountStops) {
+      pairs.flush(s.pairs);
+      if (threadIdx.x == 0) add_stage_to_slots(s.met);
+    } else {
+      pairs.flush(s);
+    }
+  }
+  // One thread of the block: what its warps counted, to the block's slot.
+  __device__ void add_stage_to_slots(const unsigned long long (&met)[2]) const {
+    unsigned long long* slot = yield + 2 * (blockIdx.x % kStopSlots);
+    for (int k = 0; k < 2; ++k)
+      if (met[k]) atomicAdd(&slot[k], met[k]);
+  }
 #endif
 };
 

@@ -107,7 +107,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     describe(plan, stats);
     const double generate_per_node = time_generate ? price_generate(stats) : -1.0;
     planner_.finish(plan, {stats.timing.total_ms, stats.timing.query_reruns == 0, fronts, stats.quality.q_root, found(plan),
-                           stats.timing.graph == "captured", generate_per_node, stats.pairs, update_yield(plan)});
+                           stats.timing.graph == "captured", generate_per_node, stats.pairs, stats.fronts.update_yield});
     if (plan.probe) stats.fronts.rebuild_growth = planner_.probed_growth();
     choose_preserve_launch(stats.pairs);
     return stats;
@@ -201,6 +201,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     stats.fronts.inter = queries_[size_t(Query::inter)].live_total();
     stats.fronts.rigid = queries_[size_t(Query::rigid_self)].live_total();
     stats.fronts.disorder = disorder();
+    stats.fronts.update_yield = update_yield(plan);
     stats.quality.q_root = strategy().ordered && stats.fronts.external
                        ? double(stats.fronts.internal) / double(stats.fronts.external)
                        : 0.0;

@@ -200,6 +200,9 @@ struct FrontSizes {
   // --front-cycle auto: on a frame that probed before a maintenance, the front nodes an
   // update would make over those a rebuild would (pipeline/tree_maintenance.h; 0: no probe).
   double rebuild_growth = 0.0;
+  // On a probing frame: the front nodes an update of the fronts would make at most, all
+  // queries (FrontQuery::update_yield; 0: no probe).
+  uint64_t update_yield = 0;
 };
 
 // The quality of T_D (paper §4.1): Formula 1 at the root, and in pipeline c what this
