@@ -396,38 +396,54 @@ TEST(FramePlan, FixedCycleProbesTheFrameBeforeAnUpdate) {
   EXPECT_EQ(schedule_probes(unprobed, 13, flat), "bpppupppupppu");
 }
 
-// Adaptively, probing starts once the rent paid reaches kProbeShare of the price and goes on
-// until the update: every update follows a probe, and frames with less rent do not probe.
-TEST(FramePlan, AdaptiveProbesOnceTheRentNearsThePrice) {
-  const double a = 0.1, build = 10.0, extra = 2.0;
-  int since = 0;
-  double rent = 0.0;
-  auto cost = [&](int, const FramePlan& p) {
-    if (!p.steady()) {
-      since = 0;
-      rent = 0.0;
-      return p.rebuild ? build : 1.0 + extra;
+// Adaptively, the frame before an update probes: the one where the rent paid and what the
+// next frame is expected to pay (the last frame's cost and its rise) reach the price. With
+// rent growing linearly that is exact: each update follows one probe, no frame probes that
+// an update does not follow, and the updates come when the rent reaches the price
+// (AdaptiveUpdatesWhenTheRentPaidReachesTheUpdatesPrice).
+TEST(FramePlan, AdaptiveProbesTheFrameBeforeAnUpdate) {
+  for (const double a : {0.02, 0.1, 0.5}) {
+    const double build = 10.0, extra = 2.0;
+    int since = 0;
+    double rent = 0.0;
+    auto cost = [&](int, const FramePlan& p) {
+      if (!p.steady()) {
+        since = 0;
+        rent = 0.0;
+        return p.rebuild ? build : 1.0 + extra;
+      }
+      rent += a * since;
+      return 1.0 + a * since++;
+    };
+    FramePlanner planner(FrontStrategy{}, cycle_config(0));
+    std::string s;
+    for (int f = 0; f < 200; ++f) {
+      const FramePlan p = planner.plan(1000, 100);
+      const double price = planner.maintenance().price_ms(100);
+      s += p.probe ? 'P' : letter(p);
+      if (p.updates()) EXPECT_GE(rent, price - 1e-9) << "a = " << a << ", frame " << f;
+      planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
     }
-    rent += a * since;
-    return 1.0 + a * since++;
-  };
+    ASSERT_NE(s.find('u'), std::string::npos) << s;
+    for (size_t k = s.find('u'); k != std::string::npos; k = s.find('u', k + 1))
+      EXPECT_EQ(s[k - 1], 'P') << "a = " << a << ": " << s;
+    for (size_t k = s.find('P'); k != std::string::npos && k + 1 < s.size(); k = s.find('P', k + 1))
+      EXPECT_EQ(s[k + 1], 'u') << "a = " << a << ": " << s;
+  }
+}
+
+// A steady frame dearer than expected brings an update due unprobed: it waits a frame, which
+// probes. Here the fronts cost nothing to keep until frame 10, which pays 3 ms more, past the
+// first update's price at once: frame 11 comes due, probes instead, and frame 12 updates.
+TEST(FramePlan, AdaptiveUpdateDueUnprobedWaitsForItsProbe) {
   FramePlanner planner(FrontStrategy{}, cycle_config(0));
   std::string s;
-  for (int f = 0; f < 200; ++f) {
+  for (int f = 0; f < 14; ++f) {
     const FramePlan p = planner.plan(1000, 100);
-    const double rent_before = rent;
     s += p.probe ? 'P' : letter(p);
-    const double price = planner.maintenance().price_ms(100);
-    if (p.probe) {
-      EXPECT_GE(rent_before, kProbeShare * price - 1e-9) << "frame " << f;
-    }
-    if (p.op(Query::self) == FrontOp::preserve && !p.rebuild && !p.probe && f > 0) {
-      EXPECT_LT(rent_before, kProbeShare * price + 1e-9) << "frame " << f;
-    }
-    planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
+    planner.finish(p, {p.rebuild ? 10.0 : !p.steady() ? 3.0 : f >= 10 ? 4.0 : 1.0, true, 100, 1.0, {}});
   }
-  ASSERT_NE(s.find('u'), std::string::npos) << s;
-  for (size_t k = s.find('u'); k != std::string::npos; k = s.find('u', k + 1)) EXPECT_EQ(s[k - 1], 'P') << s;
+  EXPECT_EQ(s, "bppppppppppPup") << "(ms: build 10, steady 1 then 4 from frame 10)";
 }
 
 // Steady frames that grew a buffer (ran twice) or recorded their frame graph paid a one-off

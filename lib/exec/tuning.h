@@ -58,9 +58,6 @@ inline constexpr uint32_t kRefitTopSharedSlots = 1536;
 // Before any update was measured, a build frame's cost over this is an update's price.
 // Measured: the build over the steady frame on the anchors; 6 against 8 (H100).
 inline constexpr double kBuildPerUpdate = 8.0;
-// Probing starts at this share of an update's price. Measured: updates that ran twice, on
-// seven scenes (H100).
-inline constexpr double kProbeShare = 0.5;
 // A maintenance rebuilds where the probe counts an update would make fronts of more than
 // this many times what a rebuild would (pipeline/tree_maintenance.h). Measured: updates grow
 // the fronts per pair 1.05-1.9x on the cloths, funnel, crumple and cloth-ball, 2-3x on the

@@ -86,6 +86,7 @@ class FramePlanner {
   // device's resident threads (TreeMaintenance).
   void reset(const QuerySet& running = {true, true, true}, uint64_t wave = 1) {
     frame_ = generated_ = produced_ = 0;
+    probed_ = false;
     pending_ = {};
     q_ref_ = 0.0;
     maintenance_.reset();
@@ -161,6 +162,7 @@ class FramePlanner {
     }
     if (strategy_.restructure && p.rebuild) q_ref_ = o.q_root;
     if (p.inspect) pending_ = o.found;
+    probed_ = p.probe;
     ++frame_;
   }
 
@@ -176,7 +178,12 @@ class FramePlanner {
     if (p.decision != Formula2::none) p.restructuring = pending_;
     pending_ = {};
     // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h).
-    const FrontOp due = maintenance_op(front_nodes);
+    // An adaptive one that comes due unprobed waits a frame for its probe, which sizes its
+    // buffers and measures the tree (FrontMaintenance::update_near).
+    FrontOp due = maintenance_op(front_nodes);
+    if (due != FrontOp::preserve && maintenance_.adaptive() && config_.fronts.update_probe && !probed_ &&
+        p.decision != Formula2::restructure)
+      due = FrontOp::preserve;
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
                 rebuild_due(frame_, config_.tree.rebuild_every) || (due != FrontOp::preserve && tree_.rebuild_due());
     // --refit-every: between refits both trees keep their last boxes (not conservative).
@@ -261,6 +268,7 @@ class FramePlanner {
   uint64_t frame_ = 0;
   uint64_t generated_ = 0;  // the last frame that generated T_D's self fronts
   uint64_t produced_ = 0;   // the last frame that produced any front
+  bool probed_ = false;     // the last frame probed
   Candidates pending_;      // found by the last inspection, decided on the next frame
   QuerySet running_ = {true, true, true};       // the queries that run in the scene
   std::shared_ptr<const RecordedPlan> replay_;  // the plan replayed, or none

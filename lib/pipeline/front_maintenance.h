@@ -52,8 +52,7 @@ namespace cdb {
 class FrontMaintenance {
  public:
   static constexpr uint32_t kAuto = 0;
-  // kBuildPerUpdate and kProbeShare: exec/tuning.h. Probing from half the price: for rent
-  // growing linearly, the last 30% of the frames between updates probe.
+  // kBuildPerUpdate: exec/tuning.h.
 
   // cycle: frames per fixed cycle, or kAuto.
   // regenerate: adaptive maintenances may generate instead of update.
@@ -89,12 +88,16 @@ class FrontMaintenance {
   // Whether the frame after `frame` may update, so that `frame`, if it preserves, should
   // probe: count what an update of its fronts would produce, for their buffers to be sized
   // before the update instead of growing inside it and running it again. Fixed cycle: the
-  // frame before an update. Adaptive: once the rent paid has reached kProbeShare of the
-  // price, and on every steady frame after until the update (rent only grows).
+  // frame before an update. Adaptive: where the rent paid and what the next steady frame is
+  // expected to pay reach the price: the last frame's cost, plus its rise over the frame
+  // before where it rose (exact where the rent grows linearly). A maintenance that comes due
+  // unprobed all the same (a frame dearer than expected) waits a frame for its probe
+  // (FramePlanner).
   bool update_near(uint64_t frame, uint64_t generated, uint64_t produced, uint64_t front_nodes) const {
     if (!adaptive()) return update_due(frame + 1, generated, produced, front_nodes);
-    if (frame <= produced) return false;
-    return steady_ > 0 && rent_ms() >= kProbeShare * price_ms(front_nodes);
+    if (frame <= produced || steady_ == 0) return false;
+    const double rise = steady_ > 1 ? std::max(0.0, steady_last_ - steady_before_) : 0.0;
+    return rent_ms() + steady_last_ + rise - steady_min_ >= price_ms(front_nodes);
   }
 
   // The cheapest steady frame since the fronts were last produced (fresh fronts), in ms.
@@ -128,6 +131,8 @@ class FrontMaintenance {
     if (steady) {
       if (!once) return;
       steady_sum_ += ms;
+      steady_before_ = steady_last_;
+      steady_last_ = ms;
       steady_min_ = std::min(steady_min_, ms);
       ++steady_;
       return;
@@ -151,6 +156,7 @@ class FrontMaintenance {
   // The fronts were produced this frame: the rent starts over.
   void produced() {
     steady_sum_ = 0.0;
+    steady_last_ = steady_before_ = 0.0;
     steady_min_ = std::numeric_limits<double>::infinity();
     steady_ = 0;
   }
@@ -166,6 +172,8 @@ class FrontMaintenance {
   double build_ms_ = 0.0;            // the last frame that built the tree
   bool clean_ = false;               // that price comes from updates that ran once
   double steady_sum_ = 0.0;
+  double steady_last_ = 0.0;    // the last steady frame counted
+  double steady_before_ = 0.0;  // the one before it
   double steady_min_ = std::numeric_limits<double>::infinity();
   uint64_t steady_ = 0;
 };
