@@ -131,9 +131,8 @@ class FrontQuery {
   // kProbeSpareDiv to spare grow to hold it so, so that the coming update produces its
   // fronts in one run. The bound holds for the probed frame's geometry; the update runs on
   // a later frame, whose motion the spare covers, and past it the update grows and runs
-  // again as before (docs/design.md "Constants and their measurements"). Probes run on
-  // every steady frame before an update, so the buffers follow the bound up in steps
-  // between frames. True if a buffer grew.
+  // again as before (docs/design.md "Constants and their measurements"). True if a buffer
+  // grew.
   bool reserve_for_update(Exec& exec, const FrontCounters& c) {
     if (!active_) return false;
     bool grew = false;
