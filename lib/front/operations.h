@@ -212,7 +212,7 @@ struct PreserveFrontFn {
     met[kInternalFront] += 1u - external;
   }
   // Into the block's stage where there is one, else straight to the slots.
-  CDB_HD_INLINE void count_stops(const uint32_t (&met)[2], Stage* stage) const {
+  CDB_HD_INLINE void count_stops(const uint32_t (&met)[2], [[maybe_unused]] Stage* stage) const {
 #if defined(__CUDA_ARCH__)
     if (stage) {
       add_in_warp(stage->met, met);
