@@ -421,7 +421,9 @@ TEST(FramePlan, AdaptiveProbesTheFrameBeforeAnUpdate) {
       const FramePlan p = planner.plan(1000, 100);
       const double price = planner.maintenance().price_ms(100);
       s += p.probe ? 'P' : letter(p);
-      if (p.updates()) EXPECT_GE(rent, price - 1e-9) << "a = " << a << ", frame " << f;
+      if (p.updates()) {
+        EXPECT_GE(rent, price - 1e-9) << "a = " << a << ", frame " << f;
+      }
       planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
     }
     ASSERT_NE(s.find('u'), std::string::npos) << s;

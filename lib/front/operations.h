@@ -121,9 +121,17 @@ __device__ inline void add_in_warp(unsigned long long* to, const uint32_t (&n)[2
   if (!__any_sync(active, (n[0] | n[1]) != 0)) return;
   for (int k = 0; k < 2; ++k) {
     const uint32_t sum = __reduce_add_sync(active, n[k]);
-    if ((threadIdx.x & 31u) == unsigned(__ffs(active) - 1) && sum) atomicAdd(&to[k], static_cast<unsigned long long>(sum));
+    if ((threadIdx.x & 31u) == unsigned(__ffs(active) - 1) && sum)
+      atomicAdd(&to[k], static_cast<unsigned long long>(sum));
   }
 #endif
+}
+#endif
+
+#if defined(__CUDACC__)
+// The pair of kStopSlots slots of two that this block adds to.
+__device__ inline unsigned long long* block_slot(unsigned long long* slots) {
+  return slots + 2 * (blockIdx.x % kStopSlots);
 }
 #endif
 
@@ -131,7 +139,7 @@ __device__ inline void add_in_warp(unsigned long long* to, const uint32_t (&n)[2
 // its block's slot (add_in_warp), on the host to the first slot.
 CDB_HD_INLINE void add_to_slots(unsigned long long* slots, const uint32_t (&n)[2]) {
 #if defined(__CUDA_ARCH__)
-  add_in_warp(slots + 2 * (blockIdx.x % kStopSlots), n);
+  add_in_warp(block_slot(slots), n);
 #else
   for (int k = 0; k < 2; ++k)
     if (n[k]) atomic_add_relaxed(&slots[k], static_cast<unsigned long long>(n[k]));
@@ -243,7 +251,7 @@ struct PreserveFrontFn {
   }
   // One thread of the block: what its warps counted, to the block's slot.
   __device__ void add_stage_to_slots(const unsigned long long (&met)[2]) const {
-    unsigned long long* slot = yield + 2 * (blockIdx.x % kStopSlots);
+    unsigned long long* slot = block_slot(yield);
     for (int k = 0; k < 2; ++k)
       if (met[k]) atomicAdd(&slot[k], met[k]);
   }
