@@ -123,18 +123,25 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
              "time each phase of a frame with events; off: only the frame and its upload (no event between "
              "kernels, which in a CUDA graph costs a node and keeps the next kernel from launching early)")
       ->group(kMeasurementGroup);
-  add_choice<WarpSharing>(
+  add_choice<AutoSwitch>(
       cmd, "--preserve-warp", c.fronts.preserve_warp,
       "front pipelines on cuda: preserve shares each front node's traversal with the idle lanes of its warp; auto: "
       "while the fronts fit in " + std::to_string(kWarpSharingWaves) +
           " waves of the GPU's resident threads (per architecture: SMs x threads per SM, read from the GPU at run time)",
-      {"auto", "on", "off"}, parse_warp_sharing, warp_sharing_name(c.fronts.preserve_warp))
+      {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.fronts.preserve_warp))
       ->group(kTuningGroup);
-  add_choice<WarpSharing>(
+  add_choice<AutoSwitch>(
       cmd, "--update-warp", c.fronts.update_warp,
       "front pipelines on cuda: the operations that write fronts (generate, update, restructure) share each "
       "traversal with the idle lanes of its warp; auto: as --preserve-warp",
-      {"auto", "on", "off"}, parse_warp_sharing, warp_sharing_name(c.fronts.update_warp))
+      {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.fronts.update_warp))
+      ->group(kTuningGroup);
+  add_choice<AutoSwitch>(
+      cmd, "--preserve-bound", c.fronts.preserve_bound,
+      "front pipelines on cuda: launch preserve under a register bound (" + std::to_string(kPreserveMinBlocks) +
+          " blocks an SM: more resident warps, fewer registers each); auto: while the fronts fill " +
+          std::to_string(kPreserveBoundedWaves) + " waves of the GPU's resident threads",
+      {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.fronts.preserve_bound))
       ->group(kTuningGroup);
   add_switch(cmd, "--order-updates", c.fronts.order_updates,
              "ordered front pipelines: histogram-sort the front each update produces (the paper); off: keep the "

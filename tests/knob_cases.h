@@ -191,7 +191,8 @@ inline PipelineConfig growing_config(const std::string& device, const std::strin
 }
 
 // --dependent-launch (kernels scheduled while their predecessors run, waiting for them on
-// the device), --preserve-warp (on with dependent launches, off without) and --phase-timing
+// the device), --preserve-warp and --preserve-bound (on with dependent launches, off
+// without) and --phase-timing
 // off: every pipeline reports exactly the oracle's pairs, every frame, with and without
 // frame graphs; with phases off no phase but the upload has a time and the frame has one.
 inline void check_launch_knobs(const std::string& device, bool graph, bool dependent) {
@@ -202,7 +203,8 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
     cfg.fronts.cycle = 4;
     cfg.launch.cuda_graph = graph;
     cfg.launch.dependent_launch = dependent;
-    cfg.fronts.preserve_warp = dependent ? WarpSharing::on : WarpSharing::off;
+    cfg.fronts.preserve_warp = dependent ? AutoSwitch::on : AutoSwitch::off;
+    cfg.fronts.preserve_bound = dependent ? AutoSwitch::on : AutoSwitch::off;
     cfg.launch.phase_timing = false;
     auto p = make_pipeline(cfg);
     p->set_topology(funnel.topology);
@@ -226,11 +228,11 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
 // --compact-share.
 struct UpdateKnobs {
   bool order;
-  WarpSharing warp;
+  AutoSwitch warp;
   bool in_place;
   double compact_share;
   std::string name() const {
-    return std::string(order ? "sorted" : "kept") + " warp " + warp_sharing_name(warp) +
+    return std::string(order ? "sorted" : "kept") + " warp " + auto_switch_name(warp) +
            (in_place ? " in place, compact at " + std::to_string(compact_share) : " whole");
   }
 };
@@ -247,9 +249,9 @@ inline void check_update_knobs(const std::string& device) {
       exact_frames(*make_generator("funnel", {{"res", 40}, {"frames", 12}, {"segments", 16}, {"ball_level", 1}}));
   const ExactFrames soup = exact_frames(*fast_soup(8));
   const std::vector<UpdateKnobs> variants = {
-      {true, WarpSharing::off, false, 0.5},  {false, WarpSharing::off, false, 0.5}, {false, WarpSharing::on, false, 0.5},
-      {true, WarpSharing::off, true, 0.0},   {true, WarpSharing::off, true, 0.3},   {true, WarpSharing::on, true, 1e9},
-      {false, WarpSharing::on, true, 0.3}};
+      {true, AutoSwitch::off, false, 0.5},  {false, AutoSwitch::off, false, 0.5}, {false, AutoSwitch::on, false, 0.5},
+      {true, AutoSwitch::off, true, 0.0},   {true, AutoSwitch::off, true, 0.3},   {true, AutoSwitch::on, true, 1e9},
+      {false, AutoSwitch::on, true, 0.3}};
   for (const ExactFrames* scene : {&funnel, &soup})
     for (const auto& name : pipeline_names()) {
       const PipelineKind* kind = find_pipeline_kind(name);
@@ -338,12 +340,13 @@ inline void check_update_probe(const std::string& device) {
 inline void check_probe_counts(const std::string& device) {
   for (const auto& scene : {"soup", "cloth_wave", "funnel"}) {
     const ExactFrames frames = exact_frames(*front_scene(scene, 24, 5));
-    for (WarpSharing warp : {WarpSharing::on, WarpSharing::off}) {
+    for (AutoSwitch warp : {AutoSwitch::on, AutoSwitch::off}) {
       std::vector<std::vector<FrameStats>> runs;
       for (const std::string& on : {device, std::string("cpu")}) {
         PipelineConfig cfg = config_for(on, 0.5, 0.05, 2);
         cfg.name = "a";
         cfg.fronts.preserve_warp = warp;
+        cfg.fronts.preserve_bound = warp;  // both kernels of each kind, shared in warps or not
         auto p = make_pipeline(cfg);
         p->set_topology(frames.topology);
         runs.emplace_back();
@@ -358,7 +361,7 @@ inline void check_probe_counts(const std::string& device) {
       uint32_t probes = 0;
       for (size_t k = 0; k < runs[0].size(); ++k) {
         const FrameStats &s = runs[0][k], &host = runs[1][k];
-        const std::string where = std::string(scene) + (warp == WarpSharing::on ? " in warps" : " alone") + " frame " +
+        const std::string where = std::string(scene) + (warp == AutoSwitch::on ? " in warps" : " alone") + " frame " +
                                   std::to_string(k) + " (" + s.op + ")";
         EXPECT_EQ(s.fronts.update_yield, host.fronts.update_yield) << where;
         if (s.fronts.update_yield == 0) continue;

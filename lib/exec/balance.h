@@ -6,4 +6,8 @@ namespace cdb {
 // small chunks for them; the CUDA executor ignores the hint.
 enum class Balance { even, uneven };
 
+// Whether a functor that asks for resident blocks (F::kMinBlocksPerSm, exec/tuning.h) is
+// launched under that bound (bounded) or not (plain); the host executor ignores it.
+enum class Occupancy { plain, bounded };
+
 }  // namespace cdb

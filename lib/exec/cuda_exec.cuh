@@ -53,13 +53,24 @@ template <class F>
 concept WarpCooperative = requires(const F& f, typename F::Stage* stage) { f.warp(0u, 0u, stage); };
 
 template <class F>
-__global__ void for_each_kernel(uint32_t n, F f) {
+__device__ __forceinline__ void for_each_body(uint32_t n, const F& f) {
   dependent_launch_entry();
   const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if constexpr (WarpCooperative<F>)
     f.warp(i, n, static_cast<typename F::Stage*>(nullptr));
   else if (i < n)
     f(i);
+}
+
+template <class F>
+__global__ void for_each_kernel(uint32_t n, F f) {
+  for_each_body(n, f);
+}
+
+// The same for a functor that asks for min_blocks_per_sm<F>() resident blocks (exec/tuning.h).
+template <class F>
+__global__ void __launch_bounds__(kForEachThreads, min_blocks_per_sm<F>()) for_each_bounded_kernel(uint32_t n, F f) {
+  for_each_body(n, f);
 }
 
 // Tiles of at most F::kTile consecutive indices (exec/tiles.h), taken in turn by the blocks;
@@ -83,7 +94,7 @@ __global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(Tiles tiles, F 
 // One thread per index; the block shares one F::Stage (core/append_stage.h) that its indices
 // append to and that F::flush writes out once every index of the block is done.
 template <class F>
-__global__ void for_each_staged_kernel(uint32_t n, F f) {
+__device__ __forceinline__ void for_each_staged_body(uint32_t n, const F& f) {
   dependent_launch_entry();
   __shared__ typename F::Stage stage;
   if (threadIdx.x == 0) stage.reset();
@@ -95,6 +106,17 @@ __global__ void for_each_staged_kernel(uint32_t n, F f) {
     f(i, &stage);
   __syncthreads();
   f.flush(stage);
+}
+
+template <class F>
+__global__ void for_each_staged_kernel(uint32_t n, F f) {
+  for_each_staged_body(n, f);
+}
+
+template <class F>
+__global__ void __launch_bounds__(kStagedThreads, min_blocks_per_sm<F>())
+    for_each_staged_bounded_kernel(uint32_t n, F f) {
+  for_each_staged_body(n, f);
 }
 
 // One block of kOneBlockThreads threads (exec/tuning.h) running F's phases (f.phases(), read from device
@@ -191,11 +213,17 @@ class CudaExec {
   uint64_t resident_threads() const { return resident_threads_; }
   const char* name() const { return "cuda"; }
 
+  // Occupancy::bounded: under F's __launch_bounds__, where F asks for some (exec/tuning.h).
   template <class F>
-  void for_each_n(size_t n, const F& f, Balance = Balance::even) const {
+  void for_each_n(size_t n, const F& f, Balance = Balance::even, Occupancy occupancy = Occupancy::plain) const {
     if (n == 0) return;
-    constexpr uint32_t threads = 256;
+    constexpr uint32_t threads = kForEachThreads;
     const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
+    if constexpr (min_blocks_per_sm<F>() > 0)
+      if (occupancy == Occupancy::bounded) {
+        launch(for_each_bounded_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
+        return;
+      }
     launch(for_each_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
   }
 
@@ -212,10 +240,15 @@ class CudaExec {
   // Indices whose appends (pairs, front nodes) are staged per block in shared memory and
   // written out at the block's end (core/append_stage.h): f(i, stage), then f.flush(stage).
   template <class F>
-  void for_each_staged(size_t n, const F& f, Balance = Balance::even) const {
+  void for_each_staged(size_t n, const F& f, Balance = Balance::even, Occupancy occupancy = Occupancy::plain) const {
     if (n == 0) return;
     constexpr uint32_t threads = kStagedThreads;
     const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
+    if constexpr (min_blocks_per_sm<F>() > 0)
+      if (occupancy == Occupancy::bounded) {
+        launch(for_each_staged_bounded_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
+        return;
+      }
     launch(for_each_staged_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
   }
 

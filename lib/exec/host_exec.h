@@ -47,7 +47,7 @@ class HostExec {
   uint64_t resident_threads() const { return uint64_t(omp_get_max_threads()); }
 
   template <class F>
-  void for_each_n(size_t n, const F& f, Balance balance = Balance::even) const {
+  void for_each_n(size_t n, const F& f, Balance balance = Balance::even, Occupancy = Occupancy::plain) const {
     const int64_t count = static_cast<int64_t>(n);
     if (balance == Balance::even) {
 #pragma omp parallel for schedule(static)
@@ -61,7 +61,7 @@ class HostExec {
   // Staged appends (see CudaExec): the host has no block stage, so f(i, nullptr) appends
   // directly.
   template <class F>
-  void for_each_staged(size_t n, const F& f, Balance balance = Balance::even) const {
+  void for_each_staged(size_t n, const F& f, Balance balance = Balance::even, Occupancy = Occupancy::plain) const {
     for_each_n(n, [&f](uint32_t i) { f(i, static_cast<typename F::Stage*>(nullptr)); }, balance);
   }
 

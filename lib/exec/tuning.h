@@ -12,6 +12,27 @@ namespace cdb {
 // Threads of a staged kernel's block (for_each_staged). Measured: 128 (half-size stages)
 // and 512 against 256 on update and preserve (H100).
 inline constexpr uint32_t kStagedThreads = 256;
+// Threads of a plain launch's block (for_each_n). Not measured apart: a common choice.
+inline constexpr uint32_t kForEachThreads = 256;
+// A functor's kernels (for_each_n, for_each_staged) may ask for F::kMinBlocksPerSm resident
+// blocks (their __launch_bounds__): the compiler then holds each thread's registers to what
+// that many blocks leave it, so that more warps hide the latency of a traversal's loads.
+// 0: no bound (every functor that does not say).
+template <class F>
+constexpr uint32_t min_blocks_per_sm() {
+  if constexpr (requires { F::kMinBlocksPerSm; })
+    return F::kMinBlocksPerSm;
+  else
+    return 0;
+}
+// Preserve's blocks per SM under its bound (PreserveFrontFn, --preserve-bound): 8 holds it
+// to 32 registers (from 40, some spilled), 64 resident warps an SM instead of 48; 7 gives
+// the same 32. --preserve-bound auto: bounded while the fronts fill this many waves of
+// resident threads. Measured: H200, c against the unbounded kernel, two rounds: 1M cloth
+// (89 waves) 1.04x, 522K (45) 1.04x, crumple (14) 1.05x, spheres (5) 1.03x, 32K cloth (2.5)
+// 0.88x (steady frames), funnel (under a wave) 1.00x.
+inline constexpr uint32_t kPreserveMinBlocks = 8;
+inline constexpr uint64_t kPreserveBoundedWaves = 4;
 // Threads of the one-block kernels (in_one_block): the hardware's limit, not a measurement.
 inline constexpr uint32_t kOneBlockThreads = 1024;
 // The reduction's block size and most partials. Not measured: a common choice.

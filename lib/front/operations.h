@@ -14,6 +14,7 @@
 #include "front/front.h"
 #include "front/ordering.h"
 #include "front/warp_traversal.h"
+#include "exec/tuning.h"
 
 namespace cdb {
 
@@ -175,6 +176,7 @@ struct PreserveFrontFn {
   // A probe's block adds its counts to the slots once (PairCountStage).
   using Stage = std::conditional_t<kCountStops, PairCountStage, PairStage>;
   static constexpr bool kWarpTraversal = true;
+  static constexpr uint32_t kMinBlocksPerSm = kPreserveMinBlocks;
   FrontView view;
   PairSink pairs;
   const uint32_t* prim;
@@ -425,6 +427,7 @@ struct PatchFrontFn {
 template <class F>
 struct BothFrontsFn {
   using Stage = typename F::Stage;
+  static constexpr uint32_t kMinBlocksPerSm = min_blocks_per_sm<F>();
   F first, second;
   uint32_t n0;
   uint32_t spread_shift = 0;

@@ -33,6 +33,7 @@
 #include "pipeline/front_counters.h"
 #include "pipeline/front_query.h"
 #include "pipeline/pair_pipeline.h"
+#include "exec/balance.h"
 #include "exec/tuning.h"
 
 namespace cdb {
@@ -69,6 +70,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     if (strategy().restructure) restructure_.reserve(bvh_.num_leaves, config_.restructure.min_leaves);
     planner_.reset(running_queries(), exec_.resident_threads());
     stage_preserve_ = warp_preserve_ = true;
+    bound_preserve_ = Occupancy::plain;
     exec_.sync();
   }
 
@@ -259,7 +261,8 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       launch();
       return FrameGraphRun::plain;
     }
-    const uint64_t choices = uint64_t(plan.stale) | uint64_t(stage_preserve_) << 1 | uint64_t(warp_preserve_) << 2;
+    const uint64_t choices = uint64_t(plan.stale) | uint64_t(stage_preserve_) << 1 | uint64_t(warp_preserve_) << 2 |
+                             uint64_t(bound_preserve_ == Occupancy::bounded) << 3;
     const FrameGraphKey key{launch_revision(), uint64_t(reinterpret_cast<uintptr_t>(mesh.vertices)),
                             uint64_t(reinterpret_cast<uintptr_t>(mesh.prev_vertices)), choices};
     return graph_.run(exec_, timer_, key, launch);
@@ -317,10 +320,10 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   bool counts_in_place() const { return histogram_sorted() && strategy().restructure; }
 
   // Whether a launch over `fronts` front nodes shares its traversals within warps, as
-  // --preserve-warp or --update-warp (`choice`) says (WarpSharing).
-  bool shares_in_warp(WarpSharing choice, uint64_t fronts) const {
-    return choice == WarpSharing::on ||
-           (choice == WarpSharing::automatic && fronts <= kWarpSharingWaves * exec_.resident_threads());
+  // --preserve-warp or --update-warp (`choice`) says (AutoSwitch).
+  bool shares_in_warp(AutoSwitch choice, uint64_t fronts) const {
+    return choice == AutoSwitch::on ||
+           (choice == AutoSwitch::automatic && fronts <= kWarpSharingWaves * exec_.resident_threads());
   }
 
   static Phase phase_of(FrontOp op) {
@@ -338,7 +341,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     timed(phase_of(op), [&] {
       switch (op) {
         case FrontOp::preserve:
-          fq.preserve(exec_, pairs_, stage_preserve_, warp_preserve_, plan.probe);
+          fq.preserve(exec_, pairs_, stage_preserve_, warp_preserve_, bound_preserve_, plan.probe);
           break;
         case FrontOp::generate:
           fq.generate(exec_, pairs_, histogram, shares_in_warp(config_.fronts.update_warp, fq.query_leaves()));
@@ -416,11 +419,17 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // Preserve stages its pairs per block while blocks produce enough of them to pay for the
   // stage's flush (core/append_stage.h): at least kStagedPairsPerBlock per block of
   // front nodes in the frame just read back. The traversals are shared within warps as
-  // --preserve-warp says (WarpSharing). Both choices are part of the steady frame's key.
+  // --preserve-warp says (AutoSwitch), and launched under its register bound as
+  // --preserve-bound says. The choices are part of the steady frame's key.
   void choose_preserve_launch(uint64_t pairs) {
     const uint64_t fronts = front_nodes();
     stage_preserve_ = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts;
     warp_preserve_ = shares_in_warp(config_.fronts.preserve_warp, fronts);
+    const AutoSwitch bound = config_.fronts.preserve_bound;
+    const bool bounded =
+        bound == AutoSwitch::on ||
+        (bound == AutoSwitch::automatic && fronts >= kPreserveBoundedWaves * exec_.resident_threads());
+    bound_preserve_ = bounded ? Occupancy::bounded : Occupancy::plain;
   }
 
   // After a probing frame's read-back, outside its timing: the preserving queries' buffers
@@ -451,6 +460,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   typename Exec::FrameGraph graph_;  // the steady frame's recording (--cuda-graph)
   bool stage_preserve_ = true;  // preserve's pairs staged per block (choose_preserve_launch)
   bool warp_preserve_ = true;   // preserve's traversals shared within warps (choose_preserve_launch)
+  Occupancy bound_preserve_ = Occupancy::plain;  // preserve under its register bound (choose_preserve_launch)
 };
 
 }  // namespace cdb

@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "exec/balance.h"
 #include "exec/tuning.h"
 #include "front/front.h"
 #include "front/operations.h"
@@ -104,13 +105,14 @@ class FrontQuery {
   // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch;
   // pairs staged per block or appended directly (`staged`, core/append_stage.h). `probe`:
   // also count what an update of the fronts yields at most, for update_bound.
-  void preserve(Exec& exec, Pairs& pairs, bool staged, bool share_in_warp, bool probe) {
+  // `occupancy`: launched under PreserveFrontFn's register bound or not (exec/tuning.h).
+  void preserve(Exec& exec, Pairs& pairs, bool staged, bool share_in_warp, Occupancy occupancy, bool probe) {
     if (!active_) return;
     if (probe)
       preserve_with(exec, PreserveFrontFn<true>{{}, pairs.sink(), {}, {}, share_in_warp, &counters(pairs)->yield[0][0]},
-                    staged);
+                    staged, occupancy);
     else
-      preserve_with(exec, PreserveFrontFn<false>{{}, pairs.sink(), {}, {}, share_in_warp}, staged);
+      preserve_with(exec, PreserveFrontFn<false>{{}, pairs.sink(), {}, {}, share_in_warp}, staged, occupancy);
   }
 
   // The room an update of the current fronts needs at most, per kind, after a probing
@@ -412,7 +414,7 @@ class FrontQuery {
 
   // The passes of a preserve functor over both kinds of front in one launch.
   template <class Fn>
-  void preserve_with(Exec& exec, Fn fn, bool staged) {
+  void preserve_with(Exec& exec, Fn fn, bool staged, Occupancy occupancy) {
     fn.view = view();
     auto pass = [&](const FrontArrays<Exec>& f) {
       Fn p = fn;
@@ -423,9 +425,9 @@ class FrontQuery {
     const uint32_t shift = spread_shift(exec, total(), fn.share_in_warp, kSpreadWavesPreserve);
     const BothFrontsFn<Fn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift};
     if (staged)
-      exec.for_each_staged(total() << shift, both, Balance::uneven);
+      exec.for_each_staged(total() << shift, both, Balance::uneven, occupancy);
     else
-      exec.for_each_n(total() << shift, both, Balance::uneven);
+      exec.for_each_n(total() << shift, both, Balance::uneven, occupancy);
   }
 
   // The arrays of a kind hold `need` nodes, or all grow to `want`, the current front copied

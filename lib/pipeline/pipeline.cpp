@@ -62,15 +62,15 @@ BoxPrecision parse_box_precision(const std::string& name) {
   fail("unknown box precision '" + name + "' (known: fp32, fp64, q16)");
 }
 
-const char* warp_sharing_name(WarpSharing w) {
-  return w == WarpSharing::on ? "on" : w == WarpSharing::off ? "off" : "auto";
+const char* auto_switch_name(AutoSwitch w) {
+  return w == AutoSwitch::on ? "on" : w == AutoSwitch::off ? "off" : "auto";
 }
 
-WarpSharing parse_warp_sharing(const std::string& name) {
-  if (name == "auto") return WarpSharing::automatic;
-  if (name == "on") return WarpSharing::on;
-  if (name == "off") return WarpSharing::off;
-  fail("unknown warp sharing '" + name + "' (known: auto, on, off)");
+AutoSwitch parse_auto_switch(const std::string& name) {
+  if (name == "auto") return AutoSwitch::automatic;
+  if (name == "on") return AutoSwitch::on;
+  if (name == "off") return AutoSwitch::off;
+  fail("unknown choice '" + name + "' (known: auto, on, off)");
 }
 
 bool config_conservative(const PipelineConfig& config) {

@@ -31,16 +31,14 @@ const char* box_precision_name(BoxPrecision p);
 // Throws cdb::Error naming the known values.
 BoxPrecision parse_box_precision(const std::string& name);
 
-// Preserve and update on CUDA (front/warp_traversal.h): share each front node's traversal
-// with the idle lanes of its warp. automatic: while the fronts fit in kWarpSharingWaves
-// (exec/tuning.h) waves of the GPU's resident threads, where the launch's tail is its
-// longest lanes; past that the SMs are full anyway and the sharing's votes cost more than
-// they save.
-enum class WarpSharing { automatic, on, off };
+// A launch choice that is on, off, or made per frame by a measured rule (automatic):
+// --preserve-warp and --update-warp (FrontConfig::preserve_warp), --preserve-bound
+// (FrontConfig::preserve_bound).
+enum class AutoSwitch { automatic, on, off };
 
-const char* warp_sharing_name(WarpSharing w);
+const char* auto_switch_name(AutoSwitch w);
 // Throws cdb::Error naming the known values.
-WarpSharing parse_warp_sharing(const std::string& name);
+AutoSwitch parse_auto_switch(const std::string& name);
 
 // The triangle boxes every pipeline and baseline sees, made in face_box (geometry/mesh.h)
 // (docs/design.md "Speed/accuracy knobs").
@@ -102,8 +100,18 @@ struct FrontConfig {
   // to that after their frame (pipeline/frame_plan.h, probe); off: an update that outgrows
   // them grows them inside its frame and runs again.
   bool update_probe = true;
-  WarpSharing preserve_warp = WarpSharing::automatic;
-  WarpSharing update_warp = WarpSharing::automatic;
+  // Preserve and update on CUDA (front/warp_traversal.h): share each front node's
+  // traversal with the idle lanes of its warp. automatic: while the fronts fit in
+  // kWarpSharingWaves (exec/tuning.h) waves of the GPU's resident threads, where the
+  // launch's tail is its longest lanes; past that the SMs are full anyway and the sharing's
+  // votes cost more than they save.
+  AutoSwitch preserve_warp = AutoSwitch::automatic;
+  AutoSwitch update_warp = AutoSwitch::automatic;
+  // Preserve on CUDA launched under its register bound (kPreserveMinBlocks blocks an SM,
+  // exec/tuning.h): more resident warps to hide its loads' latency, fewer registers each
+  // (some spilled). automatic: while the fronts fill kPreserveBoundedWaves waves of
+  // resident threads; a launch of a few waves is slower bounded.
+  AutoSwitch preserve_bound = AutoSwitch::automatic;
 };
 
 // Pipeline c's inspection and Formula 2 (paper §4.1-4.2, docs/design.md "Quality and
