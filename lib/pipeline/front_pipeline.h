@@ -322,8 +322,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // Whether a launch over `fronts` front nodes shares its traversals within warps, as
   // --preserve-warp or --update-warp (`choice`) says (AutoSwitch).
   bool shares_in_warp(AutoSwitch choice, uint64_t fronts) const {
-    return choice == AutoSwitch::on ||
-           (choice == AutoSwitch::automatic && fronts <= kWarpSharingWaves * exec_.resident_threads());
+    return switched_on(choice, fronts <= kWarpSharingWaves * exec_.resident_threads());
   }
 
   static Phase phase_of(FrontOp op) {
@@ -425,10 +424,8 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     const uint64_t fronts = front_nodes();
     stage_preserve_ = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts;
     warp_preserve_ = shares_in_warp(config_.fronts.preserve_warp, fronts);
-    const AutoSwitch bound = config_.fronts.preserve_bound;
     const bool bounded =
-        bound == AutoSwitch::on ||
-        (bound == AutoSwitch::automatic && fronts >= kPreserveBoundedWaves * exec_.resident_threads());
+        switched_on(config_.fronts.preserve_bound, fronts >= kPreserveBoundedWaves * exec_.resident_threads());
     bound_preserve_ = bounded ? Occupancy::bounded : Occupancy::plain;
   }
 

@@ -36,6 +36,11 @@ BoxPrecision parse_box_precision(const std::string& name);
 // (FrontConfig::preserve_bound).
 enum class AutoSwitch { automatic, on, off };
 
+// Whether `choice` is on for a launch whose measured rule says `rule_holds`.
+inline bool switched_on(AutoSwitch choice, bool rule_holds) {
+  return choice == AutoSwitch::on || (choice == AutoSwitch::automatic && rule_holds);
+}
+
 const char* auto_switch_name(AutoSwitch w);
 // Throws cdb::Error naming the known values.
 AutoSwitch parse_auto_switch(const std::string& name);
