@@ -192,9 +192,9 @@ inline PipelineConfig growing_config(const std::string& device, const std::strin
 
 // --dependent-launch (kernels scheduled while their predecessors run, waiting for them on
 // the device), --preserve-warp and --preserve-bound (on with dependent launches, off
-// without) and --phase-timing
-// off: every pipeline reports exactly the oracle's pairs, every frame, with and without
-// frame graphs; with phases off no phase but the upload has a time and the frame has one.
+// without) and --phase-timing off: every pipeline reports exactly the oracle's pairs, every
+// frame, with and without frame graphs; with phases off no phase but the upload has a time
+// and the frame has one.
 inline void check_launch_knobs(const std::string& device, bool graph, bool dependent) {
   const ExactFrames funnel =
       exact_frames(*make_generator("funnel", {{"res", 40}, {"frames", 10}, {"segments", 16}, {"ball_level", 1}}));

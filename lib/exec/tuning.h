@@ -28,9 +28,7 @@ constexpr uint32_t min_blocks_per_sm() {
 // Preserve's blocks per SM under its bound (PreserveFrontFn, --preserve-bound): 8 holds it
 // to 32 registers (from 40, some spilled), 64 resident warps an SM instead of 48; 7 gives
 // the same 32. --preserve-bound auto: bounded while the fronts fill this many waves of
-// resident threads. Measured: H200, c against the unbounded kernel, two rounds: 1M cloth
-// (89 waves) 1.04x, 522K (45) 1.04x, crumple (14) 1.05x, spheres (5) 1.03x, 32K cloth (2.5)
-// 0.88x (steady frames), funnel (under a wave) 1.00x.
+// resident threads. Measured: H200, 1.03-1.05x from 5 waves up, 0.88x at 2.5 (docs/design.md).
 inline constexpr uint32_t kPreserveMinBlocks = 8;
 inline constexpr uint64_t kPreserveBoundedWaves = 4;
 // Threads of the one-block kernels (in_one_block): the hardware's limit, not a measurement.
