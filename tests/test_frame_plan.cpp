@@ -197,6 +197,27 @@ TEST(FramePlan, ThePriceScalesWithTheFront) {
   EXPECT_DOUBLE_EQ(m.price_ms(100), 2.0);
 }
 
+// A build frame whose buffers grew ran its front pass twice: the first maintenance's price
+// comes from its first pass, not from both passes and the growth between them.
+TEST(FramePlan, ABuildFrameThatRanAgainIsPricedByItsFirstPass) {
+  for (const bool ran_once : {true, false}) {
+    FramePlanner planner(FrontStrategy{}, cycle_config(0));
+    const FramePlan build = planner.plan(1000, 100);
+    ASSERT_TRUE(build.rebuild);
+    FramePlanner::Outcome o;
+    o.ms = 17.0;
+    o.ran_once = ran_once;
+    o.front_nodes = 100;
+    o.first_pass_ms = 9.0;
+    planner.finish(build, o);
+    const FramePlan steady = planner.plan(1000, 100);
+    ASSERT_TRUE(steady.steady());
+    planner.finish(steady, {1.0, true, 100, 1.0, {}});
+    EXPECT_DOUBLE_EQ(planner.maintenance().price_ms(100), (ran_once ? 16.0 : 8.0) / kBuildPerUpdate)
+        << "ran once: " << ran_once;
+  }
+}
+
 // The faster the fronts degrade, the more often they are updated; the dearer the update,
 // the less often.
 TEST(FramePlan, AdaptiveFollowsTheScene) {

@@ -74,9 +74,11 @@ inline constexpr uint32_t kRefitTopMaxLeaves = 1u << 15;
 inline constexpr uint32_t kRefitTopSharedSlots = 1536;
 
 // --- Front maintenance (pipeline/front_maintenance.h) ---
-// Before any update was measured, a build frame's cost over this is an update's price.
-// Measured: the build over the steady frame on the anchors; 6 against 8 (H100).
-inline constexpr double kBuildPerUpdate = 8.0;
+// Before any update was measured, a build frame's first pass, its cost over a steady frame
+// divided by this, is an update's price. Measured (H200): 4 over the first pass ran
+// 0.95-1.06x of 8 over the build frame counted with its re-run and growth (about twice its
+// first pass), the rule before; 8 over the first pass 0.86-1.04x (docs/front-maintenance.md).
+inline constexpr double kBuildPerUpdate = 4.0;
 // A maintenance rebuilds where the probe counts an update would make fronts of more than
 // this many times what a rebuild would (pipeline/tree_maintenance.h). Measured: updates grow
 // the fronts per pair 1.05-1.9x on the cloths, funnel, crumple and cloth-ball, 2-3x on the

@@ -145,11 +145,16 @@ class FramePlanner {
     double generate_per_node_ms = -1.0;  // a build frame: its generate and ordering per front node made
     uint64_t pairs = 0;       // the pairs it reported
     uint64_t update_yield = 0;  // a probing frame: the front nodes an update would make at most
+    double first_pass_ms = -1.0;  // a frame that ran again: its first pass, without upload
   };
   void finish(const FramePlan& p, const Outcome& o) {
     const FrontOp self = p.op(Query::self);
     const bool steady = p.steady() && !p.stale, clean = o.ran_once && !o.recorded;
-    maintenance_.observe(steady, !p.rebuild && self == FrontOp::update, p.rebuild, clean, o.ms, o.front_nodes,
+    // A build frame that ran again is priced by its first pass: the growth and the second
+    // pass are one-offs, and counted whole they made the first maintenance's price a guess
+    // up to twice too dear (docs/front-maintenance.md).
+    const double ms = p.rebuild && !o.ran_once && o.first_pass_ms >= 0.0 ? o.first_pass_ms : o.ms;
+    maintenance_.observe(steady, !p.rebuild && self == FrontOp::update, p.rebuild, clean, ms, o.front_nodes,
                          !p.rebuild && self == FrontOp::generate);
     tree_.observe(o.front_nodes, o.pairs, p.probe ? o.update_yield : 0);
     if (p.rebuild) tree_.built();

@@ -25,9 +25,9 @@
 // the length is the fresh update's, the cheapest. Pricing by the last update instead feeds on
 // itself: a late update is dear, which makes the next one later still. Updates that outgrew
 // their buffers ran twice and price only until one runs once. Until an update is measured,
-// the price is the build frame's cost over a steady frame divided by kBuildPerUpdate, the
-// ratio measured between the two on the anchor scenes, so fronts that degrade fast get a
-// first update soon and fronts that barely degrade none in a short run. Figures and what
+// the price is the build frame's cost (its first pass, where it ran again) over a steady
+// frame divided by kBuildPerUpdate, a ratio measured on the anchor scenes, so fronts that
+// degrade fast get a first update soon and fronts that barely degrade none in a short run. Figures and what
 // was tried: docs/front-maintenance.md.
 //
 // What a maintenance runs (regenerate): an update, or a generate of new fronts from the
