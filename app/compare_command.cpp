@@ -23,11 +23,11 @@ namespace {
 
 // Options that change the pair set (what counts as a pair: --skip-adjacent; the boxes:
 // --box-*, --boxes, --refit-every) or how time is measured (--check's work between frames,
-// --cold, --phase-timing). The frame range and warm-up are compared as the file resolved
-// them; declared queries belong to the scene (its label and content hash).
-constexpr const char* kIdentityOptions[] = {"skip-adjacent", "box-precision", "box-margin",   "boxes",
-                                            "refit-every",   "check",         "contact-distance",
-                                            "contact-substeps", "cold",       "phase-timing"};
+// --cold, --phase-timing, --warmup-ms). The frame range and warm-up are compared as the file
+// resolved them; declared queries belong to the scene (its label and content hash).
+constexpr const char* kIdentityOptions[] = {"skip-adjacent",    "box-precision", "box-margin",   "boxes",
+                                            "refit-every",      "check",         "contact-distance",
+                                            "contact-substeps", "cold",          "phase-timing", "warmup-ms"};
 
 // Options that neither tell runs apart nor are the subject of a comparison: where the
 // output went, how it was printed, how many passes were averaged (repeats combine), and

@@ -169,6 +169,7 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
                                      {"frame_first", range.first},
                                      {"frame_last", range.last},
                                      {"warmup", run.warmup},
+                                     {"warmup_ms", r.loop.warmup_ms},
                                      {"repeat", r.loop.repeat},
                                      {"repeat_plan", repeat_plan_name(r.loop.repeat_plan)},
                                      {"max_noise", r.loop.max_noise_pct},
@@ -297,6 +298,13 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
       ->capture_default_str();
   run->add_option("--warmup", r.loop.warmup, "frames left out of the summary statistics")
       ->group(kMeasurementGroup)
+      ->capture_default_str();
+  run->add_option("--warmup-ms", r.loop.warmup_ms,
+                  "before the measured passes, frames run untimed from the first (again from the first after "
+                  "the last) for at least this long, then the pipeline starts afresh; a process's first pass "
+                  "otherwise runs slower (0: none)")
+      ->group(kMeasurementGroup)
+      ->check(finite_at_least(0))
       ->capture_default_str();
   run->add_option("--repeat", r.loop.repeat,
                   "passes over the frames, each from a fresh state; times are the per-frame mean, "

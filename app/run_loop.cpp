@@ -2,6 +2,7 @@
 #include "exit_codes.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -198,6 +199,7 @@ class FrameLoop {
 
   // Every pass (--repeat), the last one recorded; stops between frames on a signal.
   void run_passes() {
+    warm_up();
     run_earlier_passes();
     if (interrupts_.signal() && earlier_.count() > 0) {
       keep_finished_passes();
@@ -224,6 +226,9 @@ class FrameLoop {
     print_summary(frames_, options_.warmup, pipeline_.memory(), options_.copy_gbps, options_.contact,
                   options_.list_growth);
     print_plan_line(frames_, options_, range_.first);
+    if (warmup_frames_)
+      std::printf("  warm-up     %llu frames run untimed first (--warmup-ms %g), then the pipeline started afresh\n",
+                  static_cast<unsigned long long>(warmup_frames_), options_.warmup_ms);
     if (!options_.accuracy_warning.empty()) print_accuracy_warning(options_.accuracy_warning, frames_, options_.warmup);
     if (const int signal = interrupts_.signal()) return stop_for(signal);
     // After the summary it qualifies; stored so `compare` can flag the run.
@@ -249,6 +254,28 @@ class FrameLoop {
     s.timing.bytes_floor = frame_bytes_floor(source_.topology(), s.pairs);
     progress_.update(++done_);
     return s;
+  }
+
+  // --warmup-ms: frames run and dropped until the time is spent (at least one, the build
+  // frame), each wrap to the first frame and the end from a fresh state, so the measured
+  // passes start as the first did but on a warm device and process.
+  void warm_up() {
+    if (!(options_.warmup_ms > 0.0)) return;
+    const auto start = std::chrono::steady_clock::now();
+    const auto spent = [&] {
+      return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() >=
+             options_.warmup_ms;
+    };
+    bool done = false;
+    while (!done && !interrupts_.signal()) {
+      for (f_ = range_.first; f_ < range_.last && !interrupts_.signal(); ++f_) {
+        source_.positions(f_, positions_);
+        pipeline_.run_frame(positions_);
+        ++warmup_frames_;
+        if ((done = spent())) break;
+      }
+      pipeline_.set_topology(source_.topology());
+    }
   }
 
   // --repeat: the passes before the recording one, timed only; fewer once --max-noise is
@@ -377,6 +404,7 @@ class FrameLoop {
   PositionRounding contact_rounding_{true};
   std::vector<vec3f> vertices_, previous_;
   EarlierPasses earlier_;
+  uint64_t warmup_frames_ = 0;  // frames --warmup-ms ran untimed
   uint32_t kept_passes_ = 0;  // --repeat stopped by a signal: the finished passes recorded
   uint32_t f_;                // the frame under way, for the message of an error
 };

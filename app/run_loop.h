@@ -31,6 +31,11 @@ const char* repeat_plan_name(RepeatPlan p);
 // pipeline.
 struct RunLoopOptions {
   uint32_t warmup = 1;
+  // --warmup-ms: the frames run untimed from the first, in order and again from the first
+  // after the last, for at least this long before the measured passes, then the pipeline
+  // starts afresh (0: none). A process's first pass otherwise runs slower on the GPU
+  // (docs/usage.md "Warm-up").
+  double warmup_ms = 1000.0;
   bool save_pairs = false;  // each frame's sorted pairs into the results file
   // --repeat: at most this many passes over the frames, each from a fresh pipeline state;
   // the last records, its times the mean over all passes with their noise beside them.
