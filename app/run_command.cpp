@@ -434,6 +434,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
       out.emplace(one.out, info, existing[p] ? ResultsFile::Placement::staged : ResultsFile::Placement::in_place);
     }
     RunLoopOptions loop = r.loop;
+    loop.frames_kept = cached != nullptr;
     loop.plan_source = plans[p] ? plans[p]->source : "";
     loop.frame_lines = !r.quiet;
     loop.list_growth = !r.quiet;

@@ -257,8 +257,9 @@ class FrameLoop {
   }
 
   // --warmup-ms: frames run and dropped until the time is spent (at least one, the build
-  // frame), each wrap to the first frame and the end from a fresh state, so the measured
-  // passes start as the first did but on a warm device and process.
+  // frame; where frames are kept in memory, to the end of a pass, so none is loaded for the
+  // first time between timed frames), each wrap to the first frame and the end from a fresh
+  // state, so the measured passes start as the first did but on a warm device and process.
   void warm_up() {
     if (!(options_.warmup_ms > 0.0)) return;
     const auto start = std::chrono::steady_clock::now();
@@ -272,9 +273,10 @@ class FrameLoop {
         source_.positions(f_, positions_);
         pipeline_.run_frame(positions_);
         ++warmup_frames_;
-        if ((done = spent())) break;
+        if (!options_.frames_kept && (done = spent())) break;
       }
       pipeline_.set_topology(source_.topology());
+      done = done || spent();
     }
   }
 

@@ -33,9 +33,12 @@ struct RunLoopOptions {
   uint32_t warmup = 1;
   // --warmup-ms: the frames run untimed from the first, in order and again from the first
   // after the last, for at least this long before the measured passes, then the pipeline
-  // starts afresh (0: none). A process's first pass otherwise runs slower on the GPU
-  // (docs/usage.md "Warm-up").
+  // starts afresh (0: none). A first load of each frame between timed frames otherwise
+  // slows them on the GPU (docs/usage.md "Warm-up").
   double warmup_ms = 1000.0;
+  // The frames are kept in memory after their first load (several pipelines or passes): the
+  // warm-up then ends at the end of a pass, so every frame was loaded before the timing.
+  bool frames_kept = false;
   bool save_pairs = false;  // each frame's sorted pairs into the results file
   // --repeat: at most this many passes over the frames, each from a fresh pipeline state;
   // the last records, its times the mean over all passes with their noise beside them.
