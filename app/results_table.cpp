@@ -379,6 +379,8 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     text("plan_source", [&read](const Row& row) { return read(row) ? row.r.plan_source : ""; });
     numeric("plan_mixed_frames",
             [&stats](const Row& row) { return stats(row) ? std::to_string(row.r.plan_mixed_frames) : ""; });
+    numeric("warmup_frames",
+            [&stats](const Row& row) { return stats(row) ? std::to_string(row.r.warmup_frames) : ""; });
   } else if (plans) {
     text("plan", [&read](const Row& row) { return read(row) ? plan_summary(row.r) : ""; });
   }

@@ -214,7 +214,7 @@ class FrameLoop {
   void abandon(const std::exception& e) {
     progress_.finish();
     if (!out_) return;
-    out_->abandon(summarize_run(frames_, options_.warmup), pipeline_.memory(),
+    out_->abandon(summary(), pipeline_.memory(),
                   "frame " + std::to_string(f_) + ": " + error_text(e));
     tell_incomplete(*out_);
   }
@@ -237,7 +237,7 @@ class FrameLoop {
     if (!findings.noise_warning.empty()) std::printf("  warning     %s\n", findings.noise_warning.c_str());
     if (options_.input_hash) findings.input_hash = options_.input_hash();
     if (result) {
-      result->summary = summarize_run(frames_, options_.warmup);
+      result->summary = summary();
       result->memory = pipeline_.memory();
       result->noise_warning = findings.noise_warning;
       result->input_hash = findings.input_hash;
@@ -247,6 +247,12 @@ class FrameLoop {
   }
 
  private:
+  RunSummary summary() const {
+    RunSummary s = summarize_run(frames_, options_.warmup);
+    s.warmup_frames = warmup_frames_;
+    return s;
+  }
+
   FrameStats run_one(uint32_t frame) {
     source_.positions(frame, positions_);
     if (options_.cold) options_.probe->flush_caches();
@@ -374,7 +380,7 @@ class FrameLoop {
     std::fflush(stdout);
     std::fprintf(stderr, "cdbench: %s\n", why.c_str());
     if (out_) {
-      out_->abandon(summarize_run(frames_, options_.warmup), pipeline_.memory(), why);
+      out_->abandon(summary(), pipeline_.memory(), why);
       tell_incomplete(*out_);
     }
     return exit_for_signal(signal);
@@ -382,7 +388,7 @@ class FrameLoop {
 
   void finish_file(const RunFindings& findings) {
     try {
-      out_->finish(summarize_run(frames_, options_.warmup), pipeline_.memory(), findings);
+      out_->finish(summary(), pipeline_.memory(), findings);
     } catch (const std::exception&) {
       tell_incomplete(*out_);  // e.g. the disk filled while the summary was written
       throw;

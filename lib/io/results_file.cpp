@@ -295,6 +295,7 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
   write_attr(loc, "decisions_restructure", uint64_t(s.decided_restructure), at);
   write_attr(loc, "decisions_rebuild", uint64_t(s.decided_rebuild), at);
   write_attr(loc, "plan_mixed_frames", uint64_t(s.plan_mixed_frames), at);
+  write_attr(loc, "warmup_frames", s.warmup_frames, at);
   write_attr(loc, "checked_frames", uint64_t(s.checked_frames), at);
   write_attr(loc, "recall_min", s.checked_frames ? s.recall_min : none, at);
   write_attr(loc, "precision_min", s.checked_frames ? s.precision_min : none, at);

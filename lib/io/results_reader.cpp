@@ -143,6 +143,7 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   r.host_syncs_mean = optional_double("host_syncs_mean");
   if (h5::has_attr(s, "plan_mixed_frames"))
     r.plan_mixed_frames = uint64_t(h5::read_int_attr(s, "plan_mixed_frames", st));
+  if (h5::has_attr(s, "warmup_frames")) r.warmup_frames = uint64_t(h5::read_int_attr(s, "warmup_frames", st));
   if (h5::has_attr(s, "checked_frames")) r.checked_frames = uint64_t(h5::read_int_attr(s, "checked_frames", st));
   if (r.checked_frames) {
     r.recall_min = h5::read_double_attr(s, "recall_min", st);

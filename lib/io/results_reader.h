@@ -51,6 +51,7 @@ struct ResultsOverview {
   // pass replayed (--front-cycle FILE) and the frames whose passes ran different plans.
   std::string repeat_plan, plan_source;
   uint64_t plan_mixed_frames = 0;
+  uint64_t warmup_frames = 0;  // --warmup-ms's untimed frames (0 in files without it)
   bool has_plans = false;  // the file records its passes' plans (/plans)
 };
 

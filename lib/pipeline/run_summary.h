@@ -41,6 +41,8 @@ struct RunSummary {
   // --repeat: frames whose passes ran different plan steps (FrameStats::plan_mixed), warm-up
   // included.
   size_t plan_mixed_frames = 0;
+  // --warmup-ms: frames run untimed before the measured passes (set by the run loop).
+  uint64_t warmup_frames = 0;
   // Formula 2 decisions of pipeline c over all frames.
   size_t decided_refit = 0, decided_restructure = 0, decided_rebuild = 0;
   // --check over all checked frames, warm-up included.

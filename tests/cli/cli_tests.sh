@@ -28,6 +28,13 @@ check "--warmup-ms nan refused" 2 "^--warmup-ms: expected a finite number >= 0, 
 check "warm-up frames said" 0 "^  warm-up     [1-9][0-9]* frames run untimed first \\(--warmup-ms 1\\)" -- "$cdbench" run --device cpu --quiet --frames 0:4 --warmup-ms 1
 check "warm-up wraps to the first frame" 0 "^  warm-up     ([3-9]|[1-9][0-9]+) frames run untimed first \\(--warmup-ms 300\\)" -- "$cdbench" run --device cpu --quiet --frames 0:2 --warmup-ms 300
 check "kept frames: the warm-up ends with a pass" 0 "^  warm-up     4 frames run untimed first \\(--warmup-ms 1\\)" -- "$cdbench" run --device cpu --quiet --frames 0:4 --repeat 2 --warmup-ms 1
+"$cdbench" run --device cpu --quiet --frames 0:4 --repeat 2 --warmup-ms 1 --out "$tmp/warm.h5" >/dev/null 2>&1
+if "$python" -c 'import h5py, sys; sys.exit(int(h5py.File(sys.argv[1])["summary"].attrs["warmup_frames"]) != 4)' "$tmp/warm.h5"; then
+  echo "ok   the results file counts the warm-up frames"
+else
+  fail "the results file counts the warm-up frames (want 4)"
+fi
+check "report lists the warm-up frames" 0 "warm\\.h5,.*,replay,,0,4,[0-9.]+," -- "$cdbench" report "$tmp/warm.h5" --csv
 check "no warm-up with --warmup-ms 0" 0 "summary: 3 frames measured" -- "$cdbench" run --device cpu --quiet --frames 0:4 --warmup-ms 0
 if grep -q "warm-up  " "$tmp/out"; then fail "--warmup-ms 0 still warmed up"; else echo "ok   --warmup-ms 0 runs no warm-up"; fi
 check "one frame with --warmup 0" 0 "summary: 1 frames measured \\(first 0 left out" -- "$cdbench" run --device cpu --quiet --frames 2 --warmup 0
