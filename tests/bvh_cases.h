@@ -161,11 +161,15 @@ void expect_treelet_tiles(Exec& exec, const Lbvh<Exec>& bvh, const HostBvh& h, c
   }
 }
 
-// Both refits of the spanning top (one block, bvh/refit_top.h; hand-overs between blocks)
-// give the same boxes, bit for bit: a box is a min/max merge whatever the order of arrivals.
+// Every refit gives the same boxes, bit for bit: a box is a min/max merge whatever the order
+// of merges. The tiles by climbing (bvh/refit.h) or level by level (bvh/refit_levels.h, whose
+// tables exist where bvh.refit_levels was on at the build), the spanning top in one block
+// (bvh/refit_top.h) or handed over between blocks. Leaves bvh.refit_levels as it found it.
 template <class Exec>
 void expect_refits_agree(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, const std::string& where) {
   const uint32_t top_max_leaves = bvh.refit_top_max_leaves;
+  const bool levels = bvh.refit_levels;
+  bvh.refit_levels = false;
   bvh.refit_top_max_leaves = 0;
   refit(exec, bvh, mesh);
   const HostBvh between_blocks = download(exec, bvh);
@@ -173,11 +177,23 @@ void expect_refits_agree(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, cons
   refit(exec, bvh, mesh);
   const HostBvh one_block = download(exec, bvh);
   EXPECT_TRUE(same_boxes(between_blocks, one_block)) << where << ": boxes differ between the two refits of the top";
+  if (levels) {
+    bvh.refit_levels = true;
+    refit(exec, bvh, mesh);
+    EXPECT_TRUE(same_boxes(one_block, download(exec, bvh))) << where << ": the level refit's boxes differ";
+    bvh.refit_top_max_leaves = 0;
+    refit(exec, bvh, mesh);
+    EXPECT_TRUE(same_boxes(one_block, download(exec, bvh)))
+        << where << ": the level refit's boxes differ with the top handed over between blocks";
+    bvh.refit_top_max_leaves = top_max_leaves;
+  }
+  bvh.refit_levels = levels;
 }
 
 // Build + order on frame 0, refit on frames 1 and 2: after each, the tree must pass every
 // reference check and the self query must report exactly the oracle's pairs; on refit frames
-// both refits of the spanning top agree.
+// every refit agrees (expect_refits_agree), and the level refit (bvh/refit_levels.h) is the
+// one the checks see.
 // `shared_slots`: the refit top's shared-memory slots (Lbvh::refit_top_shared_slots); below
 // the default the case must spill past them. `top_max_leaves`: Lbvh::refit_top_max_leaves.
 template <class Exec>
@@ -189,6 +205,7 @@ void check_soup_case(const SoupCase& c, uint32_t shared_slots = kRefitTopSharedS
   Lbvh<Exec> bvh(exec);
   bvh.refit_top_shared_slots = shared_slots;
   bvh.refit_top_max_leaves = top_max_leaves;
+  bvh.refit_levels = true;
   TestMesh<Exec> m(exec, topo);
   const MeshView mesh = m.view();
   std::vector<vec3f> v;
@@ -469,6 +486,7 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
   const Topology& topo = source.topology();
   Exec exec;
   Lbvh<Exec> bvh(exec);
+  bvh.refit_levels = true;
   RestructureScratch<Exec> rs(exec);
   TestMesh<Exec> m(exec, topo);
   const MeshView mesh = m.view();
@@ -515,8 +533,8 @@ void check_restructure_subtrees(FrameSource& source, uint32_t depth) {
     }
     expect_self_query_exact(exec, bvh, topo, v, m.pairs, m.count, f);
     if (testing::Test::HasFatalFailure()) return;
-    // The restructured tree's tiles and spanning nodes are indexed anew: both refits of its top agree
-    // and keep it valid.
+    // The restructured tree's tiles, level tables and spanning nodes are indexed anew: every
+    // refit agrees and keeps it valid.
     expect_refits_agree(exec, bvh, mesh, "restructured, frame " + std::to_string(f));
     HostBvh refitted = download(exec, bvh);
     refitted.count_log.clear();
@@ -546,12 +564,14 @@ template <class Exec>
 void check_refit_counter_reset() {
   constexpr uint32_t kCount = 12;
   const std::vector<unsigned long long> poison(kCount, 0xdeadbeefull);
+  for (bool levels : {false, true})
   for (uint64_t triangles : {3ull, 12ull, 1000ull, 20000ull}) {
-    SCOPED_TRACE("triangles " + std::to_string(triangles));
+    SCOPED_TRACE("triangles " + std::to_string(triangles) + (levels ? ", level refit" : ", climbing refit"));
     auto source = soup_source({triangles, "clustered", 1.0, 0.0, MortonBits::b63});
     const Topology& topo = source->topology();
     Exec exec;
     Lbvh<Exec> bvh(exec);
+    bvh.refit_levels = levels;
     TestMesh<Exec> m(exec, topo);
     Array<unsigned long long> counters(exec.memory(), "test.counters");
     counters.reserve(kCount);

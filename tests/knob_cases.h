@@ -192,14 +192,17 @@ inline PipelineConfig growing_config(const std::string& device, const std::strin
 
 // --dependent-launch (kernels scheduled while their predecessors run, waiting for them on
 // the device), --preserve-warp and --preserve-bound (on with dependent launches, off
-// without) and --phase-timing off: every pipeline reports exactly the oracle's pairs, every
-// frame, with and without frame graphs; with phases off no phase but the upload has a time
-// and the frame has one.
+// without) and --phase-timing off, each with the refit level by level and climbing
+// (--refit-levels): every pipeline reports exactly the oracle's pairs, every frame, with and
+// without frame graphs; with phases off no phase but the upload has a time and the frame
+// has one.
 inline void check_launch_knobs(const std::string& device, bool graph, bool dependent) {
   const ExactFrames funnel =
       exact_frames(*make_generator("funnel", {{"res", 40}, {"frames", 10}, {"segments", 16}, {"ball_level", 1}}));
+  for (bool levels : {true, false})
   for (const auto& name : pipeline_names()) {
     PipelineConfig cfg = growing_config(device, name);
+    cfg.tree.refit_levels = levels;
     cfg.fronts.cycle = 4;
     cfg.launch.cuda_graph = graph;
     cfg.launch.dependent_launch = dependent;
@@ -210,8 +213,8 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
     p->set_topology(funnel.topology);
     for (uint32_t f = 0; f < funnel.num_frames(); ++f) {
       const FrameStats s = p->run_frame(funnel.vertices[f]);
-      const std::string where = name + (graph ? " graph" : "") + (dependent ? " dependent" : "") + " frame " +
-                                std::to_string(f);
+      const std::string where = name + (graph ? " graph" : "") + (dependent ? " dependent" : "") +
+                                (levels ? "" : " climbing refit") + " frame " + std::to_string(f);
       EXPECT_GT(s.timing.total_ms, 0.0) << where;
       EXPECT_GT(s.timing.phase_ms[size_t(Phase::upload)], 0.0) << where;
       for (size_t ph = 0; ph < kPhaseCount; ++ph) {

@@ -35,7 +35,9 @@ struct Lbvh {
                                   {&tile_start, "tile_start"}, {&tile_scan, "tile_scan"}, {&tile_first, "tile_first"},
                                   {&tile_count, "tile_count"}, {&span_flag, "span_flag"}, {&span_scan, "span_scan"},
                                   {&span_count, "span_count"}, {&span_node, "span_node"}, {&span_parent, "span_parent"},
-                                  {&span_child, "span_child"}, {&span_depth, "span_depth"}});
+                                  {&span_child, "span_child"}, {&span_depth, "span_depth"},
+                                  {&level_node, "level_node"}, {&level_code, "level_code"},
+                                  {&level_link, "level_link"}});
     bind_arrays<uint64_t>(mr, p, {{&morton, "morton"}, {&morton_sorted, "morton_sorted"}});
     centroid_box.bind(mr, p + "centroid_box");
     temp.bind(mr, p + "temp");
@@ -62,6 +64,10 @@ struct Lbvh {
       span_hi.reserve(2 * internal);
       span_count.reserve(2);
     }
+    if (refit_levels) {
+      for (auto* a : {&level_node, &level_code}) a->reserve(n);
+      level_link.reserve(2 * size_t(n));
+    }
     for (auto* a : {&morton, &morton_sorted}) a->reserve(n);
     centroid_box.reserve(1);
     size_t t = exec.sort_temp_bytes(n);
@@ -85,6 +91,9 @@ struct Lbvh {
   // memory (tests lower it to cover that path).
   uint32_t refit_top_shared_slots = kRefitTopSharedSlots;
   bool refit_top_fits() const { return num_leaves > kRefitTile && num_leaves <= refit_top_max_leaves; }
+  // The refit's tiles level by level (bvh/refit_levels.h, --refit-levels) instead of the
+  // climb with hand-overs (bvh/refit.h); tests compare the two. Set before reserve.
+  bool refit_levels = true;
 
   // The ordered tree.
   Array<vec4f> leaf_lo, leaf_hi;
@@ -118,6 +127,8 @@ struct Lbvh {
   // The spanning nodes' index for refit_top.h (only for trees where refit_top_fits()).
   Array<uint32_t> span_flag, span_scan, span_count, span_node, span_parent, span_child, span_depth;
   Array<vec4f> span_lo, span_hi;
+  // The tiles' tables for refit_levels, by split (bvh/refit_levels.h).
+  Array<uint32_t> level_node, level_code, level_link;
   Array<std::byte> temp;
 };
 

@@ -23,19 +23,14 @@
 
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
+#include "bvh/refit_handover.h"
+#include "bvh/refit_levels.h"
 #include "bvh/refit_top.h"
 #include "core/atomics.h"
 #include "exec/tiles.h"
 #include "geometry/mesh.h"
 
 namespace cdb {
-
-// Counters a refit zeroes on its way (the pair buffer's, before the front pass that counts
-// into them): a steady frame then needs no launch of its own to reset them.
-struct CounterReset {
-  unsigned long long* counters = nullptr;
-  uint32_t count = 0;
-};
 
 struct RefitFn {
   static constexpr uint32_t kTile = kRefitTile;
@@ -105,10 +100,8 @@ struct RefitFn {
         shi = {handover_load(&other[3]), handover_load(&other[4]), handover_load(&other[5]), 0};
       } else {
         if (stop_at_spanning) return;
-        if ((atomic_add_acq_rel(&flag[p], 1u) & 1u) == 0) return;
-        const uint32_t sibling = from_left ? at.right : at.left;
-        slo = is_leaf(sibling) ? load_coherent(&leaf_lo[ref_index(sibling)]) : load_coherent(&node_lo[sibling]);
-        shi = is_leaf(sibling) ? load_coherent(&leaf_hi[ref_index(sibling)]) : load_coherent(&node_hi[sibling]);
+        if (!span_handover(flag, p, from_left ? at.right : at.left, leaf_lo, leaf_hi, node_lo, node_hi, slo, shi))
+          return;
       }
       lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), link_lane(at.left)};
       hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), link_lane(at.escape)};
@@ -131,7 +124,16 @@ bool refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, CounterReset reset
   if (n < reset.count) reset = {};
   if (n == 0) return false;
   const bool top_in_block = bvh.refit_top_fits();
-  exec.for_each_tile(Tiles{bvh.tile_first.data(), bvh.tile_count.data(), bvh.refit_tile_blocks()},
+  const Tiles tiles{bvh.tile_first.data(), bvh.tile_count.data(), bvh.refit_tile_blocks()};
+  if (bvh.refit_levels)
+    exec.for_each_tile_in_phases(
+        tiles, RefitLevelsFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.leaf_escape.data(),
+                             bvh.node_left.data(), bvh.node_right.data(), bvh.node_parent.data(),
+                             bvh.node_escape.data(), bvh.level_node.data(), bvh.level_code.data(), bvh.level_link.data(),
+                             bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_lo.data(), bvh.node_hi.data(),
+                             bvh.refit_flag.data(), top_in_block, reset});
+  else
+    exec.for_each_tile(tiles,
                      RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
                                 bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
                                 bvh.node_last.data(), bvh.node_escape.data(), bvh.leaf_escape.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),

@@ -17,11 +17,12 @@
 // node, its depth, its parent's slot and side, and its children that do not span.
 //
 // Four launches when both scans fit one block (CudaExec::exclusive_scan_pair): marks, the
-// scans, the counts, the tables.
+// scans, the counts, the tables; a fifth, the level tables, for --refit-levels.
 #include <cstdint>
 
 #include "bvh/lbvh.h"
 #include "bvh/node_ref.h"
+#include "bvh/refit_levels.h"
 #include "core/atomics.h"
 
 namespace cdb {
@@ -135,6 +136,11 @@ void index_refit(Exec& exec, Lbvh<Exec>& bvh) {
                                    bvh.node_right.data(), bvh.node_parent.data(), bvh.span_scan.data(),
                                    bvh.span_node.data(), bvh.span_parent.data(), bvh.span_child.data(),
                                    bvh.span_depth.data(), bvh.span_count.data() + 1});
+  if (bvh.refit_levels && n > 1)
+    exec.for_each_n(n - 1, RefitLevelsIndexFn{bvh.node_left.data(), bvh.node_right.data(), bvh.node_parent.data(),
+                                              bvh.node_escape.data(), bvh.node_first.data(), bvh.node_last.data(),
+                                              bvh.tile_start.data(), bvh.tile_scan.data(), bvh.tile_first.data(),
+                                              bvh.level_node.data(), bvh.level_code.data(), bvh.level_link.data()});
 }
 
 }  // namespace cdb

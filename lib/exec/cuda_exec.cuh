@@ -91,6 +91,29 @@ __global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(Tiles tiles, F 
   }
 }
 
+// The same tiles in phases: every thread of the block runs f.phase(p, lane, first, last)
+// for phase 0, then for phases 1 .. f.phases(shared) - 1 (read from shared memory after
+// phase 0), one block barrier after each.
+template <class F>
+__global__ void __launch_bounds__(F::kTile) for_each_tile_in_phases_kernel(Tiles tiles, F f) {
+  dependent_launch_entry();
+  __shared__ typename F::Shared shared;
+  const uint32_t count = *tiles.count;
+  for (uint32_t t = blockIdx.x; t < count; t += gridDim.x) {
+    if (t != blockIdx.x) __syncthreads();  // the block's previous tile is done with `shared`
+    f.init(shared, threadIdx.x);
+    __syncthreads();
+    const uint32_t first = tiles.first[t], last = tiles.first[t + 1] - 1;
+    f.phase(0, threadIdx.x, first, last, shared);
+    __syncthreads();
+    const uint32_t phases = f.phases(shared);
+    for (uint32_t p = 1; p < phases; ++p) {
+      f.phase(p, threadIdx.x, first, last, shared);
+      __syncthreads();
+    }
+  }
+}
+
 // One thread per index; the block shares one F::Stage (core/append_stage.h) that its indices
 // append to and that F::flush writes out once every index of the block is done.
 template <class F>
@@ -258,6 +281,13 @@ class CudaExec {
   void for_each_tile(const Tiles& tiles, const F& f) const {
     if (tiles.blocks == 0) return;
     launch(for_each_tile_kernel<F>, tiles.blocks, F::kTile, 0, tiles, f);
+  }
+
+  // Tiles in phases with a block barrier between them (for_each_tile_in_phases_kernel).
+  template <class F>
+  void for_each_tile_in_phases(const Tiles& tiles, const F& f) const {
+    if (tiles.blocks == 0) return;
+    launch(for_each_tile_in_phases_kernel<F>, tiles.blocks, F::kTile, 0, tiles, f);
   }
 
   size_t scan_temp_bytes(size_t n) const;

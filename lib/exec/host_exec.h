@@ -88,6 +88,24 @@ class HostExec {
     }
   }
 
+  // Tiles in phases (see CudaExec): each tile runs phase 0 for every lane, then each later
+  // phase for every lane, on one thread.
+  template <class F>
+  void for_each_tile_in_phases(const Tiles& tiles, const F& f) const {
+    const int64_t count = *tiles.count;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int64_t t = 0; t < count; ++t) {
+      const auto shared = std::make_unique<typename F::Shared>();
+      for (uint32_t lane = 0; lane < F::kTile; ++lane) f.init(*shared, lane);
+      const uint32_t first = tiles.first[t];
+      const uint32_t last = tiles.first[t + 1] - 1;
+      for (uint32_t lane = 0; lane < F::kTile; ++lane) f.phase(0, lane, first, last, *shared);
+      const uint32_t phases = f.phases(*shared);
+      for (uint32_t p = 1; p < phases; ++p)
+        for (uint32_t lane = 0; lane <= last - first; ++lane) f.phase(p, lane, first, last, *shared);
+    }
+  }
+
   // Scan in two passes over kScanChunks chunks: the chunks' sums, then each chunk scanned
   // from the sum before it. The temporary storage holds the chunks' sums.
   size_t scan_temp_bytes(size_t) const { return kScanChunks * sizeof(uint32_t); }

@@ -70,6 +70,9 @@ struct TreeConfig {
   // tiles) in one block, larger ones hand it over between blocks; 0: always hand over.
   // Default and limit: kRefitTopMaxLeaves and kRefitTopLeavesLimit (bvh/refit_tiles.h).
   uint32_t refit_top_leaves = kRefitTopMaxLeaves;
+  // Refit: each tile (treelet) level by level with block barriers (bvh/refit_levels.h);
+  // off: each leaf's thread climbs, handing nodes over through atomics (bvh/refit.h).
+  bool refit_levels = true;
   // Front pipelines under --front-cycle auto: a maintenance rebuilds the tree (and generates
   // every front) instead of updating once the rent the fronts paid on the degraded tree pays
   // for it (pipeline/tree_maintenance.h); off: only --rebuild-every and pipeline c's Formula 2.

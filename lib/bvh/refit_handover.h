@@ -1,0 +1,30 @@
+#pragma once
+// What the refit's kernels share (bvh/refit.h, bvh/refit_levels.h): the counters a refit
+// zeroes on its way, and the hand-over at a node spanning tiles.
+#include <cstdint>
+
+#include "bvh/node_ref.h"
+#include "core/atomics.h"
+#include "core/vec.h"
+
+namespace cdb {
+
+// Counters a refit zeroes on its way (the pair buffer's, before the front pass that counts
+// into them): a steady frame then needs no launch of its own to reset them.
+struct CounterReset {
+  unsigned long long* counters = nullptr;
+  uint32_t count = 0;
+};
+
+// The device-scope hand-over at spanning node p: false for the first of its two arrivals
+// (parity of refit_flag, bvh/refit.h); the second gets the sibling's box.
+CDB_HD_INLINE bool span_handover(uint32_t* flag, uint32_t p, uint32_t sibling, const vec4f* leaf_lo,
+                                 const vec4f* leaf_hi, const vec4f* node_lo, const vec4f* node_hi, vec4f& slo,
+                                 vec4f& shi) {
+  if ((atomic_add_acq_rel(&flag[p], 1u) & 1u) == 0) return false;
+  slo = is_leaf(sibling) ? load_coherent(&leaf_lo[ref_index(sibling)]) : load_coherent(&node_lo[sibling]);
+  shi = is_leaf(sibling) ? load_coherent(&leaf_hi[ref_index(sibling)]) : load_coherent(&node_hi[sibling]);
+  return true;
+}
+
+}  // namespace cdb
