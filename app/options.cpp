@@ -176,9 +176,12 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
              "grow to that between frames; off: an update that outgrows them grows them inside its frame and runs "
              "again")
       ->group(kTuningGroup);
-  add_switch(cmd, "--refit-levels", c.tree.refit_levels,
-             "front pipelines and bvh: the refit merges each tile's nodes level by level, deepest first, with a "
-             "block barrier between levels; off: each leaf's thread climbs and the second to reach a node merges it")
+  add_choice<AutoSwitch>(
+      cmd, "--refit-levels", c.tree.refit_levels,
+      "front pipelines and bvh: the refit merges each tile's nodes level by level, deepest first, with a block "
+      "barrier between levels; off: each leaf's thread climbs and the second to reach a node merges it; auto: on "
+      "with --device cuda, off on the cpu",
+      {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.tree.refit_levels))
       ->group(kTuningGroup);
   cmd->add_option("--refit-top-leaves", c.tree.refit_top_leaves,
                   "front pipelines and bvh: trees of up to this many leaves refit their top (the nodes whose leaves "

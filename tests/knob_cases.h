@@ -202,7 +202,7 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
   for (bool levels : {true, false})
   for (const auto& name : pipeline_names()) {
     PipelineConfig cfg = growing_config(device, name);
-    cfg.tree.refit_levels = levels;
+    cfg.tree.refit_levels = levels ? AutoSwitch::on : AutoSwitch::off;
     cfg.fronts.cycle = 4;
     cfg.launch.cuda_graph = graph;
     cfg.launch.dependent_launch = dependent;

@@ -20,7 +20,7 @@ class BvhPipeline final : public QueryPipeline<Exec, Timer> {
  private:
   void reserve(uint32_t) override {
     bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = this->config_.tree.refit_top_leaves;
-    bvh_.refit_levels = rigid_bvh_.refit_levels = this->config_.tree.refit_levels;
+    bvh_.refit_levels = rigid_bvh_.refit_levels = switched_on(this->config_.tree.refit_levels, Exec::is_device);
     bvh_.reserve(this->exec_, this->mesh_.deformable().count);
     rigid_bvh_.reserve(this->exec_, this->mesh_.rigid().count);
   }

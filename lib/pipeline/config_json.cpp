@@ -33,7 +33,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"regenerate", c.fronts.regenerate},
       {"update_probe", c.fronts.update_probe},
       {"refit_top_leaves", c.tree.refit_top_leaves},
-      {"refit_levels", c.tree.refit_levels},
+      {"refit_levels", auto_switch_name(c.tree.refit_levels)},
       {"rebuild_degraded", c.tree.rebuild_degraded},
       {"conservative", config_conservative(c)},
   };

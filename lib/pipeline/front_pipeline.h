@@ -57,7 +57,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     this->set_mesh(topology);
     const ObjectSplit& split = mesh_.split();
     bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.tree.refit_top_leaves;
-    bvh_.refit_levels = rigid_bvh_.refit_levels = config_.tree.refit_levels;
+    bvh_.refit_levels = rigid_bvh_.refit_levels = switched_on(config_.tree.refit_levels, Exec::is_device);
     bvh_.reserve(exec_, mesh_.deformable().count);
     rigid_bvh_.reserve(exec_, mesh_.rigid().count);
     const double per = config_.capacity.front_per_triangle;
