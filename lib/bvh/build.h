@@ -139,8 +139,8 @@ CDB_HD_INLINE void apetrei_climb(const ApetreiTree& a, uint32_t i, uint32_t s, u
                                        : load_coherent(&a.node_lo[sibling]);
     const vec4f shi = is_leaf(sibling) ? a.leaf_hi[ref_index(sibling)]
                                        : load_coherent(&a.node_hi[sibling]);
-    lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), 0};
-    hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), 0};
+    lo = min_xyz(lo, slo, 0);
+    hi = max_xyz(hi, shi, 0);
     a.node_lo[parent] = lo;
     a.node_hi[parent] = hi;
     a.first[parent] = l;

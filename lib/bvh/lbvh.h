@@ -92,8 +92,9 @@ struct Lbvh {
   uint32_t refit_top_shared_slots = kRefitTopSharedSlots;
   bool refit_top_fits() const { return num_leaves > kRefitTile && num_leaves <= refit_top_max_leaves; }
   // The refit's tiles level by level (bvh/refit_levels.h, --refit-levels) instead of the
-  // climb with hand-overs (bvh/refit.h); tests compare the two. Set before reserve.
-  bool refit_levels = true;
+  // climb with hand-overs (bvh/refit.h); tests compare the two. Set before reserve. By
+  // default as --refit-levels auto: on the GPU, not on the host.
+  bool refit_levels = Exec::is_device;
 
   // The ordered tree.
   Array<vec4f> leaf_lo, leaf_hi;

@@ -103,8 +103,8 @@ struct RefitFn {
         if (!span_handover(flag, p, from_left ? at.right : at.left, leaf_lo, leaf_hi, node_lo, node_hi, slo, shi))
           return;
       }
-      lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), link_lane(at.left)};
-      hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), link_lane(at.escape)};
+      lo = min_xyz(lo, slo, link_lane(at.left));
+      hi = max_xyz(hi, shi, link_lane(at.escape));
       node_lo[p] = lo;
       node_hi[p] = hi;
       child = p;

@@ -10,7 +10,8 @@
 // loaded once, at the start, from tables laid out by split: thread t of a tile owns the
 // internal node whose split (the last leaf of its left child) is the tile's leaf t, and
 // the tables give its node, its links, its depth in the treelet and its children's places
-// in shared memory, in loads that are coalesced and independent of each other. Min and max are exact, so the boxes equal the climb's bit for bit.
+// in shared memory, in loads that are coalesced and independent of each other. Min and max
+// are exact, so the boxes equal the climb's bit for bit.
 //
 // Above the treelets the tile's root climbs on as in bvh/refit.h (a device-scope hand-over
 // per spanning node), or stops there for RefitTopFn.
@@ -146,8 +147,8 @@ struct RefitLevelsFn {
     vec4f lo, hi, olo, ohi;
     get(s, level_child(code, 0), lo, hi);
     get(s, level_child(code, 1), olo, ohi);
-    lo = {min_of(lo.x, olo.x), min_of(lo.y, olo.y), min_of(lo.z, olo.z), s.left_lane[lane]};
-    hi = {max_of(hi.x, ohi.x), max_of(hi.y, ohi.y), max_of(hi.z, ohi.z), s.escape_lane[lane]};
+    lo = min_xyz(lo, olo, s.left_lane[lane]);
+    hi = max_xyz(hi, ohi, s.escape_lane[lane]);
     put(s.node[lane], lo, hi);
     const uint32_t k = s.node_id[lane];
     node_lo[k] = lo;
@@ -172,8 +173,8 @@ struct RefitLevelsFn {
       vec4f slo, shi;
       if (!span_handover(flag, p, left == child ? right : left, leaf_lo, leaf_hi, node_lo, node_hi, slo, shi))
         return;
-      lo = {min_of(lo.x, slo.x), min_of(lo.y, slo.y), min_of(lo.z, slo.z), link_lane(left)};
-      hi = {max_of(hi.x, shi.x), max_of(hi.y, shi.y), max_of(hi.z, shi.z), link_lane(escape)};
+      lo = min_xyz(lo, slo, link_lane(left));
+      hi = max_xyz(hi, shi, link_lane(escape));
       node_lo[p] = lo;
       node_hi[p] = hi;
       child = p;

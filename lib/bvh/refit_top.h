@@ -112,8 +112,8 @@ struct RefitTopFn {
       vec4f lo, hi, olo, ohi;
       get(s, 0, lo, hi, sh);
       get(s, 1, olo, ohi, sh);
-      lo = {min_of(lo.x, olo.x), min_of(lo.y, olo.y), min_of(lo.z, olo.z), 0};
-      hi = {max_of(hi.x, ohi.x), max_of(hi.y, ohi.y), max_of(hi.z, ohi.z), 0};
+      lo = min_xyz(lo, olo, 0);
+      hi = max_xyz(hi, ohi, 0);
       put(s, 0, lo, hi, sh);
       const uint32_t up = local ? sh.parent[s] : span_parent[s];
       if (up != kNoNode) put(ref_index(up), is_leaf(up) ? 1u : 0u, lo, hi, sh);

@@ -76,19 +76,27 @@ __global__ void __launch_bounds__(kForEachThreads, min_blocks_per_sm<F>()) for_e
 // Tiles of at most F::kTile consecutive indices (exec/tiles.h), taken in turn by the blocks;
 // a tile's threads share one F::Shared in shared memory, initialized lane by lane before any
 // index runs.
-template <class F>
-__global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(Tiles tiles, F f) {
-  dependent_launch_entry();
-  __shared__ typename F::Shared shared;
+// The block's tiles in turn: `shared` initialized lane by lane, then run(first, last).
+template <class F, class Run>
+__device__ __forceinline__ void for_each_block_tile(const Tiles& tiles, const F& f, typename F::Shared& shared,
+                                                    const Run& run) {
   const uint32_t count = *tiles.count;
   for (uint32_t t = blockIdx.x; t < count; t += gridDim.x) {
     if (t != blockIdx.x) __syncthreads();  // the block's previous tile is done with `shared`
     f.init(shared, threadIdx.x);
     __syncthreads();
-    const uint32_t first = tiles.first[t], end = tiles.first[t + 1];
-    const uint32_t i = first + threadIdx.x;
-    if (i < end) f(i, first, end - 1, shared);
+    run(tiles.first[t], tiles.first[t + 1] - 1);
   }
+}
+
+template <class F>
+__global__ void __launch_bounds__(F::kTile) for_each_tile_kernel(Tiles tiles, F f) {
+  dependent_launch_entry();
+  __shared__ typename F::Shared shared;
+  for_each_block_tile(tiles, f, shared, [&](uint32_t first, uint32_t last) {
+    const uint32_t i = first + threadIdx.x;
+    if (i <= last) f(i, first, last, shared);
+  });
 }
 
 // The same tiles in phases: every thread of the block runs f.phase(p, lane, first, last)
@@ -98,12 +106,7 @@ template <class F>
 __global__ void __launch_bounds__(F::kTile) for_each_tile_in_phases_kernel(Tiles tiles, F f) {
   dependent_launch_entry();
   __shared__ typename F::Shared shared;
-  const uint32_t count = *tiles.count;
-  for (uint32_t t = blockIdx.x; t < count; t += gridDim.x) {
-    if (t != blockIdx.x) __syncthreads();  // the block's previous tile is done with `shared`
-    f.init(shared, threadIdx.x);
-    __syncthreads();
-    const uint32_t first = tiles.first[t], last = tiles.first[t + 1] - 1;
+  for_each_block_tile(tiles, f, shared, [&](uint32_t first, uint32_t last) {
     f.phase(0, threadIdx.x, first, last, shared);
     __syncthreads();
     const uint32_t phases = f.phases(shared);
@@ -111,7 +114,7 @@ __global__ void __launch_bounds__(F::kTile) for_each_tile_in_phases_kernel(Tiles
       f.phase(p, threadIdx.x, first, last, shared);
       __syncthreads();
     }
-  }
+  });
 }
 
 // One thread per index; the block shares one F::Stage (core/append_stage.h) that its indices

@@ -77,33 +77,21 @@ class HostExec {
   // its indices in order on one thread, after f.init for every lane.
   template <class F>
   void for_each_tile(const Tiles& tiles, const F& f) const {
-    const int64_t count = *tiles.count;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int64_t t = 0; t < count; ++t) {
-      typename F::Shared shared;
-      for (uint32_t lane = 0; lane < F::kTile; ++lane) f.init(shared, lane);
-      const uint32_t first = tiles.first[t];
-      const uint32_t last = tiles.first[t + 1] - 1;
+    each_tile(tiles, f, [&f](uint32_t first, uint32_t last, typename F::Shared& shared) {
       for (uint32_t i = first; i <= last; ++i) f(i, first, last, shared);
-    }
+    });
   }
 
   // Tiles in phases (see CudaExec): each tile runs phase 0 for every lane, then each later
   // phase for every lane, on one thread.
   template <class F>
   void for_each_tile_in_phases(const Tiles& tiles, const F& f) const {
-    const int64_t count = *tiles.count;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int64_t t = 0; t < count; ++t) {
-      const auto shared = std::make_unique<typename F::Shared>();
-      for (uint32_t lane = 0; lane < F::kTile; ++lane) f.init(*shared, lane);
-      const uint32_t first = tiles.first[t];
-      const uint32_t last = tiles.first[t + 1] - 1;
-      for (uint32_t lane = 0; lane < F::kTile; ++lane) f.phase(0, lane, first, last, *shared);
-      const uint32_t phases = f.phases(*shared);
+    each_tile(tiles, f, [&f](uint32_t first, uint32_t last, typename F::Shared& shared) {
+      for (uint32_t lane = 0; lane < F::kTile; ++lane) f.phase(0, lane, first, last, shared);
+      const uint32_t phases = f.phases(shared);
       for (uint32_t p = 1; p < phases; ++p)
-        for (uint32_t lane = 0; lane <= last - first; ++lane) f.phase(p, lane, first, last, *shared);
-    }
+        for (uint32_t lane = 0; lane <= last - first; ++lane) f.phase(p, lane, first, last, shared);
+    });
   }
 
   // Scan in two passes over kScanChunks chunks: the chunks' sums, then each chunk scanned
@@ -211,6 +199,19 @@ class HostExec {
   uint64_t host_syncs() const { return host_syncs_; }
 
  private:
+  // Each tile on one thread: its F::Shared initialized lane by lane, then run(first, last,
+  // shared).
+  template <class F, class Run>
+  void each_tile(const Tiles& tiles, const F& f, const Run& run) const {
+    const int64_t count = *tiles.count;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int64_t t = 0; t < count; ++t) {
+      typename F::Shared shared;
+      for (uint32_t lane = 0; lane < F::kTile; ++lane) f.init(shared, lane);
+      run(tiles.first[t], tiles.first[t + 1] - 1, shared);
+    }
+  }
+
   HostMemory memory_;
   mutable uint64_t host_syncs_ = 0;
 };

@@ -59,8 +59,8 @@ CDB_HD_INLINE void face_box(const MeshView& m, uint32_t f, vec4f& lo, vec4f& hi)
   if (m.prev_vertices) {
     vec4f plo, phi;
     triangle_box(m.prev_vertices[t.v0], m.prev_vertices[t.v1], m.prev_vertices[t.v2], plo, phi);
-    lo = {min_of(lo.x, plo.x), min_of(lo.y, plo.y), min_of(lo.z, plo.z), 0.0f};
-    hi = {max_of(hi.x, phi.x), max_of(hi.y, phi.y), max_of(hi.z, phi.z), 0.0f};
+    lo = min_xyz(lo, plo, 0.0f);
+    hi = max_xyz(hi, phi, 0.0f);
   }
   if (m.grid) snap_box_outward(*m.grid, lo, hi);
   if (m.widen) {
