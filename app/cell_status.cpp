@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 
 namespace cdb {
 

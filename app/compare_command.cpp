@@ -12,10 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 #include "damaged_file_guard.h"
 #include "exit_codes.h"
-#include "io/results_reader.h"
+#include "harness/results/results_reader.h"
 #include "run_statistics.h"
 
 namespace cdb {

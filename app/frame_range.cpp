@@ -2,7 +2,7 @@
 
 #include <charconv>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 
 namespace cdb {
 

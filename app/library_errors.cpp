@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 
 namespace cdb {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "cli_params.h"
 #include "compare_command.h"
-#include "core/error.h"
+#include "cdbench/core/error.h"
 #include "exit_codes.h"
 #include "help_format.h"
 #include "library_errors.h"

@@ -8,7 +8,7 @@
 
 #include <unistd.h>
 
-#include "pipeline/run_summary.h"
+#include "cdbench/pipeline/run_summary.h"
 
 namespace cdb {
 

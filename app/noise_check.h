@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/pipeline.h"
+#include "cdbench/pipeline/pipeline.h"
 
 namespace cdb {
 

@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <functional>
 
-#include "core/build_info.h"
-#include "core/error.h"
-#include "io/scene_label.h"
-#include "pipeline/device_probe.h"
-#include "pipeline/pipeline_kinds.h"
+#include "cdbench/core/build_info.h"
+#include "cdbench/core/error.h"
+#include "scenes/load/scene_label.h"
+#include "cdbench/pipeline/device_probe.h"
+#include "registry/pipeline_kinds.h"
 #include "report.h"
 
 namespace cdb {

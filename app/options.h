@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "io/scene.h"
-#include "pipeline/pipeline.h"
+#include "scenes/load/scene.h"
+#include "cdbench/pipeline/pipeline.h"
 
 namespace cdb {
 

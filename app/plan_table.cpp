@@ -2,10 +2,10 @@
 
 #include <cstdio>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 #include "exit_codes.h"
-#include "io/plan_source.h"
-#include "pipeline/plan_record.h"
+#include "harness/plans/plan_source.h"
+#include "cdbench/pipeline/plan_record.h"
 
 namespace cdb {
 namespace {

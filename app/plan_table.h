@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "io/results_reader.h"
+#include "harness/results/results_reader.h"
 
 namespace cdb {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/run_summary.h"
+#include "cdbench/pipeline/run_summary.h"
 
 namespace cdb {
 

@@ -3,10 +3,10 @@
 #include <string>
 #include <vector>
 
-#include "core/pair_set.h"
-#include "exec/memory.h"
-#include "narrow/contacts.h"
-#include "pipeline/pipeline.h"
+#include "cdbench/core/pair_set.h"
+#include "cdbench/exec/memory.h"
+#include "cdbench/narrow/contacts.h"
+#include "cdbench/pipeline/pipeline.h"
 
 namespace cdb {
 

@@ -17,9 +17,9 @@
 #include "library_errors.h"
 #include "plan_table.h"
 
-#include "core/error.h"
-#include "core/phase.h"
-#include "io/results_reader.h"
+#include "cdbench/core/error.h"
+#include "cdbench/core/phase.h"
+#include "harness/results/results_reader.h"
 
 namespace cdb {
 namespace {

@@ -13,24 +13,25 @@
 #include <string_view>
 #include <vector>
 
-#include "bruteforce/sweep_oracle.h"
-#include "core/build_info.h"
-#include "core/error.h"
+#include "cdbench/oracle/sweep_oracle.h"
+#include "cdbench/core/build_info.h"
+#include "cdbench/core/error.h"
 #include "frame_range.h"
 #include "interrupt.h"
-#include "geometry/cached_frames.h"
-#include "geometry/float_spacing.h"
-#include "geometry/hashed_frames.h"
-#include "io/plan_source.h"
-#include "io/results_file.h"
-#include "io/scene_label.h"
+#include "cdbench/geometry/cached_frames.h"
+#include "cdbench/geometry/float_spacing.h"
+#include "cdbench/geometry/hashed_frames.h"
+#include "harness/plans/plan_source.h"
+#include "harness/results/results_file.h"
+#include "scenes/load/scene_label.h"
 #include "noise_check.h"
 #include "output_path.h"
-#include "pipeline/config_json.h"
-#include "pipeline/device_probe.h"
+#include "harness/results/config_json.h"
+#include "cdbench/pipeline/device_probe.h"
 #include "progress.h"
 #include "report.h"
 #include "run_loop.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "narrow/contacts.h"
+#include "cdbench/narrow/contacts.h"
 #include "options.h"
 #include "run_loop.h"
 

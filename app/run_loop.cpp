@@ -11,15 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/pair_set.h"
-#include "geometry/position_rounding.h"
+#include "cdbench/core/error.h"
+#include "cdbench/core/pair_set.h"
+#include "cdbench/geometry/position_rounding.h"
 #include "interrupt.h"
 #include "library_errors.h"
 #include "noise_check.h"
-#include "narrow/contacts.h"
-#include "pipeline/plan_record.h"
-#include "pipeline/run_summary.h"
+#include "cdbench/narrow/contacts.h"
+#include "cdbench/pipeline/plan_record.h"
+#include "cdbench/pipeline/run_summary.h"
 #include "report.h"
 
 namespace cdb {

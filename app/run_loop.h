@@ -8,12 +8,12 @@
 
 #include "frame_range.h"
 #include "interrupt.h"
-#include "geometry/frame_source.h"
-#include "io/results_file.h"
-#include "narrow/contacts.h"
-#include "pipeline/device_probe.h"
-#include "pipeline/pipeline.h"
-#include "pipeline/run_summary.h"
+#include "cdbench/geometry/frame_source.h"
+#include "harness/results/results_file.h"
+#include "cdbench/narrow/contacts.h"
+#include "cdbench/pipeline/device_probe.h"
+#include "cdbench/pipeline/pipeline.h"
+#include "cdbench/pipeline/run_summary.h"
 #include "progress.h"
 
 namespace cdb {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "core/error.h"
-#include "pipeline/run_summary.h"
+#include "cdbench/core/error.h"
+#include "cdbench/pipeline/run_summary.h"
 
 namespace cdb {
 namespace {

@@ -8,11 +8,11 @@
 #include <regex>
 #include <vector>
 
-#include "core/error.h"
-#include "geometry/float_spacing.h"
-#include "io/obj_sequence.h"
-#include "io/scene.h"
-#include "io/scene_label.h"
+#include "cdbench/core/error.h"
+#include "cdbench/geometry/float_spacing.h"
+#include "scenes/load/obj_sequence.h"
+#include "scenes/load/scene.h"
+#include "scenes/load/scene_label.h"
 #include "options.h"
 
 namespace cdb {

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cell_status.h"
-#include "core/error.h"
+#include "cdbench/core/error.h"
 
 namespace cdb {
 namespace {

@@ -6,13 +6,14 @@
 #include <filesystem>
 #include <vector>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 #include "exit_codes.h"
 #include "options.h"
-#include "pipeline/pipeline.h"
+#include "cdbench/pipeline/pipeline.h"
 #include "run_command.h"
 #include "sweep_plan.h"
 #include "sweep_runner.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb {
 namespace {

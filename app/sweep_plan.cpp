@@ -6,8 +6,8 @@
 #include <map>
 #include <string_view>
 
-#include "core/error.h"
-#include "io/descriptor_object.h"
+#include "cdbench/core/error.h"
+#include "scenes/load/descriptor_object.h"
 
 namespace cdb {
 namespace {

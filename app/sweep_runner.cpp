@@ -17,10 +17,10 @@
 #include <thread>
 
 #include "cell_status.h"
-#include "core/error.h"
-#include "core/utc_time.h"
+#include "cdbench/core/error.h"
+#include "cdbench/core/utc_time.h"
 #include "interrupt.h"
-#include "io/results_reader.h"
+#include "harness/results/results_reader.h"
 
 extern char** environ;
 

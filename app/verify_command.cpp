@@ -6,12 +6,13 @@
 #include <memory>
 #include <optional>
 
-#include "bruteforce/sweep_oracle.h"
-#include "core/error.h"
+#include "cdbench/oracle/sweep_oracle.h"
+#include "cdbench/core/error.h"
 #include "frame_range.h"
-#include "geometry/position_rounding.h"
-#include "io/pairs_file.h"
+#include "cdbench/geometry/position_rounding.h"
+#include "harness/pairs/pairs_file.h"
 #include "report.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb {
 namespace {

@@ -1,6 +1,6 @@
 #include "version_text.h"
 
-#include "core/build_info.h"
+#include "cdbench/core/build_info.h"
 
 namespace cdb {
 

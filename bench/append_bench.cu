@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "core/atomics.h"
+#include "cdbench/core/atomics.h"
 
 namespace {
 

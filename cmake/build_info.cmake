@@ -9,7 +9,7 @@ execute_process(COMMAND git -C ${SRC} status --porcelain --untracked-files=no OU
 if(NOT dirty STREQUAL "")
   set(sha "${sha}-dirty")
 endif()
-set(text "#include \"core/build_info.h\"\nnamespace cdb {\nconst BuildInfo& build_info() {\n  static const BuildInfo info{\"${sha}\", \"${CXX}\", \"${CUDA}\", \"${BUILD_TYPE}\"};\n  return info;\n}\n}  // namespace cdb\n")
+set(text "#include \"cdbench/core/build_info.h\"\nnamespace cdb {\nconst BuildInfo& build_info() {\n  static const BuildInfo info{\"${sha}\", \"${CXX}\", \"${CUDA}\", \"${BUILD_TYPE}\"};\n  return info;\n}\n}  // namespace cdb\n")
 if(EXISTS ${OUT})
   file(READ ${OUT} old)
 else()

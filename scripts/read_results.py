@@ -14,7 +14,7 @@ import sys
 import h5py
 import numpy as np
 
-# In step with kResultsSchemaVersion (lib/io/results_file.h); 3 added label, input_path,
+# In step with kResultsSchemaVersion (harness/results/results_file.h); 3 added label, input_path,
 # input_hash and noise_warning, which older files lack (they are printed when present); 4
 # added each pass's front plan (/plans) and the columns and attributes of --repeat-plan.
 SUPPORTED_SCHEMA = 4

@@ -12,13 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "bruteforce/sweep_oracle.h"
-#include "core/pair_set.h"
-#include "generators.h"
-#include "grid/uniform_grid.h"
-#include "hash/spatial_hash.h"
-#include "pipeline/pipeline.h"
-#include "sweep/sweep.h"
+#include "cdbench/oracle/sweep_oracle.h"
+#include "cdbench/core/pair_set.h"
+#include "scenes/generators/generators.h"
+#include "baselines/grid/uniform_grid.h"
+#include "baselines/hash/spatial_hash.h"
+#include "cdbench/pipeline/pipeline.h"
+#include "baselines/sweep/sweep.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 

@@ -10,17 +10,18 @@
 #include <set>
 #include <string>
 
-#include "bruteforce/sweep_oracle.h"
-#include "bvh/build.h"
-#include "bvh/order.h"
-#include "bvh/refit.h"
-#include "bvh/restructure.h"
-#include "bvh/self_query.h"
+#include "cdbench/oracle/sweep_oracle.h"
+#include "cdbench/bvh/build.h"
+#include "cdbench/bvh/order.h"
+#include "cdbench/bvh/refit.h"
+#include "cdbench/bvh/restructure.h"
+#include "cdbench/bvh/self_query.h"
 #include "bvh_checks.h"
-#include "core/pair_set.h"
-#include "generators.h"
-#include "pipeline/pipeline.h"
-#include "pipeline/plan_record.h"
+#include "cdbench/core/pair_set.h"
+#include "scenes/generators/generators.h"
+#include "cdbench/pipeline/pipeline.h"
+#include "cdbench/pipeline/plan_record.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 

@@ -3,8 +3,8 @@
 #include <functional>
 #include <sstream>
 
-#include "bvh/node_ref.h"
-#include "core/aabb.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/core/aabb.h"
 
 namespace cdb::test {
 

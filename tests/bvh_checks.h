@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "bvh/lbvh.h"
-#include "core/pair.h"
-#include "geometry/mesh.h"
+#include "cdbench/bvh/lbvh.h"
+#include "cdbench/core/pair.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb::test {
 

@@ -16,13 +16,13 @@
 #include <string>
 #include <vector>
 
-#include "common/cell_boxes.h"
-#include "common/cell_coord.h"
-#include "common/cell_range.h"
-#include "common/home_cell.h"
-#include "common/scene_stats.h"
-#include "grid/grid_geometry.h"
-#include "hash/spatial_hash.h"
+#include "baselines/common/cell_boxes.h"
+#include "baselines/common/cell_coord.h"
+#include "baselines/common/cell_range.h"
+#include "baselines/common/home_cell.h"
+#include "baselines/common/scene_stats.h"
+#include "baselines/grid/grid_geometry.h"
+#include "baselines/hash/spatial_hash.h"
 
 namespace cdb::test {
 

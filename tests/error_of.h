@@ -3,7 +3,7 @@
 #include <functional>
 #include <string>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 
 namespace cdb::test {
 

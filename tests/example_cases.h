@@ -9,9 +9,10 @@
 #include <vector>
 
 #include "baseline_cases.h"
-#include "bruteforce/sweep_oracle.h"
-#include "core/pair_set.h"
-#include "pipeline/pipeline.h"
+#include "cdbench/oracle/sweep_oracle.h"
+#include "cdbench/core/pair_set.h"
+#include "cdbench/pipeline/pipeline.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 

@@ -15,7 +15,7 @@
 
 #include "baseline_cases.h"
 #include "bvh_cases.h"
-#include "geometry/object_split.h"
+#include "cdbench/geometry/object_split.h"
 
 namespace cdb::test {
 

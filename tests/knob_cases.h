@@ -14,14 +14,14 @@
 #include <variant>
 #include <vector>
 
-#include "bruteforce/sweep_oracle.h"
+#include "cdbench/oracle/sweep_oracle.h"
 #include "bvh_cases.h"
-#include "core/outward_rounding.h"
-#include "core/pair_set.h"
-#include "generators.h"
-#include "geometry/objects.h"
-#include "pipeline/pipeline.h"
-#include "pipeline/pipeline_kinds.h"
+#include "cdbench/core/outward_rounding.h"
+#include "cdbench/core/pair_set.h"
+#include "scenes/generators/generators.h"
+#include "cdbench/geometry/objects.h"
+#include "cdbench/pipeline/pipeline.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 

@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "core/vec.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

@@ -12,13 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/pair_set.h"
-#include "generators.h"
-#include "geometry/float_spacing.h"
-#include "geometry/position_rounding.h"
-#include "io/placed_scene.h"
-#include "pipeline/pipeline.h"
+#include "cdbench/core/error.h"
+#include "cdbench/core/pair_set.h"
+#include "scenes/generators/generators.h"
+#include "cdbench/geometry/float_spacing.h"
+#include "cdbench/geometry/position_rounding.h"
+#include "scenes/load/placed_scene.h"
+#include "cdbench/pipeline/pipeline.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 

@@ -18,7 +18,8 @@
 
 #include "baseline_cases.h"
 #include "knob_cases.h"
-#include "pipeline/device_mesh.h"
+#include "cdbench/pipeline/device_mesh.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 

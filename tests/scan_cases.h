@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "exec/memory.h"
+#include "cdbench/exec/memory.h"
 
 template <class Exec>
 void check_exclusive_scan_pair() {

@@ -20,9 +20,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "io/animated_mesh.h"
-#include "io/scene.h"
+#include "cdbench/core/error.h"
+#include "scenes/load/animated_mesh.h"
+#include "scenes/load/scene.h"
 #include "error_of.h"
 
 namespace cdb::test {

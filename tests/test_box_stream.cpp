@@ -19,14 +19,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bruteforce/sweep_oracle.h"
-#include "core/error.h"
-#include "core/pair_set.h"
-#include "io/box_stream.h"
-#include "io/npy_header.h"
-#include "io/scene.h"
-#include "pipeline/pipeline.h"
+#include "cdbench/oracle/sweep_oracle.h"
+#include "cdbench/core/error.h"
+#include "cdbench/core/pair_set.h"
+#include "scenes/load/box_stream.h"
+#include "scenes/load/npy_header.h"
+#include "scenes/load/scene.h"
+#include "cdbench/pipeline/pipeline.h"
 #include "error_of.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 namespace {

@@ -10,8 +10,9 @@
 #include "offset_cases.h"
 #include "scan_cases.h"
 #include "tile_cases.h"
-#include "io/scene.h"
-#include "exec/cuda_exec.cuh"
+#include "scenes/load/scene.h"
+#include "cdbench/exec/cuda_exec.cuh"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 

@@ -3,10 +3,11 @@
 #include "baseline_cases.h"
 #include "bvh_cases.h"
 #include "cell_cases.h"
-#include "io/scene.h"
-#include "core/error.h"
-#include "exec/host_exec.h"
-#include "front/warp_traversal.h"
+#include "scenes/load/scene.h"
+#include "cdbench/core/error.h"
+#include "cdbench/exec/host_exec.h"
+#include "cdbench/front/warp_traversal.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 

@@ -1,6 +1,6 @@
 // The example pipeline (docs/extending.md "Adding a pipeline") on the host executor.
 #include "example_cases.h"
-#include "pipeline/pipeline_kinds.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "error_of.h"
-#include "pipeline/frame_plan.h"
+#include "cdbench/pipeline/frame_plan.h"
 
 using namespace cdb;
 using cdb::test::error_of;

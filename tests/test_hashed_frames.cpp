@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "geometry/hashed_frames.h"
+#include "cdbench/geometry/hashed_frames.h"
 
 namespace cdb {
 namespace {

@@ -10,9 +10,9 @@
 #include <random>
 #include <vector>
 
-#include "core/error.h"
-#include "core/pair_set.h"
-#include "exec/host_exec.h"
+#include "cdbench/core/error.h"
+#include "cdbench/core/pair_set.h"
+#include "cdbench/exec/host_exec.h"
 #include "scan_cases.h"
 #include "tile_cases.h"
 

@@ -27,14 +27,15 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "generators.h"
-#include "io/obj_sequence.h"
-#include "io/results_file.h"
-#include "io/results_reader.h"
-#include "io/scene.h"
-#include "pipeline/pipeline.h"
-#include "pipeline/run_summary.h"
+#include "cdbench/core/error.h"
+#include "scenes/generators/generators.h"
+#include "scenes/load/obj_sequence.h"
+#include "harness/results/results_file.h"
+#include "harness/results/results_reader.h"
+#include "scenes/load/scene.h"
+#include "cdbench/pipeline/pipeline.h"
+#include "cdbench/pipeline/run_summary.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 namespace {

@@ -2,8 +2,8 @@
 // T_D and T_R, every pipeline exact on every frame, the fronts each query keeps, and
 // pipeline c's decisions with cross fronts (tests/inter_cases.h).
 #include "inter_cases.h"
-#include "exec/host_exec.h"
-#include "io/scene.h"
+#include "cdbench/exec/host_exec.h"
+#include "scenes/load/scene.h"
 
 namespace cdb::test {
 

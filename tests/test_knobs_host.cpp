@@ -1,8 +1,8 @@
 #include <limits>
 #include <random>
 
-#include "core/outward_rounding.h"
-#include "exec/host_exec.h"
+#include "cdbench/core/outward_rounding.h"
+#include "cdbench/exec/host_exec.h"
 #include "inter_cases.h"
 #include "knob_cases.h"
 #include "offset_cases.h"

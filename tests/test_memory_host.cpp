@@ -8,12 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "bruteforce/sweep_oracle.h"
-#include "core/pair_set.h"
-#include "exec/host_exec.h"
-#include "exec/memory.h"
-#include "generators.h"
-#include "pipeline/pipeline.h"
+#include "cdbench/oracle/sweep_oracle.h"
+#include "cdbench/core/pair_set.h"
+#include "cdbench/exec/host_exec.h"
+#include "cdbench/exec/memory.h"
+#include "scenes/generators/generators.h"
+#include "cdbench/pipeline/pipeline.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 namespace {

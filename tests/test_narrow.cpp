@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "narrow/contacts.h"
-#include "narrow/predicates.h"
-#include "narrow/triangle_intersect.h"
+#include "cdbench/narrow/contacts.h"
+#include "cdbench/narrow/predicates.h"
+#include "cdbench/narrow/triangle_intersect.h"
 #include "narrow_cases.h"
 
 namespace cdb {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "narrow/proximity.h"
-#include "narrow/triangle_intersect.h"
+#include "cdbench/narrow/proximity.h"
+#include "cdbench/narrow/triangle_intersect.h"
 #include "narrow_cases.h"
 #include "proximity_cases.h"
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "io/input_files.h"
-#include "io/obj_sequence.h"
+#include "cdbench/core/error.h"
+#include "scenes/load/input_files.h"
+#include "scenes/load/obj_sequence.h"
 
 namespace cdb::test {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "error_of.h"
-#include "io/pairs_file.h"
+#include "harness/pairs/pairs_file.h"
 
 namespace cdb {
 namespace {

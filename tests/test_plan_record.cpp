@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "error_of.h"
-#include "pipeline/plan_record.h"
+#include "cdbench/pipeline/plan_record.h"
 
 using namespace cdb;
 using cdb::test::error_of;

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "narrow/contacts.h"
-#include "narrow/proximity.h"
+#include "cdbench/core/error.h"
+#include "cdbench/narrow/contacts.h"
+#include "cdbench/narrow/proximity.h"
 #include "proximity_cases.h"
 
 namespace cdb {

@@ -12,13 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "generators.h"
-#include "io/results_columns.h"
-#include "io/results_file.h"
-#include "io/results_reader.h"
-#include "io/scene_label.h"
-#include "pipeline/run_summary.h"
+#include "cdbench/core/error.h"
+#include "scenes/generators/generators.h"
+#include "harness/results/results_columns.h"
+#include "harness/results/results_file.h"
+#include "harness/results/results_reader.h"
+#include "scenes/load/scene_label.h"
+#include "cdbench/pipeline/run_summary.h"
+#include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
 namespace {

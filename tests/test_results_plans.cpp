@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "error_of.h"
-#include "io/plan_source.h"
-#include "io/results_file.h"
-#include "io/results_reader.h"
-#include "pipeline/run_summary.h"
+#include "harness/plans/plan_source.h"
+#include "harness/results/results_file.h"
+#include "harness/results/results_reader.h"
+#include "cdbench/pipeline/run_summary.h"
 
 namespace cdb {
 namespace {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "io/results_file.h"
-#include "io/results_reader.h"
-#include "pipeline/run_summary.h"
+#include "harness/results/results_file.h"
+#include "harness/results/results_reader.h"
+#include "cdbench/pipeline/run_summary.h"
 
 namespace cdb {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 #include "noise_check.h"
 #include "run_statistics.h"
 

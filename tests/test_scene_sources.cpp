@@ -22,13 +22,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "geometry/float_spacing.h"
-#include "io/animated_mesh.h"
-#include "io/archive_cache.h"
-#include "io/keyframe_mesh.h"
-#include "io/rigid_mesh.h"
-#include "io/scene.h"
+#include "cdbench/core/error.h"
+#include "cdbench/geometry/float_spacing.h"
+#include "scenes/load/animated_mesh.h"
+#include "scenes/load/archive_cache.h"
+#include "scenes/load/keyframe_mesh.h"
+#include "scenes/load/rigid_mesh.h"
+#include "scenes/load/scene.h"
 #include "error_of.h"
 
 namespace cdb::test {

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "bruteforce/sweep_oracle.h"
-#include "core/error.h"
-#include "generators.h"
-#include "io/frame_cache.h"
-#include "io/obj_sequence.h"
+#include "cdbench/oracle/sweep_oracle.h"
+#include "cdbench/core/error.h"
+#include "scenes/generators/generators.h"
+#include "scenes/load/frame_cache.h"
+#include "scenes/load/obj_sequence.h"
 
 namespace cdb::test {
 namespace {

@@ -1,4 +1,4 @@
-// The paper's Flamenco and Dragon (scenes/paper_scenes.h), opened as the shipped
+// The paper's Flamenco and Dragon (scenes/generators/paper_scenes.h), opened as the shipped
 // descriptors: their stated sizes, what each scene claims of its motion (a skirt held at the
 // waist and touching the body and itself; rigid pieces that stand, then scatter above the
 // ground), reproducible frames, and every pipeline exact against the oracle at small sizes.
@@ -13,10 +13,10 @@
 #include <cstring>
 
 #include "bvh_cases.h"
-#include "core/error.h"
+#include "cdbench/core/error.h"
 #include "error_of.h"
-#include "generators.h"
-#include "io/scene.h"
+#include "scenes/generators/generators.h"
+#include "scenes/load/scene.h"
 
 namespace cdb::test {
 namespace {

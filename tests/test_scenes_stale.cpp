@@ -17,8 +17,8 @@
 #include "baseline_cases.h"
 #include "bvh_cases.h"
 #include "error_of.h"
-#include "io/scene.h"
-#include "narrow/contacts.h"
+#include "scenes/load/scene.h"
+#include "cdbench/narrow/contacts.h"
 
 namespace cdb::test {
 namespace {

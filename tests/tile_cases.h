@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/hd.h"
-#include "exec/memory.h"
-#include "exec/tiles.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/exec/memory.h"
+#include "cdbench/exec/tiles.h"
 
 struct RecordTileFn {
   static constexpr uint32_t kTile = 512;

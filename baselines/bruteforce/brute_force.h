@@ -2,9 +2,9 @@
 // The exact oracle: every pair of triangle boxes tested, O(N^2), on either executor.
 #include <cstdint>
 
-#include "core/aabb.h"
-#include "core/pair_sink.h"
-#include "exec/balance.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/pair_sink.h"
+#include "cdbench/exec/balance.h"
 
 namespace cdb {
 

@@ -2,9 +2,9 @@
 // The oracle as a pipeline: every pair of triangle boxes tested, O(N^2), every frame.
 #include <string>
 
-#include "bruteforce/brute_force.h"
-#include "common/face_boxes.h"
-#include "pipeline/pair_pipeline.h"
+#include "baselines/bruteforce/brute_force.h"
+#include "baselines/common/face_boxes.h"
+#include "cdbench/pipeline/pair_pipeline.h"
 
 namespace cdb {
 

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <string>
 
-#include "common/face_boxes.h"
-#include "common/scene_stats.h"
-#include "exec/memory.h"
+#include "baselines/common/face_boxes.h"
+#include "baselines/common/scene_stats.h"
+#include "cdbench/exec/memory.h"
 
 namespace cdb {
 

@@ -16,9 +16,9 @@
 // = -inf maps every x but -inf to the top; NaN, like every t <= 0, maps to 0.
 #include <cstdint>
 
-#include "core/hd.h"
-#include "core/outward_rounding.h"
-#include "core/vec.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/outward_rounding.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

@@ -4,9 +4,9 @@
 // range holds the cell of every point of the box.
 #include <cstdint>
 
-#include "common/cell_coord.h"
-#include "core/hd.h"
-#include "core/vec.h"
+#include "baselines/common/cell_coord.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

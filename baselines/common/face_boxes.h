@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "exec/memory.h"
-#include "geometry/mesh.h"
+#include "cdbench/exec/memory.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 

@@ -6,11 +6,11 @@
 // in m's cell and the pair is found there; every other cell the two share skips it. Boxes
 // that only touch (m on a cell face) and rounding need no special case: m's cell comes
 // from the same function that registered both boxes.
-#include "common/cell_range.h"
-#include "core/aabb.h"
-#include "core/hd.h"
-#include "core/pair_sink.h"
-#include "core/vec.h"
+#include "baselines/common/cell_range.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/pair_sink.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "core/hd.h"
-#include "core/vec.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <string>
 
-#include "common/face_boxes.h"
-#include "core/float_bits.h"
-#include "exec/memory.h"
+#include "baselines/common/face_boxes.h"
+#include "cdbench/core/float_bits.h"
+#include "cdbench/exec/memory.h"
 
 namespace cdb {
 

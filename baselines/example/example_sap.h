@@ -14,10 +14,10 @@
 // reaches b. Each pair is found once, from the earlier of its two boxes.
 #include <cstdint>
 
-#include "common/sorted_boxes.h"
-#include "core/aabb.h"
-#include "core/pair_sink.h"
-#include "exec/balance.h"
+#include "baselines/common/sorted_boxes.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/pair_sink.h"
+#include "cdbench/exec/balance.h"
 
 namespace cdb {
 

@@ -8,8 +8,8 @@
 // boxes and their sort are the baselines' (common/sorted_boxes.h); the walk is the method's.
 #include <string>
 
-#include "example/example_sap.h"
-#include "pipeline/pair_pipeline.h"
+#include "baselines/example/example_sap.h"
+#include "cdbench/pipeline/pair_pipeline.h"
 
 namespace cdb {
 

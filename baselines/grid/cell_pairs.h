@@ -12,10 +12,10 @@
 //   that reports it (CoarserLevelPairsFn). b never looks at finer levels.
 #include <cstdint>
 
-#include "common/home_cell.h"
-#include "core/aabb.h"
-#include "core/pair_sink.h"
-#include "grid/grid_geometry.h"
+#include "baselines/common/home_cell.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/pair_sink.h"
+#include "baselines/grid/grid_geometry.h"
 
 namespace cdb {
 

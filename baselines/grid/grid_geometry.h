@@ -27,11 +27,11 @@
 #include <cmath>
 #include <cstdint>
 
-#include "common/cell_coord.h"
-#include "common/cell_range.h"
-#include "common/scene_stats.h"
-#include "core/hd.h"
-#include "core/vec.h"
+#include "baselines/common/cell_coord.h"
+#include "baselines/common/cell_range.h"
+#include "baselines/common/scene_stats.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

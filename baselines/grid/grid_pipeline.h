@@ -4,8 +4,8 @@
 // entries outgrew the plan builds again to the measured need and queries again.
 #include <string>
 
-#include "grid/uniform_grid.h"
-#include "pipeline/pair_pipeline.h"
+#include "baselines/grid/uniform_grid.h"
+#include "cdbench/pipeline/pair_pipeline.h"
 
 namespace cdb {
 

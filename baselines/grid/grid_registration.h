@@ -8,7 +8,7 @@
 // key above every real key, so after the sort the real entries come first.
 #include <cstdint>
 
-#include "grid/grid_geometry.h"
+#include "baselines/grid/grid_geometry.h"
 
 namespace cdb {
 

@@ -17,16 +17,16 @@
 #include <cstdint>
 #include <string>
 
-#include "common/cell_boxes.h"
-#include "core/error.h"
-#include "core/pair_sink.h"
-#include "exec/balance.h"
-#include "exec/memory.h"
-#include "exec/tuning.h"
-#include "geometry/mesh.h"
-#include "grid/cell_pairs.h"
-#include "grid/grid_geometry.h"
-#include "grid/grid_registration.h"
+#include "baselines/common/cell_boxes.h"
+#include "cdbench/core/error.h"
+#include "cdbench/core/pair_sink.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/exec/memory.h"
+#include "cdbench/exec/tuning.h"
+#include "cdbench/geometry/mesh.h"
+#include "baselines/grid/cell_pairs.h"
+#include "baselines/grid/grid_geometry.h"
+#include "baselines/grid/grid_registration.h"
 
 namespace cdb {
 

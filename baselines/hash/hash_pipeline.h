@@ -4,8 +4,8 @@
 // (spatial_hash.h).
 #include <string>
 
-#include "hash/spatial_hash.h"
-#include "pipeline/pair_pipeline.h"
+#include "baselines/hash/spatial_hash.h"
+#include "cdbench/pipeline/pair_pipeline.h"
 
 namespace cdb {
 

@@ -20,18 +20,18 @@
 #include <cstdint>
 #include <limits>
 
-#include "common/cell_boxes.h"
-#include "exec/tuning.h"
-#include "common/cell_coord.h"
-#include "common/cell_range.h"
-#include "common/home_cell.h"
-#include "core/aabb.h"
-#include "core/atomics.h"
-#include "core/error.h"
-#include "core/pair_sink.h"
-#include "exec/balance.h"
-#include "exec/memory.h"
-#include "geometry/mesh.h"
+#include "baselines/common/cell_boxes.h"
+#include "cdbench/exec/tuning.h"
+#include "baselines/common/cell_coord.h"
+#include "baselines/common/cell_range.h"
+#include "baselines/common/home_cell.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/core/error.h"
+#include "cdbench/core/pair_sink.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/exec/memory.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 

@@ -11,13 +11,13 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "common/sorted_boxes.h"
-#include "core/aabb.h"
-#include "core/pair_sink.h"
-#include "exec/balance.h"
-#include "exec/memory.h"
-#include "geometry/gather_boxes.h"
-#include "geometry/mesh.h"
+#include "baselines/common/sorted_boxes.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/pair_sink.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/exec/memory.h"
+#include "cdbench/geometry/gather_boxes.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 

@@ -3,8 +3,8 @@
 // variance, then the sweep, every frame (sweep.h).
 #include <string>
 
-#include "pipeline/pair_pipeline.h"
-#include "sweep/sweep.h"
+#include "cdbench/pipeline/pair_pipeline.h"
+#include "baselines/sweep/sweep.h"
 
 namespace cdb {
 

@@ -8,14 +8,14 @@
 // bypass.
 #include <cstdint>
 
-#include "exec/balance.h"
-#include "bvh/lbvh.h"
-#include "bvh/node_ref.h"
-#include "core/atomics.h"
-#include "core/morton.h"
-#include "geometry/face_subset.h"
-#include "geometry/gather_boxes.h"
-#include "geometry/mesh.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/bvh/lbvh.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/core/morton.h"
+#include "cdbench/geometry/face_subset.h"
+#include "cdbench/geometry/gather_boxes.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 

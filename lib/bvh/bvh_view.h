@@ -1,8 +1,8 @@
 #pragma once
 #include <cstdint>
 
-#include "bvh/node_ref.h"
-#include "core/vec.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

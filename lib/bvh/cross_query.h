@@ -6,10 +6,10 @@
 // is a pair, reported once, with no i < j rule.
 #include <cstdint>
 
-#include "bvh/bvh_view.h"
-#include "bvh/traverse.h"
-#include "core/pair_sink.h"
-#include "exec/balance.h"
+#include "cdbench/bvh/bvh_view.h"
+#include "cdbench/bvh/traverse.h"
+#include "cdbench/core/pair_sink.h"
+#include "cdbench/exec/balance.h"
 
 namespace cdb {
 

@@ -3,11 +3,11 @@
 #include <cstdint>
 #include <string>
 
-#include "bvh/bvh_view.h"
-#include "bvh/refit_tiles.h"
-#include "core/aabb.h"
-#include "core/morton.h"
-#include "exec/memory.h"
+#include "cdbench/bvh/bvh_view.h"
+#include "cdbench/bvh/refit_tiles.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/morton.h"
+#include "cdbench/exec/memory.h"
 
 namespace cdb {
 

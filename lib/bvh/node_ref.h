@@ -1,9 +1,9 @@
 #pragma once
 #include <cstdint>
 
-#include "core/float_bits.h"
-#include "core/hd.h"
-#include "core/vec.h"
+#include "cdbench/core/float_bits.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

@@ -7,10 +7,10 @@
 // every node with its links to its place. No comparison sort.
 #include <cstdint>
 
-#include "exec/balance.h"
-#include "bvh/lbvh.h"
-#include "bvh/node_ref.h"
-#include "bvh/refit_index.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/bvh/lbvh.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/bvh/refit_index.h"
 
 namespace cdb {
 

@@ -21,14 +21,14 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "bvh/lbvh.h"
-#include "bvh/node_ref.h"
-#include "bvh/refit_handover.h"
-#include "bvh/refit_levels.h"
-#include "bvh/refit_top.h"
-#include "core/atomics.h"
-#include "exec/tiles.h"
-#include "geometry/mesh.h"
+#include "cdbench/bvh/lbvh.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/bvh/refit_handover.h"
+#include "cdbench/bvh/refit_levels.h"
+#include "cdbench/bvh/refit_top.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/exec/tiles.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 

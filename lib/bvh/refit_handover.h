@@ -3,9 +3,9 @@
 // zeroes on its way, and the hand-over at a node spanning tiles.
 #include <cstdint>
 
-#include "bvh/node_ref.h"
-#include "core/atomics.h"
-#include "core/vec.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

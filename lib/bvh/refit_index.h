@@ -20,10 +20,10 @@
 // scans, the counts, the tables; a fifth, the level tables, for --refit-levels.
 #include <cstdint>
 
-#include "bvh/lbvh.h"
-#include "bvh/node_ref.h"
-#include "bvh/refit_levels.h"
-#include "core/atomics.h"
+#include "cdbench/bvh/lbvh.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/bvh/refit_levels.h"
+#include "cdbench/core/atomics.h"
 
 namespace cdb {
 

@@ -17,12 +17,12 @@
 // per spanning node), or stops there for RefitTopFn.
 #include <cstdint>
 
-#include "bvh/lbvh.h"
-#include "bvh/node_ref.h"
-#include "bvh/refit_handover.h"
-#include "bvh/refit_tiles.h"
-#include "core/atomics.h"
-#include "geometry/mesh.h"
+#include "cdbench/bvh/lbvh.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/bvh/refit_handover.h"
+#include "cdbench/bvh/refit_tiles.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 

@@ -4,8 +4,8 @@
 // block.
 #include <cstdint>
 
-#include "core/hd.h"
-#include "exec/tuning.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/exec/tuning.h"
 
 namespace cdb {
 

@@ -22,8 +22,8 @@
 // links in global memory instead (the barrier orders those too): slower, never wrong.
 #include <cstdint>
 
-#include "bvh/lbvh.h"
-#include "bvh/node_ref.h"
+#include "cdbench/bvh/lbvh.h"
+#include "cdbench/bvh/node_ref.h"
 
 namespace cdb {
 

@@ -14,15 +14,15 @@
 // reads back.
 #include <cstdint>
 
-#include "bvh/build.h"
-#include "bvh/lbvh.h"
-#include "bvh/node_ref.h"
-#include "bvh/order.h"
-#include "bvh/refit_index.h"
-#include "core/atomics.h"
-#include "core/morton.h"
-#include "exec/balance.h"
-#include "exec/memory.h"
+#include "cdbench/bvh/build.h"
+#include "cdbench/bvh/lbvh.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/bvh/order.h"
+#include "cdbench/bvh/refit_index.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/core/morton.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/exec/memory.h"
 
 namespace cdb {
 

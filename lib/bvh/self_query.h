@@ -5,10 +5,10 @@
 // else jumps to its escape index.
 #include <cstdint>
 
-#include "exec/balance.h"
-#include "bvh/bvh_view.h"
-#include "bvh/traverse.h"
-#include "core/pair_sink.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/bvh/bvh_view.h"
+#include "cdbench/bvh/traverse.h"
+#include "cdbench/core/pair_sink.h"
 
 namespace cdb {
 

@@ -8,9 +8,9 @@
 // and a leaf's primitive come in the box's spare lanes (node_ref.h).
 #include <cstdint>
 
-#include "bvh/bvh_view.h"
-#include "bvh/node_ref.h"
-#include "core/aabb.h"
+#include "cdbench/bvh/bvh_view.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/core/aabb.h"
 
 namespace cdb {
 

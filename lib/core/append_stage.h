@@ -26,10 +26,10 @@
 // The host executor passes no stage (null): sinks then append to the counters directly.
 #include <cstdint>
 
-#include "core/atomics.h"
-#include "core/hd.h"
-#include "core/pair.h"
-#include "exec/tuning.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/pair.h"
+#include "cdbench/exec/tuning.h"
 
 namespace cdb {
 

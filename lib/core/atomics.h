@@ -9,8 +9,8 @@
 // its tree there).
 #include <cstdint>
 
-#include "core/hd.h"
-#include "core/vec.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/vec.h"
 
 #if defined(__CUDACC__)
 #include <cuda/atomic>

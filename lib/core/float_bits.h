@@ -3,7 +3,7 @@
 // conversion and no arithmetic, so every bit pattern (NaN payloads included) survives.
 #include <cstdint>
 
-#include "core/hd.h"
+#include "cdbench/core/hd.h"
 
 namespace cdb {
 

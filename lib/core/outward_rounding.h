@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/hd.h"
+#include "cdbench/core/hd.h"
 
 namespace cdb {
 

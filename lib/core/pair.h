@@ -1,7 +1,7 @@
 #pragma once
 #include <cstdint>
 
-#include "core/hd.h"
+#include "cdbench/core/hd.h"
 
 namespace cdb {
 

@@ -1,9 +1,9 @@
-#include "core/pair_set.h"
+#include "cdbench/core/pair_set.h"
 
 #include <cstddef>
 #include <memory>
 
-#include "exec/host_exec.h"
+#include "cdbench/exec/host_exec.h"
 
 namespace cdb {
 

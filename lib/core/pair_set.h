@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/pair.h"
+#include "cdbench/core/pair.h"
 
 namespace cdb {
 

@@ -1,7 +1,7 @@
 #pragma once
-#include "core/append_stage.h"
-#include "core/atomics.h"
-#include "core/pair.h"
+#include "cdbench/core/append_stage.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/core/pair.h"
 
 namespace cdb {
 

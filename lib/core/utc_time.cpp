@@ -1,4 +1,4 @@
-#include "core/utc_time.h"
+#include "cdbench/core/utc_time.h"
 
 #include <ctime>
 

@@ -1,5 +1,5 @@
 #pragma once
-#include "core/hd.h"
+#include "cdbench/core/hd.h"
 
 namespace cdb {
 

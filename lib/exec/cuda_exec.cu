@@ -4,8 +4,8 @@
 #include <cstring>
 #include <string>
 
-#include "core/error.h"
-#include "exec/cuda_exec.cuh"
+#include "cdbench/core/error.h"
+#include "cdbench/exec/cuda_exec.cuh"
 
 namespace cdb {
 

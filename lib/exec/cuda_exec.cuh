@@ -2,7 +2,7 @@
 // CUDA executor: runs the functors of lib/ as kernels on one stream; scans and sorts go
 // through CUB with temporary storage the caller provides (queried first, CUB style).
 // Included only by .cu files; host code reaches the CUDA backend through
-// make_cuda_pipeline (pipeline/pipeline.h, defined in pipeline/cuda_backend.cu).
+// make_cuda_pipeline (registry/pipeline_kinds.h, defined in registry/cuda_backend.cu).
 #include <cuda_runtime.h>
 
 #include <algorithm>
@@ -11,15 +11,15 @@
 #include <cub/block/block_reduce.cuh>
 #include <vector>
 
-#include "core/aabb.h"
-#include "core/append_stage.h"
-#include "core/phase.h"
-#include "exec/balance.h"
-#include "exec/tiles.h"
-#include "exec/exec_options.h"
-#include "exec/frame_graph.h"
-#include "exec/tuning.h"
-#include "exec/memory.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/append_stage.h"
+#include "cdbench/core/phase.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/exec/tiles.h"
+#include "cdbench/exec/exec_options.h"
+#include "cdbench/exec/frame_graph.h"
+#include "cdbench/exec/tuning.h"
+#include "cdbench/exec/memory.h"
 
 namespace cdb {
 

@@ -1,9 +1,9 @@
-#include "exec/host_exec.h"
+#include "cdbench/exec/host_exec.h"
 
 #include <algorithm>
 #include <bit>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 
 namespace cdb {
 

@@ -10,14 +10,14 @@
 #include <memory>
 #include <new>
 
-#include "core/aabb.h"
-#include "core/phase.h"
-#include "exec/balance.h"
-#include "exec/tiles.h"
-#include "exec/exec_options.h"
-#include "exec/frame_graph.h"
-#include "exec/memory.h"
-#include "exec/tuning.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/phase.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/exec/tiles.h"
+#include "cdbench/exec/exec_options.h"
+#include "cdbench/exec/frame_graph.h"
+#include "cdbench/exec/memory.h"
+#include "cdbench/exec/tuning.h"
 
 namespace cdb {
 

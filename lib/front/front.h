@@ -9,11 +9,11 @@
 #include <cstdint>
 #include <string>
 
-#include "bvh/node_ref.h"
-#include "core/append_stage.h"
-#include "core/atomics.h"
-#include "exec/memory.h"
-#include "exec/tuning.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/core/append_stage.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/exec/memory.h"
+#include "cdbench/exec/tuning.h"
 
 namespace cdb {
 

@@ -7,14 +7,14 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "bvh/bvh_view.h"
-#include "bvh/traverse.h"
-#include "core/aabb.h"
-#include "core/pair_sink.h"
-#include "front/front.h"
-#include "front/ordering.h"
-#include "front/warp_traversal.h"
-#include "exec/tuning.h"
+#include "cdbench/bvh/bvh_view.h"
+#include "cdbench/bvh/traverse.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/pair_sink.h"
+#include "cdbench/front/front.h"
+#include "cdbench/front/ordering.h"
+#include "cdbench/front/warp_traversal.h"
+#include "cdbench/exec/tuning.h"
 
 namespace cdb {
 

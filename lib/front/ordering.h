@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/atomics.h"
-#include "front/front.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/front/front.h"
 
 namespace cdb {
 

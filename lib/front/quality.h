@@ -13,9 +13,9 @@
 // max_leaves]: disjoint subtrees, so they can be restructured together.
 #include <cstdint>
 
-#include "bvh/node_ref.h"
-#include "core/atomics.h"
-#include "core/hd.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/core/atomics.h"
+#include "cdbench/core/hd.h"
 
 namespace cdb {
 

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "exec/balance.h"
-#include "exec/memory.h"
-#include "front/front.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/exec/memory.h"
+#include "cdbench/front/front.h"
 
 namespace cdb {
 

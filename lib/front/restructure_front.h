@@ -18,10 +18,10 @@
 // grew sees the same classification.
 #include <cstdint>
 
-#include "bvh/node_ref.h"
-#include "bvh/restructure.h"
-#include "bvh/traverse.h"
-#include "front/operations.h"
+#include "cdbench/bvh/node_ref.h"
+#include "cdbench/bvh/restructure.h"
+#include "cdbench/bvh/traverse.h"
+#include "cdbench/front/operations.h"
 
 namespace cdb {
 

@@ -16,10 +16,10 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "bvh/bvh_view.h"
-#include "bvh/traverse.h"
-#include "core/pair_sink.h"
-#include "exec/tuning.h"
+#include "cdbench/bvh/bvh_view.h"
+#include "cdbench/bvh/traverse.h"
+#include "cdbench/core/pair_sink.h"
+#include "cdbench/exec/tuning.h"
 
 namespace cdb {
 

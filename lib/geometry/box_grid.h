@@ -9,10 +9,10 @@
 #include <cstdint>
 #include <limits>
 
-#include "core/aabb.h"
-#include "core/hd.h"
-#include "core/outward_rounding.h"
-#include "core/vec.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/outward_rounding.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

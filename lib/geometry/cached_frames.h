@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/frame_source.h"
+#include "cdbench/geometry/frame_source.h"
 
 namespace cdb {
 

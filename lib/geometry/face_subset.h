@@ -5,7 +5,7 @@
 // leaves (leaf_prim), so refit, restructure and every pair it reports need no mapping.
 #include <cstdint>
 
-#include "core/hd.h"
+#include "cdbench/core/hd.h"
 
 namespace cdb {
 

@@ -1,11 +1,11 @@
-#include "geometry/float_spacing.h"
+#include "cdbench/geometry/float_spacing.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
-#include "geometry/position_rounding.h"
+#include "cdbench/geometry/position_rounding.h"
 
 namespace cdb {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "core/vec.h"
-#include "geometry/frame_source.h"
-#include "geometry/mesh.h"
+#include "cdbench/core/vec.h"
+#include "cdbench/geometry/frame_source.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 

@@ -1,8 +1,8 @@
-#include "geometry/frame_source.h"
+#include "cdbench/geometry/frame_source.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 
 namespace cdb {
 

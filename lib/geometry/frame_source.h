@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/vec.h"
-#include "geometry/mesh.h"
+#include "cdbench/core/vec.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 

@@ -1,8 +1,8 @@
 #pragma once
 #include <cstdint>
 
-#include "core/hd.h"
-#include "core/vec.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/content_hash.h"
-#include "geometry/frame_source.h"
+#include "cdbench/core/content_hash.h"
+#include "cdbench/geometry/frame_source.h"
 
 namespace cdb {
 

@@ -4,13 +4,13 @@
 #include <limits>
 #include <vector>
 
-#include "geometry/box_grid.h"
-#include "geometry/objects.h"
+#include "cdbench/geometry/box_grid.h"
+#include "cdbench/geometry/objects.h"
 
-#include "core/aabb.h"
-#include "core/hd.h"
-#include "core/outward_rounding.h"
-#include "core/vec.h"
+#include "cdbench/core/aabb.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/outward_rounding.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

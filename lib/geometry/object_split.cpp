@@ -1,4 +1,4 @@
-#include "geometry/object_split.h"
+#include "cdbench/geometry/object_split.h"
 
 namespace cdb {
 

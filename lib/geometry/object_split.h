@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/mesh.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 

@@ -1,6 +1,6 @@
-#include "geometry/objects.h"
+#include "cdbench/geometry/objects.h"
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 
 namespace cdb {
 

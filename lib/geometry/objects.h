@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/hd.h"
+#include "cdbench/core/hd.h"
 
 namespace cdb {
 

@@ -1,10 +1,10 @@
-#include "geometry/position_rounding.h"
+#include "cdbench/geometry/position_rounding.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "core/error.h"
+#include "cdbench/core/error.h"
 
 namespace cdb {
 

@@ -18,7 +18,7 @@
 // one float spacing (geometry/mesh.h).
 #include <vector>
 
-#include "core/vec.h"
+#include "cdbench/core/vec.h"
 
 namespace cdb {
 

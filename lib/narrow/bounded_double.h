@@ -32,8 +32,8 @@
 // at least 2^-947, still normal.
 #include <cmath>
 
-#include "core/hd.h"
-#include "narrow/predicates.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/narrow/predicates.h"
 
 namespace cdb {
 

@@ -1,10 +1,10 @@
-#include "narrow/contacts.h"
+#include "cdbench/narrow/contacts.h"
 
 #include <cstddef>
 
-#include "core/error.h"
-#include "narrow/proximity.h"
-#include "narrow/triangle_intersect.h"
+#include "cdbench/core/error.h"
+#include "cdbench/narrow/proximity.h"
+#include "cdbench/narrow/triangle_intersect.h"
 
 namespace cdb {
 namespace {

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/pair.h"
-#include "core/vec.h"
-#include "geometry/mesh.h"
+#include "cdbench/core/pair.h"
+#include "cdbench/core/vec.h"
+#include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 

@@ -10,7 +10,7 @@
 // product followed by a sum, so contraction into FMA by the compiler cannot change them.
 #include <cmath>
 
-#include "core/hd.h"
+#include "cdbench/core/hd.h"
 
 namespace cdb {
 

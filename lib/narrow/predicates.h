@@ -18,9 +18,9 @@
 // normal double range: floats lie in [2^-149, 2^128), so a nonzero product of three lies in
 // [2^-447, 2^384) and its rounding error term above 2^-500, far from under- or overflow.
 // The sign of the sum is then that of an expansion (expansion.h).
-#include "core/hd.h"
-#include "core/vec.h"
-#include "narrow/expansion.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/vec.h"
+#include "cdbench/narrow/expansion.h"
 
 namespace cdb {
 

@@ -37,12 +37,12 @@
 // capacity of 56 limbs holds all of them.
 #include <cfloat>
 
-#include "core/hd.h"
-#include "core/vec.h"
-#include "narrow/bounded_double.h"
-#include "narrow/expansion.h"
-#include "narrow/triangle_intersect.h"
-#include "narrow/wide_int.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/vec.h"
+#include "cdbench/narrow/bounded_double.h"
+#include "cdbench/narrow/expansion.h"
+#include "cdbench/narrow/triangle_intersect.h"
+#include "cdbench/narrow/wide_int.h"
 
 namespace cdb {
 namespace proximity {

@@ -16,9 +16,9 @@
 // affine bijection of the common plane, so intersection is preserved) and tests in 2D:
 // closed triangles meet iff an edge of one meets an edge of the other or a vertex of one
 // lies in the other (if no boundaries meet, they are disjoint or one contains the other).
-#include "core/hd.h"
-#include "core/vec.h"
-#include "narrow/predicates.h"
+#include "cdbench/core/hd.h"
+#include "cdbench/core/vec.h"
+#include "cdbench/narrow/predicates.h"
 
 namespace cdb {
 namespace narrow {

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "core/hd.h"
+#include "cdbench/core/hd.h"
 
 namespace cdb {
 

@@ -8,17 +8,17 @@
 #include <string>
 #include <vector>
 
-#include "bvh/build.h"
-#include "bvh/lbvh.h"
-#include "bvh/order.h"
-#include "bvh/refit.h"
-#include "core/error.h"
-#include "core/pair_set.h"
-#include "core/pair_sink.h"
-#include "geometry/face_subset.h"
-#include "geometry/mesh.h"
-#include "geometry/object_split.h"
-#include "pipeline/pipeline.h"
+#include "cdbench/bvh/build.h"
+#include "cdbench/bvh/lbvh.h"
+#include "cdbench/bvh/order.h"
+#include "cdbench/bvh/refit.h"
+#include "cdbench/core/error.h"
+#include "cdbench/core/pair_set.h"
+#include "cdbench/core/pair_sink.h"
+#include "cdbench/geometry/face_subset.h"
+#include "cdbench/geometry/mesh.h"
+#include "cdbench/geometry/object_split.h"
+#include "cdbench/pipeline/pipeline.h"
 
 namespace cdb {
 

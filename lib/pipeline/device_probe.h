@@ -22,7 +22,7 @@ class DeviceProbe {
 // For --device cuda or cpu (fails like make_pipeline on an unknown or absent device).
 std::unique_ptr<DeviceProbe> make_device_probe(const std::string& device);
 
-// The CUDA backend's (cuda_backend.cu or cuda_backend_absent.cpp).
+// The CUDA backend's (cuda_probe.cu, or cuda_probe_absent.cpp without CUDA).
 std::unique_ptr<DeviceProbe> make_cuda_probe();
 
 }  // namespace cdb

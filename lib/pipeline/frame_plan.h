@@ -12,12 +12,12 @@
 #include <memory>
 #include <utility>
 
-#include "core/error.h"
-#include "pipeline/front_counters.h"
-#include "pipeline/front_maintenance.h"
-#include "pipeline/pipeline.h"
-#include "pipeline/plan_record.h"
-#include "pipeline/tree_maintenance.h"
+#include "cdbench/core/error.h"
+#include "cdbench/pipeline/front_counters.h"
+#include "cdbench/pipeline/front_maintenance.h"
+#include "cdbench/pipeline/pipeline.h"
+#include "cdbench/pipeline/plan_record.h"
+#include "cdbench/pipeline/tree_maintenance.h"
 
 namespace cdb {
 

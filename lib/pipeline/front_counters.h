@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "front/front.h"
-#include "front/quality.h"
-#include "pipeline/plan_step.h"
+#include "cdbench/front/front.h"
+#include "cdbench/front/quality.h"
+#include "cdbench/pipeline/plan_step.h"
 
 namespace cdb {
 

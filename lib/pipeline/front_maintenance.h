@@ -45,7 +45,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "exec/tuning.h"
+#include "cdbench/exec/tuning.h"
 
 namespace cdb {
 

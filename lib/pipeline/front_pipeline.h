@@ -28,13 +28,13 @@
 #include <utility>
 #include <vector>
 
-#include "front/quality.h"
-#include "pipeline/frame_plan.h"
-#include "pipeline/front_counters.h"
-#include "pipeline/front_query.h"
-#include "pipeline/pair_pipeline.h"
-#include "exec/balance.h"
-#include "exec/tuning.h"
+#include "cdbench/front/quality.h"
+#include "cdbench/pipeline/frame_plan.h"
+#include "cdbench/pipeline/front_counters.h"
+#include "cdbench/pipeline/front_query.h"
+#include "cdbench/pipeline/pair_pipeline.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/exec/tuning.h"
 
 namespace cdb {
 

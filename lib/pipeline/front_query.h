@@ -11,15 +11,15 @@
 #include <string>
 #include <utility>
 
-#include "exec/balance.h"
-#include "exec/tuning.h"
-#include "front/front.h"
-#include "front/operations.h"
-#include "front/ordering.h"
-#include "front/radix_ordering.h"
-#include "front/restructure_front.h"
-#include "pipeline/device_mesh.h"
-#include "pipeline/front_counters.h"
+#include "cdbench/exec/balance.h"
+#include "cdbench/exec/tuning.h"
+#include "cdbench/front/front.h"
+#include "cdbench/front/operations.h"
+#include "cdbench/front/ordering.h"
+#include "cdbench/front/radix_ordering.h"
+#include "cdbench/front/restructure_front.h"
+#include "cdbench/pipeline/device_mesh.h"
+#include "cdbench/pipeline/front_counters.h"
 
 namespace cdb {
 

@@ -5,8 +5,8 @@
 #include <cstring>
 #include <vector>
 
-#include "core/error.h"
-#include "pipeline/device_probe.h"
+#include "cdbench/core/error.h"
+#include "cdbench/pipeline/device_probe.h"
 
 namespace cdb {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/device_mesh.h"
-#include "pipeline/pipeline.h"
+#include "cdbench/pipeline/device_mesh.h"
+#include "cdbench/pipeline/pipeline.h"
 
 namespace cdb {
 

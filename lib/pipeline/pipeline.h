@@ -8,14 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "bvh/refit_tiles.h"
-#include "core/morton.h"
-#include "core/pair.h"
-#include "core/phase.h"
-#include "exec/memory.h"
-#include "geometry/mesh.h"
-#include "geometry/position_rounding.h"
-#include "pipeline/plan_step.h"
+#include "cdbench/bvh/refit_tiles.h"
+#include "cdbench/core/morton.h"
+#include "cdbench/core/pair.h"
+#include "cdbench/core/phase.h"
+#include "cdbench/exec/memory.h"
+#include "cdbench/geometry/mesh.h"
+#include "cdbench/geometry/position_rounding.h"
+#include "cdbench/pipeline/plan_step.h"
 
 namespace cdb {
 
@@ -186,10 +186,6 @@ inline bool refit_due(uint64_t frame, uint32_t refit_every) {
   return refit_every <= 1 || frame % refit_every == 0;
 }
 
-// Whether the config can miss pairs of the exact box-overlap set (refit_every > 1 on a
-// pipeline that refits a hierarchy).
-bool config_conservative(const PipelineConfig& config);
-
 // What a frame cost. Under --repeat the times are the mean over the passes.
 struct FrameTiming {
   std::array<double, kPhaseCount> phase_ms{};
@@ -299,18 +295,6 @@ class Pipeline {
   PositionRounding rounding_;
   std::vector<vec3f> rounded_;
 };
-
-// Pipelines the factory knows, in the order verify runs them (pipeline/pipeline_kinds.h).
-const std::vector<std::string>& pipeline_names();
-
-// The oracle pipeline's name.
-inline const char* oracle_pipeline() { return "brute"; }
-
-std::unique_ptr<Pipeline> make_pipeline(const PipelineConfig& config);
-
-// Per-backend factories (pipeline/host_backend.cpp, pipeline/cuda_backend.cu).
-std::unique_ptr<Pipeline> make_host_pipeline(const PipelineConfig& config);
-std::unique_ptr<Pipeline> make_cuda_pipeline(const PipelineConfig& config);
 
 // The GPU this process would run on, or why there is none.
 struct CudaDeviceInfo {

@@ -1,12 +1,12 @@
-#include "pipeline/plan_record.h"
+#include "cdbench/pipeline/plan_record.h"
 
 #include <algorithm>
 #include <charconv>
 #include <optional>
 #include <sstream>
 
-#include "core/error.h"
-#include "pipeline/pipeline.h"
+#include "cdbench/core/error.h"
+#include "cdbench/pipeline/pipeline.h"
 
 namespace cdb {
 namespace {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/plan_step.h"
+#include "cdbench/pipeline/plan_step.h"
 
 namespace cdb {
 

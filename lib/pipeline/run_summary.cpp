@@ -1,4 +1,4 @@
-#include "pipeline/run_summary.h"
+#include "cdbench/pipeline/run_summary.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/phase.h"
-#include "pipeline/pipeline.h"
+#include "cdbench/core/phase.h"
+#include "cdbench/pipeline/pipeline.h"
 
 namespace cdb {
 

@@ -26,7 +26,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "exec/tuning.h"
+#include "cdbench/exec/tuning.h"
 
 namespace cdb {
 

@@ -1,0 +1,2 @@
+// Must not compile: cdb_baselines may not include scenes/generators/generators.h (tests/cli/layers_tests.sh).
+#include "scenes/generators/generators.h"
