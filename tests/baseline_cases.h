@@ -426,4 +426,63 @@ BaselineReruns check_baselines(const SceneFrames& scene, bool tiny_grid_plan = f
   return reruns;
 }
 
+// n triangles at random places in the unit cube, every third with a box of edge `big` on
+// each axis and the rest almost points: the mean width sets the hash's cell, so the large
+// boxes span 3-4 cells an axis (27-64 entries each, none past kMaxCellsPerBox) and the
+// entries run to about twice kEntriesPerBoxEstimate a box. Frame 1 moves everything a little.
+inline SceneFrames bimodal_soup(uint32_t n, float big, uint32_t seed) {
+  SceneFrames s;
+  s.frames.resize(2);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (uint32_t t = 0; t < n; ++t) {
+    s.topology.faces.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+    const float e = t % 3 == 0 ? big : 1e-6f;
+    const vec3f c{unit(rng), unit(rng), unit(rng)};
+    for (const vec3f d : {vec3f{e, 0, 0}, vec3f{0, e, 0}, vec3f{0, 0, e}}) {
+      s.frames[0].push_back({c.x + d.x, c.y + d.y, c.z + d.z});
+      s.frames[1].push_back({c.x + d.x + 0.01f, c.y + d.y, c.z + d.z - 0.01f});
+    }
+  }
+  s.topology.num_vertices = 3 * n;
+  return s;
+}
+
+// Two passes over the frames, each starting with reserve() as a pipeline's pass does (run
+// --repeat): the first grows the entries past the estimate, and the second must size its
+// sort for the frame's entries, not for the estimate its reserve() went back to.
+template <class Exec>
+void check_hash_second_pass(const SceneFrames& scene) {
+  const Topology& topo = scene.topology;
+  const uint32_t n = uint32_t(topo.faces.size());
+  Exec exec;
+  SpatialHash<Exec> hash(exec);
+  Array<vec3f> vertices(exec.memory(), "test.vertices");
+  Array<Tri> faces(exec.memory(), "test.faces");
+  Array<PrimPair> pairs(exec.memory(), "test.pairs");
+  Array<unsigned long long> count(exec.memory(), "test.count");
+  vertices.reserve(topo.num_vertices);
+  faces.reserve(n);
+  count.reserve(1);
+  exec.copy_from_host(faces.data(), topo.faces.data(), n);
+  size_t most_entries = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    hash.reserve(exec, n);
+    for (uint32_t f = 0; f < scene.frames.size(); ++f) {
+      const std::vector<vec3f>& v = scene.frames[f];
+      exec.copy_from_host(vertices.data(), v.data(), v.size());
+      const std::vector<PrimPair> expected = sweep_oracle_pairs(topo, v);
+      pairs.reserve(expected.size() + 1);
+      face_boxes(exec, hash, MeshView{vertices.data(), faces.data(), n});
+      hash_build(exec, hash, n);
+      most_entries = std::max<size_t>(most_entries, hash.num_entries);
+      exec.fill(count.data(), 1, 0ull);
+      hash_pairs(exec, hash, n, PairSink{pairs.data(), count.data(), pairs.capacity()});
+      expect_pairs(exec, expected, pairs, count, "hash pass " + std::to_string(pass) + " frame " + std::to_string(f));
+    }
+  }
+  // The scene must outgrow reserve()'s estimate, or the second pass proves nothing.
+  EXPECT_GT(most_entries, kEntriesPerBoxEstimate * size_t(n));
+}
+
 }  // namespace cdb::test

@@ -93,6 +93,11 @@ TEST(CudaHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
   EXPECT_GT(check_baselines<CudaExec>(soup_with_giants(3000, 100, false)).hash_regrids, 0u);
 }
 
+TEST(CudaHashBaseline, SecondPassSortsTheEntriesTheFirstGrewTo) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_hash_second_pass<CudaExec>(bimodal_soup(3000, 0.05f, 7));
+}
+
 // The grid plans its sort from the last frame: steady frames fit the plan; a plan far too
 // small (1024 entries, 1 key bit) makes each frame re-run once, exactly, never truncate.
 TEST(CudaGridBaseline, PlanFromTheLastFrameReRunsWhenShort) {

@@ -67,6 +67,8 @@ TEST(HostHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
   EXPECT_GT(check_baselines<HostExec>(soup_with_giants(3000, 100, false)).hash_regrids, 0u);
 }
 
+TEST(HostHashBaseline, SecondPassSortsTheEntriesTheFirstGrewTo) { check_hash_second_pass<HostExec>(bimodal_soup(3000, 0.05f, 7)); }
+
 // The grid plans its sort from the last frame: steady frames fit the plan; a plan far too
 // small (1024 entries, 1 key bit) makes each frame re-run once, exactly, never truncate.
 TEST(HostGridBaseline, PlanFromTheLastFrameReRunsWhenShort) {

@@ -276,7 +276,10 @@ uint32_t hash_build(Exec& exec, SpatialHash<Exec>& h, uint32_t n) {
   const uint32_t entries = static_cast<uint32_t>(totals.entries);
   h.num_entries = entries;
   h.num_large = totals.large;
-  if (entries > h.keys.capacity()) h.reserve_entries(exec, n, entries + entries / 4);
+  // Against what the buffers were last sized for, not their capacity: a new pass's reserve()
+  // sizes the sort's temporary storage for the estimate again while the arrays keep the
+  // capacity an earlier pass grew them to.
+  if (entries > h.keys.size()) h.reserve_entries(exec, n, entries + entries / 4);
   exec.exclusive_scan(h.counts.data(), h.offsets.data(), n, h.temp.data(), h.temp.size());
   uint32_t bits = 1;
   while (bits < 32 && (uint64_t(1) << bits) < 2 * uint64_t(entries)) ++bits;
