@@ -219,6 +219,11 @@ void add_restructure(CLI::App* cmd, CommonOptions& o) {
       ->group(kPipelineGroup)
       ->check(finite_at_least(0))
       ->capture_default_str();
+  add_switch(cmd, "--restructure-price", c.restructure.priced,
+             "pipeline c: restructure only where this run measured a restructure to save more on the frames "
+             "after it than it costs (the first of a run runs, to measure); off: wherever Formula 2 says (the "
+             "paper)")
+      ->group(kPipelineGroup);
 }
 
 std::string pipeline_list() {

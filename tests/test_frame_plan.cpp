@@ -706,3 +706,43 @@ TEST(FramePlan, ReplayProbesWhereThePlanSays) {
   EXPECT_EQ(replayed_probes(recorded), (std::vector<bool>{false, true, true, false, false, false}));
   EXPECT_EQ(replayed_probes(recorded, false), std::vector<bool>(6, false));
 }
+
+// --restructure-price: after the first restructure of a run, the next runs only where the
+// measured gain (front nodes removed, priced at a steady frame's cost per node, kept for a
+// maintenance stretch) covers the measured cost (its frame over a steady one).
+TEST(FramePlan, RestructuresOnlyWhereTheLastOnePaid) {
+  FrontStrategy c;
+  c.balance = c.restructure = true;
+  struct Case {
+    bool priced;
+    double restructure_ms;
+    uint64_t fronts_before, fronts_after;
+    char second;  // what the second Formula 2 restructure decision runs
+  };
+  for (const Case k : {Case{true, 10.0, 100, 100, 'p'}, Case{true, 1.5, 1000, 100, 'r'},
+                       Case{false, 10.0, 100, 100, 'r'}}) {
+    PipelineConfig config = cycle_config(2);
+    config.restructure.threshold_refit = 0.05;
+    config.restructure.threshold_build = 0.5;
+    config.restructure.priced = k.priced;
+    FramePlanner planner(c, config);
+    FramePlan p = planner.plan(1000, 100);  // 0: build
+    planner.finish(p, {5.0, true, 100, 2.0, {}});
+    p = planner.plan(1000, 100);  // 1: preserve, 1 ms from 100 front nodes
+    planner.finish(p, {1.0, true, 100, 2.0, {}});
+    p = planner.plan(1000, 100);  // 2: update, inspection finds 200 leaves
+    ASSERT_EQ(letter(p), 'u');
+    planner.finish(p, {2.0, true, 100, 2.5, {4, 200}});
+    p = planner.plan(1000, k.fronts_before);  // 3: the run's first restructure runs, to measure
+    ASSERT_EQ(letter(p), 'r');
+    EXPECT_FALSE(planner.restructure_price().measured());
+    planner.finish(p, {k.restructure_ms, true, k.fronts_before, 2.0, {}});
+    p = planner.plan(1000, k.fronts_after);  // 4: update, the inspection finds 200 leaves again
+    ASSERT_EQ(letter(p), 'u');
+    planner.finish(p, {2.0, true, k.fronts_after, 2.5, {4, 200}});
+    EXPECT_TRUE(planner.restructure_price().measured());  // measured whether or not it decides
+    p = planner.plan(1000, 100);  // 5: Formula 2 says restructure; the price decides
+    EXPECT_EQ(letter(p), k.second) << k.restructure_ms;
+    EXPECT_EQ(p.decision, k.second == 'r' ? Formula2::restructure : Formula2::refit);
+  }
+}

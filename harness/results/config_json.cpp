@@ -19,6 +19,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"restructure_max_fraction", c.restructure.max_fraction},
       {"threshold_refit", c.restructure.threshold_refit},
       {"threshold_build", c.restructure.threshold_build},
+      {"restructure_price", c.restructure.priced},
       {"box_margin", c.boxes.margin},
       {"boxes", c.boxes.swept ? "swept" : "discrete"},
       {"box_precision", box_precision_name(c.boxes.precision)},

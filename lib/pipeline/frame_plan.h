@@ -17,6 +17,7 @@
 #include "cdbench/pipeline/front_maintenance.h"
 #include "cdbench/pipeline/pipeline.h"
 #include "cdbench/pipeline/plan_record.h"
+#include "cdbench/pipeline/restructure_price.h"
 #include "cdbench/pipeline/tree_maintenance.h"
 
 namespace cdb {
@@ -74,23 +75,26 @@ class FramePlanner {
       : strategy_(strategy),
         config_(config),
         maintenance_(config.fronts.cycle, config.fronts.regenerate),
-        tree_(config.tree.rebuild_degraded && maintenance_.adaptive() && !strategy.rebuild_every_frame) {}
+        tree_(config.tree.rebuild_degraded && maintenance_.adaptive() && !strategy.rebuild_every_frame),
+        price_(config.restructure.priced) {}
 
   const FrontStrategy& strategy() const { return strategy_; }
   const FrontMaintenance& maintenance() const { return maintenance_; }
   // The last probe's count of an update over a rebuild (TreeMaintenance::probed_growth).
   double probed_growth() const { return tree_.probed_growth(); }
+  const RestructurePrice& restructure_price() const { return price_; }
 
   // A new run over the frames: the first frame builds. `running`: the queries that run in
   // the scene, which a replayed plan must give operations to, and only those; `wave`: the
   // device's resident threads (TreeMaintenance).
   void reset(const QuerySet& running = {true, true, true}, uint64_t wave = 1) {
-    frame_ = generated_ = produced_ = 0;
+    frame_ = generated_ = produced_ = maintained_ = 0;
     probed_ = false;
     pending_ = {};
     q_ref_ = 0.0;
     maintenance_.reset();
     tree_.reset(wave);
+    price_.reset();
     running_ = running;
     if (replay_) check_plan_queries(*replay_, running_);
   }
@@ -160,6 +164,16 @@ class FramePlanner {
     if (p.rebuild) tree_.built();
     if (!p.rebuild && p.changes_fronts()) tree_.maintained();
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
+    if (self == FrontOp::restructure)
+      price_.observe_restructure(ms, p.restructuring.leaves, o.front_nodes, clean);
+    else if (steady && clean)
+      price_.observe_steady(ms, o.front_nodes);
+    else
+      price_.observe_other(o.front_nodes);
+    if (p.rebuild || self == FrontOp::update || self == FrontOp::generate) {
+      price_.maintained(frame_ - maintained_);
+      maintained_ = frame_;
+    }
     if (p.rebuild || self == FrontOp::generate) generated_ = frame_;
     if (p.changes_fronts()) {
       produced_ = frame_;
@@ -247,9 +261,10 @@ class FramePlanner {
   Formula2 formula2(uint32_t leaves) const {
     if (!strategy_.restructure || pending_.count == 0) return Formula2::none;
     const double share = double(pending_.leaves) / double(std::max<uint32_t>(leaves, 1));
-    return share < config_.restructure.threshold_refit   ? Formula2::refit
-           : share < config_.restructure.threshold_build ? Formula2::restructure
-                                             : Formula2::rebuild;
+    if (share < config_.restructure.threshold_refit) return Formula2::refit;
+    if (share >= config_.restructure.threshold_build) return Formula2::rebuild;
+    // A restructure this run measured not to pay only refits (pipeline/restructure_price.h).
+    return price_.pays(pending_.leaves) ? Formula2::restructure : Formula2::refit;
   }
 
   // What the maintenance rule runs on a refitted tree this frame (preserve: none due).
@@ -270,9 +285,11 @@ class FramePlanner {
   PipelineConfig config_;
   FrontMaintenance maintenance_;
   TreeMaintenance tree_;
+  RestructurePrice price_;
   uint64_t frame_ = 0;
   uint64_t generated_ = 0;  // the last frame that generated T_D's self fronts
   uint64_t produced_ = 0;   // the last frame that produced any front
+  uint64_t maintained_ = 0; // the last frame that built, updated or generated T_D's self fronts
   bool probed_ = false;     // the last frame probed
   Candidates pending_;      // found by the last inspection, decided on the next frame
   QuerySet running_ = {true, true, true};       // the queries that run in the scene

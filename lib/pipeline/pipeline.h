@@ -136,6 +136,9 @@ struct RestructureConfig {
   double max_fraction = 0.25;
   double threshold_refit = 0.05;
   double threshold_build = 0.5;
+  // A restructure runs only where what this run measured says it pays for itself
+  // (pipeline/restructure_price.h); off: wherever Formula 2 says (the paper).
+  bool priced = true;
 };
 
 // First capacities of the growing buffers; each grows (counted, listed after the run) when
