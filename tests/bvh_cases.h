@@ -414,6 +414,7 @@ inline void check_replayed_plans(const std::string& device, const ExactFrames& s
     cfg.restructure.min_leaves = 4;
     cfg.restructure.threshold_refit = 0.0;
     cfg.restructure.threshold_build = 1.01;
+    cfg.restructure.priced = false;  // every restructure Formula 2 asks for runs
     cfg.name = recorder;
     const std::vector<FrameStats> recorded = run_exact(cfg, scene);
     auto plan = std::make_shared<RecordedPlan>();
@@ -457,6 +458,8 @@ inline void check_forced_decisions(const std::string& device, const ExactFrames&
     cfg.restructure.min_leaves = 4;
     cfg.restructure.threshold_refit = f.refit;
     cfg.restructure.threshold_build = f.build;
+    // Forced means every time: no price declines a restructure (pipeline/restructure_price.h).
+    cfg.restructure.priced = false;
     const auto frames = run_exact(cfg, scene);
     size_t taken = 0;
     for (const auto& s : frames) {
