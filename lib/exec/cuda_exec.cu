@@ -57,11 +57,13 @@ CudaExec::CudaExec(const ExecOptions& options) : options_(options) {
   resident_threads_ = uint64_t(sms) * uint64_t(per_sm);
   cuda_check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "stream creation");
   cuda_check(cudaEventCreateWithFlags(&staging_copied_, cudaEventDisableTiming), "event creation");
+  cuda_check(cudaEventCreateWithFlags(&input_ready_, cudaEventDisableTiming), "event creation");
 }
 
 CudaExec::~CudaExec() {
   if (staging_) cudaFreeHost(staging_);
   if (staging_copied_) cudaEventDestroy(staging_copied_);
+  if (input_ready_) cudaEventDestroy(input_ready_);
   if (stream_) cudaStreamDestroy(stream_);
 }
 
@@ -74,6 +76,11 @@ void CudaExec::reserve_upload(size_t bytes) {
   cuda_check(cudaMallocHost(&staging_, bytes), "upload staging allocation");
   if (staging_bytes_ > 0) memory_.note_growth("upload_staging (bytes)", staging_bytes_, bytes);
   staging_bytes_ = bytes;
+}
+
+void CudaExec::wait_for_stream(void* stream) {
+  cuda_check(cudaEventRecord(input_ready_, static_cast<cudaStream_t>(stream)), "event record on the caller's stream");
+  cuda_check(cudaStreamWaitEvent(stream_, input_ready_, 0), "wait for the caller's stream");
 }
 
 void CudaExec::upload_bytes(void* dst, const void* src, size_t bytes) {

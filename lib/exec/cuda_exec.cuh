@@ -356,6 +356,11 @@ class CudaExec {
   void upload(T* dst, const T* src, size_t n) {
     upload_bytes(dst, src, n * sizeof(T));
   }
+  // The work queued so far on `stream` (a cudaStream_t; nullptr: the legacy default stream)
+  // comes before this executor's next launches: an event the executor's stream waits on,
+  // no host synchronization. How a resident frame's positions, written by the caller on its
+  // own stream, reach the frame (pipeline/device_mesh.h).
+  void wait_for_stream(void* stream);
   // Waits for the stream; every read-back ends in one. Counted: the frame loop reports the
   // synchronizations each frame made (target: one, the counters' read-back).
   void sync() const;
@@ -379,6 +384,7 @@ class CudaExec {
   void* staging_ = nullptr;  // pinned host memory of upload()
   size_t staging_bytes_ = 0;
   cudaEvent_t staging_copied_ = nullptr;  // recorded after the last upload's copy
+  cudaEvent_t input_ready_ = nullptr;     // wait_for_stream's, recorded on the caller's stream
 };
 
 // Phase timer from CUDA events on the executor's stream; a phase that runs several times

@@ -193,6 +193,9 @@ class HostExec {
   void upload(T* dst, const T* src, size_t n) {
     if (n) std::memcpy(dst, src, n * sizeof(T));
   }
+  // A resident frame's positions are host memory the caller wrote before the frame: nothing
+  // to wait for (see CudaExec).
+  void wait_for_stream(void*) const {}
   void sync() const { ++host_syncs_; }
   // Read-backs and waits so far: where the CUDA executor would stop the host until the
   // device caught up, counted the same way so CPU tests can check the per-frame count.

@@ -94,29 +94,45 @@ class DeviceMesh {
   }
   bool quantized() const { return precision_ == BoxPrecision::q16; }
   // Swept boxes: the two vertex buffers swap roles, the new positions go over the older
-  // frame's; no allocation.
-  void upload(Exec& exec, const std::vector<vec3f>& vertices) {
-    if (vertices.size() != num_vertices_)
-      fail("frame has " + std::to_string(vertices.size()) + " vertices, topology has " +
+  // frame's; no allocation. A resident frame is read where it lies (FrameVertices), once the
+  // caller's stream has written it; with swept boxes it is copied, the previous frame's
+  // positions having to outlive the caller's buffer.
+  void upload(Exec& exec, const FrameVertices& frame) {
+    if (frame.count != num_vertices_)
+      fail("frame has " + std::to_string(frame.count) + " vertices, topology has " +
            std::to_string(num_vertices_));
     if (swept_) {
       have_previous_ = have_previous_ || uploaded_;
       current_ ^= 1u;
     }
     uploaded_ = true;
-    exec.upload(vertices_[current_].data(), vertices.data(), num_vertices_);
+    if (!frame.resident) {
+      exec.upload(vertices_[current_].data(), frame.data, num_vertices_);
+      frame_vertices_ = vertices_[current_].data();
+      return;
+    }
+    exec.wait_for_stream(frame.stream);
+    if (swept_) {
+      exec.copy(vertices_[current_].data(), frame.data, num_vertices_);
+      frame_vertices_ = vertices_[current_].data();
+    } else {
+      frame_vertices_ = frame.data;
+    }
+  }
+  void upload(Exec& exec, const std::vector<vec3f>& vertices) {
+    upload(exec, FrameVertices{vertices.data(), vertices.size()});
   }
   // q16: this frame's grid over its vertex bounds (with swept boxes the previous frame's
   // too, so the grid spans every box it snaps), reduced and laid out on the executor into
   // buffers reserved in set_topology: no read-back, no allocation.
   void update_grid(Exec& exec) {
     if (!quantized()) return;
-    exec.reduce_box(num_vertices_, VertexBoundsFn{vertices_[current_].data(), previous()}, bounds_.data(),
+    exec.reduce_box(num_vertices_, VertexBoundsFn{frame_vertices_, previous()}, bounds_.data(),
                     grid_temp_.data(), grid_temp_.size());
     exec.for_each_n(1, BoxGridFn{bounds_.data(), grid_.data()});
   }
   MeshView view() const {
-    return {vertices_[current_].data(), faces_.data(), num_faces_, previous(), margin_,
+    return {frame_vertices_, faces_.data(), num_faces_, previous(), margin_,
             quantized() ? grid_.data() : nullptr, widen_};
   }
   // The faces' vertex indices, 3 per face, for co-vertex filtering.
@@ -127,6 +143,7 @@ class DeviceMesh {
   const vec3f* previous() const { return swept_ && have_previous_ ? vertices_[current_ ^ 1u].data() : nullptr; }
 
   Array<vec3f> vertices_[2];  // current_ is this frame's; the other the previous frame's
+  const vec3f* frame_vertices_ = nullptr;  // this frame's: vertices_[current_], or resident
   Array<Tri> faces_;
   Array<uint32_t> face_object_;
   Array<uint64_t> partners_;
@@ -157,8 +174,7 @@ void time_phase(Timer& timer, Phase p, F&& work) {
 // frame total, since simulators hold their vertices on the device already); with q16 boxes
 // the frame's grid follows, in the boxes phase, for every pipeline and baseline alike.
 template <class Exec, class Timer>
-MeshView begin_frame(Exec& exec, Timer& timer, DeviceMesh<Exec>& mesh,
-                     const std::vector<vec3f>& vertices) {
+MeshView begin_frame(Exec& exec, Timer& timer, DeviceMesh<Exec>& mesh, const FrameVertices& vertices) {
   timer.start_frame();
   time_phase(timer, Phase::upload, [&] { mesh.upload(exec, vertices); });
   if (mesh.quantized()) time_phase(timer, Phase::boxes, [&] { mesh.update_grid(exec); });
@@ -247,6 +263,8 @@ class PairBuffer {
   // starts. True if it grew.
   bool reserve_ahead() { return count() > pairs_.capacity() - pairs_.capacity() / 8 && grow_past_count(); }
   uint64_t count() const { return last_.pairs; }
+  // The last frame's pairs in executor memory, count() of them, unsorted.
+  const PrimPair* data() const { return pairs_.data(); }
   size_t capacity() const { return pairs_.capacity(); }
   std::vector<PrimPair> sorted_pairs(Exec& exec) const {
     std::vector<PrimPair> out(count());

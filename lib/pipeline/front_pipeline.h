@@ -81,7 +81,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   }
 
   // Plan, run, read back, adopt; a frame whose buffers had to grow runs its front pass again.
-  FrameStats run_frame(const std::vector<vec3f>& vertices) override {
+  FrameStats run_frame(const FrameVertices& vertices) override {
     FrameStats stats;
     pairs_.reserve_ahead();
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);

@@ -22,6 +22,7 @@ class PairPipeline : public Pipeline {
  public:
   using Pipeline::run_frame;
   std::vector<PrimPair> sorted_pairs() override { return pairs_.sorted_pairs(exec_); }
+  ResidentPairs resident_pairs() const override { return {pairs_.data(), size_t(pairs_.count())}; }
   MemoryStats memory() const override { return const_cast<Exec&>(exec_).memory().stats(); }
 
  protected:
@@ -74,7 +75,7 @@ class QueryPipeline : public PairPipeline<Exec, Timer, Counters> {
     this->exec_.sync();
   }
 
-  FrameStats run_frame(const std::vector<vec3f>& vertices) final {
+  FrameStats run_frame(const FrameVertices& vertices) final {
     FrameStats stats;
     this->pairs_.reserve_ahead();
     const MeshView mesh = begin_frame(this->exec_, this->timer_, this->mesh_, vertices);

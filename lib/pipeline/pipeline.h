@@ -267,6 +267,27 @@ struct FrameStats {
 
 struct RecordedPlan;  // pipeline/plan_record.h
 
+// A frame's float positions, `count` of them: in host memory, uploaded to the executor
+// (resident = false), or already in the executor's memory and read where they lie (resident:
+// device memory the caller owns on CUDA, host memory on the host executor). With swept boxes a
+// resident frame is copied once on the executor, since the next frame's boxes read it after
+// the caller has moved on.
+struct FrameVertices {
+  const vec3f* data = nullptr;
+  size_t count = 0;
+  bool resident = false;
+  // Resident on CUDA: the cudaStream_t (nullptr: the legacy default stream) whose work so far
+  // writes the positions; the frame's kernels wait for it on the device, the host does not.
+  void* stream = nullptr;
+};
+
+// The last frame's pairs where the pipeline keeps them (executor memory: device memory on
+// CUDA), unsorted; valid until the next frame or set_topology.
+struct ResidentPairs {
+  const PrimPair* data = nullptr;
+  size_t count = 0;
+};
+
 class Pipeline {
  public:
   virtual ~Pipeline() = default;
@@ -277,7 +298,8 @@ class Pipeline {
   // without a frame plan, which ignore it.
   virtual bool replay_plan(std::shared_ptr<const RecordedPlan>) { return false; }
   // A frame of float positions, run as they are.
-  virtual FrameStats run_frame(const std::vector<vec3f>& vertices) = 0;
+  virtual FrameStats run_frame(const FrameVertices& vertices) = 0;
+  FrameStats run_frame(const std::vector<vec3f>& vertices) { return run_frame(FrameVertices{vertices.data(), vertices.size()}); }
   // A frame as the scene holds it, in double: rounded to floats as the box precision says
   // (fp64 rebases; the origin is picked at the first frame after set_topology), then run.
   // The rounding is host work before the frame, not part of its time.
@@ -287,6 +309,7 @@ class Pipeline {
   }
   // The last frame's pairs, sorted, for verification (a download; not part of a frame).
   virtual std::vector<PrimPair> sorted_pairs() = 0;
+  virtual ResidentPairs resident_pairs() const = 0;
   virtual MemoryStats memory() const = 0;
 
  protected:
