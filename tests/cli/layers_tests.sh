@@ -14,6 +14,9 @@ declare -A allowed=(
   [baselines]="cdbench baselines"
   [scenes]="cdbench scenes"
   [registry]="cdbench baselines registry"
+  [api]="cdbench registry"
+  [python]="cdbench"
+  [examples]="cdbench"
   [harness]="cdbench scenes registry harness"
 )
 cd "$root" || exit 1
@@ -31,7 +34,7 @@ for dir in "${!allowed[@]}"; do
   ((bad)) || echo "ok   $dir/ includes only ${allowed[$dir]// /, }"
 done
 
-for probe in engine engine_scenes baselines scenes registry; do
+for probe in engine engine_scenes baselines scenes registry api; do
   header=$(sed -nE 's/^#include "([^"]+)"/\1/p' "tests/layers/wrong_$probe.cpp")
   out=$(cmake --build "$build" --target "layer_probe_$probe" 2>&1)
   if [[ $? -ne 0 ]] && grep -qF "$header: No such file or directory" <<<"$out"; then

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# The installed package (docs/library.md): `cmake --install` into a fresh prefix, moved
+# elsewhere (the package must be relocatable), then examples/ configured and built out of
+# tree against it with find_package(cdbench) alone and run on the CPU: its frames must equal
+# the oracle's. Also a wrong pipeline name must fail in the library's words.
+set -u
+build=$1
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL $1"; failures=$((failures + 1)); }
+
+if ! out=$(cmake --install "$build" --prefix "$work/staged" 2>&1); then
+  fail "cmake --install:"; tail -5 <<<"$out" | sed 's/^/    /'; exit 1
+fi
+mv "$work/staged" "$work/prefix"
+prefix=$work/prefix
+for f in include/cdbench/cdbench.h include/cdbench/pipeline/pipeline.h include/cdbench/core/error.h \
+         lib/cmake/cdbench/cdbenchConfig.cmake lib/cmake/cdbench/cdbenchConfigVersion.cmake; do
+  [[ -f $prefix/$f ]] && echo "ok   installed $f" || fail "not installed: $f"
+done
+if grep -rlF -e "$root" -e "$(cd "$build" && pwd)" "$prefix/lib/cmake"; then
+  fail "the package names the source or build tree (not relocatable)"
+else
+  echo "ok   the package names neither the source nor the build tree"
+fi
+
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+if ! out=$(cmake -S "$root/examples" -B "$work/example" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+             -DCMAKE_PREFIX_PATH="$prefix" 2>&1 && cmake --build "$work/example" 2>&1); then
+  fail "the example does not configure and build against the package:"; tail -15 <<<"$out" | sed 's/^/    /'
+else
+  echo "ok   examples/ built against the installed package"
+  for pipeline in c bvh sweep; do
+    out=$(OMP_NUM_THREADS=2 "$work/example/cloth_loop" "$pipeline" cpu 12 2>&1)
+    rc=$?
+    if [[ $rc -eq 0 ]] && grep -q "every frame equals the oracle" <<<"$out" && ! grep -q MISMATCH <<<"$out"; then
+      echo "ok   cloth_loop $pipeline: every frame equals the oracle"
+    else
+      fail "cloth_loop $pipeline exited $rc:"; tail -5 <<<"$out" | sed 's/^/    /'
+    fi
+  done
+  out=$("$work/example/cloth_loop" no-such-pipeline cpu 2 2>&1)
+  rc=$?
+  if [[ $rc -eq 2 ]] && grep -q "unknown pipeline 'no-such-pipeline' (known: bvh," <<<"$out"; then
+    echo "ok   an unknown pipeline is an error naming the known ones"
+  else
+    fail "cloth_loop no-such-pipeline: expected exit 2 and the known names, got $rc: $out"
+  fi
+fi
+if ((failures)); then echo "$failures install test(s) failed"; exit 1; fi
+echo "all install tests passed"
