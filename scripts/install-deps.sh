@@ -4,7 +4,8 @@
 # libraries, GoogleTest's headers included so the one build directory also configures the
 # tests). --python adds the Python tools the tests and the report scripts run with
 # /usr/bin/python3 (h5py, numpy, matplotlib: about half the download, so the first
-# `scripts/cdbench run` does without them).
+# `scripts/cdbench run` does without them), and pybind11 with Python's headers for the
+# `cdbench` Python module (docs/library.md).
 # --scenes also installs assimp-testmodels (BSD-3; 21 MB download, 74 MB installed), whose
 # models the scenes bcn-jump, wuson-walk, skeleton-fbx, sydney-md2, crowd and crowd-large read.
 # --scenes-extra installs the static scans: glmark2-data (bunny.obj, GPL-3+; 7 MB download)
@@ -22,7 +23,7 @@ packages=(
 )
 for arg in "$@"; do
   case $arg in
-    --python) packages+=(python3-h5py python3-numpy python3-matplotlib) ;;
+    --python) packages+=(python3-h5py python3-numpy python3-matplotlib pybind11-dev python3-dev) ;;
     --scenes) packages+=(assimp-testmodels) ;;
     --scenes-extra) packages+=(glmark2-data libcgal-demo) ;;
     --slurm) packages+=(slurmctld slurmd slurm-client munge) ;;

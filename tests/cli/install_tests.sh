@@ -50,5 +50,23 @@ else
     fail "cloth_loop no-such-pipeline: expected exit 2 and the known names, got $rc: $out"
   fi
 fi
+# The Python module, where the build has it: installed under the prefix, imported from there.
+if [[ -f $build/CMakeCache.txt ]] && grep -q '^CDB_PYTHON:INTERNAL=' "$build/CMakeCache.txt"; then
+  python=$(sed -n 's/^CDB_PYTHON:INTERNAL=//p' "$build/CMakeCache.txt")
+  modules=$(find "$prefix" -name 'cdbench*.so' -printf '%h\n')
+  if [[ $modules != "$prefix/lib/python3/dist-packages" ]]; then
+    fail "the Python module is not installed in $prefix/lib/python3/dist-packages (found: ${modules:-none})"
+  else
+    out=$(cd "$work" && PYTHONPATH=$modules OMP_NUM_THREADS=2 "$python" "$root/examples/cloth.py" sweep 2>&1)
+    rc=$?
+    if [[ $rc -eq 0 ]] && grep -q "sweep: every frame equals the oracle" <<<"$out"; then
+      echo "ok   examples/cloth.py on the installed module: every frame equals the oracle"
+    else
+      fail "examples/cloth.py exited $rc:"; tail -5 <<<"$out" | sed 's/^/    /'
+    fi
+  fi
+else
+  echo "ok   no Python module in this build (pybind11 not found): its install not checked"
+fi
 if ((failures)); then echo "$failures install test(s) failed"; exit 1; fi
 echo "all install tests passed"

@@ -1,0 +1,153 @@
+// The public API (api/cdbench.h, docs/library.md) on the host executor: every pipeline
+// against the oracle, frames read in place against the same frames uploaded through the
+// engine (every box option), pairs into a reused vector, and its errors.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "cdbench/cdbench.h"
+#include "error_of.h"
+#include "registry/pipeline_kinds.h"
+
+namespace cdb::test {
+namespace {
+
+constexpr uint32_t kSide = 12;
+
+cdbench::Topology cloth() {
+  std::vector<cdbench::Triangle> t;
+  for (uint32_t i = 0; i < kSide; ++i)
+    for (uint32_t j = 0; j < kSide; ++j) {
+      const uint32_t v = i * (kSide + 1) + j;
+      t.push_back({v, v + 1, v + kSide + 1});
+      t.push_back({v + 1, v + kSide + 2, v + kSide + 1});
+    }
+  return cdbench::Topology::mesh(t, (kSide + 1) * (kSide + 1));
+}
+
+// x, y, z per vertex: a wave folding the cloth onto itself.
+std::vector<float> waving(int frame) {
+  std::vector<float> xyz;
+  const float t = 0.3f * float(frame);
+  for (uint32_t i = 0; i <= kSide; ++i)
+    for (uint32_t j = 0; j <= kSide; ++j) {
+      const float x = float(j) / kSide, y = float(i) / kSide;
+      xyz.insert(xyz.end(), {x + 0.08f * std::sin(6.0f * y + t), y, 0.1f * std::sin(9.0f * x - 2.0f * t)});
+    }
+  return xyz;
+}
+
+bool same(const std::vector<PrimPair>& a, const std::vector<PrimPair>& b) {
+  return a.size() == b.size() &&
+         std::equal(a.begin(), a.end(), b.begin(), [](PrimPair x, PrimPair y) { return pair_key(x) == pair_key(y); });
+}
+
+TEST(Api, EveryPipelineEqualsTheOracleEveryFrame) {
+  const cdbench::Topology topology = cloth();
+  ASSERT_EQ(cdbench::pipelines(), pipeline_names());
+  for (bool skip : {false, true})
+    for (const std::string& name : cdbench::pipelines()) {
+      cdbench::BroadPhase bp({.pipeline = name, .skip_adjacent = skip}, topology);
+      std::vector<cdbench::Pair> pairs;
+      for (int f = 0; f < 6; ++f) {
+        const std::vector<float> xyz = waving(f);
+        const cdbench::FrameStats& s = bp.run(xyz.data(), bp.num_vertices());
+        const std::vector<PrimPair> expected = cdbench::oracle_pairs(topology, xyz.data(), xyz.size() / 3, skip);
+        ASSERT_FALSE(expected.empty());
+        bp.pairs(pairs);
+        EXPECT_TRUE(same(pairs, expected)) << name << " frame " << f;
+        EXPECT_TRUE(same(bp.pairs(), expected)) << name << " frame " << f;
+        EXPECT_EQ(s.pairs, expected.size());
+        EXPECT_FALSE(s.op.empty());
+      }
+    }
+}
+
+// On the host executor a float frame is read where the caller holds it (FrameVertices
+// resident); with swept boxes it is copied for the next frame. Either way the pairs are those
+// of the same frames uploaded through the engine, for every box option.
+TEST(Api, FramesReadInPlaceEqualUploadedFrames) {
+  const cdbench::Topology topology = cloth();
+  Topology engine;
+  for (const auto& t : topology.triangles) engine.faces.push_back({t.v0, t.v1, t.v2});
+  engine.num_vertices = topology.num_vertices;
+  for (const char* name : {"c", "bvh", "sweep"})
+    for (const char* precision : {"fp32", "q16"})
+      for (bool swept : {false, true}) {
+        const cdbench::Options o{.pipeline = name, .margin = 0.01f, .swept = swept, .box_precision = precision};
+        cdbench::BroadPhase bp(o, topology);
+        PipelineConfig c;
+        c.name = name;
+        c.device = "cpu";
+        c.boxes = {o.margin, swept, parse_box_precision(precision)};
+        auto uploaded = make_pipeline(c);
+        uploaded->set_topology(engine);
+        // The caller's buffer is overwritten each frame, as a simulator's is.
+        std::vector<float> xyz;
+        for (int f = 0; f < 5; ++f) {
+          xyz = waving(f);
+          std::vector<vec3f> v(xyz.size() / 3);
+          std::memcpy(v.data(), xyz.data(), xyz.size() * sizeof(float));
+          bp.run(xyz.data(), v.size());
+          uploaded->run_frame(v);
+          EXPECT_TRUE(same(bp.pairs(), uploaded->sorted_pairs()))
+              << name << " " << precision << (swept ? " swept" : "") << " frame " << f;
+        }
+      }
+}
+
+TEST(Api, DoublesBoxesAndQueries) {
+  const cdbench::Topology topology = cloth();
+  const std::vector<float> xyz = waving(3);
+  const std::vector<double> doubles(xyz.begin(), xyz.end());
+  cdbench::BroadPhase bp({.pipeline = "c"}, topology);
+  bp.run(doubles.data(), doubles.size() / 3);
+  EXPECT_TRUE(same(bp.pairs(), cdbench::oracle_pairs(topology, xyz.data(), xyz.size() / 3)));
+
+  // Three boxes: 0 and 1 overlap, 2 touches 1 at a face (closed boxes: a pair), 0 and 2 apart.
+  const cdbench::Topology boxes = cdbench::Topology::boxes(3);
+  const std::vector<float> corners = {0, 0, 0, 1, 1, 1, 0.5f, 0.5f, 0.5f, 2, 2, 2, 2, 0, 0, 3, 1, 1};
+  cdbench::BroadPhase bb({.pipeline = "grid"}, boxes);
+  bb.run(corners.data(), 6);
+  EXPECT_TRUE(same(bb.pairs(), {{0, 1}, {1, 2}}));
+  EXPECT_TRUE(same(cdbench::oracle_pairs(boxes, corners.data(), 6), {{0, 1}, {1, 2}}));
+
+  cdbench::Topology split = topology;
+  const uint32_t half = uint32_t(split.triangles.size() / 2);
+  split.objects = {{"top", 0, half}, {"bottom", half, uint32_t(split.triangles.size()) - half}};
+  split.inter_queries = {{0, 1}};
+  cdbench::BroadPhase bs({.pipeline = "c"}, split);
+  bs.run(xyz.data(), xyz.size() / 3);
+  const std::vector<PrimPair> expected = cdbench::oracle_pairs(split, xyz.data(), xyz.size() / 3);
+  ASSERT_FALSE(expected.empty());
+  for (PrimPair p : expected) EXPECT_TRUE(p.a < half && p.b >= half);
+  EXPECT_TRUE(same(bs.pairs(), expected));
+}
+
+TEST(Api, ErrorsInTheLibrarysWords) {
+  const cdbench::Topology topology = cloth();
+  EXPECT_EQ(error_of([&] { cdbench::BroadPhase({.pipeline = "d"}, topology); }).rfind("unknown pipeline 'd' (known: bvh, ", 0), 0u);
+  EXPECT_EQ(error_of([&] { cdbench::BroadPhase({.executor = "gpu"}, topology); }), "unknown device 'gpu' (known: cuda, cpu)");
+  EXPECT_EQ(error_of([] { cdbench::BroadPhase({}, cdbench::Topology::mesh({{0, 1, 3}}, 3)); }),
+            "triangle 0 has vertex 3, but the topology has 3 vertices (0-based)");
+  cdbench::Topology queries = topology;
+  queries.self_queries = {0};
+  EXPECT_EQ(error_of([&] { cdbench::BroadPhase({}, queries); }), "queries are declared, but the topology has no objects");
+  cdbench::BroadPhase bp({.pipeline = "sweep"}, topology);
+  const std::vector<float> xyz = waving(0);
+  EXPECT_EQ(error_of([&] { bp.run(xyz.data(), 5); }), "frame has 5 vertices, topology has 169");
+  EXPECT_EQ(error_of([&] { bp.run_device(xyz.data(), 169); }),
+            "run_device: the executor is cpu; device memory needs executor cuda");
+  EXPECT_EQ(error_of([&] { bp.device_pairs(); }).rfind("device_pairs: the executor is cpu", 0), 0u);
+  std::string reason;
+  if (!cdbench::cuda_available(&reason)) {
+    EXPECT_FALSE(reason.empty());
+    EXPECT_EQ(error_of([&] { cdbench::BroadPhase({.executor = "cuda"}, topology); }).rfind("--device cuda: ", 0), 0u);
+  }
+}
+
+}  // namespace
+}  // namespace cdb::test
