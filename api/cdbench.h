@@ -150,9 +150,10 @@ std::vector<std::string> pipelines();
 // Whether executor "cuda" can run here; if not, `reason` says why.
 bool cuda_available(std::string* reason = nullptr);
 
-// The exact reference: the pairs of the frame's boxes (fp32 boxes of these positions, no
-// margin), with the topology's queries and skip_adjacent, sorted by (a, b). Serial and
-// independent of every pipeline. Doubles are judged as they are (the scene's own geometry).
+// The exact reference: the pairs whose triangles' boxes overlap (closed boxes, in the
+// positions' own precision, no margin), with the topology's queries and skip_adjacent,
+// sorted by (a, b). Serial and independent of every pipeline: a pipeline given the same
+// floats with the default box options reports exactly these pairs.
 std::vector<Pair> oracle_pairs(const Topology& topology, const float* xyz, size_t num_vertices,
                                bool skip_adjacent = false);
 std::vector<Pair> oracle_pairs(const Topology& topology, const double* xyz, size_t num_vertices,
