@@ -384,6 +384,14 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   } else if (plans) {
     text("plan", [&read](const Row& row) { return read(row) ? plan_summary(row.r) : ""; });
   }
+  // The passes behind the times, and whether the file keeps each one (/passes, schema 5) or
+  // only their means.
+  numeric(csv ? "passes_kept" : "passes", [&stats, csv](const Row& row) {
+    if (!stats(row)) return std::string();
+    if (csv) return std::to_string(row.r.passes_kept);
+    const std::string n = std::isnan(row.r.repeats) ? "1" : std::to_string(uint64_t(row.r.repeats));
+    return row.r.passes_kept || n == "1" ? n : n + " (means only)";
+  });
   numeric("syncs", [&](const Row& row) { return number(stats(row) ? row.r.host_syncs_mean : none, "%.2f"); });
   numeric(csv ? "peak_bytes" : "peak_MiB", [csv](const Row& row) {
     return !row.r.has_summary ? ""

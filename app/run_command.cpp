@@ -160,6 +160,7 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.contact_distance = double(float(r.contact_distance));
   run.contact_substeps = r.contact_substeps;
   run.repeat_plan = repeat_plan_name(r.loop.repeat_plan);
+  run.phase_timing = config.launch.phase_timing;
   run.params_json = nlohmann::json{{"command", "run"},
                                    {"options", cli_options},
                                    {"pipeline_config", to_json(config)},

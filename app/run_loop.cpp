@@ -88,6 +88,14 @@ struct EarlierPasses {
   std::vector<std::vector<FrameStats>> passes;
 
   size_t count() const { return passes.size(); }
+  // Frame k's times in every pass, pass 0 first and `recording` (the last pass's) last: a
+  // /passes row.
+  std::vector<FrameTiming> timings(size_t k, const FrameTiming& recording) const {
+    std::vector<FrameTiming> t;
+    for (const auto& p : passes) t.push_back(p[k].timing);
+    t.push_back(recording);
+    return t;
+  }
   // Relative standard deviation of the passes' mean frame time over the measured frames.
   double noise_of_means(uint32_t warmup) const {
     std::vector<double> means;
@@ -330,8 +338,9 @@ class FrameLoop {
     for (size_t k = 0; k < last.size(); ++k) {
       f_ = range_.first + uint32_t(k);
       frames_.push_back(last[k]);
+      const std::vector<FrameTiming> passes = earlier_.timings(k, last[k].timing);
       earlier_.merge_into(k, f_, frames_.back());
-      record(f_, false);
+      record(f_, false, passes);
     }
   }
 
@@ -340,9 +349,10 @@ class FrameLoop {
     for (f_ = range_.first; f_ < range_.last && !interrupts_.signal(); ++f_) {
       frames_.push_back(run_one(f_));
       if (out_ && frames_.back().plan) out_->append_plan_step(pass, f_, *frames_.back().plan);
+      const std::vector<FrameTiming> passes = earlier_.timings(frames_.size() - 1, frames_.back().timing);
       earlier_.merge_into(frames_.size() - 1, f_, frames_.back());
       if (options_.check_every) check(f_);
-      record(f_, options_.save_pairs);
+      record(f_, options_.save_pairs, passes);
     }
   }
 
@@ -358,10 +368,12 @@ class FrameLoop {
     previous_ = vertices_;
   }
 
-  // The last frame into the results file (its pairs too with `pairs`) and onto the console.
-  void record(uint32_t frame, bool pairs) {
+  // The last frame into the results file (its pairs too with `pairs`, and its times in every
+  // pass) and onto the console.
+  void record(uint32_t frame, bool pairs, const std::vector<FrameTiming>& passes) {
     if (out_) {
       out_->append_frame(frame, frames_.back(), pipeline_.memory());
+      out_->append_passes(frame, passes);
       if (pairs) out_->write_pairs(frame, pipeline_.sorted_pairs());
     }
     if (options_.frame_lines) {

@@ -20,7 +20,8 @@ import numpy as np
 
 # 3: label, input_path, input_hash, noise_warning (optional: older files lack them).
 # 4: /plans, repeat_plan, plan_source, /frames/plan_mixed, /summary plan_mixed_frames (optional).
-SUPPORTED_SCHEMA = 4
+# 5: /passes (every pass's frame and phase times) and the run's conditions (optional).
+SUPPORTED_SCHEMA = 5
 # What `cdbench compare` matches runs on besides the pipeline (app/compare_command.cpp):
 # the options that change the pair set or how time is measured.
 IDENTITY_OPTIONS = ["skip-adjacent", "box-precision", "box-margin", "boxes", "refit-every", "check",
@@ -116,6 +117,9 @@ class Run:
                 self.frames[name] = data
             self.summary = ({k: plain(v) for k, v in f["summary"].attrs.items()}
                             if "summary" in f else None)
+            # Every pass's times per /frames row, {"t_total_ms": array (rows, passes), ...}:
+            # empty for files before schema 5, which keep only the mean over the passes.
+            self.passes = {name: ds[()] for name, ds in f["passes"].items()} if "passes" in f else {}
         self.attrs = attrs
         # Runs group by the scene with its --set overrides (funnel[res=24]), never by the
         # descriptor's name alone; scene_name is the bare name.
@@ -160,6 +164,19 @@ class Run:
         if name not in self.frames:
             raise ResultsError(f"{self.path}: no /frames/{name} column")
         return self.frames[name][self.warmup():]
+
+    def pass_times(self, name="t_total_ms"):
+        """A /passes dataset over the measured frames: array (frames, passes); None when the
+        file keeps no passes (schema 4 and older)."""
+        if name not in self.passes:
+            return None
+        return self.passes[name][self.warmup():]
+
+    def pass_metric(self, stat=np.mean, name="t_total_ms"):
+        """Each pass's statistic over its measured frames (np.mean, np.median, ...), pass 0
+        first; None without /passes."""
+        times = self.pass_times(name)
+        return None if times is None else [float(stat(times[:, p])) for p in range(times.shape[1])]
 
     def warmup(self):
         if self.summary is not None and "warmup" in self.summary:

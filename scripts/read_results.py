@@ -16,8 +16,9 @@ import numpy as np
 
 # In step with kResultsSchemaVersion (harness/results/results_file.h); 3 added label, input_path,
 # input_hash and noise_warning, which older files lack (they are printed when present); 4
-# added each pass's front plan (/plans) and the columns and attributes of --repeat-plan.
-SUPPORTED_SCHEMA = 4
+# added each pass's front plan (/plans) and the columns and attributes of --repeat-plan; 5
+# every pass's times (/passes) and the run's conditions.
+SUPPORTED_SCHEMA = 5
 HEADER_ATTRS = ["scene", "pipeline", "backend", "device_name", "frame_first", "frame_last",
                 "warmup", "triangles", "label", "input_path", "input_hash", "noise_warning", "git_sha",
                 "cdbench_version", "created_utc", "closed_utc"]

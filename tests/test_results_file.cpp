@@ -258,7 +258,7 @@ TEST(ResultsFile, CompleteRunMatchesFrameStats) {
   ASSERT_GE(f.id, 0) << path;
   EXPECT_EQ(string_attr(f.id, "/", "status"), "complete");
   EXPECT_EQ(number_attr(f.id, "/", "schema_version"), double(kResultsSchemaVersion));
-  EXPECT_EQ(kResultsSchemaVersion, 4);
+  EXPECT_EQ(kResultsSchemaVersion, 5);
   EXPECT_EQ(string_attr(f.id, "/", "scene"), "funnel-test");
   EXPECT_EQ(string_attr(f.id, "/", "pipeline"), "b");
   EXPECT_EQ(string_attr(f.id, "/", "backend"), "cpu");

@@ -148,6 +148,7 @@ void ResultsFile::create(const RunInfo& info) {
   check(H5Tset_size(text_type_.get(), kTextColumnBytes), where_, "set string size");
   check(H5Tset_strpad(text_type_.get(), H5T_STR_NULLPAD), where_, "set string padding");
 
+  phase_timing_ = info.phase_timing;
   frames_ = create_group(root, "frames", where_);
   columns_ = create_columns(frames_.get(), "frames", frame_columns());
   check(H5Fflush(root, H5F_SCOPE_GLOBAL), where_, "flush");
@@ -234,6 +235,61 @@ void ResultsFile::append_plan_step(uint32_t pass, uint32_t frame, const PlanStep
       plan_columns_ = create_columns(plans_.get(), "plans", plan_columns());
     }
     append_row(plan_columns(), plan_columns_, plan_rows_, PlanRow{pass, frame, step}, "plans", row);
+  });
+}
+
+void ResultsFile::append_passes(uint32_t frame, const std::vector<FrameTiming>& passes) {
+  const std::string row = "frame " + std::to_string(frame);
+  writing(row, [&] {
+    const std::string at = where_ + ": /passes " + row;
+    if (passes.empty()) fail(at + ": no passes");
+    if (!passes_) {
+      passes_ = create_group(file_.get(), "passes", where_);
+      const std::string g = where_ + ": /passes";
+      write_attr(passes_.get(), "description",
+                 "per /frames row (rows) and measured pass (columns, pass 0 first as in /plans): the frame's times",
+                 g);
+      write_attr(passes_.get(), "passes", uint64_t(passes.size()), g);
+      pass_count_ = passes.size();
+      // Without --phase-timing only the frame and its upload are timed: the other phases'
+      // zeros would be no measurement.
+      std::vector<std::pair<std::string, int>> cols = {{"t_total_ms", -1}};
+      for (size_t p = 0; p < kPhaseCount; ++p)
+        if (phase_timing_ || Phase(p) == Phase::upload)
+          cols.emplace_back(std::string("t_") + kPhaseNames[p] + "_ms", int(p));
+      const hsize_t empty[2] = {0, pass_count_}, maxdims[2] = {H5S_UNLIMITED, pass_count_};
+      const hsize_t chunk[2] = {std::max<hsize_t>(1, kRowsPerChunk / pass_count_), pass_count_};
+      for (const auto& [name, phase] : cols) {
+        const std::string ds = g + "/" + name;
+        h5::Handle space = own(H5Screate_simple(2, empty, maxdims), H5Sclose, ds, "create dataspace");
+        h5::Handle dcpl = chunked_layout(2, chunk, ds);
+        pass_columns_.push_back(own(H5Dcreate2(passes_.get(), name.c_str(), H5T_IEEE_F64LE, space.get(),
+                                               H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                                    H5Dclose, ds, "create dataset"));
+        write_attr(pass_columns_.back().get(), "description",
+                   phase < 0 ? "frame time without its upload in each pass, ms"
+                             : std::string("time in phase ") + kPhaseNames[size_t(phase)] + " in each pass, ms",
+                   ds);
+        if (phase >= 0) pass_phases_.push_back(phase);
+      }
+    }
+    if (passes.size() != pass_count_)
+      fail(at + ": " + std::to_string(passes.size()) + " passes, the earlier rows " + std::to_string(pass_count_));
+    const hsize_t size[2] = {pass_rows_ + 1, pass_count_}, start[2] = {pass_rows_, 0}, count[2] = {1, pass_count_};
+    h5::Handle mem_space = own(H5Screate_simple(2, count, nullptr), H5Sclose, at, "create dataspace");
+    std::vector<double> values(pass_count_);
+    for (size_t c = 0; c < pass_columns_.size(); ++c) {
+      for (size_t p = 0; p < pass_count_; ++p)
+        values[p] = c == 0 ? passes[p].total_ms : passes[p].phase_ms[size_t(pass_phases_[c - 1])];
+      const hid_t ds = pass_columns_[c].get();
+      check(H5Dset_extent(ds, size), at, "extend dataset");
+      h5::Handle file_space = own(H5Dget_space(ds), H5Sclose, at, "get dataspace");
+      check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr), at, "select row");
+      check(H5Dwrite(ds, H5T_NATIVE_DOUBLE, mem_space.get(), file_space.get(), H5P_DEFAULT, values.data()), at,
+            "write");
+    }
+    ++pass_rows_;
+    flush_now_and_then();
   });
 }
 
@@ -358,7 +414,8 @@ void ResultsFile::close(const char* status) {
   write_attr(file_.get(), "status", status, at);
   columns_.clear();
   plan_columns_.clear();
-  for (h5::Handle* h : {&pairs_, &plans_, &frames_, &text_type_}) h->reset();
+  pass_columns_.clear();
+  for (h5::Handle* h : {&pairs_, &plans_, &passes_, &frames_, &text_type_}) h->reset();
   // Closed once: the id is gone whether or not HDF5 reports a failure.
   check(file_.reset() ? 0 : -1, where_, "closing the results file");
 }
@@ -370,11 +427,11 @@ void ResultsFile::io_failed(const h5::IoError& e) {
 }
 
 void ResultsFile::forget_handles() noexcept {
-  for (std::vector<h5::Handle>* columns : {&columns_, &plan_columns_}) {
+  for (std::vector<h5::Handle>* columns : {&columns_, &plan_columns_, &pass_columns_}) {
     for (h5::Handle& c : *columns) c.abandon();
     columns->clear();
   }
-  for (h5::Handle* h : {&pairs_, &plans_, &frames_, &text_type_, &file_}) h->abandon();
+  for (h5::Handle* h : {&pairs_, &plans_, &passes_, &frames_, &text_type_, &file_}) h->abandon();
 }
 
 void ResultsFile::flush_now_and_then() {

@@ -27,7 +27,9 @@ namespace cdb {
 // 3: label, input_path, input_hash and noise_warning added (readers treat them as optional).
 // 4: each pass's front plan (/plans), repeat_plan and plan_source, /frames/plan_mixed and
 // /summary plan_mixed_frames added (readers treat them as optional).
-inline constexpr int64_t kResultsSchemaVersion = 4;
+// 5: every measured pass's frame and phase times (/passes) and the run's conditions (host
+// load before and after the measured frames, CPU, threads, conditions verdict) added.
+inline constexpr int64_t kResultsSchemaVersion = 5;
 
 // What the caller knows about the run; the writer adds the build (version, commit,
 // compilers), the host and the time.
@@ -63,6 +65,9 @@ struct RunInfo {
   // pass replayed ("" when none).
   std::string repeat_plan = "replay";
   std::string plan_source;
+  // --phase-timing: each phase timed (else only the frame and its upload), so /passes keeps
+  // every phase's times or only those two.
+  bool phase_timing = true;
 };
 
 // Known only once every frame has run.
@@ -90,6 +95,9 @@ class ResultsFile {
   ResultsFile& operator=(const ResultsFile&) = delete;
 
   void append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory);
+  // /passes: the times of the frame of the last append_frame in every pass, pass 0 first
+  // (the order of /plans); the group is made by the first call, every call has as many.
+  void append_passes(uint32_t frame, const std::vector<FrameTiming>& passes);
   // /plans: what `frame` ran in pass `pass` (0: the first); the group is made by the first.
   void append_plan_step(uint32_t pass, uint32_t frame, const PlanStep& step);
   // /pairs/frame_NNNN: the frame's sorted pairs as an (n, 2) array of triangle indices.
@@ -138,9 +146,14 @@ class ResultsFile {
   std::filesystem::path path_;    // the path written
   std::string where_;  // the path written, for messages
   bool broken_ = false;
-  h5::Handle file_, frames_, pairs_, plans_;
+  h5::Handle file_, frames_, pairs_, plans_, passes_;
   std::vector<h5::Handle> columns_;       // one dataset per frame_columns() entry
   std::vector<h5::Handle> plan_columns_;  // one dataset per plan_columns() entry
+  // /passes: (frames x passes) datasets, t_total_ms first, then the timed phases'.
+  std::vector<h5::Handle> pass_columns_;
+  std::vector<int> pass_phases_;  // the phase of each pass column after the first
+  bool phase_timing_ = true;
+  uint64_t pass_rows_ = 0, pass_count_ = 0;
   h5::Handle text_type_;
   uint64_t rows_ = 0, plan_rows_ = 0;
   std::chrono::steady_clock::time_point last_flush_;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cdbench/core/error.h"
+#include "cdbench/core/phase.h"
 #include "harness/results/hdf5_handle.h"
 #include "harness/results/results_file.h"
 #include "scenes/load/scene_label.h"
@@ -123,6 +124,11 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   r.frames_written = rows_of(frames.get(), ds);
 
   r.has_plans = H5Lexists(root, "plans", H5P_DEFAULT) > 0;
+  if (H5Lexists(root, "passes", H5P_DEFAULT) > 0) {
+    const std::string pg = where + ": /passes";
+    h5::Handle g = h5::own(H5Gopen2(root, "passes", H5P_DEFAULT), H5Gclose, pg, "open group");
+    r.passes_kept = uint64_t(h5::read_int_attr(g.get(), "passes", pg));
+  }
   if (H5Lexists(root, "summary", H5P_DEFAULT) <= 0) return r;
   const std::string st = where + ": /summary";
   h5::Handle summary = h5::own(H5Gopen2(root, "summary", H5P_DEFAULT), H5Gclose, st, "open group");
@@ -189,6 +195,60 @@ ResultsFrames read_results_frames(const std::filesystem::path& path) {
   if (f.repeats.size() != rows || f.total_noise.size() != rows)
     fail(where + ": /frames: repeats and t_total_noise have other lengths than frame");
   return f;
+}
+
+namespace {
+
+// A (rows x passes) dataset of /passes as rows.
+std::vector<std::vector<double>> read_pass_matrix(hid_t group, const std::string& name, const std::string& g,
+                                                  uint64_t passes) {
+  using h5::own;
+  const std::string ds = g + "/" + name;
+  h5::Handle d = own(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose, ds, "open dataset");
+  h5::Handle space = own(H5Dget_space(d.get()), H5Sclose, ds, "get dataspace");
+  if (H5Sget_simple_extent_ndims(space.get()) != 2) fail(ds + ": not a two-dimensional dataset (frames x passes)");
+  hsize_t dims[2] = {0, 0};
+  h5::check(H5Sget_simple_extent_dims(space.get(), dims, nullptr), ds, "get size");
+  if (dims[1] != passes)
+    fail(ds + ": " + std::to_string(dims[1]) + " columns, the group's passes attribute says " +
+         std::to_string(passes));
+  std::vector<double> flat(dims[0] * dims[1]);
+  if (!flat.empty())
+    h5::check(H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, flat.data()), ds, "read");
+  std::vector<std::vector<double>> rows(dims[0]);
+  for (hsize_t i = 0; i < dims[0]; ++i)
+    rows[i].assign(flat.begin() + ptrdiff_t(i * dims[1]), flat.begin() + ptrdiff_t((i + 1) * dims[1]));
+  return rows;
+}
+
+}  // namespace
+
+ResultsPasses read_results_passes(const std::filesystem::path& path) {
+  const std::string where = path.string();
+  const h5::Handle file = open_results(path, where);
+  const hid_t root = file.get();
+  ResultsPasses r;
+  if (H5Lexists(root, "passes", H5P_DEFAULT) <= 0) return r;
+  const std::string g = where + ": /passes";
+  h5::Handle group = h5::own(H5Gopen2(root, "passes", H5P_DEFAULT), H5Gclose, g, "open group");
+  const int64_t passes = h5::read_int_attr(group.get(), "passes", g);
+  if (passes < 1) fail(g + ": passes attribute " + std::to_string(passes) + ", expected at least 1");
+  r.passes = uint64_t(passes);
+  r.total_ms = read_pass_matrix(group.get(), "t_total_ms", g, r.passes);
+  const h5::Handle frame = h5::own(H5Dopen2(root, "frames/frame", H5P_DEFAULT), H5Dclose, where + ": /frames/frame",
+                                   "open dataset");
+  const hsize_t rows = rows_of(frame.get(), where + ": /frames/frame");
+  if (r.total_ms.size() != rows)
+    fail(g + "/t_total_ms: " + std::to_string(r.total_ms.size()) + " rows, /frames has " + std::to_string(rows));
+  for (size_t p = 0; p < kPhaseCount; ++p) {
+    const std::string name = std::string("t_") + kPhaseNames[p] + "_ms";
+    if (H5Lexists(group.get(), name.c_str(), H5P_DEFAULT) <= 0) continue;
+    r.phase_ms.emplace_back(kPhaseNames[p], read_pass_matrix(group.get(), name, g, r.passes));
+    if (r.phase_ms.back().second.size() != rows)
+      fail(g + "/" + name + ": " + std::to_string(r.phase_ms.back().second.size()) + " rows, /frames has " +
+           std::to_string(rows));
+  }
+  return r;
 }
 
 ResultsPlans read_results_plans(const std::filesystem::path& path) {

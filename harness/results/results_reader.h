@@ -53,6 +53,7 @@ struct ResultsOverview {
   uint64_t plan_mixed_frames = 0;
   uint64_t warmup_frames = 0;  // --warmup-ms's untimed frames (0 in files without it)
   bool has_plans = false;  // the file records its passes' plans (/plans)
+  uint64_t passes_kept = 0;  // passes whose times /passes keeps (0: none, files before schema 5)
 };
 
 ResultsOverview read_results_overview(const std::filesystem::path& path);
@@ -67,6 +68,19 @@ struct ResultsFrames {
 };
 
 ResultsFrames read_results_frames(const std::filesystem::path& path);
+
+// Every pass's times per /frames row (/passes, schema 5): `passes` 0 in older files, which
+// keep only each frame's mean over the passes. Rows are /frames rows; within a row, pass 0
+// first, the order of /plans.
+struct ResultsPasses {
+  uint64_t passes = 0;
+  std::vector<std::vector<double>> total_ms;  // [row][pass]
+  // The timed phases' times, by phase name (all phases, or only upload without
+  // --phase-timing), each [row][pass].
+  std::vector<std::pair<std::string, std::vector<std::vector<double>>>> phase_ms;
+};
+
+ResultsPasses read_results_passes(const std::filesystem::path& path);
 
 // Each pass's front plan (/plans, schema 4): none for pipelines without a frame plan and
 // for older files. Each plan's source names the file, the pipeline and the pass.

@@ -205,11 +205,11 @@ check "run with --set writes a results file" 0 "results: " -- \
 attrs() { "$python" -c "import h5py, json, sys; f = h5py.File(sys.argv[1]); print(json.dumps({k: (v.decode() if isinstance(v, bytes) else v.item() if hasattr(v, 'item') else v) for k, v in f.attrs.items()}, sort_keys=True)); print('groups', sorted(f.keys()))" "$1"; }
 check "scene label attribute" 0 '"scene_label": "funnel\[res=24\]"' -- attrs "$out/funnel-res24.h5"
 check "scene overrides attribute" 0 '"scene_overrides": "\{\\"res\\":24\}"' -- attrs "$out/funnel-res24.h5"
-check "schema version 4" 0 '"schema_version": 4' -- attrs "$out/funnel-res24.h5"
+check "schema version 5" 0 '"schema_version": 5' -- attrs "$out/funnel-res24.h5"
 cp "$out/funnel-res24.h5" "$tmp/future.h5"
 "$python" -c "import h5py, sys; f = h5py.File(sys.argv[1], 'r+'); f.attrs['schema_version'] = 99; f.close()" "$tmp/future.h5"
-check "report refuses a newer schema" 1 "future.h5: schema_version 99 is not one this cdbench reads \\(1 to 4\\)" -- "$cdbench" report "$tmp/future.h5"
-check "no /quality group; pipeline c's plans" 0 "^groups \['frames', 'plans', 'summary'\]$" -- attrs "$out/funnel-res24.h5"
+check "report refuses a newer schema" 1 "future.h5: schema_version 99 is not one this cdbench reads \\(1 to 5\\)" -- "$cdbench" report "$tmp/future.h5"
+check "no /quality group; pipeline c's plans; every pass" 0 "^groups \['frames', 'passes', 'plans', 'summary'\]$" -- attrs "$out/funnel-res24.h5"
 check "description of what ran" 0 '"scene_description": "funnel: .*\(funnel\[res=24\]\)"' -- attrs "$out/funnel-res24.h5"
 check "numbers in params_json are numbers" 0 "^int int float str list \['res=24'\]$" -- "$python" -c "
 import h5py, json, sys

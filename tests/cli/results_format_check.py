@@ -2,7 +2,7 @@
 """docs/results-format.md against a results file: every root attribute, /frames and /plans
 dataset and /summary attribute the file has is documented in its section, and every name
 documented there is in the file (`error` only in incomplete files, /plans only in a front
-pipeline's). Prints each difference and exits 1.
+pipeline's). A group's attributes other than its description are documented as `@name`. Prints each difference and exits 1.
 
   results_format_check.py docs/results-format.md RUN.h5
 """
@@ -11,7 +11,8 @@ import sys
 
 import h5py
 
-SECTIONS = {"## Root attributes": "/", "## `/frames/`": "frames", "## `/summary`": "summary", "## `/plans/`": "plans"}
+SECTIONS = {"## Root attributes": "/", "## `/frames/`": "frames", "## `/summary`": "summary", "## `/plans/`": "plans",
+            "## `/passes/`": "passes"}
 ABSENT_WHEN_COMPLETE = {"error"}
 
 
@@ -38,8 +39,9 @@ def main():
     problems = []
     with h5py.File(h5_path, "r") as f:
         present = {"/": list(f.attrs), "frames": list(f["frames"]), "summary": list(f["summary"].attrs)}
-        if "plans" in f:
-            present["plans"] = list(f["plans"])
+        for group in ("plans", "passes"):
+            if group in f:
+                present[group] = list(f[group]) + [f"@{a}" for a in f[group].attrs if a != "description"]
         for section, names in present.items():
             patterns = doc.get(section, [])
             for name in names:
@@ -49,8 +51,9 @@ def main():
                 if not any(re.fullmatch(p, n) for n in names) and p not in ABSENT_WHEN_COMPLETE:
                     problems.append(f"{section}: {p} is documented but not in the file")
         groups = sorted(f.keys())
-    if not {"frames", "summary"} <= set(groups) <= {"frames", "pairs", "plans", "summary"}:
-        problems.append(f"groups {groups}, documented: frames, summary, pairs (with --save-pairs), plans (front pipelines)")
+    if not {"frames", "summary", "passes"} <= set(groups) <= {"frames", "pairs", "plans", "passes", "summary"}:
+        problems.append(f"groups {groups}, documented: frames, summary, passes, pairs (with --save-pairs), "
+                        "plans (front pipelines)")
     for p in problems:
         print(p)
     print(f"{len(problems)} differences between {doc_path} and {h5_path}")
