@@ -258,6 +258,27 @@ std::string noisy_text(const Row& r) {
   return a && b ? "A,B" : a ? "A" : b ? "B" : "";
 }
 
+// Why a side's runs were measured in poor conditions, as their files recorded it: a busy
+// host or a noise warning (files before schema 5 record only the noise warning).
+std::string poor_of(const RunGroup& g) {
+  std::set<std::string> notes;
+  for (const RunFile& f : g.files) {
+    if (f.info.conditions == "poor") notes.insert(f.info.conditions_notes);
+    else if (!f.info.noise_warning.empty()) notes.insert("noise warning");
+  }
+  std::string s;
+  for (const auto& n : notes) s += (s.empty() ? "" : "; ") + n;
+  return s;
+}
+
+std::string poor_text(const Row& r) {
+  const std::string a = poor_of(*r.a), b = poor_of(*r.b);
+  if (a.empty() && b.empty()) return "";
+  if (b.empty()) return "A: " + a;
+  if (a.empty()) return "B: " + b;
+  return "A: " + a + " | B: " + b;
+}
+
 std::string join(const std::vector<std::string>& v, const char* sep) {
   std::string s;
   for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
@@ -270,7 +291,7 @@ const std::vector<std::string>& columns() {
       "scene",      "pipeline",  "device",    "label_a",    "label_b",   "metric",       "a_ms",
       "a_ci_lo",    "a_ci_hi",   "a_n",       "a_ci_over",  "b_ms",      "b_ci_lo",      "b_ci_hi",
       "b_n",        "b_ci_over", "change_pct", "verdict",   "pair_frames", "pair_differ", "input_hash",
-      "mismatch",   "noisy",     "commit_a",  "commit_b",   "files_a",   "files_b"};
+      "mismatch",   "noisy",     "poor_conditions", "commit_a",  "commit_b",   "files_a",   "files_b"};
   return c;
 }
 
@@ -301,6 +322,7 @@ nlohmann::json row_json(const Row& r, Metric m) {
           {"input_hash", r.hash},
           {"mismatch", join(r.mismatch, "; ")},
           {"noisy", noisy_text(r)},
+          {"poor_conditions", poor_text(r)},
           {"commit_a", commits_of(*r.a)},
           {"commit_b", commits_of(*r.b)},
           {"files_a", files_of(*r.a)},
@@ -338,7 +360,8 @@ void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metri
     const ResultsOverview& a = r.a->first();
     std::vector<std::string> flags;
     if (!r.mismatch.empty()) flags.push_back("**MISMATCH: " + join(r.mismatch, "; ") + "**");
-    if (!noisy_text(r).empty()) flags.push_back("noisy run (" + noisy_text(r) + ")");
+    if (!poor_text(r).empty()) flags.push_back("poor conditions (" + poor_text(r) + ")");
+    else if (!noisy_text(r).empty()) flags.push_back("noisy run (" + noisy_text(r) + ")");
     if (r.hash == "unknown") flags.push_back("input hash not recorded");
     const std::string pairs = r.pair_frames == 0 ? "no common frames"
                               : r.pair_differ   ? "**DIFFER in " + std::to_string(r.pair_differ) + " of " +

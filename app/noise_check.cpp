@@ -5,7 +5,9 @@
 #include <cstdlib>
 #include <cstdio>
 #include <map>
+#include <utility>
 
+#include <sys/times.h>
 #include <unistd.h>
 
 #include "cdbench/pipeline/run_summary.h"
@@ -87,21 +89,45 @@ bool cpu_jiffies(unsigned long long& busy, unsigned long long& total) {
 
 }  // namespace
 
-std::string host_load_warning() {
+HostLoad sample_host_load() {
   // Sampled now rather than the load average, which still holds a build that just ended.
+  HostLoad load;
+  load.busy_share = std::nan("");
+  load.cores = sysconf(_SC_NPROCESSORS_ONLN);
+  // The process's own time is taken out: after the frames its OpenMP threads may still spin
+  // at their barrier, which is this run's doing, not other work's. times() counts in clock
+  // ticks, the unit of /proc/stat.
   unsigned long long busy0 = 0, total0 = 0, busy1 = 0, total1 = 0;
-  if (!cpu_jiffies(busy0, total0)) return "";
+  tms own0{}, own1{};
+  if (!cpu_jiffies(busy0, total0) || times(&own0) == clock_t(-1)) return load;
   usleep(200000);
-  if (!cpu_jiffies(busy1, total1) || total1 <= total0) return "";
-  const long cores = sysconf(_SC_NPROCESSORS_ONLN);
-  const double share = double(busy1 - busy0) / double(total1 - total0);
-  if (cores <= 0 || share < 0.5) return "";
+  if (!cpu_jiffies(busy1, total1) || total1 <= total0 || times(&own1) == clock_t(-1)) return load;
+  const double own = double((own1.tms_utime + own1.tms_stime) - (own0.tms_utime + own0.tms_stime));
+  load.busy_share = std::max(0.0, double(busy1 - busy0) - own) / double(total1 - total0);
+  return load;
+}
+
+std::string host_load_warning(const HostLoad& load, const std::string& when) {
+  if (load.cores <= 0 || !(load.busy_share >= kBusyHostShare)) return "";
   char text[256];
   std::snprintf(text, sizeof text,
-                "the host is busy before the run (%.0f%% of its %ld cores in use by other work): its timings will be "
+                "the host is busy %s (%.0f%% of its %ld cores in use by other work): its timings will be "
                 "noisy and may not compare with a run on a quiet host",
-                100.0 * share, cores);
+                when.c_str(), 100.0 * load.busy_share, load.cores);
   return text;
+}
+
+std::string poor_conditions(const HostLoad& before, const HostLoad& after, const std::string& noise_warning) {
+  std::string notes;
+  const auto add = [&notes](const std::string& why) { notes += (notes.empty() ? "" : "; ") + why; };
+  char text[128];
+  for (const auto& [load, when] : {std::pair{&before, "before the run"}, std::pair{&after, "after the measured frames"}})
+    if (load->busy_share >= kBusyHostShare) {
+      std::snprintf(text, sizeof text, "host busy %s (%.0f%%)", when, 100.0 * load->busy_share);
+      add(text);
+    }
+  if (!noise_warning.empty()) add("noise warning");
+  return notes;
 }
 
 }  // namespace cdb

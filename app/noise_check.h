@@ -29,9 +29,26 @@ NoiseMeasure measure_noise(const std::vector<FrameStats>& frames, uint32_t warmu
 // The warning, naming the number and what to do; "" when the noise is within the limit.
 std::string noise_warning(const NoiseMeasure& m);
 
-// A warning when at least half the host's CPU time is in use, sampled over 0.2 s before a
-// run starts (others' work then shares the cores and the memory bus: two runs of one CPU
-// scene on a loaded host measured 99.3 and 7.9 ms per frame); "" otherwise.
-std::string host_load_warning();
+// The host's load: the share of all its cores' time in use, sampled over 0.2 s (NaN where
+// /proc/stat cannot be read), and its online cores.
+struct HostLoad {
+  double busy_share = 0;
+  long cores = 0;
+};
+HostLoad sample_host_load();
+
+// A host is busy at this share of its CPU time in use by other work: others' work then
+// shares the cores and the memory bus (two runs of one CPU scene on a loaded host measured
+// 99.3 and 7.9 ms per frame).
+inline constexpr double kBusyHostShare = 0.5;
+
+// A warning when `load` is busy, naming when it was sampled (`when`: "before the run",
+// "after the measured frames"); "" otherwise.
+std::string host_load_warning(const HostLoad& load, const std::string& when);
+
+// Whether the run's conditions allow its times to be compared: the reasons they do not (a
+// busy host before or after the measured frames, a noise warning), joined by "; "; "" when
+// they were good. Stored in the results file (conditions, conditions_notes).
+std::string poor_conditions(const HostLoad& before, const HostLoad& after, const std::string& noise_warning);
 
 }  // namespace cdb

@@ -319,7 +319,8 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   const bool checked = csv || any([](const ResultsOverview& r) { return r.checked_frames > 0; });
   const bool labels = csv || any([](const ResultsOverview& r) { return !r.label.empty(); });
   const bool hashes = csv || any([](const ResultsOverview& r) { return !r.input_hash.empty(); });
-  const bool warnings = csv || any([](const ResultsOverview& r) { return !r.noise_warning.empty(); });
+  const bool warnings =
+      csv || any([](const ResultsOverview& r) { return !r.noise_warning.empty() || r.conditions == "poor"; });
   const bool plans = any([](const ResultsOverview& r) { return r.has_plans; });
 
   // One list of columns drives the header, the cells and the Markdown alignment.
@@ -400,6 +401,11 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   });
   if (csv) {
     text("noise_warning", [](const Row& row) { return row.r.noise_warning; });
+    text("conditions", [](const Row& row) { return row.r.conditions; });
+    text("conditions_notes", [](const Row& row) { return row.r.conditions_notes; });
+    text("host_warning", [](const Row& row) { return row.r.host_warning; });
+    numeric("host_busy_before", [](const Row& row) { return number(row.r.host_busy_before, "%.17g"); });
+    numeric("host_busy_after", [](const Row& row) { return number(row.r.host_busy_after, "%.17g"); });
     text("options_json", [&read](const Row& row) {
       if (!read(row)) return std::string();
       nlohmann::json shown = nlohmann::json::object();
@@ -413,7 +419,12 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     text("commit", [](const Row& row) { return row.r.git_sha; });
     // The hash's first 8 digits tell inputs apart at a glance; CSV has all 16.
     if (hashes) text("input", [](const Row& row) { return row.r.input_hash.substr(0, 8); });
-    if (warnings) text("warning", [](const Row& row) { return row.r.noise_warning.empty() ? "" : "noisy"; });
+    // A poor run says why in a word: its notes name a busy host, a noise warning or both.
+    if (warnings)
+      text("warning", [](const Row& row) {
+        if (row.r.conditions == "poor") return "poor conditions: " + row.r.conditions_notes;
+        return row.r.noise_warning.empty() ? std::string() : std::string("noisy");
+      });
   }
   text("status", [csv](const Row& row) { return status_text(row, csv); });
 

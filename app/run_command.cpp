@@ -2,6 +2,7 @@
 #include "exit_codes.h"
 #include "number_checks.h"
 
+#include <algorithm>
 #include <unistd.h>
 
 #include <charconv>
@@ -127,6 +128,8 @@ nlohmann::json run_json(const Scene& scene, const RunOptions& r, const std::stri
           {"repeats", s.repeats},
           {"noise", number(s.noise_median)},
           {"noise_warning", res.noise_warning},
+          {"conditions", res.poor_conditions.empty() ? "good" : "poor"},
+          {"conditions_notes", res.poor_conditions},
           {"pairs_mean", number(s.pairs_mean)},
           {"peak_bytes", res.memory.peak_bytes},
           {"commit", build_info().git_sha},
@@ -148,6 +151,8 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.input_path = input_path(o.scene, scenes_dir(o.scenes_dir));
   run.backend = config.device;
   run.device_name = gpu ? info.name : cpu_model() + " (" + std::to_string(omp_threads()) + " OpenMP threads)";
+  run.cpu_model = cpu_model();
+  run.omp_threads = uint64_t(omp_threads());
   run.driver_version = info.driver_version;
   run.runtime_version = info.runtime_version;
   run.warmup = r.loop.warmup;
@@ -373,7 +378,8 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   give_plans(pipelines, plans, names);
   const std::vector<bool> existing = check_results_paths(r, names);
   print_environment(device);
-  const std::string busy = host_load_warning();
+  const HostLoad load_before = sample_host_load();
+  const std::string busy = host_load_warning(load_before, "before the run");
   if (!busy.empty()) std::printf("warning: %s\n", busy.c_str());
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
@@ -433,6 +439,9 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
       info.plan_source = plans[p] ? plans[p]->source : "";
       info.copy_gbps = copy_gbps;
       info.precision_warning = spacing_warning;
+      info.host_busy_before = load_before.busy_share;
+      info.host_cores = uint64_t(std::max(0L, load_before.cores));
+      info.host_warning = busy;
       out.emplace(one.out, info, existing[p] ? ResultsFile::Placement::staged : ResultsFile::Placement::in_place);
     }
     RunLoopOptions loop = r.loop;
@@ -444,6 +453,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
     loop.check_every = check_interval(r.check);
     loop.probe = probe.get();
     loop.copy_gbps = copy_gbps;
+    loop.host_before = load_before;
     loop.oracle = [&topo, &config](const std::vector<vec3d>& v) {
       return sweep_oracle_pairs(topo, v, config.skip_adjacent);
     };

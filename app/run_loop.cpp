@@ -243,12 +243,22 @@ class FrameLoop {
     RunFindings findings;
     findings.noise_warning = noise_warning(measure_noise(frames_, options_.warmup));
     if (!findings.noise_warning.empty()) std::printf("  warning     %s\n", findings.noise_warning.c_str());
+    // After the frames, so that load which began during the run is seen too.
+    const HostLoad after = sample_host_load();
+    findings.host_busy_after = after.busy_share;
+    findings.host_warning_after = host_load_warning(after, "after the measured frames");
+    if (!findings.host_warning_after.empty()) std::printf("  warning     %s\n", findings.host_warning_after.c_str());
+    findings.poor_conditions = poor_conditions(options_.host_before, after, findings.noise_warning);
+    if (!findings.poor_conditions.empty())
+      std::printf("  conditions  poor: %s (recorded; compare calls its differences inconclusive)\n",
+                  findings.poor_conditions.c_str());
     if (options_.input_hash) findings.input_hash = options_.input_hash();
     if (result) {
       result->summary = summary();
       result->memory = pipeline_.memory();
       result->noise_warning = findings.noise_warning;
       result->input_hash = findings.input_hash;
+      result->poor_conditions = findings.poor_conditions;
     }
     if (out_) finish_file(findings);
     return kExitOk;

@@ -1,6 +1,7 @@
 #pragma once
 // The frame loop of `cdbench run`: frames through the pipeline, per-frame lines, progress,
 // the results file, and a clean stop on an error or SIGINT/SIGTERM.
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "frame_range.h"
 #include "interrupt.h"
+#include "noise_check.h"
 #include "cdbench/geometry/frame_source.h"
 #include "harness/results/results_file.h"
 #include "cdbench/narrow/contacts.h"
@@ -74,6 +76,9 @@ struct RunLoopOptions {
   // The input's content hash once every frame has run (io/results_file.h RunFindings);
   // unset: none recorded.
   std::function<std::string()> input_hash;
+  // The host's load sampled before the run (app/noise_check.h); the loop samples it again
+  // after the measured frames, and the two with the noise warning make the run's conditions.
+  HostLoad host_before{std::nan(""), 0};
 };
 
 // What a finished run reports beyond its exit status (run --json).
@@ -82,6 +87,7 @@ struct RunResult {
   MemoryStats memory;
   std::string noise_warning;  // "" when the noise is within kNoiseWarningLimit
   std::string input_hash;
+  std::string poor_conditions;  // why the conditions were poor, "" when good
 };
 
 // Runs the frames of `range` (repeat passes of them), prints the summary and, given a results file, records every

@@ -131,5 +131,16 @@ TEST(NoiseCheck, OnePassDriftIsNotNoise) {
   EXPECT_EQ(noise_warning(measure_noise(outlier, 0)), "");
 }
 
+TEST(Conditions, ABusyHostOrANoiseWarningMakesThemPoor) {
+  const HostLoad quiet{0.1, 2}, busy{0.83, 2}, unread{std::nan(""), 2};
+  EXPECT_EQ(poor_conditions(quiet, quiet, ""), "");
+  EXPECT_EQ(poor_conditions(unread, unread, ""), "") << "an unreadable load is not a busy one";
+  EXPECT_EQ(poor_conditions(busy, quiet, ""), "host busy before the run (83%)");
+  EXPECT_EQ(poor_conditions(quiet, busy, "noisy run: ..."), "host busy after the measured frames (83%); noise warning");
+  EXPECT_EQ(host_load_warning(quiet, "before the run"), "");
+  EXPECT_NE(host_load_warning(busy, "after the measured frames").find("busy after the measured frames (83% of its 2"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace cdb

@@ -142,6 +142,12 @@ void ResultsFile::create(const RunInfo& info) {
   write_attr(root, "repeat_plan", info.repeat_plan, at);
   write_attr(root, "plan_source", info.plan_source, at);
   write_attr(root, "host", host_name(), at);
+  write_attr(root, "cpu_model", info.cpu_model, at);
+  write_attr(root, "host_cores", info.host_cores, at);
+  write_attr(root, "omp_threads", info.omp_threads, at);
+  write_attr(root, "host_busy_before", info.host_busy_before, at);
+  host_warning_ = info.host_warning;
+  write_attr(root, "host_warning", host_warning_, at);
   write_attr(root, "created_utc", utc_now(), at);
 
   text_type_ = own(H5Tcopy(H5T_C_S1), H5Tclose, where_, "copy string type");
@@ -372,6 +378,13 @@ void ResultsFile::finish(const RunSummary& summary, const MemoryStats& memory, c
     write_summary(summary, memory);
     write_attr(file_.get(), "input_hash", findings.input_hash, where_ + ": /");
     write_attr(file_.get(), "noise_warning", findings.noise_warning, where_ + ": /");
+    write_attr(file_.get(), "host_busy_after", findings.host_busy_after, where_ + ": /");
+    const std::string warnings = host_warning_.empty() || findings.host_warning_after.empty()
+                                     ? host_warning_ + findings.host_warning_after
+                                     : host_warning_ + "; " + findings.host_warning_after;
+    write_attr(file_.get(), "host_warning", warnings, where_ + ": /");
+    write_attr(file_.get(), "conditions", findings.poor_conditions.empty() ? "good" : "poor", where_ + ": /");
+    write_attr(file_.get(), "conditions_notes", findings.poor_conditions, where_ + ": /");
     close("complete");
   });
   if (path_ == target_) return;

@@ -6,6 +6,7 @@
 // (NAME.incomplete) and renames over it only once complete, so a finished file is never
 // replaced by a worse one.
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -68,6 +69,13 @@ struct RunInfo {
   // --phase-timing: each phase timed (else only the frame and its upload), so /passes keeps
   // every phase's times or only those two.
   bool phase_timing = true;
+  // The conditions the run started in: the host's CPU model, its online cores and the
+  // OpenMP threads the run used, and the share of its CPU time in use by other work just
+  // before the run (NaN: not measured); the host's busy warning printed then ("" when none).
+  std::string cpu_model;
+  uint64_t host_cores = 0, omp_threads = 0;
+  double host_busy_before = std::nan("");
+  std::string host_warning;
 };
 
 // Known only once every frame has run.
@@ -76,6 +84,12 @@ struct RunFindings {
   std::string input_hash;
   // The noise warning the run printed (app/noise_check.h); "" when none.
   std::string noise_warning;
+  // The share of the host's CPU time in use by other work right after the measured frames
+  // (NaN: not measured) and its busy warning then ("" when none).
+  double host_busy_after = std::nan("");
+  std::string host_warning_after;
+  // Why the run's conditions were poor (a busy host, a noise warning), "" when good.
+  std::string poor_conditions;
 };
 
 class ResultsFile {
@@ -155,6 +169,7 @@ class ResultsFile {
   bool phase_timing_ = true;
   uint64_t pass_rows_ = 0, pass_count_ = 0;
   h5::Handle text_type_;
+  std::string host_warning_;  // printed before the run; the finish adds the one after
   uint64_t rows_ = 0, plan_rows_ = 0;
   std::chrono::steady_clock::time_point last_flush_;
 };

@@ -101,6 +101,15 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   r.noise_warning = optional_text("noise_warning");
   r.repeat_plan = optional_text("repeat_plan");
   r.plan_source = optional_text("plan_source");
+  r.conditions = optional_text("conditions");
+  r.conditions_notes = optional_text("conditions_notes");
+  r.host_warning = optional_text("host_warning");
+  r.cpu_model = optional_text("cpu_model");
+  const auto optional_share = [&](const char* name) {
+    return h5::has_attr(root, name) ? h5::read_double_attr(root, name, at) : std::nan("");
+  };
+  r.host_busy_before = optional_share("host_busy_before");
+  r.host_busy_after = optional_share("host_busy_after");
   if (h5::has_attr(root, "warmup")) r.warmup = uint64_t(h5::read_int_attr(root, "warmup", at));
   if (h5::has_attr(root, "cold")) r.cold = h5::read_int_attr(root, "cold", at) != 0;
   if (h5::has_attr(root, "params_json")) {

@@ -53,6 +53,11 @@ struct ResultsOverview {
   uint64_t plan_mixed_frames = 0;
   uint64_t warmup_frames = 0;  // --warmup-ms's untimed frames (0 in files without it)
   bool has_plans = false;  // the file records its passes' plans (/plans)
+  // Schema 5; "" and NaN in older files: the run's conditions (good | poor) and why they
+  // were poor, the host's busy warnings, the share of its CPU time other work used before
+  // the run and after the measured frames, and the CPU model.
+  std::string conditions, conditions_notes, host_warning, cpu_model;
+  double host_busy_before = 0, host_busy_after = 0;
   uint64_t passes_kept = 0;  // passes whose times /passes keeps (0: none, files before schema 5)
 };
 

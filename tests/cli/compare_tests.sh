@@ -56,7 +56,9 @@ for path, factor in ((base, 1.0), (slow, 1.5)):
     with h5py.File(path, "r+") as f:
         f["frames/t_total_ms"][...] = f["frames/t_total_ms"][()] * factor
         f["frames/t_total_noise"][...] = 0.01
-        f.attrs["noise_warning"] = ""  # the copied run's warning no longer applies
+        f.attrs["noise_warning"] = ""  # the copied run's warning and conditions no longer apply
+        f.attrs["conditions"] = "good"
+        f.attrs["conditions_notes"] = ""
 PY
 check "a 50% slow-down is a regression" 1 "\| \+50\.0% \| REGRESSION \| same \(6 frames\) \|" -- \
   "$cdbench" compare "$tmp/base.h5" "$tmp/slow.h5" --fail-on-regression
@@ -79,7 +81,7 @@ shutil.copy(src, other)
 with h5py.File(other, "r+") as f:
     f.attrs["input_hash"] = "0123456789abcdef"
 PY
-check "a noisy run is flagged" 0 "\| noisy run \(B\) \|$" -- "$cdbench" compare "$tmp/base.h5" "$tmp/noisy.h5"
+check "a noisy run is flagged" 0 "\| poor conditions \(B: noise warning\) \|$" -- "$cdbench" compare "$tmp/base.h5" "$tmp/noisy.h5"
 check "report marks the noisy run" 0 "noisy\.h5 \|.*\| noisy \| complete \|$" -- "$cdbench" report "$tmp/base.h5" "$tmp/noisy.h5"
 check "other input frames refused" 2 "input_hash: [0-9a-f]{16} in A, 0123456789abcdef in B" -- \
   "$cdbench" compare "$tmp/base.h5" "$tmp/otherinput.h5"
