@@ -15,6 +15,7 @@
 #include "cdbench/core/error.h"
 #include "damaged_file_guard.h"
 #include "exit_codes.h"
+#include "cdbench/pipeline/plan_record.h"
 #include "harness/results/results_reader.h"
 #include "run_statistics.h"
 
@@ -50,6 +51,10 @@ struct RunFile {
   ResultsFrames frames;
   std::vector<double> measured_ms, measured_noise;
   uint64_t passes = 1;  // --repeat passes behind every measured frame (the fewest)
+  // Every pass's measured frame times, [pass][frame] (/passes; empty for files before
+  // schema 5), and every pass's plan (/plans; empty for pipelines without one).
+  std::vector<std::vector<double>> pass_ms;
+  ResultsPlans plans;
 };
 
 // One configuration of one side: its files are repeats of each other.
@@ -113,6 +118,11 @@ std::vector<RunGroup> load_side(const std::string& arg, const char* side) {
     f.measured_ms.assign(f.frames.total_ms.begin() + ptrdiff_t(skip), f.frames.total_ms.end());
     f.measured_noise.assign(f.frames.total_noise.begin() + ptrdiff_t(skip), f.frames.total_noise.end());
     f.passes = *std::min_element(f.frames.repeats.begin() + ptrdiff_t(skip), f.frames.repeats.end());
+    const ResultsPasses passes = read_results_passes(path);
+    f.pass_ms.assign(passes.passes, {});
+    for (size_t row = skip; row < passes.total_ms.size(); ++row)
+      for (size_t p = 0; p < passes.passes; ++p) f.pass_ms[p].push_back(passes.total_ms[row][p]);
+    f.plans = read_results_plans(path);
     const std::string config = config_of(f.info), key = config + "label=" + f.info.label;
     auto g = std::find_if(groups.begin(), groups.end(), [&](const RunGroup& x) { return x.key == key; });
     if (g == groups.end()) {
@@ -125,11 +135,37 @@ std::vector<RunGroup> load_side(const std::string& arg, const char* side) {
   return groups;
 }
 
-Estimate estimate(const RunGroup& g, Metric m) {
-  if (g.files.size() > 1) {
-    std::vector<double> values;
-    for (const RunFile& f : g.files) values.push_back(metric_of(f.measured_ms, m));
-    return estimate_over_runs(values);
+// What compare tests: one metric value per measured pass, pooled over the side's files,
+// where every file keeps its passes (/passes); else one per file where there are several;
+// else the one run's value (too few to test). `over` says which, `note` what is missing.
+struct Samples {
+  std::vector<double> values;
+  CiBasis over = CiBasis::passes;
+  std::string note;
+};
+
+Samples samples_of(const RunGroup& g, Metric m) {
+  Samples s;
+  const bool kept = std::all_of(g.files.begin(), g.files.end(), [](const RunFile& f) { return !f.pass_ms.empty(); });
+  if (kept) {
+    s.over = g.files.size() > 1 ? CiBasis::repeats : CiBasis::passes;
+    for (const RunFile& f : g.files)
+      for (const auto& pass : f.pass_ms) s.values.push_back(metric_of(pass, m));
+    return s;
+  }
+  s.over = g.files.size() > 1 ? CiBasis::repeats : CiBasis::frames;
+  for (const RunFile& f : g.files) s.values.push_back(metric_of(f.measured_ms, m));
+  const auto means_only = [](const RunFile& f) { return f.pass_ms.empty() && f.passes > 1; };
+  if (std::any_of(g.files.begin(), g.files.end(), means_only))
+    s.note = "passes not kept (a file before schema 5 holds only their means)";
+  return s;
+}
+
+Estimate estimate(const RunGroup& g, const Samples& s, Metric m) {
+  if (s.values.size() > 1) {
+    Estimate e = estimate_over_runs(s.values);
+    e.basis = s.over;
+    return e;
   }
   const RunFile& f = g.files.front();
   if (f.passes > 1) return estimate_over_passes(f.measured_ms, f.measured_noise, f.passes, m);
@@ -156,6 +192,8 @@ struct Row {
   Estimate ea, eb;
   double change = 0;
   Verdict v = Verdict::unchanged;
+  Decision decision;
+  std::vector<uint32_t> plan_differ;  // frames where the passes of A and B ran different plans
   size_t pair_frames = 0, pair_differ = 0;  // frames of both, and those with other pair counts
   std::string hash;                         // same | differs | unknown
 };
@@ -172,6 +210,19 @@ void compare_pairs(Row& row) {
     ++row.pair_frames;
     row.pair_differ += it->second != fb.pairs[i];
   }
+}
+
+// The frames where the passes of both sides (every file's every pass) did not all run the
+// same plan step: their times are of other work, whatever the verdict. None where neither
+// side records plans.
+void compare_plans(Row& row) {
+  std::map<uint32_t, std::set<std::string>> steps;
+  for (const RunGroup* g : {row.a, row.b})
+    for (const RunFile& f : g->files)
+      for (const RecordedPlan& pass : f.plans.passes)
+        for (const PlannedFrame& frame : pass.frames) steps[frame.frame].insert(format_plan_step(frame.step));
+  for (const auto& [frame, distinct] : steps)
+    if (distinct.size() > 1) row.plan_differ.push_back(frame);
 }
 
 std::vector<Row> match(const std::vector<RunGroup>& as, const std::vector<RunGroup>& bs, bool allow_mismatch) {
@@ -193,7 +244,7 @@ std::vector<Row> match(const std::vector<RunGroup>& as, const std::vector<RunGro
                    ", ...): compare files or directories that hold one run per configuration");
       same = exact;
     }
-    Row row{&a, nullptr, {}, {}, {}, 0, Verdict::unchanged, 0, 0, ""};
+    Row row{&a, nullptr, {}, {}, {}, 0, Verdict::unchanged, {}, {}, 0, 0, ""};
     if (same.size() == 1) {
       row.b = same.front();
     } else {
@@ -290,7 +341,8 @@ const std::vector<std::string>& columns() {
   static const std::vector<std::string> c = {
       "scene",      "pipeline",  "device",    "label_a",    "label_b",   "metric",       "a_ms",
       "a_ci_lo",    "a_ci_hi",   "a_n",       "a_ci_over",  "b_ms",      "b_ci_lo",      "b_ci_hi",
-      "b_n",        "b_ci_over", "change_pct", "verdict",   "pair_frames", "pair_differ", "input_hash",
+      "b_n",        "b_ci_over", "change_pct", "verdict",   "p_value",    "why",         "plan_differ",
+      "pair_frames", "pair_differ", "input_hash",
       "mismatch",   "noisy",     "poor_conditions", "commit_a",  "commit_b",   "files_a",   "files_b"};
   return c;
 }
@@ -317,6 +369,9 @@ nlohmann::json row_json(const Row& r, Metric m) {
           {"b_ci_over", ci_basis_name(r.eb.basis)},
           {"change_pct", json_number(r.change)},
           {"verdict", verdict_name(r.v)},
+          {"p_value", json_number(r.decision.p)},
+          {"why", r.decision.why},
+          {"plan_differ", r.plan_differ.empty() ? std::string() : frame_list_text(r.plan_differ)},
           {"pair_frames", r.pair_frames},
           {"pair_differ", r.pair_differ},
           {"input_hash", r.hash},
@@ -363,6 +418,10 @@ void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metri
     if (!poor_text(r).empty()) flags.push_back("poor conditions (" + poor_text(r) + ")");
     else if (!noisy_text(r).empty()) flags.push_back("noisy run (" + noisy_text(r) + ")");
     if (r.hash == "unknown") flags.push_back("input hash not recorded");
+    if (!r.plan_differ.empty())
+      flags.push_back("**PLANS DIFFER at frames " + frame_list_text(r.plan_differ) + "**");
+    if (!r.decision.why.empty() && r.decision.why.rfind("poor conditions", 0) != 0)
+      flags.push_back(r.decision.why);
     const std::string pairs = r.pair_frames == 0 ? "no common frames"
                               : r.pair_differ   ? "**DIFFER in " + std::to_string(r.pair_differ) + " of " +
                                                     std::to_string(r.pair_frames) + " frames**"
@@ -376,9 +435,11 @@ void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metri
                 interval(r.eb).c_str(), side(r.eb).c_str(), fixed(r.change, "%+.1f").c_str(), verdict_name(r.v),
                 pairs.c_str(), md_cell(join(flags, "; ")).c_str());
   }
-  std::printf("\nCI over repeats: Student t over independent runs; passes: one run's --repeat passes, bounded from "
-              "its per-frame noise; frames: one pass, over its measured frames (workload changes widen it). A "
-              "regression is B slower by more than the threshold with non-overlapping intervals.\n");
+  std::printf("\nVerdict: Mann-Whitney U over the passes' values (pooled over a side's files; one value per file "
+              "where a file keeps no passes), a difference at p < %.2f whose Hodges-Lehmann shift (the change) "
+              "exceeds the threshold; inconclusive where conditions were poor or the samples too few. CI: Student "
+              "t over the same values (passes, repeats), else over one pass's frames.\n",
+              kSignificance);
   for (const Row& r : rows) {
     const ResultsOverview &a = r.a->first(), &b = r.b->first();
     std::printf("\n- %s %s %s: A %s%s (commit %s), B %s%s (commit %s)", a.scene_label.c_str(), a.pipeline.c_str(),
@@ -416,12 +477,18 @@ int compare_command(const CompareOptions& c) {
   std::vector<Row> rows = match(as, bs, c.allow_mismatch);
   bool regressed = false;
   for (Row& r : rows) {
-    r.ea = estimate(*r.a, m);
-    r.eb = estimate(*r.b, m);
-    r.change = change_pct(r.ea.value, r.eb.value);
-    r.v = verdict(r.ea, r.eb, c.threshold_pct);
+    const Samples sa = samples_of(*r.a, m), sb = samples_of(*r.b, m);
+    r.ea = estimate(*r.a, sa, m);
+    r.eb = estimate(*r.b, sb, m);
+    r.decision = decide(sa.values, sb.values, c.threshold_pct, poor_text(r));
+    const std::string note = !sa.note.empty() ? sa.note : sb.note;
+    if (r.decision.verdict == Verdict::inconclusive && !note.empty() && r.decision.why.rfind("too few", 0) == 0)
+      r.decision.why += " (" + note + ")";
+    r.change = r.decision.shift_pct;
+    r.v = r.decision.verdict;
     regressed |= r.v == Verdict::regression;
     compare_pairs(r);
+    compare_plans(r);
     const std::string &ha = r.a->first().input_hash, &hb = r.b->first().input_hash;
     r.hash = ha.empty() || hb.empty() ? "unknown" : ha == hb ? "same" : "differs";
   }
@@ -448,8 +515,10 @@ int compare_command(const CompareOptions& c) {
                    join(r.mismatch, "; ").c_str());
   if (regressed && c.fail_on_regression) {
     std::fflush(stdout);
-    std::fprintf(stderr, "cdbench: compare: regression beyond %.1f%% and the noise (--fail-on-regression)\n",
-                 c.threshold_pct);
+    std::fprintf(stderr,
+                 "cdbench: compare: regression beyond %.1f%% and the noise (Mann-Whitney p < %.2f; "
+                 "--fail-on-regression)\n",
+                 c.threshold_pct, kSignificance);
     return kExitFailure;
   }
   return kExitOk;

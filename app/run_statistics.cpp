@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
 
 #include "cdbench/core/error.h"
 #include "cdbench/pipeline/run_summary.h"
@@ -139,7 +141,7 @@ const char* verdict_name(Verdict v) {
   switch (v) {
     case Verdict::unchanged: return "unchanged";
     case Verdict::within_noise: return "within-noise";
-    case Verdict::unknown: return "unknown-noise";
+    case Verdict::inconclusive: return "inconclusive";
     case Verdict::regression: return "REGRESSION";
     case Verdict::improvement: return "improvement";
   }
@@ -148,13 +150,104 @@ const char* verdict_name(Verdict v) {
 
 double change_pct(double a, double b) { return a != 0 ? 100.0 * (b - a) / a : std::nan(""); }
 
-Verdict verdict(const Estimate& a, const Estimate& b, double threshold_pct) {
-  const double change = change_pct(a.value, b.value);
-  if (!(std::fabs(change) > threshold_pct)) return Verdict::unchanged;
-  const bool bounded = std::isfinite(a.lo) && std::isfinite(a.hi) && std::isfinite(b.lo) && std::isfinite(b.hi);
-  if (change > 0 && b.lo > a.hi) return Verdict::regression;
-  if (change < 0 && b.hi < a.lo) return Verdict::improvement;
-  return bounded ? Verdict::within_noise : Verdict::unknown;
+double median_of(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double mann_whitney_min_p(size_t na, size_t nb) {
+  if (na == 0 || nb == 0) return 1.0;
+  double ways = 1;  // C(na + nb, na)
+  for (size_t k = 1; k <= na; ++k) ways = ways * double(nb + k) / double(k);
+  return std::min(1.0, 2.0 / ways);
+}
+
+double mann_whitney_p(const std::vector<double>& a, const std::vector<double>& b) {
+  const size_t na = a.size(), nb = b.size(), n = na + nb;
+  if (na == 0 || nb == 0) return 1.0;
+  // Midranks of the pooled samples; ties counted for the variance's correction.
+  std::vector<std::pair<double, int>> pooled;
+  for (double x : a) pooled.emplace_back(x, 0);
+  for (double x : b) pooled.emplace_back(x, 1);
+  std::sort(pooled.begin(), pooled.end());
+  double rank_sum_a = 0, tie_term = 0;
+  bool ties = false;
+  for (size_t i = 0; i < n;) {
+    size_t j = i;
+    while (j < n && pooled[j].first == pooled[i].first) ++j;
+    const double rank = 0.5 * double(i + 1 + j);
+    for (size_t k = i; k < j; ++k)
+      if (pooled[k].second == 0) rank_sum_a += rank;
+    const double t = double(j - i);
+    tie_term += t * t * t - t;
+    ties |= j - i > 1;
+    i = j;
+  }
+  const double u = rank_sum_a - double(na) * double(na + 1) / 2;  // A's U
+  if (!ties && n <= 60) {
+    // ways[k][s]: subsets of k of the ranks 1..m summing to s, m growing to n; U = s - k(k+1)/2.
+    const size_t max_u = na * nb;
+    std::vector<std::vector<double>> ways(na + 1, std::vector<double>(max_u + 1, 0.0));
+    // Counted directly in U: adding rank m to a subset of k - 1 smaller ranks adds m - k to U.
+    ways[0][0] = 1;
+    for (size_t m = 1; m <= n; ++m)
+      for (size_t k = std::min(na, m); k >= 1; --k) {
+        const size_t add = m - k;
+        if (add > nb) continue;
+        for (size_t s = max_u; s >= add; --s) {
+          ways[k][s] += ways[k - 1][s - add];
+          if (s == 0) break;
+        }
+      }
+    double total = 0, below = 0, above = 0;
+    const size_t observed = size_t(std::llround(u));
+    for (size_t s = 0; s <= max_u; ++s) {
+      total += ways[na][s];
+      if (s <= observed) below += ways[na][s];
+      if (s >= observed) above += ways[na][s];
+    }
+    return std::min(1.0, 2.0 * std::min(below, above) / total);
+  }
+  const double mean = double(na) * double(nb) / 2;
+  const double var = double(na) * double(nb) / 12 * (double(n + 1) - tie_term / (double(n) * double(n - 1)));
+  if (!(var > 0)) return 1.0;
+  const double z = std::max(0.0, std::fabs(u - mean) - 0.5) / std::sqrt(var);
+  return std::min(1.0, std::erfc(z / std::sqrt(2.0)));
+}
+
+double hodges_lehmann_shift(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> d;
+  d.reserve(a.size() * b.size());
+  for (double x : a)
+    for (double y : b) d.push_back(y - x);
+  return median_of(std::move(d));
+}
+
+Decision decide(const std::vector<double>& a, const std::vector<double>& b, double threshold_pct,
+                const std::string& poor) {
+  Decision d;
+  const double base = median_of(a);
+  d.shift_pct = base != 0 ? 100.0 * hodges_lehmann_shift(a, b) / base : std::nan("");
+  d.p = std::nan("");
+  if (!poor.empty()) {
+    d.verdict = Verdict::inconclusive;
+    d.why = "poor conditions (" + poor + ")";
+    return d;
+  }
+  if (mann_whitney_min_p(a.size(), b.size()) > kSignificance) {
+    d.verdict = Verdict::inconclusive;
+    d.why = "too few samples (" + std::to_string(a.size()) + " and " + std::to_string(b.size()) +
+            "): the test cannot reach p < 0.05; use --repeat 5 or more";
+    return d;
+  }
+  d.p = mann_whitney_p(a, b);
+  const bool beyond = std::fabs(d.shift_pct) > threshold_pct;
+  if (!beyond) d.verdict = Verdict::unchanged;
+  else if (d.p >= kSignificance) d.verdict = Verdict::within_noise;
+  else d.verdict = d.shift_pct > 0 ? Verdict::regression : Verdict::improvement;
+  return d;
 }
 
 }  // namespace cdb

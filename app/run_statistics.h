@@ -2,6 +2,7 @@
 // The statistics of `cdbench compare`: one run's time as an estimate with a 95% confidence
 // interval, and the verdict on two of them. Library-style (no I/O) so tests can feed it
 // synthetic samples.
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -53,18 +54,47 @@ Estimate estimate_over_passes(const std::vector<double>& frame_ms, const std::ve
                               Metric m);
 
 enum class Verdict {
-  unchanged,     // |change| within the threshold
-  within_noise,  // beyond the threshold, but the intervals overlap
-  unknown,       // beyond the threshold, an interval unbounded: the noise is not known
-  regression,    // B slower beyond the threshold and the intervals do not overlap
-  improvement,   // B faster beyond the threshold and the intervals do not overlap
+  unchanged,     // the shift is within the threshold
+  within_noise,  // beyond the threshold, but the test does not tell the samples apart
+  inconclusive,  // the data cannot decide: poor conditions recorded, or too few samples
+  regression,    // B slower: the samples differ (p < kSignificance) and the shift is beyond the threshold
+  improvement,   // B faster, likewise
 };
 const char* verdict_name(Verdict v);
 
-// B against A: a change counts only when it is both larger than threshold_pct percent of
-// A and beyond the noise, i.e. the two 95% intervals do not overlap (stricter than a
-// Welch test at 5%: non-overlapping 95% intervals mean p < 0.01 or so).
-Verdict verdict(const Estimate& a, const Estimate& b, double threshold_pct);
+// The two-sided significance level of compare's test.
+inline constexpr double kSignificance = 0.05;
+
+// Two-sided p-value of the Mann-Whitney U (Wilcoxon rank-sum) test that a and b come from
+// one distribution: exact (the rank sums' distribution counted) without ties and up to 60
+// samples in all; else the normal approximation with the tie correction and a continuity
+// correction. 1 when either sample is empty.
+double mann_whitney_p(const std::vector<double>& a, const std::vector<double>& b);
+
+// The smallest two-sided p-value the test can give samples of na and nb (fully separated):
+// 2 / C(na + nb, na). Above kSignificance no data can be called different (3 and 3: 0.1).
+double mann_whitney_min_p(size_t na, size_t nb);
+
+// The Hodges-Lehmann estimate of B's shift against A: the median of every difference
+// b_j - a_i (NaN when a sample is empty).
+double hodges_lehmann_shift(const std::vector<double>& a, const std::vector<double>& b);
+
+double median_of(std::vector<double> v);  // NaN when empty
+
+struct Decision {
+  Verdict verdict = Verdict::unchanged;
+  double p = 1;                       // Mann-Whitney's p-value (NaN when not tested)
+  double shift_pct = std::nan("");    // the Hodges-Lehmann shift in percent of A's median
+  std::string why;                    // inconclusive: why the data cannot decide
+};
+
+// B's samples against A's (one metric value per pass, or per run): inconclusive when `poor`
+// (the conditions recorded as poor, its reasons) is not empty or the samples are too few for
+// the test to reach kSignificance; else regression or improvement when the test rejects
+// equality at kSignificance and the shift exceeds threshold_pct percent; within-noise when
+// the shift exceeds it without the test rejecting; unchanged otherwise.
+Decision decide(const std::vector<double>& a, const std::vector<double>& b, double threshold_pct,
+                const std::string& poor);
 
 // (b - a) / a in percent (NaN when a is 0).
 double change_pct(double a, double b);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
+#include <string>
 #include <vector>
 
 #include "cdbench/core/error.h"
@@ -73,20 +75,106 @@ TEST(Estimate, PassesBoundFromTheFrameNoise) {
   EXPECT_NEAR(e.hi, 2 + half, 1e-9);
 }
 
-Estimate tight(double value) { return estimate_over_runs({value * 0.99, value, value * 1.01}); }
-
-TEST(Verdict, RegressionNeedsThresholdAndNoise) {
-  EXPECT_EQ(verdict(tight(10), tight(12), 5), Verdict::regression);
-  EXPECT_EQ(verdict(tight(10), tight(8), 5), Verdict::improvement);
-  // 3% slower with tight intervals: beyond the noise, under the threshold.
-  EXPECT_EQ(verdict(tight(10), tight(10.3), 5), Verdict::unchanged);
-  // 20% slower, but the intervals overlap.
-  const Estimate wide_a = estimate_over_runs({5, 10, 15}), wide_b = estimate_over_runs({7, 12, 17});
-  EXPECT_EQ(verdict(wide_a, wide_b, 5), Verdict::within_noise);
-  // One run each: no interval, no verdict either way.
-  EXPECT_EQ(verdict(estimate_over_runs({10}), estimate_over_runs({20}), 5), Verdict::unknown);
-  EXPECT_NEAR(change_pct(10, 12), 20, 1e-12);
+TEST(MannWhitney, ExactSmallSamples) {
+  // Fully separated 3 and 3: the two extreme of C(6, 3) = 20 orderings, p = 0.1.
+  EXPECT_NEAR(mann_whitney_p({1, 2, 3}, {4, 5, 6}), 0.1, 1e-12);
+  EXPECT_NEAR(mann_whitney_min_p(3, 3), 0.1, 1e-12);
+  EXPECT_NEAR(mann_whitney_p({1, 2, 3, 4}, {5, 6, 7, 8}), 2.0 / 70, 1e-12);
+  EXPECT_NEAR(mann_whitney_p({5, 6, 7, 8}, {1, 2, 3, 4}), 2.0 / 70, 1e-12) << "two-sided";
+  // U = 1 of 3 and 3: orderings with U <= 1 are 2 of 20, both tails: 0.2.
+  EXPECT_NEAR(mann_whitney_p({1, 2, 4}, {3, 5, 6}), 0.2, 1e-12);
+  // Interleaved: no evidence.
+  EXPECT_EQ(mann_whitney_p({1, 3, 5, 7}, {2, 4, 6, 8}), mann_whitney_p({2, 4, 6, 8}, {1, 3, 5, 7}));
+  EXPECT_GT(mann_whitney_p({1, 3, 5, 7}, {2, 4, 6, 8}), 0.5);
 }
+
+TEST(MannWhitney, NormalApproximationWithTies) {
+  // 30 against 30, separated, with ties: far below 0.05; identical samples: 1.
+  std::vector<double> a, b;
+  for (int i = 0; i < 30; ++i) {
+    a.push_back(i % 5);
+    b.push_back(10 + i % 5);
+  }
+  EXPECT_LT(mann_whitney_p(a, b), 1e-6);
+  EXPECT_NEAR(mann_whitney_p(a, a), 1.0, 1e-12);
+}
+
+TEST(MannWhitney, HodgesLehmannShift) {
+  EXPECT_DOUBLE_EQ(hodges_lehmann_shift({1, 2, 3}, {11, 12, 13}), 10);
+  EXPECT_DOUBLE_EQ(median_of({3, 1, 2, 10}), 2.5);
+}
+
+// Deterministic lognormal frame-time samples: median `median`, relative spread `sd`
+// (Box-Muller over a fixed 64-bit generator, so the rates below do not depend on the
+// standard library's distributions).
+struct Samples {
+  std::mt19937_64 rng{12345};
+  std::vector<double> draw(size_t n, double median, double sd) {
+    std::vector<double> v;
+    for (size_t i = 0; i < n; ++i) {
+      const double u1 = (double(rng() >> 11) + 0.5) / 9007199254740992.0;
+      const double u2 = (double(rng() >> 11) + 0.5) / 9007199254740992.0;
+      const double z = std::sqrt(-2 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+      v.push_back(median * std::exp(sd * z));
+    }
+    return v;
+  }
+};
+
+// How often `trials` comparisons of n passes against n passes, B's median `shift` times A's,
+// are called a regression or an improvement.
+double called_rate(size_t n, double shift, double sd, double threshold, int trials) {
+  Samples s;
+  int called = 0;
+  for (int t = 0; t < trials; ++t) {
+    const Decision d = decide(s.draw(n, 1.0, sd), s.draw(n, shift, sd), threshold, "");
+    called += d.verdict == Verdict::regression || d.verdict == Verdict::improvement;
+  }
+  return double(called) / trials;
+}
+
+TEST(Decide, IdenticalDistributionsAreCalledDifferentAtMostAtTheSignificance) {
+  // docs/usage.md "Comparing runs": at most 5%, the test's level (the exact test is
+  // conservative), with or without the threshold on top; the rate is estimated from 4000
+  // trials, so allowed three of its standard errors (1 point) above the level.
+  const int trials = 4000;
+  const double allowed = kSignificance + 3 * std::sqrt(kSignificance * (1 - kSignificance) / trials);
+  for (size_t n : {5, 10, 20})
+    for (double threshold : {0.0, 5.0})
+      EXPECT_LE(called_rate(n, 1.0, 0.10, threshold, trials), allowed) << n << " passes, threshold " << threshold;
+}
+
+TEST(Decide, ShiftedDistributionsAreFound) {
+  // 20% slower under 5% noise: found almost always with 5 passes each.
+  EXPECT_GE(called_rate(5, 1.2, 0.05, 5.0, 2000), 0.95);
+  // 10% slower under 10% noise needs more passes: 20 each find it most of the time.
+  EXPECT_GE(called_rate(20, 1.1, 0.10, 5.0, 2000), 0.6);
+  Samples s;
+  const Decision d = decide(s.draw(8, 1.0, 0.02), s.draw(8, 1.5, 0.02), 5.0, "");
+  EXPECT_EQ(d.verdict, Verdict::regression);
+  EXPECT_NEAR(d.shift_pct, 50, 5);
+  EXPECT_LT(d.p, 0.01);
+  EXPECT_EQ(decide(s.draw(8, 1.5, 0.02), s.draw(8, 1.0, 0.02), 5.0, "").verdict, Verdict::improvement);
+  // Beyond the noise but within the threshold: unchanged.
+  EXPECT_EQ(decide(s.draw(8, 1.0, 0.001), s.draw(8, 1.02, 0.001), 5.0, "").verdict, Verdict::unchanged);
+  // Beyond the threshold but not told apart from noise.
+  EXPECT_EQ(decide({1.0, 1.5, 0.7, 1.3, 0.9}, {1.6, 0.8, 1.4, 1.1, 1.2}, 5.0, "").verdict, Verdict::within_noise);
+}
+
+TEST(Decide, TooFewSamplesOrPoorConditionsAreInconclusive) {
+  // 3 passes against 3: even fully separated, p >= 0.1.
+  const Decision few = decide({1, 1.01, 1.02}, {2, 2.01, 2.02}, 5.0, "");
+  EXPECT_EQ(few.verdict, Verdict::inconclusive);
+  EXPECT_NE(few.why.find("too few samples (3 and 3)"), std::string::npos) << few.why;
+  EXPECT_EQ(decide({1}, {2}, 5.0, "").verdict, Verdict::inconclusive);
+  Samples s;
+  const Decision busy = decide(s.draw(10, 1.0, 0.01), s.draw(10, 2.0, 0.01), 5.0, "A: host busy before the run (90%)");
+  EXPECT_EQ(busy.verdict, Verdict::inconclusive) << "never REGRESSION on a busy host";
+  EXPECT_EQ(busy.why, "poor conditions (A: host busy before the run (90%))");
+  EXPECT_NEAR(busy.shift_pct, 100, 5) << "the shift is still measured";
+}
+
+TEST(Verdict, ChangeInPercent) { EXPECT_NEAR(change_pct(10, 12), 20, 1e-12); }
 
 FrameStats frame(double ms, const std::string& op, uint32_t repeats = 1, double noise = 0) {
   FrameStats s;

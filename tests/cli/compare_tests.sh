@@ -15,7 +15,11 @@ run "$tmp/skip.h5" --skip-adjacent
 run "$tmp/margin.h5" --box-margin 0.5
 run "$tmp/cold-start.h5" --warmup-ms 0
 run "$tmp/c3.h5" --repeat 3
+run "$tmp/c5.h5" --repeat 5
 run "$tmp/brute3.h5" --repeat 3 --pipeline brute
+# Fronts updated every 2nd and every 3rd frame: one identity, other plans.
+run "$tmp/cycle2.h5" --pipeline b --front-cycle 2
+run "$tmp/cycle3.h5" --pipeline b --front-cycle 3
 
 # Same configuration twice. Whether two runs' times differ is the machine's doing, not
 # compare's (on a shared machine one-pass runs differed by 60%), so the verdict is checked
@@ -41,20 +45,25 @@ has "fatter boxes: other pairs" "$tmp/out" "\*\*DIFFER in [1-9][0-9]* of 6 frame
 
 # Two pipelines, allowed as a mismatch: the same pairs, and brute force (2-3x slower here)
 # never an improvement. Whether it is a regression depends on the machine's noise.
-check "other pipeline compared, flagged" 0 "\| (REGRESSION|within-noise) \| same \(6 frames\) \| \*\*MISMATCH: pipeline: 'c' in A, 'brute' in B\*\*" -- \
+check "other pipeline compared, flagged" 0 "\| (REGRESSION|within-noise|inconclusive) \| same \(6 frames\) \| \*\*MISMATCH: pipeline: 'c' in A, 'brute' in B\*\*" -- \
   "$cdbench" compare "$tmp/c3.h5" "$tmp/brute3.h5" --allow-mismatch
 has "the interval is over the passes" "$tmp/out" "over passes n=3"
 
-# A known regression, independent of the machine: a --repeat 3 run whose passes agreed
-# within 1% (noise set so), against a copy with every frame 50% slower.
-$python - "$tmp/c3.h5" "$tmp/slow.h5" "$tmp/base.h5" <<'PY'
+# A known regression, independent of the machine: a --repeat 5 run whose passes agree
+# within 1% (set so), in good conditions (set so: this machine's load is not the point),
+# against a copy with every pass 50% slower.
+$python - "$tmp/c5.h5" "$tmp/slow.h5" "$tmp/base.h5" <<'PY'
 import shutil, sys
 import h5py
 src, slow, base = sys.argv[1:]
 for path, factor in ((base, 1.0), (slow, 1.5)):
     shutil.copy(src, path)
     with h5py.File(path, "r+") as f:
-        f["frames/t_total_ms"][...] = f["frames/t_total_ms"][()] * factor
+        frames = f["frames/t_total_ms"][()]
+        passes = f["passes/t_total_ms"]
+        for p in range(passes.shape[1]):
+            passes[:, p] = frames * factor * (1 + 0.002 * p)
+        f["frames/t_total_ms"][...] = passes[()].mean(axis=1)
         f["frames/t_total_noise"][...] = 0.01
         f.attrs["noise_warning"] = ""  # the copied run's warning and conditions no longer apply
         f.attrs["conditions"] = "good"
@@ -68,6 +77,58 @@ check "above the threshold it is no regression" 0 "\| unchanged \|" -- \
   "$cdbench" compare "$tmp/base.h5" "$tmp/slow.h5" --threshold 60 --fail-on-regression
 check "and the other way an improvement" 0 "\| -33\.3% \| improvement \|" -- \
   "$cdbench" compare "$tmp/slow.h5" "$tmp/base.h5" --fail-on-regression
+# Poor conditions recorded: whatever the times, no verdict, and --fail-on-regression passes.
+$python - "$tmp/base.h5" "$tmp/busy.h5" <<'PY'
+import shutil, sys
+import h5py
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    f.attrs["conditions"] = "poor"
+    f.attrs["conditions_notes"] = "host busy before the run (90%)"
+PY
+check "a busy host recorded: inconclusive, not a regression" 0 \
+  "\| \+50\.0% \| inconclusive \| same \(6 frames\) \| poor conditions \(A: host busy before the run \(90%\)\) \|$" -- \
+  "$cdbench" compare "$tmp/busy.h5" "$tmp/slow.h5" --fail-on-regression
+check "report shows the poor conditions" 0 "busy\.h5 \|.*\| poor conditions: host busy before the run \(90%\) \| complete \|$" -- \
+  "$cdbench" report "$tmp/busy.h5"
+# Three passes against three cannot reach p < 0.05 even fully separated (p = 0.1).
+$python - "$tmp/c3.h5" "$tmp/three.h5" "$tmp/three-slow.h5" <<'PY'
+import shutil, sys
+import h5py
+src, fast, slow = sys.argv[1:]
+for path, factor in ((fast, 1.0), (slow, 2.0)):
+    shutil.copy(src, path)
+    with h5py.File(path, "r+") as f:
+        passes = f["passes/t_total_ms"]
+        for p in range(passes.shape[1]):
+            passes[:, p] = factor * (1 + 0.01 * p)
+        f.attrs["noise_warning"] = ""
+        f.attrs["conditions"] = "good"
+PY
+check "three passes each: too few to decide" 0 "\| inconclusive \|.*too few samples \(3 and 3\)" -- \
+  "$cdbench" compare "$tmp/three.h5" "$tmp/three-slow.h5" --fail-on-regression
+# A file of schema 4 keeps only the passes' means: not tested over passes.
+$python - "$tmp/base.h5" "$tmp/schema4.h5" <<'PY'
+import shutil, sys
+import h5py
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    del f["passes"]
+    f.attrs["schema_version"] = 4
+    for name in ("conditions", "conditions_notes", "host_busy_before", "host_busy_after", "host_warning"):
+        del f.attrs[name]
+PY
+check "a schema 4 file still compares, inconclusive" 0 "\| inconclusive \|.*passes not kept" -- \
+  "$cdbench" compare "$tmp/schema4.h5" "$tmp/slow.h5" --fail-on-regression
+check "report reads the schema 4 file" 0 "schema4\.h5 \|.*\| 5 \(means only\) \|" -- "$cdbench" report "$tmp/schema4.h5"
+# Other plans: the runs pair (--front-cycle is a tuning knob), flagged with the frames.
+check "other plans are flagged with their frames" 0 "\*\*PLANS DIFFER at frames [0-9][-0-9,]*\*\*" -- \
+  "$cdbench" compare "$tmp/cycle2.h5" "$tmp/cycle3.h5"
+"$cdbench" compare "$tmp/cycle2.h5" "$tmp/cycle3.h5" --csv >"$tmp/plans.csv" 2>/dev/null
+check "the CSV names the frames" 0 "^[1-9][-0-9,]*$" -- \
+  "$python" -c "import csv, sys; print(next(csv.DictReader(open(sys.argv[1])))['plan_differ'])" "$tmp/plans.csv"
+check "one plan: no flag" 0 "^$" -- \
+  "$python" -c "import csv, sys, subprocess; print(next(csv.DictReader(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[2], '--csv'], capture_output=True, text=True).stdout.splitlines()))['plan_differ'])" "$cdbench" "$tmp/cycle2.h5"
 # The stored noise warning and content hash, set in copies: compare flags the noisy run and
 # refuses other frames under the same scene name.
 $python - "$tmp/base.h5" "$tmp/noisy.h5" "$tmp/otherinput.h5" <<'PY'
@@ -106,7 +167,7 @@ if [[ "$(head -1 "$tmp/csv1")" == "$(head -1 "$tmp/csv2")" && "$(head -1 "$tmp/c
 else
   fail "compare CSV headers differ: $(head -1 "$tmp/csv1") / $(head -1 "$tmp/csv2")"
 fi
-has "CSV row of the regression" "$tmp/csv2" ",50\.0000,REGRESSION,6,0,same,,"
+has "CSV row of the regression" "$tmp/csv2" ",50\.0000,REGRESSION,0\.0079,,,6,0,same,,"
 has "CSV row of the mismatch" "$tmp/csv3" ",6,0,same,\"pipeline: 'c' in A, 'brute' in B\","
 check "JSON parses" 0 '"verdict": "REGRESSION"' -- \
   bash -c "'$cdbench' compare '$tmp/base.h5' '$tmp/slow.h5' --json 2>/dev/null | $python -m json.tool"
@@ -114,7 +175,7 @@ has "JSON has the input hash comparison" "$tmp/out" '"input_hash": "same"'
 
 # report: the commit column, the label, the same CSV columns for any set of files.
 check "report has the commit column" 0 "\| label \| commit \| input \| (warning \| )?status \|" -- "$cdbench" report "$tmp/a.h5" "$tmp/skip.h5"
-has "report shows the label and commit" "$tmp/out" "a\.h5 \|.*\| before \| [0-9a-f]{12}(-dirty)? \| [0-9a-f]{8} \| ( \| |noisy \| )?complete \|"
+has "report shows the label and commit" "$tmp/out" "a\.h5 \|.*\| before \| [0-9a-f]{12}(-dirty)? \| [0-9a-f]{8} \| ( \| |noisy \| |poor conditions: [^|]* \| )?complete \|"
 "$cdbench" report --csv "$tmp/a.h5" >"$tmp/rcsv1"
 run "$tmp/checked.h5" --check every --pipeline b
 "$cdbench" report --csv "$tmp/a.h5" "$tmp/checked.h5" "$tmp/margin.h5" >"$tmp/rcsv2"
