@@ -1,6 +1,7 @@
 #include "results_table.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -99,6 +100,14 @@ std::string number(double x, const char* format = "%.3f") {
   char text[64];
   std::snprintf(text, sizeof text, format, x);
   return text;
+}
+
+// For CSV: the shortest text that reads back as the same double, so nothing is rounded away.
+std::string exact(double x) {
+  if (std::isnan(x)) return "";
+  char text[64];
+  const auto end = std::to_chars(text, text + sizeof text, x).ptr;
+  return std::string(text, end);
 }
 
 // Phases in the pipeline's order; names this build does not know go last, by name.
@@ -330,6 +339,8 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     return row.unreadable.empty() && row.r.has_summary && row.r.measured_frames > 0;
   };
   const auto has_check = [&stats](const Row& row) { return stats(row) && row.r.checked_frames > 0; };
+  // Markdown rounds for reading; CSV keeps every digit.
+  const auto shown = [csv](double x, const char* format = "%.3f") { return csv ? exact(x) : number(x, format); };
   std::vector<Column> columns;
   const auto text = [&columns](std::string name, CellOf cell) { columns.push_back({std::move(name), true, std::move(cell)}); };
   const auto numeric = [&columns](std::string name, CellOf cell) {
@@ -351,28 +362,34 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   for (const auto& o : options)
     text("--" + o, [&read, o](const Row& row) { return read(row) ? option_text(row.r.options, o) : ""; });
   numeric("frames", [&read](const Row& row) { return read(row) ? std::to_string(row.r.frames_written) : ""; });
-  numeric("mean_ms", [&](const Row& row) { return number(stats(row) ? row.r.mean_ms : none); });
+  numeric("mean_ms", [&](const Row& row) { return shown(stats(row) ? row.r.mean_ms : none); });
   // The noise beside the time it qualifies: with one pass there is none to report.
   numeric("noise_%", [&](const Row& row) {
-    return number(stats(row) && row.r.repeats > 1 ? 100.0 * row.r.noise_median : none, "%.1f");
+    return shown(stats(row) && row.r.repeats > 1 ? 100.0 * row.r.noise_median : none, "%.1f");
   });
-  numeric("median_ms", [&](const Row& row) { return number(stats(row) ? row.r.median_ms : none); });
-  numeric("p95_ms", [&](const Row& row) { return number(stats(row) ? row.r.p95_ms : none); });
+  numeric("median_ms", [&](const Row& row) { return shown(stats(row) ? row.r.median_ms : none); });
+  numeric("p95_ms", [&](const Row& row) { return shown(stats(row) ? row.r.p95_ms : none); });
+  if (csv) {
+    numeric("measured_frames",
+            [&stats](const Row& row) { return stats(row) ? std::to_string(row.r.measured_frames) : ""; });
+    numeric("min_ms", [&](const Row& row) { return shown(stats(row) ? row.r.min_ms : none); });
+    numeric("first_frame_ms", [&](const Row& row) { return shown(row.r.has_summary ? row.r.first_ms : none); });
+  }
   for (const auto& p : phases)
-    numeric(p + "_ms", [&none, p](const Row& row) {
+    numeric(p + "_ms", [&none, &shown, p](const Row& row) {
       double mean = none;
       for (const auto& [name, m] : row.r.phase_means)
         if (name == p) mean = m;
-      return number(mean);
+      return shown(mean);
     });
-  numeric("pairs", [&](const Row& row) { return number(stats(row) ? row.r.pairs_mean : none, "%.0f"); });
+  numeric("pairs", [&](const Row& row) { return shown(stats(row) ? row.r.pairs_mean : none, "%.0f"); });
   if (checked) {
-    numeric("recall_min", [&](const Row& row) { return number(has_check(row) ? row.r.recall_min : none, "%.6f"); });
+    numeric("recall_min", [&](const Row& row) { return shown(has_check(row) ? row.r.recall_min : none, "%.6f"); });
     numeric("precision_min",
-            [&](const Row& row) { return number(has_check(row) ? row.r.precision_min : none, "%.6f"); });
+            [&](const Row& row) { return shown(has_check(row) ? row.r.precision_min : none, "%.6f"); });
     numeric("contacts", [&](const Row& row) { return has_check(row) ? std::to_string(row.r.contacts) : ""; });
     numeric("contact_precision",
-            [&](const Row& row) { return number(has_check(row) ? row.r.contact_precision : none, "%.6f"); });
+            [&](const Row& row) { return shown(has_check(row) ? row.r.contact_precision : none, "%.6f"); });
   }
   // How the passes' front plans were made, beside the times they qualify.
   if (csv) {
@@ -393,7 +410,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     const std::string n = std::isnan(row.r.repeats) ? "1" : std::to_string(uint64_t(row.r.repeats));
     return row.r.passes_kept || n == "1" ? n : n + " (means only)";
   });
-  numeric("syncs", [&](const Row& row) { return number(stats(row) ? row.r.host_syncs_mean : none, "%.2f"); });
+  numeric("syncs", [&](const Row& row) { return shown(stats(row) ? row.r.host_syncs_mean : none, "%.2f"); });
   numeric(csv ? "peak_bytes" : "peak_MiB", [csv](const Row& row) {
     return !row.r.has_summary ? ""
            : csv              ? std::to_string(row.r.peak_bytes)
@@ -404,8 +421,8 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     text("conditions", [](const Row& row) { return row.r.conditions; });
     text("conditions_notes", [](const Row& row) { return row.r.conditions_notes; });
     text("host_warning", [](const Row& row) { return row.r.host_warning; });
-    numeric("host_busy_before", [](const Row& row) { return number(row.r.host_busy_before, "%.17g"); });
-    numeric("host_busy_after", [](const Row& row) { return number(row.r.host_busy_after, "%.17g"); });
+    numeric("host_busy_before", [](const Row& row) { return exact(row.r.host_busy_before); });
+    numeric("host_busy_after", [](const Row& row) { return exact(row.r.host_busy_after); });
     text("options_json", [&read](const Row& row) {
       if (!read(row)) return std::string();
       nlohmann::json shown = nlohmann::json::object();

@@ -4,9 +4,16 @@
 Reads only the schema (docs/results-format.md): every /frames dataset is a column,
 whatever columns a file has. Needs h5py and numpy (Debian: python3-h5py, python3-numpy).
 
-  scripts/read_results.py results/run.h5 [more.h5 ...] [--summary] [--csv]
+  scripts/read_results.py results/run.h5 [more.h5 ...] [--summary] [--params]
+  scripts/read_results.py --csv results/run.h5 [more.h5 ...]
+
+--csv prints CSV alone (for csv.DictReader and the like): a header, then one row per frame
+of every file, the file's path in the first column `file`, then every /frames column of
+the files in the first file's order (a column some file lacks is empty there), numbers as
+the shortest text that reads back as the same value.
 """
 import argparse
+import csv
 import json
 import math
 import sys
@@ -39,15 +46,43 @@ def frame_columns(f):
     return list(f["frames"].keys())
 
 
-def print_frames(f, csv):
+def exact(value):
+    """A cell of --csv: floats as the shortest text that reads back as the same double."""
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float):
+        return repr(value)
+    return text(value)
+
+
+def print_csv(paths):
+    """Every file's /frames as one CSV table; 1 when a file cannot be read (named on stderr)."""
+    tables, names, rc = [], [], 0
+    for path in paths:
+        try:
+            with h5py.File(path, "r") as f:
+                if int(f.attrs.get("schema_version", 0)) == 0:
+                    raise ValueError("not a cdbench results file (no schema_version attribute)")
+                columns = {n: f["frames"][n][()] for n in frame_columns(f)}
+        except (OSError, KeyError, ValueError) as e:
+            print(f"read_results: {path}: {e}", file=sys.stderr)
+            rc = 1
+            continue
+        names += [n for n in columns if n not in names]
+        tables.append((path, columns))
+    out = csv.writer(sys.stdout, lineterminator="\n")
+    out.writerow(["file"] + names)
+    for path, columns in tables:
+        rows = len(columns["frame"])
+        for i in range(rows):
+            out.writerow([path] + [exact(columns[n][i]) if n in columns else "" for n in names])
+    return rc
+
+
+def print_frames(f):
     names = frame_columns(f)
     columns = [f["frames"][n][()] for n in names]
     rows = len(columns[0]) if columns else 0
-    if csv:
-        print(",".join(names))
-        for i in range(rows):
-            print(",".join(text(c[i]) for c in columns))
-        return
     cells = [[text(c[i]) for c in columns] for i in range(rows)]
     widths = [max([len(n)] + [len(r[k]) for r in cells]) for k, n in enumerate(names)]
     print("  ".join(n.rjust(w) for n, w in zip(names, widths)))
@@ -102,7 +137,7 @@ def show(path, args):
         if args.params:
             print("params: " + json.dumps(json.loads(text(f.attrs["params_json"])), indent=2, sort_keys=True))
         if not args.summary:
-            print_frames(f, args.csv)
+            print_frames(f)
         print_summary(f)
         if "pairs" in f:
             print(f"pairs saved for {len(f['pairs'])} frames")
@@ -113,9 +148,12 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("files", nargs="+", help="results files written by cdbench run --out")
     parser.add_argument("--summary", action="store_true", help="no per-frame table")
-    parser.add_argument("--csv", action="store_true", help="per-frame table as CSV")
+    parser.add_argument("--csv", action="store_true",
+                        help="the per-frame tables of all files as one CSV table, nothing else")
     parser.add_argument("--params", action="store_true", help="print every parameter of the run")
     args = parser.parse_args()
+    if args.csv:
+        return print_csv(args.files)
     rc = 0
     for path in args.files:
         try:

@@ -147,6 +147,8 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   r.mean_ms = h5::read_double_attr(s, "t_total_ms_mean", st);
   r.median_ms = h5::read_double_attr(s, "t_total_ms_median", st);
   r.p95_ms = h5::read_double_attr(s, "t_total_ms_p95", st);
+  // Files written before the minimum was kept have none.
+  r.min_ms = h5::has_attr(s, "t_total_ms_min") ? h5::read_double_attr(s, "t_total_ms_min", st) : std::nan("");
   r.first_ms = h5::read_double_attr(s, "first_frame_ms", st);
   r.pairs_mean = h5::read_double_attr(s, "pairs_mean", st);
   r.peak_bytes = uint64_t(h5::read_int_attr(s, "peak_bytes", st));

@@ -36,7 +36,7 @@ struct ResultsOverview {
   uint64_t frames_written = 0;  // rows in /frames
   bool has_summary = false;
   uint64_t measured_frames = 0;
-  double mean_ms = 0, median_ms = 0, p95_ms = 0, first_ms = 0, pairs_mean = 0;
+  double mean_ms = 0, median_ms = 0, p95_ms = 0, min_ms = 0, first_ms = 0, pairs_mean = 0;
   uint64_t peak_bytes = 0;
   // Written by newer files only (NaN when absent): --repeat passes and the median noise
   // (relative std. dev.), host-device synchronizations per frame.

@@ -112,7 +112,7 @@ check "check counts true contacts" 0 "contacts +[0-9]+ of [0-9]+ checked pairs t
 check "contacts without co-vertex pairs" 0 "contacts +[0-9]+ of [0-9]+ checked pairs truly intersect" -- "$cdbench" run --device cpu --quiet --frames 0:3 --pipeline hash --check every --skip-adjacent
 check "contacts into a results file" 0 "results: " -- "$cdbench" run --device cpu --quiet --frames 0:2 --check every --out "$tmp/contacts.h5"
 check "contacts in the results file" 0 "contacts +[0-9]+ of [0-9]+ checked pairs: contact precision 0\\.[0-9]+" -- "${read_results[@]}" --summary "$tmp/contacts.h5"
-check "contact columns in the results file" 0 "^frame,.*,contacts,contact_precision," -- "${read_results[@]}" --csv "$tmp/contacts.h5"
+check "contact columns in the results file" 0 "^file,frame,.*,contacts,contact_precision," -- "${read_results[@]}" --csv "$tmp/contacts.h5"
 check "bad check interval" 2 "expected every, off or a positive" -- "$cdbench" run --device cpu --quiet --check sometimes
 check "several pipelines in one run" 0 "pipeline: c on cpu" -- "$cdbench" run --device cpu --quiet --frames 0:3 --pipeline bvh,static,c
 check "several pipelines need a pattern" 2 "\\{pipeline\\}" -- "$cdbench" run --device cpu --quiet --pipeline bvh,c --out "$tmp/x.h5"

@@ -185,6 +185,27 @@ cols1=$(head -1 "$tmp/rcsv1" | tr ',' '\n' | wc -l)
 bad=$($python -c "import csv,sys; print(sum(len(r) != $cols1 for r in csv.reader(open('$tmp/rcsv2'))))")
 [[ $bad == 0 ]] && echo "ok   every report CSV row has $cols1 cells" || fail "$bad report CSV rows of another width"
 has "report CSV carries the label and commit" "$tmp/rcsv1" "a\.h5,funnel\[res=16\],c,cpu: [^,]*,before,[0-9a-f]{12}"
+# Full precision: every statistic reads back as the very double /summary holds.
+check "report CSV has the summary's doubles exactly" 0 "^exact$" -- "$python" - "$tmp/rcsv1" "$tmp/a.h5" <<'PY'
+import csv, sys
+import h5py
+row = next(csv.DictReader(open(sys.argv[1])))
+s = h5py.File(sys.argv[2], "r")["summary"].attrs
+pairs = {"mean_ms": "t_total_ms_mean", "median_ms": "t_total_ms_median", "p95_ms": "t_total_ms_p95",
+         "min_ms": "t_total_ms_min", "first_frame_ms": "first_frame_ms", "measured_frames": "measured_frames"}
+bad = [k for k, a in pairs.items() if float(row[k]) != float(s[a])]
+print("differ: " + ", ".join(bad) if bad else "exact")
+PY
+# read_results --csv is CSV alone: csv.DictReader reads every frame of every file.
+"$python" "$root/scripts/read_results.py" --csv "$tmp/a.h5" "$tmp/c5.h5" >"$tmp/frames.csv"
+check "read_results --csv is pure CSV" 0 "^12 rows, exact$" -- "$python" - "$tmp/frames.csv" "$tmp/a.h5" <<'PY'
+import csv, sys
+import h5py
+rows = list(csv.DictReader(open(sys.argv[1])))
+times = h5py.File(sys.argv[2], "r")["frames/t_total_ms"][()]
+mine = [float(r["t_total_ms"]) for r in rows if r["file"] == sys.argv[2]]
+print(f"{len(rows)} rows, " + ("exact" if mine == list(times) else f"differ: {mine} vs {list(times)}"))
+PY
 
 # run --json: stdout is the JSON alone, the human lines on stderr.
 "$cdbench" run "${scene[@]}" --label json-run --json >"$tmp/json.out" 2>"$tmp/json.err"
