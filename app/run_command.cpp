@@ -207,9 +207,9 @@ std::string results_path(const std::string& pattern, const std::string& pipeline
 // The results file of each pipeline, checked before any work: two pipelines writing the
 // same file (--pipeline c,c) would leave one run's results, and an existing file is kept
 // unless --overwrite. Per pipeline: whether its file exists (and is then replaced only once
-// the new run completes).
-std::vector<bool> check_results_paths(const RunOptions& r, const std::vector<std::string>& names) {
-  std::vector<bool> existing;
+// the new run completes), and the lock that keeps other runs off it while this one lives.
+std::vector<OutputClaim> check_results_paths(const RunOptions& r, const std::vector<std::string>& names) {
+  std::vector<OutputClaim> existing;
   if (r.out.empty()) return existing;
   std::vector<std::string> seen;
   for (const auto& name : names) {
@@ -370,7 +370,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::vector<std::unique_ptr<Pipeline>> pipelines = make_pipelines(o, names, device);
   const PlanOfPipeline plans = load_plans(o, names);
   give_plans(pipelines, plans, names);
-  const std::vector<bool> existing = check_results_paths(r, names);
+  const std::vector<OutputClaim> existing = check_results_paths(r, names);
   print_environment(device);
   const std::string busy = host_load_warning();
   if (!busy.empty()) std::printf("warning: %s\n", busy.c_str());
@@ -432,7 +432,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
       info.plan_source = plans[p] ? plans[p]->source : "";
       info.copy_gbps = copy_gbps;
       info.precision_warning = spacing_warning;
-      out.emplace(one.out, info, existing[p] ? ResultsFile::Placement::staged : ResultsFile::Placement::in_place);
+      out.emplace(one.out, info, existing[p].existed ? ResultsFile::Placement::staged : ResultsFile::Placement::in_place);
     }
     RunLoopOptions loop = r.loop;
     loop.frames_kept = cached != nullptr;

@@ -58,6 +58,31 @@ case $(report_status "$d/r.h5.incomplete") in
   *) fail "staged file: $(report_status "$d/r.h5.incomplete")" ;;
 esac
 
+# --- two runs onto one file: the second refused, the first's file (and an older one) intact ---
+# writer_busy FILE [OPTIONS...]: a run writing FILE, stopped once a second run onto it was
+# refused; the first's file reads as incomplete (SIGTERM), the second changed nothing.
+writer_busy() {
+  local f=$1; shift
+  "$cdbench" run "${endless[@]}" --out "$f" "$@" >"$tmp/first.out" 2>&1 &
+  local pid=$!
+  for _ in $(seq 600); do grep -q "^frame  *2 " "$tmp/first.out" && break; sleep 0.1; done
+  check "second run onto $(basename "$f") $* refused" 2 "^cdbench: error: $f is being written by another cdbench run \(pid $pid\)" -- \
+    "$cdbench" run "${small[@]}" --pipeline bvh --out "$f" "$@"
+  kill -TERM "$pid"
+  wait "$pid"
+}
+writer_busy "$d/busy.h5"
+[[ $(report_status "$d/busy.h5") == incomplete*SIGTERM* ]] && echo "ok   the first run's file is intact" || fail "first run's file: $(report_status "$d/busy.h5")"
+[[ -e $d/busy.h5.lock ]] && fail "lock file left after the run" || echo "ok   no lock file left"
+before=$(md5sum <"$d/r.h5")
+writer_busy "$d/r.h5" --overwrite
+[[ $(md5sum <"$d/r.h5") == "$before" ]] && echo "ok   the older complete file unchanged by both" || fail "older file changed: $(report_status "$d/r.h5")"
+[[ $(report_status "$d/r.h5.incomplete") == incomplete*SIGTERM* ]] && echo "ok   the first run's staged file is intact" || fail "staged file: $(report_status "$d/r.h5.incomplete")"
+rm -f "$d/r.h5.incomplete"
+# A lock file a killed run left behind holds nobody back.
+echo 99999999 >"$d/stale.h5.lock"
+check "a stale lock file is taken over" 0 "^results: $d/stale.h5 \(4 frames\)" -- "$cdbench" run "${small[@]}" --out "$d/stale.h5"
+
 # --- {pipeline}: one file per pipeline, every placeholder replaced ---
 check "two pipelines onto one file refused" 2 "pipelines c and c would both write $d/dup-c.h5" -- \
   "$cdbench" run "${small[@]}" --pipeline c,c --out "$d/dup-{pipeline}.h5"
