@@ -39,17 +39,12 @@ InterruptScope::InterruptScope(Mode mode) {
   action.sa_flags = SA_RESETHAND | SA_RESTART;
   sigaction(SIGINT, &action, &previous_int_);
   sigaction(SIGTERM, &action, &previous_term_);
-  struct sigaction ignore {};
-  ignore.sa_handler = SIG_IGN;
-  sigemptyset(&ignore.sa_mask);
-  sigaction(SIGXFSZ, &ignore, &previous_xfsz_);
 }
 
 InterruptScope::~InterruptScope() {
   exit_at_once = 0;
   sigaction(SIGINT, &previous_int_, nullptr);
   sigaction(SIGTERM, &previous_term_, nullptr);
-  sigaction(SIGXFSZ, &previous_xfsz_, nullptr);
 }
 
 void InterruptScope::defer() { exit_at_once = 0; }

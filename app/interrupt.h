@@ -14,9 +14,7 @@ namespace cdb {
 class InterruptScope {
  public:
   enum class Mode { record, exit_at_once };
-  // Installs the handlers. SIGXFSZ (a file size limit, ulimit -f) is ignored while the
-  // scope lives, so a write past the limit fails with EFBIG and is reported like a full
-  // disk instead of killing the process mid-write.
+  // Installs the handlers.
   explicit InterruptScope(Mode mode = Mode::record);
   ~InterruptScope();  // restores the ones there before
   InterruptScope(const InterruptScope&) = delete;
@@ -27,7 +25,7 @@ class InterruptScope {
   int signal() const;
 
  private:
-  struct sigaction previous_int_ {}, previous_term_ {}, previous_xfsz_ {};
+  struct sigaction previous_int_ {}, previous_term_ {};
 };
 
 const char* signal_name(int signal);

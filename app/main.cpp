@@ -3,6 +3,7 @@
 // compare_command; report in results_table); the options they share in options.h. Nothing algorithmic lives here.
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -33,6 +34,10 @@ int main(int argc, char** argv) {
   // the timed frames (docs/experiments.md). An environment that sets CUDA_MODULE_LOADING
   // keeps its choice; sweep cells inherit this one.
   setenv("CUDA_MODULE_LOADING", "EAGER", 0);
+  // A write past the file size limit (ulimit -f) fails with EFBIG and is reported like a
+  // full disk, by every command that writes (run --out, scenes generate, verify
+  // --write-pairs), instead of killing the process mid-write with its file cut off.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"cdbench: GPU broad-phase collision detection benchmark for deforming meshes"};
   // Set before the subcommands are added: each takes its parent's formatter.
   app.formatter(std::make_shared<WrappedHelp>(help_width()));

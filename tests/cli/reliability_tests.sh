@@ -153,6 +153,48 @@ fi
 mkdir -p "$tmp/limited"
 disk_full "file size limit (ulimit -f 200)" "$tmp/limited" 200
 
+# A short run whose file the disk (or the limit) cuts off at its end, at several sizes: exit
+# 1, and the file left is one report reads as incomplete, or none, said so.
+end_full() {  # end_full NAME DIR [ULIMIT_KB]
+  local name=$1 dir=$2 limit=${3:-} f=$2/end.h5
+  rm -f "$f"
+  if [[ -n $limit ]]; then
+    (ulimit -f "$limit"; exec "$cdbench" run --device cpu --quiet --scene funnel --set res=16 --frames 0:10 --out "$f") >"$tmp/end.out" 2>&1
+  else
+    "$cdbench" run --device cpu --quiet --scene funnel --set res=16 --frames 0:10 --out "$f" >"$tmp/end.out" 2>&1
+  fi
+  local rc=$? state="no file"
+  [[ -e $f ]] && state=$(report_status "$f")
+  if [[ $rc -eq 1 ]] && grep -q "writing results to $f failed" "$tmp/end.out" &&
+     { { [[ $state == incomplete* ]] && grep -q "results (incomplete.*): $f$" "$tmp/end.out"; } ||
+       { [[ $state == "no file" ]] && ! grep -q "results (incomplete" "$tmp/end.out"; }; }; then
+    echo "ok   $name: $state"
+  else
+    fail "$name: rc=$rc, $state"; sed 's/^/    /' "$tmp/end.out" | grep -v "^    frame" | tail -6
+  fi
+}
+for size in 64k 100k 150k; do
+  if mount -t tmpfs -o size=$size tmpfs "$tmp/tiny" 2>"$tmp/mount.err"; then
+    end_full "run's end on a full disk ($size tmpfs)" "$tmp/tiny"
+    umount "$tmp/tiny"
+  else
+    skip "run's end on a full disk ($size tmpfs)" "cannot mount a tmpfs here: $(head -1 "$tmp/mount.err")"
+  fi
+done
+for kb in 20 40 60 100 150; do end_full "run's end past ulimit -f $kb" "$tmp/limited" "$kb"; done
+# The other commands that write files: a clear error, exit 1 rather than killed by SIGXFSZ,
+# and no cut-off file left to be read as a shorter frame.
+(ulimit -f 20; exec "$cdbench" scenes generate funnel --set res=16 --set frames=3 --out "$tmp/limited/gen") >"$tmp/gen.out" 2>&1
+rc=$?
+if [[ $rc -eq 1 ]] && grep -q "gen/frame_0000.obj: write failed: File too large (the partial frame removed)" "$tmp/gen.out" &&
+   [[ ! -e $tmp/limited/gen/frame_0000.obj ]]; then echo "ok   scenes generate past ulimit -f: exit 1, nothing cut off left"
+else fail "scenes generate past ulimit -f: rc=$rc"; tail -3 "$tmp/gen.out"; fi
+(ulimit -f 4; exec "$cdbench" verify --device cpu --scene funnel --set res=16 --frames 0:3 --write-pairs "$tmp/limited/pairs") >"$tmp/wp.out" 2>&1
+rc=$?
+if [[ $rc -eq 1 ]] && grep -q "pairs/frame_0000.txt: write failed: File too large (the partial file removed)" "$tmp/wp.out" &&
+   [[ ! -e $tmp/limited/pairs/frame_0000.txt ]]; then echo "ok   verify --write-pairs past ulimit -f: exit 1, nothing cut off left"
+else fail "verify --write-pairs past ulimit -f: rc=$rc"; tail -3 "$tmp/wp.out"; fi
+
 # --- OBJ frames whose faces change ---
 "$cdbench" scenes generate funnel --set res=4 --set frames=3 --out "$tmp/faces" >/dev/null 2>&1
 first_face=$(grep -m1 "^f " "$tmp/faces/frame_0002.obj")
