@@ -5,7 +5,10 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <iostream>
 #include <exception>
 #include <memory>
 #include <string>
@@ -28,7 +31,25 @@
 
 using namespace cdb;
 
-int main(int argc, char** argv) {
+namespace {
+
+// What a command prints on stdout is its result (report --csv, compare --json, run --json,
+// report --plan): a stdout the system refused (a full disk, /dev/full) fails the command,
+// said on stderr, where it would otherwise end 0 with its output lost. Checked by the
+// flush at the end, which also writes out what the buffer still held.
+int check_stdout(int rc) {
+  std::cout.flush();
+  errno = 0;
+  const bool flush_failed = std::fflush(stdout) != 0;
+  const int error = errno;
+  if (!flush_failed && !std::ferror(stdout) && !std::cout.bad()) return rc;
+  // The reason is known only when this flush was refused, not an earlier one.
+  std::fprintf(stderr, "cdbench: error: writing to standard output failed%s%s: what it printed is incomplete\n",
+               flush_failed && error ? ": " : "", flush_failed && error ? std::strerror(error) : "");
+  return rc == kExitOk ? kExitFailure : rc;
+}
+
+int run_cli(int argc, char** argv) {
   // Every kernel loads when the CUDA context starts, not at its first launch: under CUDA's
   // default lazy loading the first frames that launch a kernel paid for loading it, inside
   // the timed frames (docs/experiments.md). An environment that sets CUDA_MODULE_LOADING
@@ -98,3 +119,7 @@ int main(int argc, char** argv) {
   }
   return kExitOk;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return check_stdout(run_cli(argc, argv)); }

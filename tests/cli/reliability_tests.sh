@@ -195,6 +195,19 @@ if [[ $rc -eq 1 ]] && grep -q "pairs/frame_0000.txt: write failed: File too larg
    [[ ! -e $tmp/limited/pairs/frame_0000.txt ]]; then echo "ok   verify --write-pairs past ulimit -f: exit 1, nothing cut off left"
 else fail "verify --write-pairs past ulimit -f: rc=$rc"; tail -3 "$tmp/wp.out"; fi
 
+# --- stdout the system refuses: the command fails, said on stderr ---
+for command in "report --csv $d/r.h5" "report $d/r.h5" "report --plan $d/r.h5" "compare --json $d/r.h5 $d/r.h5" \
+               "scenes info funnel" "scenes list" "run ${small[*]} --json" "--version"; do
+  # shellcheck disable=SC2086
+  "$cdbench" $command >/dev/full 2>"$tmp/full-stdout.err"; rc=$?
+  if [[ $rc -eq 1 ]] && grep -q "^cdbench: error: writing to standard output failed.*: what it printed is incomplete$" "$tmp/full-stdout.err"; then
+    echo "ok   $command >/dev/full: exit 1, said"
+  else
+    fail "$command >/dev/full: rc=$rc"; tail -2 "$tmp/full-stdout.err"
+  fi
+done
+check "a usage error keeps exit 2 on /dev/full" 2 "unknown pipeline" -- bash -c '"$1" run --device cpu --pipeline nope >/dev/full' _ "$cdbench"
+
 # --- OBJ frames whose faces change ---
 "$cdbench" scenes generate funnel --set res=4 --set frames=3 --out "$tmp/faces" >/dev/null 2>&1
 first_face=$(grep -m1 "^f " "$tmp/faces/frame_0002.obj")
