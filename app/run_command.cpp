@@ -1,4 +1,5 @@
 #include "run_command.h"
+#include "path_checks.h"
 #include "exit_codes.h"
 #include "number_checks.h"
 
@@ -330,6 +331,7 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
       ->group(kMeasurementGroup);
   auto* out_option = run->add_option(
       "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced")
+      ->check(non_empty_path())
       ->group(kOutputGroup);
   run->add_flag("--overwrite", r.overwrite,
                 "let --out replace an existing file; it is replaced only once the new run completes (until then the "

@@ -1,4 +1,5 @@
 #include "verify_command.h"
+#include "path_checks.h"
 #include "exit_codes.h"
 
 #include <cstdio>
@@ -98,8 +99,10 @@ CLI::App* add_verify_command(CLI::App& app, CommonOptions& o, VerifyOptions& v) 
                    "check an outside method's pairs against the oracle: a directory of one file a frame, "
                    "frame_N.txt (0-based triangle indices 'i j' a line) or frame_N.bin (uint32 pairs); "
                    "docs/extending.md")
+      ->check(non_empty_path())
       ->group(kAccuracyGroup);
   verify->add_option("--write-pairs", v.write_pairs_dir, "write the oracle's pairs of each frame into this directory, as --pairs reads them")
+      ->check(non_empty_path())
       ->group(kOutputGroup);
   verify->add_option("--pairs-format", v.pairs_format, "format of the files --write-pairs writes")
       ->check(CLI::IsMember({"txt", "bin"}))

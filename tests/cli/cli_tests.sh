@@ -61,6 +61,12 @@ for cmd in "" run verify scenes sweep report; do
 done
 check "out names a directory" 2 "--out $tmp/outdir/: names a directory" -- "$cdbench" run --device cpu --frames 0:2 --out "$tmp/outdir/"
 touch "$tmp/plainfile"
+# An empty name (an unset shell variable) is a mistake in the call, not "no file".
+for call in "run --device cpu --out" "verify --device cpu --write-pairs" "verify --device cpu --pairs" \
+            "sweep x.json --out" "scenes generate funnel --out" "run --device cpu --scene"; do
+  # shellcheck disable=SC2086
+  check "$call '' refused" 2 "^--${call##*--}: expected a name, not an empty string$" -- "$cdbench" $call ""
+done
 check "out under a file" 1 "--out $tmp/plainfile/r.h5: cannot create directory" -- "$cdbench" run --device cpu --frames 0:2 --out "$tmp/plainfile/r.h5"
 check "out where nothing can be written" 1 "--out /proc/cdbench-r.h5: cannot write in directory /proc" -- "$cdbench" run --device cpu --frames 0:2 --out /proc/cdbench-r.h5
 if grep -q "HDF5" "$tmp/out"; then fail "raw HDF5 errors printed"; else echo "ok   no HDF5 error stack"; fi
