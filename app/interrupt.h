@@ -1,7 +1,9 @@
 #pragma once
-// SIGINT and SIGTERM during a run. The handler only records which signal came; the run
-// checks between frames and stops cleanly, so a results file is closed (as incomplete),
-// not cut off. A second signal gets the default action: a stuck run can still be killed.
+// The signals that ask a program to stop (SIGINT, SIGTERM, SIGHUP when the terminal goes,
+// SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU at a CPU time limit) during a run. The
+// handler only records which signal came; the run checks between frames and stops
+// cleanly, so a results file is closed (as incomplete) with the frames done, not cut off.
+// A second signal gets the default action: a stuck run can still be killed.
 //
 // Before there is anything to close cleanly (a run loading its scene), a scope made with
 // Mode::exit_at_once ends the program at once, with a line on stderr and 128 + the
@@ -25,9 +27,12 @@ class InterruptScope {
   int signal() const;
 
  private:
-  struct sigaction previous_int_ {}, previous_term_ {};
+  struct sigaction previous_[8] {};  // one per signal handled, in interrupt.cpp's order
 };
 
 const char* signal_name(int signal);
+
+// The signals a scope handles, for code that holds them back for a moment.
+sigset_t stop_signal_set();
 
 }  // namespace cdb

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "cdbench/core/error.h"
+#include "interrupt.h"
 
 namespace cdb {
 
@@ -37,11 +38,9 @@ OutputClaim check_output_path(const std::string& path, bool overwrite) {
                "the new run completes)");
   // Opening the file is the only test that also holds for root and for read-only mounts;
   // appending leaves an existing file as it is, and a file made here is removed again,
-  // with SIGINT and SIGTERM held back meanwhile so a signal cannot leave it behind empty.
-  sigset_t stop, previous;
-  sigemptyset(&stop);
-  sigaddset(&stop, SIGINT);
-  sigaddset(&stop, SIGTERM);
+  // with the stop signals held back meanwhile so a signal cannot leave it behind empty.
+  const sigset_t stop = stop_signal_set();
+  sigset_t previous;
   sigprocmask(SIG_BLOCK, &stop, &previous);
   const bool writable = bool(std::ofstream(file, std::ios::app));
   const int error = errno;

@@ -117,6 +117,32 @@ for delay in 0 0.02 0.05 0.1 0.2 0.3 0.5 0.8; do
   fi
 done
 
+# --- every signal that asks a program to stop: as SIGTERM, the frames run kept ---
+for sig in HUP QUIT USR1 USR2 ALRM XCPU; do
+  f=$d/stop-$sig.h5
+  "$cdbench" run "${endless[@]}" --out "$f" >"$tmp/stop.out" 2>&1 &
+  pid=$!
+  for _ in $(seq 600); do grep -q "^frame  *2 " "$tmp/stop.out" && break; sleep 0.1; done
+  kill -"$sig" "$pid"
+  wait "$pid"; rc=$?
+  want=$((128 + $(kill -l "$sig")))
+  state=$(report_status "$f")
+  if [[ $rc -eq $want ]] && grep -q "^cdbench: interrupted by SIG$sig after [1-9][0-9]* of 1000000 frames" "$tmp/stop.out" &&
+     [[ $state == *"incomplete"*"SIG$sig after "[1-9]* ]]; then
+    echo "ok   SIG$sig: $rc, frames kept"
+  else
+    fail "SIG$sig: rc=$rc (want $want), $state"; grep -v "^frame" "$tmp/stop.out" | tail -3
+  fi
+done
+# Before the scene is loaded: at once, said.
+"$cdbench" run "${endless[@]}" --out "$d/early.h5" >"$tmp/early.out" 2>&1 &
+pid=$!
+for _ in $(seq 1000); do catches_sigterm "$pid" && break; sleep 0.005; done
+kill -HUP "$pid"
+wait "$pid"; rc=$?
+if [[ $rc -eq 129 ]] && grep -q "interrupted by SIGHUP" "$tmp/early.out"; then echo "ok   SIGHUP at the start: 129, said"
+else fail "SIGHUP at the start: rc=$rc"; tail -3 "$tmp/early.out"; fi
+
 # --- a write that fails on the system's side ---
 # disk_full NAME DIR [ULIMIT_KB]: a run whose results outgrow DIR (or the file size limit):
 # exit 1 (no crash), the system's reason in a clear sentence, no raw library text, and a
