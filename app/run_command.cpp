@@ -376,6 +376,15 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   print_environment(device);
   const std::string busy = host_load_warning();
   if (!busy.empty()) std::printf("warning: %s\n", busy.c_str());
+  // A stopped run's partial file, which its message pointed to, is where this run stages
+  // its own: said, rather than lost without a word.
+  for (size_t p = 0; p < existing.size(); ++p) {
+    const std::string staged = results_path(r.out, names[p]) + ".incomplete";
+    std::error_code ec;
+    if (existing[p].existed && std::filesystem::exists(staged, ec))
+      std::printf("warning: %s, the partial file an earlier run left, will be replaced by this run's\n",
+                  staged.c_str());
+  }
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
   // A box's face is the box's diagonal (io/box_stream.h), so --check's exact triangle

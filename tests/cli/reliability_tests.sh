@@ -58,6 +58,10 @@ case $(report_status "$d/r.h5.incomplete") in
   *) fail "staged file: $(report_status "$d/r.h5.incomplete")" ;;
 esac
 
+check "--overwrite says it replaces an earlier run's partial file" 0 \
+  "^warning: $d/r.h5.incomplete, the partial file an earlier run left, will be replaced by this run's$" -- \
+  "$cdbench" run "${small[@]}" --out "$d/r.h5" --overwrite
+
 # --- two runs onto one file: the second refused, the first's file (and an older one) intact ---
 # writer_busy FILE [OPTIONS...]: a run writing FILE, stopped once a second run onto it was
 # refused; the first's file reads as incomplete (SIGTERM), the second changed nothing.
