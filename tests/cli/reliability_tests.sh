@@ -370,6 +370,23 @@ mkdir -p "$tmp/cells"
 printf '{"cell": "c1", "scene": "funnel", "pipeline": "c", "device": "cpu", "state": "failed", "exit_code": 2, "log_tail": "--warmup: bad value\\nRun with --help for more information.\\n"}' >"$tmp/cells/c1.status.json"
 check "report shows the cell's own error" 1 "c1\.h5 .*failed, no results file: exit 2: --warmup: bad value \|$" -- "$cdbench" report "$tmp/cells"
 
+# --- a reader stopped (Ctrl-Z, SIGSTOP) longer than the damaged-file guard's budget ---
+# The guard counts CPU time: the stopped seconds do not make a good file "damaged".
+mkdir -p "$tmp/many"
+for i in $(seq 1000); do cp "$d/r.h5" "$tmp/many/r$i.h5"; done
+"$cdbench" report --csv "$tmp/many" >"$tmp/many.out" 2>&1 &
+pid=$!
+sleep 0.3
+kill -STOP "$pid"
+sleep 11
+kill -CONT "$pid"
+wait "$pid"; rc=$?
+if [[ $rc -eq 0 ]] && ! grep -q "damaged" "$tmp/many.out" && [[ $(grep -c ",complete$" "$tmp/many.out") -eq 1000 ]]; then
+  echo "ok   report stopped for 11 s reads every file"
+else
+  fail "report stopped for 11 s: rc=$rc"; grep -m3 -v ",complete$" "$tmp/many.out"
+fi
+
 # --- report: exit codes, and a link loop beside valid files ---
 mkdir -p "$tmp/empty-results"
 check "report on an empty directory" 1 "no results files \(.h5\) or sweep cells under $tmp/empty-results" -- "$cdbench" report "$tmp/empty-results"
