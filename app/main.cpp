@@ -5,6 +5,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -47,6 +48,38 @@ int check_stdout(int rc) {
   std::fprintf(stderr, "cdbench: error: writing to standard output failed%s%s: what it printed is incomplete\n",
                flush_failed && error ? ": " : "", flush_failed && error ? std::strerror(error) : "");
   return rc == kExitOk ? kExitFailure : rc;
+}
+
+// Edits (insertions, deletions, substitutions) between two words.
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// A first word that names no command: said as such, with the nearest command when one is
+// close, rather than CLI11's "The following arguments were not expected".
+void check_command(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return;
+  const std::string given = argv[1];
+  std::string nearest;
+  size_t best = 3;  // at most two edits away
+  for (const CLI::App* command : app.get_subcommands({})) {
+    if (command->get_name() == given) return;
+    const size_t d = edit_distance(given, command->get_name());
+    if (d < best) best = d, nearest = command->get_name();
+  }
+  fail_usage("unknown command '" + given + "'" + (nearest.empty() ? "" : " (did you mean " + nearest + "?)") +
+             "; the commands: run, verify, report, compare, sweep, scenes (cdbench --help)");
 }
 
 int run_cli(int argc, char** argv) {
@@ -92,6 +125,12 @@ int run_cli(int argc, char** argv) {
   CompareOptions cmp;
   CLI::App* compare = add_compare_command(app, cmp);
 
+  try {
+    check_command(app, argc, argv);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "cdbench: error: %s\n", e.what());
+    return kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
