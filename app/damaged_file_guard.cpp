@@ -1,5 +1,6 @@
 #include "damaged_file_guard.h"
 
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,7 +23,16 @@ void write_and_exit(const char* text) {
   _exit(kExitFailure);
 }
 
-void on_alarm(int) { write_and_exit(timed_out); }
+void on_timer(int) { write_and_exit(timed_out); }
+
+// The read's budget counts this process's CPU time (ITIMER_PROF, SIGPROF), not the clock's:
+// a reader stopped (Ctrl-Z, SIGSTOP) or starved by other work is not a damaged file, and the
+// loops HDF5 falls into spin.
+void set_timer(unsigned seconds) {
+  itimerval budget {};
+  budget.it_value.tv_sec = seconds;
+  setitimer(ITIMER_PROF, &budget, nullptr);
+}
 void on_crash(int) { write_and_exit(crashed); }
 
 void compose(char (&out)[1024], const std::string& text) {
@@ -36,17 +46,17 @@ void compose(char (&out)[1024], const std::string& text) {
 DamagedFileGuard::DamagedFileGuard(const std::string& who, const std::string& file, unsigned seconds) {
   const std::string prefix = "cdbench: " + who + ": " + file.substr(0, 600) + ": ";
   compose(timed_out, prefix + "reading it did not finish within " + std::to_string(seconds) +
-                         " s: the file is damaged (its HDF5 structure loops); leave it out or write it again\n");
+                         " s of CPU time: the file is damaged (its HDF5 structure loops); leave it out or write it again\n");
   compose(crashed, prefix + "the HDF5 library crashed reading it: the file is damaged; leave it out or write it again\n");
-  std::signal(SIGALRM, on_alarm);
+  std::signal(SIGPROF, on_timer);
   std::signal(SIGSEGV, on_crash);
   std::signal(SIGBUS, on_crash);
-  alarm(seconds);
+  set_timer(seconds);
 }
 
 DamagedFileGuard::~DamagedFileGuard() {
-  alarm(0);
-  std::signal(SIGALRM, SIG_DFL);
+  set_timer(0);
+  std::signal(SIGPROF, SIG_DFL);
   std::signal(SIGSEGV, SIG_DFL);
   std::signal(SIGBUS, SIG_DFL);
 }

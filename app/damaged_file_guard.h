@@ -9,7 +9,7 @@ namespace cdb {
 
 class DamagedFileGuard {
  public:
-  // `who`: the command ("report", "compare", "sweep"); `seconds`: how long reading one file may take.
+  // `who`: the command ("report", "compare", "sweep"); `seconds`: the CPU time reading one file may take.
   DamagedFileGuard(const std::string& who, const std::string& file, unsigned seconds = 10);
   ~DamagedFileGuard();
   DamagedFileGuard(const DamagedFileGuard&) = delete;

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstddef>
+#include <iterator>
 #include <cstring>
 
 namespace cdb {
@@ -14,15 +16,21 @@ namespace {
 volatile std::sig_atomic_t arrived = 0;
 volatile std::sig_atomic_t exit_at_once = 0;
 
+// Every signal handled (signal_name names each); previous_ in the header has a slot each.
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU};
+
+void write_text(const char* text) {
+  const ssize_t ignored = write(STDERR_FILENO, text, std::strlen(text));
+  (void)ignored;
+}
+
 void record(int signal) {
   arrived = signal;
   if (!exit_at_once) return;
   // Only async-signal-safe calls here: write and _exit, with text fixed in advance.
-  const char* line = signal == SIGINT    ? "cdbench: interrupted by SIGINT before the run started\n"
-                     : signal == SIGTERM ? "cdbench: interrupted by SIGTERM before the run started\n"
-                                         : "cdbench: interrupted before the run started\n";
-  const ssize_t ignored = write(STDERR_FILENO, line, std::strlen(line));
-  (void)ignored;
+  write_text("cdbench: interrupted by ");
+  write_text(signal_name(signal));
+  write_text(" before the run started\n");
   _exit(exit_for_signal(signal));
 }
 
@@ -37,29 +45,36 @@ InterruptScope::InterruptScope(Mode mode) {
   // SA_RESTART: file reads and writes in flight go on rather than fail with EINTR; the
   // run stops at the next frame boundary anyway.
   action.sa_flags = SA_RESETHAND | SA_RESTART;
-  sigaction(SIGINT, &action, &previous_int_);
-  sigaction(SIGTERM, &action, &previous_term_);
-  struct sigaction ignore {};
-  ignore.sa_handler = SIG_IGN;
-  sigemptyset(&ignore.sa_mask);
-  sigaction(SIGXFSZ, &ignore, &previous_xfsz_);
+  static_assert(std::size(kStopSignals) == std::size(decltype(previous_){}));
+  for (size_t k = 0; k < std::size(kStopSignals); ++k) sigaction(kStopSignals[k], &action, &previous_[k]);
 }
 
 InterruptScope::~InterruptScope() {
   exit_at_once = 0;
-  sigaction(SIGINT, &previous_int_, nullptr);
-  sigaction(SIGTERM, &previous_term_, nullptr);
-  sigaction(SIGXFSZ, &previous_xfsz_, nullptr);
+  for (size_t k = 0; k < std::size(kStopSignals); ++k) sigaction(kStopSignals[k], &previous_[k], nullptr);
 }
 
 void InterruptScope::defer() { exit_at_once = 0; }
 
 int InterruptScope::signal() const { return arrived; }
 
+sigset_t stop_signal_set() {
+  sigset_t set;
+  sigemptyset(&set);
+  for (const int signal : kStopSignals) sigaddset(&set, signal);
+  return set;
+}
+
 const char* signal_name(int signal) {
   switch (signal) {
     case SIGINT: return "SIGINT";
     case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    case SIGQUIT: return "SIGQUIT";
+    case SIGUSR1: return "SIGUSR1";
+    case SIGUSR2: return "SIGUSR2";
+    case SIGALRM: return "SIGALRM";
+    case SIGXCPU: return "SIGXCPU";
     default: return "a signal";
   }
 }

@@ -1,7 +1,9 @@
 #pragma once
-// SIGINT and SIGTERM during a run. The handler only records which signal came; the run
-// checks between frames and stops cleanly, so a results file is closed (as incomplete),
-// not cut off. A second signal gets the default action: a stuck run can still be killed.
+// The signals that ask a program to stop (SIGINT, SIGTERM, SIGHUP when the terminal goes,
+// SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU at a CPU time limit) during a run. The
+// handler only records which signal came; the run checks between frames and stops
+// cleanly, so a results file is closed (as incomplete) with the frames done, not cut off.
+// A second signal gets the default action: a stuck run can still be killed.
 //
 // Before there is anything to close cleanly (a run loading its scene), a scope made with
 // Mode::exit_at_once ends the program at once, with a line on stderr and 128 + the
@@ -14,9 +16,7 @@ namespace cdb {
 class InterruptScope {
  public:
   enum class Mode { record, exit_at_once };
-  // Installs the handlers. SIGXFSZ (a file size limit, ulimit -f) is ignored while the
-  // scope lives, so a write past the limit fails with EFBIG and is reported like a full
-  // disk instead of killing the process mid-write.
+  // Installs the handlers.
   explicit InterruptScope(Mode mode = Mode::record);
   ~InterruptScope();  // restores the ones there before
   InterruptScope(const InterruptScope&) = delete;
@@ -27,9 +27,12 @@ class InterruptScope {
   int signal() const;
 
  private:
-  struct sigaction previous_int_ {}, previous_term_ {}, previous_xfsz_ {};
+  struct sigaction previous_[8] {};  // one per signal handled, in interrupt.cpp's order
 };
 
 const char* signal_name(int signal);
+
+// The signals a scope handles, for code that holds them back for a moment.
+sigset_t stop_signal_set();
 
 }  // namespace cdb

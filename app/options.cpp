@@ -1,4 +1,5 @@
 #include "options.h"
+#include "path_checks.h"
 #include "number_checks.h"
 
 #include <cstdio>
@@ -28,6 +29,7 @@ CLI::Option* add_switch(CLI::App* cmd, const std::string& name, bool& field, con
 void add_common(CLI::App* cmd, CommonOptions& o) {
   PipelineConfig& c = o.config;
   cmd->add_option("--scene", o.scene, "scene name, .json descriptor, or directory of mesh frames")
+      ->check(non_empty_path())
       ->group(kSceneGroup)
       ->capture_default_str();
   cmd->add_option("--device", o.device, "cuda, cpu, or auto (cuda when a GPU is present)")

@@ -7,18 +7,27 @@
 #include <filesystem>
 #include <fstream>
 #include <system_error>
+#include <utility>
 
 #include "cdbench/core/error.h"
+#include "interrupt.h"
 
 namespace cdb {
 
-bool check_output_path(const std::string& path, bool overwrite) {
+OutputClaim check_output_path(const std::string& path, bool overwrite) {
   namespace fs = std::filesystem;
   const fs::path file(path);
   if (path.empty()) fail_usage("--out: empty file name");
   if (!file.has_filename() || fs::is_directory(file))
     fail_usage("--out " + path + ": names a directory; give a file, e.g. " + (file / "run.h5").lexically_normal().string());
   std::error_code ec;
+  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  fs::create_directories(dir, ec);
+  if (ec) fail("--out " + path + ": cannot create directory " + dir.string() + ": " + ec.message());
+  if (!fs::is_directory(dir)) fail("--out " + path + ": " + dir.string() + " is not a directory");
+  // Before the file is looked at: another run writing it is named as such, not as a file
+  // that exists, and nothing here touches a file another run holds.
+  OutputLock lock(file);
   const bool existed = fs::exists(file, ec) || fs::is_symlink(file, ec);
   // A device or pipe (/dev/null) would take the whole run and then fail at the rename or
   // the reopen: a results file is a regular file.
@@ -27,17 +36,11 @@ bool check_output_path(const std::string& path, bool overwrite) {
   if (existed && !overwrite)
     fail_usage("--out " + path + ": the file exists; pass --overwrite to replace it (it is replaced only once " +
                "the new run completes)");
-  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  fs::create_directories(dir, ec);
-  if (ec) fail("--out " + path + ": cannot create directory " + dir.string() + ": " + ec.message());
-  if (!fs::is_directory(dir)) fail("--out " + path + ": " + dir.string() + " is not a directory");
   // Opening the file is the only test that also holds for root and for read-only mounts;
   // appending leaves an existing file as it is, and a file made here is removed again,
-  // with SIGINT and SIGTERM held back meanwhile so a signal cannot leave it behind empty.
-  sigset_t stop, previous;
-  sigemptyset(&stop);
-  sigaddset(&stop, SIGINT);
-  sigaddset(&stop, SIGTERM);
+  // with the stop signals held back meanwhile so a signal cannot leave it behind empty.
+  const sigset_t stop = stop_signal_set();
+  sigset_t previous;
   sigprocmask(SIG_BLOCK, &stop, &previous);
   const bool writable = bool(std::ofstream(file, std::ios::app));
   const int error = errno;
@@ -49,7 +52,7 @@ bool check_output_path(const std::string& path, bool overwrite) {
                                                                       : std::strerror(error);
     fail("--out " + path + ": cannot write " + (existed ? "this file" : "in directory " + dir.string()) + ": " + why);
   }
-  return existed;
+  return {existed, std::move(lock)};
 }
 
 }  // namespace cdb

@@ -1,4 +1,5 @@
 #include "run_command.h"
+#include "path_checks.h"
 #include "exit_codes.h"
 #include "number_checks.h"
 
@@ -213,9 +214,9 @@ std::string results_path(const std::string& pattern, const std::string& pipeline
 // The results file of each pipeline, checked before any work: two pipelines writing the
 // same file (--pipeline c,c) would leave one run's results, and an existing file is kept
 // unless --overwrite. Per pipeline: whether its file exists (and is then replaced only once
-// the new run completes).
-std::vector<bool> check_results_paths(const RunOptions& r, const std::vector<std::string>& names) {
-  std::vector<bool> existing;
+// the new run completes), and the lock that keeps other runs off it while this one lives.
+std::vector<OutputClaim> check_results_paths(const RunOptions& r, const std::vector<std::string>& names) {
+  std::vector<OutputClaim> existing;
   if (r.out.empty()) return existing;
   std::vector<std::string> seen;
   for (const auto& name : names) {
@@ -336,6 +337,7 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
       ->group(kMeasurementGroup);
   auto* out_option = run->add_option(
       "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced")
+      ->check(non_empty_path())
       ->group(kOutputGroup);
   run->add_flag("--overwrite", r.overwrite,
                 "let --out replace an existing file; it is replaced only once the new run completes (until then the "
@@ -376,11 +378,20 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   std::vector<std::unique_ptr<Pipeline>> pipelines = make_pipelines(o, names, device);
   const PlanOfPipeline plans = load_plans(o, names);
   give_plans(pipelines, plans, names);
-  const std::vector<bool> existing = check_results_paths(r, names);
+  const std::vector<OutputClaim> existing = check_results_paths(r, names);
   print_environment(device);
   const HostLoad load_before = sample_host_load();
   const std::string busy = host_load_warning(load_before, "before the run");
   if (!busy.empty()) std::printf("warning: %s\n", busy.c_str());
+  // A stopped run's partial file, which its message pointed to, is where this run stages
+  // its own: said, rather than lost without a word.
+  for (size_t p = 0; p < existing.size(); ++p) {
+    const std::string staged = results_path(r.out, names[p]) + ".incomplete";
+    std::error_code ec;
+    if (existing[p].existed && std::filesystem::exists(staged, ec))
+      std::printf("warning: %s, the partial file an earlier run left, will be replaced by this run's\n",
+                  staged.c_str());
+  }
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
   // A box's face is the box's diagonal (io/box_stream.h), so --check's exact triangle
@@ -442,7 +453,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
       info.host_busy_before = load_before.busy_share;
       info.host_cores = uint64_t(std::max(0L, load_before.cores));
       info.host_warning = busy;
-      out.emplace(one.out, info, existing[p] ? ResultsFile::Placement::staged : ResultsFile::Placement::in_place);
+      out.emplace(one.out, info, existing[p].existed ? ResultsFile::Placement::staged : ResultsFile::Placement::in_place);
     }
     RunLoopOptions loop = r.loop;
     loop.frames_kept = cached != nullptr;

@@ -1,4 +1,5 @@
 #include "run_loop.h"
+#include "results_readable.h"
 #include "exit_codes.h"
 
 #include <algorithm>
@@ -7,7 +8,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -182,9 +185,25 @@ void print_accuracy_warning(const std::string& why, const std::vector<FrameStats
 }
 
 // Where an abandoned run's results are, and that the file it was to replace is as it was.
+// A file a failed write left unreadable is removed rather than named as results.
 void tell_incomplete(const ResultsFile& out) {
-  std::fprintf(stderr, "cdbench: results (incomplete%s): %s\n",
-               out.intact() ? "" : ", only what was flushed before the failed write", out.path().c_str());
+  const std::optional<bool> readable = out.intact() ? true : results_readable(out.path());
+  if (readable == false) {
+    std::error_code ec;
+    std::filesystem::remove(out.path(), ec);
+    if (ec)
+      std::fprintf(stderr, "cdbench: %s is unreadable after the failed write, and removing it failed: %s\n",
+                   out.path().c_str(), ec.message().c_str());
+    else
+      std::fprintf(stderr, "cdbench: %s removed: the failed write left it unreadable (no results of this run kept)\n",
+                   out.path().c_str());
+  } else {
+    std::fprintf(stderr, "cdbench: results (incomplete%s): %s\n",
+                 out.intact()  ? ""
+                 : readable    ? ", only what was flushed before the failed write"
+                               : ", only what was flushed before the failed write; it may not be readable",
+                 out.path().c_str());
+  }
   if (out.path() != out.target())
     std::fprintf(stderr, "cdbench: %s left as it was (not replaced)\n", out.target().c_str());
 }

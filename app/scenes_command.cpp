@@ -1,4 +1,5 @@
 #include "scenes_command.h"
+#include "path_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,7 +29,7 @@ ScenesCommand add_scenes_command(CLI::App& app, ScenesOptions& s) {
   c.generate = scenes->add_subcommand("generate", "write a scene's frames as OBJ files");
   c.generate->add_option("scene", s.scene, "scene name or .json descriptor")->required();
   c.generate->add_option("--set", s.sets, "override a generator parameter: key=value, e.g. res=128 frames=10");
-  c.generate->add_option("--out", s.out_dir, "output directory (frame_0000.obj, ...)")->required();
+  c.generate->add_option("--out", s.out_dir, "output directory (frame_0000.obj, ...)")->required()->check(non_empty_path());
   scenes->require_subcommand(1);
   return c;
 }

@@ -1,4 +1,5 @@
 #include "sweep_command.h"
+#include "path_checks.h"
 #include "number_checks.h"
 
 #include <algorithm>
@@ -43,7 +44,9 @@ std::string cell_option_error(const std::vector<std::string>& args) {
 CLI::App* add_sweep_command(CLI::App& app, SweepOptions& w) {
   auto* sweep = app.add_subcommand("sweep", "run the cells of a sweep file, one process each (docs/sweeps.md)");
   sweep->add_option("file", w.file, "sweep file (.json)")->required();
-  sweep->add_option("--out", w.out_dir, "directory for the cells' results files, logs and status")->required();
+  sweep->add_option("--out", w.out_dir, "directory for the cells' results files, logs and status")
+      ->required()
+      ->check(non_empty_path());
   sweep->add_option("--gpus", w.gpus,
                     "cells at a time, one GPU each (CUDA_VISIBLE_DEVICES); default: the GPUs visible, 1 without")
       ->check(whole_in(1, 1024));

@@ -1,6 +1,8 @@
 #include "verify_command.h"
+#include "path_checks.h"
 #include "exit_codes.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -83,7 +85,7 @@ class PairsCheck {
 CLI::App* add_verify_command(CLI::App& app, CommonOptions& o, VerifyOptions& v) {
   auto* verify = app.add_subcommand("verify", "compare pipelines with the exact oracle, frame by frame");
   verify
-      ->add_option("--pipelines", v.pipelines,
+      ->add_option("--pipelines,--pipeline", v.pipelines,
                    "pipelines to check, space- or comma-separated (default: all; none with --pairs or --write-pairs)")
       ->delimiter(',')
       ->group(kPipelineGroup);
@@ -98,8 +100,10 @@ CLI::App* add_verify_command(CLI::App& app, CommonOptions& o, VerifyOptions& v) 
                    "check an outside method's pairs against the oracle: a directory of one file a frame, "
                    "frame_N.txt (0-based triangle indices 'i j' a line) or frame_N.bin (uint32 pairs); "
                    "docs/extending.md")
+      ->check(non_empty_path())
       ->group(kAccuracyGroup);
   verify->add_option("--write-pairs", v.write_pairs_dir, "write the oracle's pairs of each frame into this directory, as --pairs reads them")
+      ->check(non_empty_path())
       ->group(kOutputGroup);
   verify->add_option("--pairs-format", v.pairs_format, "format of the files --write-pairs writes")
       ->check(CLI::IsMember({"txt", "bin"}))
@@ -120,9 +124,16 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
                "--check every");
   if (!v.pairs_dir.empty() && !std::filesystem::is_directory(v.pairs_dir))
     fail_usage("--pairs " + v.pairs_dir + ": not a directory");
-  if (pipelines.empty() && !pairs_only)
-    for (const auto& n : pipeline_names())
-      if (n != oracle_pipeline()) pipelines.push_back(n);
+  // Every pipeline once: a name that only aliases a later one (static = b, restructure = c)
+  // would check the same pipeline twice.
+  if (pipelines.empty() && !pairs_only) {
+    const std::vector<PipelineKind>& kinds = pipeline_kinds();
+    for (size_t k = 0; k < kinds.size(); ++k) {
+      const bool alias = std::any_of(kinds.begin() + k + 1, kinds.end(),
+                                     [&](const PipelineKind& later) { return later.builds == kinds[k].builds; });
+      if (!alias && kinds[k].name != oracle_pipeline()) pipelines.push_back(kinds[k].name);
+    }
+  }
   std::vector<std::unique_ptr<Pipeline>> runs = make_pipelines(o, pipelines, device);
   print_environment(device);
   Scene scene = load_scene(o);

@@ -202,6 +202,23 @@ std::string stream_error(const Scratch& s, const std::string& test,
   return ::testing::AssertionFailure() << "'" << text << "' lacks '" << part << "'";
 }
 
+// A frame name on a directory or a link to a device is refused, not skipped with the later
+// frames renumbered (.boxes and .npy alike).
+TEST(BoxStream, FrameThatIsNotARegularFileRefused) {
+  Scratch s;
+  const std::string good = le_bytes(two_boxes(0), false);
+  for (const std::string ext : {".boxes", ".npy"}) {
+    const fs::path dir = s.sub("odd" + ext.substr(1));
+    write_bytes(dir / ("f0" + ext), good);
+    write_bytes(dir / ("f2" + ext), good);
+    fs::create_directory(dir / ("f1" + ext));
+    EXPECT_TRUE(contains(error_of([&] { open_box_stream(dir); }), "f1" + ext + ": this frame is a directory, not a regular file"));
+    fs::remove(dir / ("f1" + ext));
+    fs::create_symlink("/dev/zero", dir / ("f1" + ext));
+    EXPECT_TRUE(contains(error_of([&] { open_box_stream(dir); }), "f1" + ext + ": this frame is a character device"));
+  }
+}
+
 TEST(BoxStream, RawFrameErrorsNameTheFileFrameAndBox) {
   Scratch s;
   const std::string good = le_bytes(two_boxes(0), false);

@@ -1,6 +1,7 @@
 // Directories of OBJ frames: natural frame order, and every frame checked when the
 // directory is opened (before any frame is timed), with errors naming file, frame and field.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -102,6 +103,39 @@ TEST(MeshSequence, ChangedCountsFoundWhenOpened) {
   dir.write("f2.obj", "2\nv 5 5 5");
   error = error_of(dir.path());
   EXPECT_NE(error.find("f2.obj: frame 2 has 5 vertices, frame 0 has 4"), std::string::npos) << error;
+}
+
+TEST(MeshSequence, ByteOrderMarkBeforeTheFirstVertex) {
+  FrameDir dir;
+  dir.write("f0.obj", "0");
+  {
+    std::ofstream os(dir.path() / "f1.obj");
+    os << "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n";
+  }
+  const auto seq = open_mesh_sequence(dir.path());
+  ASSERT_EQ(seq->num_frames(), 2u);
+  std::vector<vec3f> v;
+  seq->frame(1, v);
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_EQ(v[3].z, 1.0f);
+}
+
+// An entry with a frame's name that is not a file is refused, naming it, rather than
+// skipped with the later frames renumbered.
+TEST(MeshSequence, FrameThatIsNotARegularFileRefused) {
+  for (const std::string kind : {"directory", "fifo", "device"}) {
+    FrameDir dir;
+    for (int k : {0, 2}) dir.write(frame_name(k), std::to_string(k));
+    const fs::path odd = dir.path() / "f1.obj";
+    if (kind == "directory") fs::create_directory(odd);
+    if (kind == "fifo") ASSERT_EQ(mkfifo(odd.c_str(), 0644), 0);
+    if (kind == "device") fs::create_symlink("/dev/zero", odd);
+    const std::string error = error_of(dir.path());
+    const std::string want = kind == "directory" ? "f1.obj: this frame is a directory, not a regular file"
+                             : kind == "fifo"    ? "f1.obj: this frame is a FIFO (named pipe), not a regular file"
+                                                 : "f1.obj: this frame is a character device, not a regular file";
+    EXPECT_NE(error.find(want), std::string::npos) << kind << ": " << error;
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -141,8 +142,9 @@ PairsRead read_pairs_file(const std::filesystem::path& file, uint32_t num_faces,
 void write_pairs_file(const std::filesystem::path& file, const std::vector<PrimPair>& pairs,
                       const std::vector<std::string>& comment) {
   const bool binary = pairs_format_of(file) == PairsFormat::binary;
-  const std::unique_ptr<FILE, int (*)(FILE*)> out(std::fopen(file.string().c_str(), binary ? "wb" : "w"), std::fclose);
-  if (!out) fail(file.string() + ": cannot open for writing");
+  std::unique_ptr<FILE, int (*)(FILE*)> out(std::fopen(file.string().c_str(), binary ? "wb" : "w"), std::fclose);
+  if (!out) fail(file.string() + ": cannot open for writing: " + std::strerror(errno));
+  errno = 0;
   if (binary) {
     for (const PrimPair p : pairs) {
       const uint32_t ij[2] = {p.a, p.b};
@@ -152,7 +154,16 @@ void write_pairs_file(const std::filesystem::path& file, const std::vector<PrimP
     for (const std::string& line : comment) std::fprintf(out.get(), "# %s\n", line.c_str());
     for (const PrimPair p : pairs) std::fprintf(out.get(), "%u %u\n", p.a, p.b);
   }
-  if (std::ferror(out.get())) fail(file.string() + ": write failed");
+  // The last buffer is written at the close: its failure (a full disk) counts too. A cut-off
+  // file would read as a frame with fewer pairs, so it is removed.
+  const bool failed = std::ferror(out.get()) | (std::fclose(out.release()) != 0);
+  if (failed) {
+    const int error = errno;
+    std::error_code ec;
+    std::filesystem::remove(file, ec);
+    fail(file.string() + ": write failed" + (error ? std::string(": ") + std::strerror(error) : "") +
+         " (the partial file removed)");
+  }
 }
 
 std::vector<std::filesystem::path> pairs_files_for_frames(const std::filesystem::path& dir, uint32_t first,

@@ -91,6 +91,10 @@ ResultsFile::ResultsFile(const std::filesystem::path& path, const RunInfo& info,
   try {
     create(info);
   } catch (const h5::IoError& e) {
+    // Cut off while being made, it holds nothing of the run: removed, not left unreadable.
+    forget_handles();
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
     io_failed(e);
   }
 }

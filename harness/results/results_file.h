@@ -98,9 +98,10 @@ class ResultsFile {
   // keep). staged: it is written to PATH.incomplete, which replaces PATH once complete; a
   // run that does not finish leaves PATH as it was and its own file as PATH.incomplete.
   enum class Placement { in_place, staged };
-  // Creates the file (replacing one of that name; parent directories are made). Every
-  // write that fails on the system's side (a full disk, a file size limit) throws
-  // "writing results to FILE failed: <the system's reason>".
+  // Creates the file (replacing one of that name; parent directories are made; a file that
+  // could not be made whole is removed). Every write that fails on the system's side (a
+  // full disk, a file size limit) throws "writing results to FILE failed: <the system's
+  // reason>".
   ResultsFile(const std::filesystem::path& path, const RunInfo& info, Placement placement = Placement::in_place);
   // Closes without touching the status: a file never finished stays "incomplete". The
   // members close in reverse order of declaration, the file last.

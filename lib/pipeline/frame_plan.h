@@ -30,6 +30,8 @@ struct FrontStrategy {
   bool rebuild_every_frame = false;  // the reference strategy
   bool radix_sort = false;  // order fronts and BVH with a radix sort instead of the histogram (Fig. 6 baseline)
   bool restructure = false;  // pipeline c: inspect quality, Formula 2, (5) restructure
+  // Two names with equal strategies are one pipeline (static = b, restructure = c).
+  bool operator==(const FrontStrategy&) const = default;
 };
 
 // Degraded subtrees found by pipeline c's inspection: how many, and their leaves.

@@ -18,6 +18,14 @@
 
 namespace cdb::scene {
 
+// A parameter's value refused (unknown, out of range, of the wrong type), naming the key:
+// the loader tells a value given on the command line (--set, a usage error) from one in a
+// descriptor's file (bad data).
+struct ParameterError : Error {
+  ParameterError(const std::string& message, std::string parameter) : Error(message), key(std::move(parameter)) {}
+  std::string key;
+};
+
 // The largest count a JSON number (a double) holds exactly: 2^53.
 inline constexpr uint64_t kLargestExactCount = uint64_t(1) << 53;
 
@@ -35,10 +43,11 @@ class Params {
   // never wrapped into a narrower type.
   uint64_t count_in(const char* key, uint64_t fallback, uint64_t lo, uint64_t hi) {
     const double d = read_number(key, double(fallback));
-    if (d < 0 || d != std::floor(d)) fail(where(key) + "must be a whole number >= 0, not " + format(d));
+    if (d < 0 || d != std::floor(d)) fail(where(key) + "must be a whole number >= 0, not " + format(d), key);
     if (d < double(lo) || d > double(hi))
       fail(where(key) + format(d) + " is out of range: must be between " + std::to_string(lo) + " and " +
-           std::to_string(hi));
+               std::to_string(hi),
+           key);
     const uint64_t v = uint64_t(d);
     note(key, "integer", std::to_string(fallback), std::to_string(lo) + ".." + std::to_string(hi), std::to_string(v));
     return v;
@@ -51,7 +60,7 @@ class Params {
     used_.insert(key);
     std::string v = fallback;
     if (!j_.is_null() && j_.contains(key)) {
-      if (!j_[key].is_string()) fail(where(key) + "must be a string");
+      if (!j_[key].is_string()) fail(where(key) + "must be a string", key);
       v = j_[key].get<std::string>();
     }
     note(key, "text", fallback, "", v);
@@ -60,21 +69,24 @@ class Params {
   void finish() const {
     if (j_.is_null()) return;
     for (auto it = j_.begin(); it != j_.end(); ++it)
-      if (!used_.count(it.key())) fail(where(it.key()) + "unknown parameter (known: " + known() + ")");
+      if (!used_.count(it.key())) fail(where(it.key()) + "unknown parameter (known: " + known() + ")", it.key());
   }
   // Every parameter read so far, in reading order.
   const std::vector<GeneratorParameter>& described() const { return described_; }
 
  private:
+  [[noreturn]] void fail(const std::string& message, const std::string& key = "") const {
+    throw ParameterError(message, key);
+  }
   std::string where(const std::string& key) const {
     return "generator '" + generator_ + "'" + (key.empty() ? "" : ", parameter '" + key + "'") + ": ";
   }
   double read_number(const char* key, double fallback) {
     used_.insert(key);
     if (j_.is_null() || !j_.contains(key)) return fallback;
-    if (!j_[key].is_number()) fail(where(key) + "must be a number");
+    if (!j_[key].is_number()) fail(where(key) + "must be a number", key);
     const double v = j_[key].get<double>();
-    if (!std::isfinite(v)) fail(where(key) + "must be finite");
+    if (!std::isfinite(v)) fail(where(key) + "must be finite", key);
     return v;
   }
   static std::string format(double v) {

@@ -12,6 +12,18 @@ namespace {
 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
+// What a directory entry that is not a regular file is, for messages.
+std::string file_kind(std::filesystem::file_type type) {
+  switch (type) {
+    case std::filesystem::file_type::directory: return "a directory";
+    case std::filesystem::file_type::fifo: return "a FIFO (named pipe)";
+    case std::filesystem::file_type::character: return "a character device";
+    case std::filesystem::file_type::block: return "a block device";
+    case std::filesystem::file_type::socket: return "a socket";
+    default: return "neither a file nor a directory";
+  }
+}
+
 }  // namespace
 
 bool natural_less(std::string_view a, std::string_view b) {
@@ -69,7 +81,12 @@ std::vector<std::filesystem::path> frame_files(const std::filesystem::path& dir,
       fail(p.string() + ": this frame is a link that leads nowhere (" + reason +
            "); restore the file it points to, or remove the link");
     }
-    if (fs::is_regular_file(target)) files.push_back(p);
+    // Skipped, a FIFO, a device or a directory with a frame's name would renumber every
+    // later frame without a word; read, a device such as /dev/zero never ends.
+    if (!fs::is_regular_file(target))
+      fail(p.string() + ": this frame is " + file_kind(target.type()) +
+           ", not a regular file; frames are files: remove it or rename it to another extension");
+    files.push_back(p);
   }
   if (ec) fail(dir.string() + ": cannot list the directory: " + ec.message());
   std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {

@@ -21,8 +21,9 @@ std::string lower_extension(const std::filesystem::path& file);
 
 // The regular files of `dir` that `is_frame` accepts by name, in natural order. A link
 // among them that leads nowhere (dangling, or a loop) is refused naming it, rather than
-// leaving a gap in the frames; so is a directory that cannot be listed. Frames read
-// through a link are fine.
+// leaving a gap in the frames; so is an entry with a frame's name that is not a regular
+// file (a FIFO, a device, a directory, or a link to one), and a directory that cannot be
+// listed. Frames read through a link are fine.
 std::vector<std::filesystem::path> frame_files(const std::filesystem::path& dir,
                                                const std::function<bool(const std::filesystem::path&)>& is_frame);
 

@@ -65,6 +65,9 @@ size_t read_obj_file(const std::filesystem::path& file, Topology& topology, std:
   std::vector<uint32_t> corners;
   while (std::getline(in, line)) {
     ++line_no;
+    // A UTF-8 byte-order mark (editors on Windows write one) is not part of the first
+    // line: left there, it hid a first `v` line and its vertex was lost.
+    if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     const std::string where = in_frame + (frame >= 0 ? ", line " : ": line ") + std::to_string(line_no);
     const char* p = skip_space(line.c_str());
     if (p[0] == 'v' && (p[1] == ' ' || p[1] == '\t')) {

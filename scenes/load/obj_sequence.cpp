@@ -4,6 +4,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -125,11 +126,19 @@ void write_obj_sequence(const FrameSource& source, const std::filesystem::path& 
     std::snprintf(name, sizeof name, "frame_%04u.obj", k);
     const std::filesystem::path file = out_dir / name;
     std::unique_ptr<FILE, int (*)(FILE*)> out(std::fopen(file.c_str(), "w"), std::fclose);
-    if (!out) fail(file.string() + ": cannot open for writing");
+    if (!out) fail(file.string() + ": cannot open for writing: " + std::strerror(errno));
+    errno = 0;
     // %.17g: seventeen significant digits read back to the same double.
     for (const vec3d& p : positions) std::fprintf(out.get(), "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
     for (const Tri& t : topology.faces) std::fprintf(out.get(), "f %u %u %u\n", t.v0 + 1, t.v1 + 1, t.v2 + 1);
-    if (std::ferror(out.get()) || std::fclose(out.release()) != 0) fail(file.string() + ": write failed");
+    // A cut-off frame would read as one with fewer vertices: removed, not left behind.
+    const bool failed = std::ferror(out.get()) | (std::fclose(out.release()) != 0);
+    if (failed) {
+      const int error = errno;
+      std::filesystem::remove(file, ec);
+      fail(file.string() + ": write failed" + (error ? std::string(": ") + std::strerror(error) : "") +
+           " (the partial frame removed)");
+    }
   }
 }
 

@@ -1,3 +1,4 @@
+#include "scenes/generators/params.h"
 #include "scenes/load/scene.h"
 
 #include <algorithm>
@@ -83,6 +84,8 @@ template <class Open>
 auto opened_at(const std::string& where, Open open) {
   try {
     return open();
+  } catch (const UsageError& e) {
+    fail_usage(where + ": " + e.what());
   } catch (const Error& e) {
     fail(where + ": " + e.what());
   }
@@ -252,7 +255,14 @@ std::unique_ptr<FrameSource> open_source(const DescriptorObject& o, const std::f
     params.update(overrides);
     const LoaderInputs inputs(descriptor.parent_path());
     return opened_at(where, [&] {
-      std::unique_ptr<FrameSource> made = make_generator(generator, params, parameters, &inputs);
+      std::unique_ptr<FrameSource> made;
+      try {
+        made = make_generator(generator, params, parameters, &inputs);
+      } catch (const scene::ParameterError& e) {
+        // A value --set gave is a mistake in the call; one of the descriptor's is its data.
+        if (overrides.contains(e.key)) fail_usage(std::string("--set ") + e.key + "=" + overrides[e.key].dump() + ": " + e.what());
+        throw;
+      }
       if (!parameters) return made;
       // The files it read are part of what it made: another package version is another key.
       return cache_frames(std::move(made), generator + " " + params.dump() + inputs.identity(), frame_cache_dir());

@@ -49,6 +49,11 @@ check "bad option value is a usage error" 2 "--device" -- "$cdbench" run --devic
 check "missing subcommand is a usage error" 2 "subcommand" -- "$cdbench"
 check "unknown pipeline in a list: usage, before any run" 2 "unknown pipeline 'foo'" -- "$cdbench" run --device cpu --pipeline b,foo
 if grep -qE "^(scene|pipeline|frame) " "$tmp/out"; then fail "pipeline b ran before foo was rejected"; else echo "ok   nothing ran before the bad name was found"; fi
+check "a mistyped command names the nearest" 2 "^cdbench: error: unknown command 'runn' \\(did you mean run\\?\\)" -- "$cdbench" runn --device cpu
+check "a command far from any is named" 2 "^cdbench: error: unknown command 'xyzzy'; the commands: run, verify" -- "$cdbench" xyzzy
+check "verify takes --pipeline as run does" 0 "^  bvh +exact \\(2 frames\\)" -- "$cdbench" verify --device cpu --frames 0:2 --pipeline bvh
+check "verify checks every pipeline once" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:2
+if grep -qE "^  (static|restructure) " "$tmp/out"; then fail "verify ran an alias (static, restructure) beside b and c"; else echo "ok   no alias run twice"; fi
 check "verify rejects an unknown pipeline first" 2 "unknown pipeline 'foo'" -- "$cdbench" verify --device cpu --pipelines b foo
 check "default pipeline is c" 0 "^pipeline: c on cpu" -- "$cdbench" run --device cpu --quiet --frames 0:2
 check "help groups the options" 0 "^Tuning \\(speed only\\):" -- "$cdbench" run --help
@@ -61,6 +66,12 @@ for cmd in "" run verify scenes sweep report; do
 done
 check "out names a directory" 2 "--out $tmp/outdir/: names a directory" -- "$cdbench" run --device cpu --frames 0:2 --out "$tmp/outdir/"
 touch "$tmp/plainfile"
+# An empty name (an unset shell variable) is a mistake in the call, not "no file".
+for call in "run --device cpu --out" "verify --device cpu --write-pairs" "verify --device cpu --pairs" \
+            "sweep x.json --out" "scenes generate funnel --out" "run --device cpu --scene"; do
+  # shellcheck disable=SC2086
+  check "$call '' refused" 2 "^--${call##*--}: expected a name, not an empty string$" -- "$cdbench" $call ""
+done
 check "out under a file" 1 "--out $tmp/plainfile/r.h5: cannot create directory" -- "$cdbench" run --device cpu --frames 0:2 --out "$tmp/plainfile/r.h5"
 check "out where nothing can be written" 1 "--out /proc/cdbench-r.h5: cannot write in directory /proc" -- "$cdbench" run --device cpu --frames 0:2 --out /proc/cdbench-r.h5
 if grep -q "HDF5" "$tmp/out"; then fail "raw HDF5 errors printed"; else echo "ok   no HDF5 error stack"; fi
@@ -120,10 +131,10 @@ check "bad threshold order" 2 "threshold" -- "$cdbench" run --device cpu --quiet
 check "scenes info" 0 "vertex motion mean" -- "$cdbench" scenes info funnel --set frames=3
 check "scenes generate" 0 "wrote 2 frames" -- "$cdbench" scenes generate funnel --set frames=2 --out "$tmp/gen"
 check "generated scene runs" 0 "frames 0:2" -- "$cdbench" run --device cpu --scene "$tmp/gen"
-check "unknown generator parameter lists the known" 1 "parameter 'nope': unknown parameter \\(known: res, frames, warmup, substeps, seed, segments, ball_level, ball_speed\\)" -- "$cdbench" scenes info funnel --set nope=1
+check "unknown generator parameter lists the known" 2 "--set nope=1: generator 'funnel', parameter 'nope': unknown parameter \\(known: res, frames, warmup, substeps, seed, segments, ball_level, ball_speed\\)" -- "$cdbench" scenes info funnel --set nope=1
 check "scenes info lists the parameters" 0 "^parameter +res +integer +16 \\(default 56\\) +range 2\\.\\.20000" -- "$cdbench" scenes info funnel --set res=16 --set frames=2
-check "a count past its range is refused, not wrapped" 1 "parameter 'res': 4294967312 is out of range: must be between 2 and 20000" -- "$cdbench" run --device cpu --scene funnel --set res=4294967312
-check "frames past uint32 is refused, not wrapped" 1 "parameter 'frames': 4294967297 is out of range" -- "$cdbench" run --device cpu --scene funnel --set frames=4294967297
+check "a count past its range is refused, not wrapped" 2 "--set res=4294967312: generator 'funnel', parameter 'res': 4294967312 is out of range: must be between 2 and 20000" -- "$cdbench" run --device cpu --scene funnel --set res=4294967312
+check "frames past uint32 is refused, not wrapped" 2 "--set frames=4294967297: generator 'funnel', parameter 'frames': 4294967297 is out of range" -- "$cdbench" run --device cpu --scene funnel --set frames=4294967297
 check "set on a mesh sequence" 2 "procedural" -- "$cdbench" scenes info "$tmp/gen" --set res=4
 
 mkdir -p "$tmp/seq"

@@ -58,6 +58,35 @@ case $(report_status "$d/r.h5.incomplete") in
   *) fail "staged file: $(report_status "$d/r.h5.incomplete")" ;;
 esac
 
+check "--overwrite says it replaces an earlier run's partial file" 0 \
+  "^warning: $d/r.h5.incomplete, the partial file an earlier run left, will be replaced by this run's$" -- \
+  "$cdbench" run "${small[@]}" --out "$d/r.h5" --overwrite
+
+# --- two runs onto one file: the second refused, the first's file (and an older one) intact ---
+# writer_busy FILE [OPTIONS...]: a run writing FILE, stopped once a second run onto it was
+# refused; the first's file reads as incomplete (SIGTERM), the second changed nothing.
+writer_busy() {
+  local f=$1; shift
+  "$cdbench" run "${endless[@]}" --out "$f" "$@" >"$tmp/first.out" 2>&1 &
+  local pid=$!
+  for _ in $(seq 600); do grep -q "^frame  *2 " "$tmp/first.out" && break; sleep 0.1; done
+  check "second run onto $(basename "$f") $* refused" 2 "^cdbench: error: $f is being written by another cdbench run \(pid $pid\)" -- \
+    "$cdbench" run "${small[@]}" --pipeline bvh --out "$f" "$@"
+  kill -TERM "$pid"
+  wait "$pid"
+}
+writer_busy "$d/busy.h5"
+[[ $(report_status "$d/busy.h5") == incomplete*SIGTERM* ]] && echo "ok   the first run's file is intact" || fail "first run's file: $(report_status "$d/busy.h5")"
+[[ -e $d/busy.h5.lock ]] && fail "lock file left after the run" || echo "ok   no lock file left"
+before=$(md5sum <"$d/r.h5")
+writer_busy "$d/r.h5" --overwrite
+[[ $(md5sum <"$d/r.h5") == "$before" ]] && echo "ok   the older complete file unchanged by both" || fail "older file changed: $(report_status "$d/r.h5")"
+[[ $(report_status "$d/r.h5.incomplete") == incomplete*SIGTERM* ]] && echo "ok   the first run's staged file is intact" || fail "staged file: $(report_status "$d/r.h5.incomplete")"
+rm -f "$d/r.h5.incomplete"
+# A lock file a killed run left behind holds nobody back.
+echo 99999999 >"$d/stale.h5.lock"
+check "a stale lock file is taken over" 0 "^results: $d/stale.h5 \(4 frames\)" -- "$cdbench" run "${small[@]}" --out "$d/stale.h5"
+
 # --- {pipeline}: one file per pipeline, every placeholder replaced ---
 check "two pipelines onto one file refused" 2 "pipelines c and c would both write $d/dup-c.h5" -- \
   "$cdbench" run "${small[@]}" --pipeline c,c --out "$d/dup-{pipeline}.h5"
@@ -91,6 +120,32 @@ for delay in 0 0.02 0.05 0.1 0.2 0.3 0.5 0.8; do
     fail "SIGTERM after ${delay}s: rc=$rc, $state"; sed 's/^/    /' "$tmp/sig.out" | tail -5
   fi
 done
+
+# --- every signal that asks a program to stop: as SIGTERM, the frames run kept ---
+for sig in HUP QUIT USR1 USR2 ALRM XCPU; do
+  f=$d/stop-$sig.h5
+  "$cdbench" run "${endless[@]}" --out "$f" >"$tmp/stop.out" 2>&1 &
+  pid=$!
+  for _ in $(seq 600); do grep -q "^frame  *2 " "$tmp/stop.out" && break; sleep 0.1; done
+  kill -"$sig" "$pid"
+  wait "$pid"; rc=$?
+  want=$((128 + $(kill -l "$sig")))
+  state=$(report_status "$f")
+  if [[ $rc -eq $want ]] && grep -q "^cdbench: interrupted by SIG$sig after [1-9][0-9]* of 1000000 frames" "$tmp/stop.out" &&
+     [[ $state == *"incomplete"*"SIG$sig after "[1-9]* ]]; then
+    echo "ok   SIG$sig: $rc, frames kept"
+  else
+    fail "SIG$sig: rc=$rc (want $want), $state"; grep -v "^frame" "$tmp/stop.out" | tail -3
+  fi
+done
+# Before the scene is loaded: at once, said.
+"$cdbench" run "${endless[@]}" --out "$d/early.h5" >"$tmp/early.out" 2>&1 &
+pid=$!
+for _ in $(seq 1000); do catches_sigterm "$pid" && break; sleep 0.005; done
+kill -HUP "$pid"
+wait "$pid"; rc=$?
+if [[ $rc -eq 129 ]] && grep -q "interrupted by SIGHUP" "$tmp/early.out"; then echo "ok   SIGHUP at the start: 129, said"
+else fail "SIGHUP at the start: rc=$rc"; tail -3 "$tmp/early.out"; fi
 
 # --- a write that fails on the system's side ---
 # disk_full NAME DIR [ULIMIT_KB]: a run whose results outgrow DIR (or the file size limit):
@@ -127,6 +182,61 @@ else
 fi
 mkdir -p "$tmp/limited"
 disk_full "file size limit (ulimit -f 200)" "$tmp/limited" 200
+
+# A short run whose file the disk (or the limit) cuts off at its end, at several sizes: exit
+# 1, and the file left is one report reads as incomplete, or none, said so.
+end_full() {  # end_full NAME DIR [ULIMIT_KB]
+  local name=$1 dir=$2 limit=${3:-} f=$2/end.h5
+  rm -f "$f"
+  if [[ -n $limit ]]; then
+    (ulimit -f "$limit"; exec "$cdbench" run --device cpu --quiet --scene funnel --set res=16 --frames 0:10 --out "$f") >"$tmp/end.out" 2>&1
+  else
+    "$cdbench" run --device cpu --quiet --scene funnel --set res=16 --frames 0:10 --out "$f" >"$tmp/end.out" 2>&1
+  fi
+  local rc=$? state="no file"
+  [[ -e $f ]] && state=$(report_status "$f")
+  if [[ $rc -eq 1 ]] && grep -q "writing results to $f failed" "$tmp/end.out" &&
+     { { [[ $state == incomplete* ]] && grep -q "results (incomplete.*): $f$" "$tmp/end.out"; } ||
+       { [[ $state == "no file" ]] && ! grep -q "results (incomplete" "$tmp/end.out"; }; }; then
+    echo "ok   $name: $state"
+  else
+    fail "$name: rc=$rc, $state"; sed 's/^/    /' "$tmp/end.out" | grep -v "^    frame" | tail -6
+  fi
+}
+for size in 64k 100k 150k; do
+  if mount -t tmpfs -o size=$size tmpfs "$tmp/tiny" 2>"$tmp/mount.err"; then
+    end_full "run's end on a full disk ($size tmpfs)" "$tmp/tiny"
+    umount "$tmp/tiny"
+  else
+    skip "run's end on a full disk ($size tmpfs)" "cannot mount a tmpfs here: $(head -1 "$tmp/mount.err")"
+  fi
+done
+for kb in 20 40 60 100 150; do end_full "run's end past ulimit -f $kb" "$tmp/limited" "$kb"; done
+# The other commands that write files: a clear error, exit 1 rather than killed by SIGXFSZ,
+# and no cut-off file left to be read as a shorter frame.
+(ulimit -f 20; exec "$cdbench" scenes generate funnel --set res=16 --set frames=3 --out "$tmp/limited/gen") >"$tmp/gen.out" 2>&1
+rc=$?
+if [[ $rc -eq 1 ]] && grep -q "gen/frame_0000.obj: write failed: File too large (the partial frame removed)" "$tmp/gen.out" &&
+   [[ ! -e $tmp/limited/gen/frame_0000.obj ]]; then echo "ok   scenes generate past ulimit -f: exit 1, nothing cut off left"
+else fail "scenes generate past ulimit -f: rc=$rc"; tail -3 "$tmp/gen.out"; fi
+(ulimit -f 4; exec "$cdbench" verify --device cpu --scene funnel --set res=16 --frames 0:3 --write-pairs "$tmp/limited/pairs") >"$tmp/wp.out" 2>&1
+rc=$?
+if [[ $rc -eq 1 ]] && grep -q "pairs/frame_0000.txt: write failed: File too large (the partial file removed)" "$tmp/wp.out" &&
+   [[ ! -e $tmp/limited/pairs/frame_0000.txt ]]; then echo "ok   verify --write-pairs past ulimit -f: exit 1, nothing cut off left"
+else fail "verify --write-pairs past ulimit -f: rc=$rc"; tail -3 "$tmp/wp.out"; fi
+
+# --- stdout the system refuses: the command fails, said on stderr ---
+for command in "report --csv $d/r.h5" "report $d/r.h5" "report --plan $d/r.h5" "compare --json $d/r.h5 $d/r.h5" \
+               "scenes info funnel" "scenes list" "run ${small[*]} --json" "--version"; do
+  # shellcheck disable=SC2086
+  "$cdbench" $command >/dev/full 2>"$tmp/full-stdout.err"; rc=$?
+  if [[ $rc -eq 1 ]] && grep -q "^cdbench: error: writing to standard output failed.*: what it printed is incomplete$" "$tmp/full-stdout.err"; then
+    echo "ok   $command >/dev/full: exit 1, said"
+  else
+    fail "$command >/dev/full: rc=$rc"; tail -2 "$tmp/full-stdout.err"
+  fi
+done
+check "a usage error keeps exit 2 on /dev/full" 2 "unknown pipeline" -- bash -c '"$1" run --device cpu --pipeline nope >/dev/full' _ "$cdbench"
 
 # --- OBJ frames whose faces change ---
 "$cdbench" scenes generate funnel --set res=4 --set frames=3 --out "$tmp/faces" >/dev/null 2>&1
@@ -259,6 +369,23 @@ check "a sweep with an invalid cell runs nothing" 2 "cell .*box-margin=-1: --box
 mkdir -p "$tmp/cells"
 printf '{"cell": "c1", "scene": "funnel", "pipeline": "c", "device": "cpu", "state": "failed", "exit_code": 2, "log_tail": "--warmup: bad value\\nRun with --help for more information.\\n"}' >"$tmp/cells/c1.status.json"
 check "report shows the cell's own error" 1 "c1\.h5 .*failed, no results file: exit 2: --warmup: bad value \|$" -- "$cdbench" report "$tmp/cells"
+
+# --- a reader stopped (Ctrl-Z, SIGSTOP) longer than the damaged-file guard's budget ---
+# The guard counts CPU time: the stopped seconds do not make a good file "damaged".
+mkdir -p "$tmp/many"
+for i in $(seq 1000); do cp "$d/r.h5" "$tmp/many/r$i.h5"; done
+"$cdbench" report --csv "$tmp/many" >"$tmp/many.out" 2>&1 &
+pid=$!
+sleep 0.3
+kill -STOP "$pid"
+sleep 11
+kill -CONT "$pid"
+wait "$pid"; rc=$?
+if [[ $rc -eq 0 ]] && ! grep -q "damaged" "$tmp/many.out" && [[ $(grep -c ",complete$" "$tmp/many.out") -eq 1000 ]]; then
+  echo "ok   report stopped for 11 s reads every file"
+else
+  fail "report stopped for 11 s: rc=$rc"; grep -m3 -v ",complete$" "$tmp/many.out"
+fi
 
 # --- report: exit codes, and a link loop beside valid files ---
 mkdir -p "$tmp/empty-results"
