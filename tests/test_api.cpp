@@ -8,6 +8,7 @@
 #include <cstring>
 #include <vector>
 
+#include "api_cloth.h"
 #include "cdbench/cdbench.h"
 #include "error_of.h"
 #include "registry/pipeline_kinds.h"
@@ -17,28 +18,8 @@ namespace {
 
 constexpr uint32_t kSide = 12;
 
-cdbench::Topology cloth() {
-  std::vector<cdbench::Triangle> t;
-  for (uint32_t i = 0; i < kSide; ++i)
-    for (uint32_t j = 0; j < kSide; ++j) {
-      const uint32_t v = i * (kSide + 1) + j;
-      t.push_back({v, v + 1, v + kSide + 1});
-      t.push_back({v + 1, v + kSide + 2, v + kSide + 1});
-    }
-  return cdbench::Topology::mesh(t, (kSide + 1) * (kSide + 1));
-}
-
-// x, y, z per vertex: a wave folding the cloth onto itself.
-std::vector<float> waving(int frame) {
-  std::vector<float> xyz;
-  const float t = 0.3f * float(frame);
-  for (uint32_t i = 0; i <= kSide; ++i)
-    for (uint32_t j = 0; j <= kSide; ++j) {
-      const float x = float(j) / kSide, y = float(i) / kSide;
-      xyz.insert(xyz.end(), {x + 0.08f * std::sin(6.0f * y + t), y, 0.1f * std::sin(9.0f * x - 2.0f * t)});
-    }
-  return xyz;
-}
+cdbench::Topology cloth() { return api_cloth(kSide); }
+std::vector<float> waving(int frame) { return api_cloth_waving(kSide, frame); }
 
 bool same(const std::vector<PrimPair>& a, const std::vector<PrimPair>& b) {
   return a.size() == b.size() &&

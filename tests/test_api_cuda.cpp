@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "api_cloth.h"
 #include "cdbench/cdbench.h"
 
 namespace {
@@ -15,27 +16,8 @@ constexpr uint32_t kSide = 16;
 
 #define CUDA_OK(call) ASSERT_EQ((call), cudaSuccess) << #call
 
-cdbench::Topology cloth() {
-  std::vector<cdbench::Triangle> t;
-  for (uint32_t i = 0; i < kSide; ++i)
-    for (uint32_t j = 0; j < kSide; ++j) {
-      const uint32_t v = i * (kSide + 1) + j;
-      t.push_back({v, v + 1, v + kSide + 1});
-      t.push_back({v + 1, v + kSide + 2, v + kSide + 1});
-    }
-  return cdbench::Topology::mesh(t, (kSide + 1) * (kSide + 1));
-}
-
-std::vector<float> waving(int frame) {
-  std::vector<float> xyz;
-  const float t = 0.3f * float(frame);
-  for (uint32_t i = 0; i <= kSide; ++i)
-    for (uint32_t j = 0; j <= kSide; ++j) {
-      const float x = float(j) / kSide, y = float(i) / kSide;
-      xyz.insert(xyz.end(), {x + 0.08f * std::sin(6.0f * y + t), y, 0.1f * std::sin(9.0f * x - 2.0f * t)});
-    }
-  return xyz;
-}
+cdbench::Topology cloth() { return cdb::test::api_cloth(kSide); }
+std::vector<float> waving(int frame) { return cdb::test::api_cloth_waving(kSide, frame); }
 
 bool same(std::vector<cdbench::Pair> a, const std::vector<cdbench::Pair>& b) {
   std::sort(a.begin(), a.end(), [](auto x, auto y) { return cdb::pair_key(x) < cdb::pair_key(y); });
