@@ -34,7 +34,6 @@ class RestructurePrice {
   // Forget every measurement (a new run over the frames).
   void reset() { *this = RestructurePrice(enabled_); }
 
-  bool enabled() const { return enabled_; }
   bool measured() const { return cost_per_leaf_ms_ >= 0.0 && gain_per_leaf_ >= 0.0; }
 
   // Whether restructuring candidates of `leaves` leaves is predicted to pay (always when
