@@ -168,6 +168,14 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
              "steady frame by which they hold more nodes per pair than after it) reaches a rebuild's cost over an "
              "update's; off: only --rebuild-every and pipeline c's Formula 2 rebuild")
       ->group(kTuningGroup);
+  add_choice<AutoSwitch>(
+      cmd, "--rebuild-ahead", c.tree.rebuild_ahead,
+      "front pipelines: a rebuild after the first frame runs on a second, low-priority GPU stream (the new tree, "
+      "its fronts' generate and ordering) while the frames preserve the current fronts, and the first frame that "
+      "finds it done adopts it; off: the rebuilding frame builds and generates in the frame; auto: on with "
+      "--device cuda, off on the cpu. Not with rigid objects, the radix orderings or --refit-every above 1",
+      {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.tree.rebuild_ahead))
+      ->group(kTuningGroup);
   add_switch(cmd, "--regenerate", c.fronts.regenerate,
              "front pipelines with --front-cycle auto: each maintenance runs an update of the fronts or a generate "
              "of new ones, whichever measured cheaper per front node last (a generate is tried once the first "

@@ -32,6 +32,7 @@ void print_frame_line(uint32_t frame, const FrameStats& s) {
                 static_cast<unsigned long long>(s.check.contacts), s.check.contact_precision,
                 static_cast<unsigned long long>(s.check.discrete_missed_contacts));
   if (s.timing.query_reruns) std::printf("  (a buffer grew, re-ran %u)", s.timing.query_reruns);
+  if (s.timing.ahead_ms > 0) std::printf("  (adopted a build that ran %.3f ms beside earlier frames)", s.timing.ahead_ms);
   std::printf("\n");
 }
 

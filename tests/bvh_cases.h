@@ -454,6 +454,7 @@ inline void check_forced_decisions(const std::string& device, const ExactFrames&
                           Forced{"refit", 1.01, 1.01, nullptr}}) {
     PipelineConfig cfg = config_for(device, 0.5, 0.05, cycle);
     cfg.name = "c";
+    cfg.tree.rebuild_ahead = AutoSwitch::off;  // a rebuild in its frame (check_rebuild_ahead has the other)
     cfg.restructure.quality = 0.0;
     cfg.restructure.min_leaves = 4;
     cfg.restructure.threshold_refit = f.refit;
@@ -480,6 +481,115 @@ inline void check_forced_decisions(const std::string& device, const ExactFrames&
     EXPECT_EQ(s.quality.candidates, 0u);
     EXPECT_TRUE(s.quality.decision.empty());
   }
+}
+
+// Rebuild steps of a recorded run: builds ahead and adoptions, each ahead adopted before
+// the next and every front preserved while one runs (plan_record.cpp checks the rest).
+struct AheadSteps {
+  size_t aheads = 0, adopts = 0;
+};
+inline AheadSteps count_ahead_steps(const std::vector<FrameStats>& frames) {
+  AheadSteps n;
+  bool in_flight = false;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    EXPECT_TRUE(frames[k].plan.has_value()) << "frame " << k;
+    if (!frames[k].plan) continue;
+    const PlanStep& s = *frames[k].plan;
+    if (s.trees == TreeStep::ahead) {
+      EXPECT_FALSE(in_flight) << "frame " << k << ": ahead while one runs";
+      in_flight = true;
+      ++n.aheads;
+    }
+    if (s.trees == TreeStep::adopt) {
+      EXPECT_TRUE(in_flight) << "frame " << k << ": adopt without a build ahead";
+      in_flight = false;
+      ++n.adopts;
+    }
+    EXPECT_FALSE(in_flight && s.trees == TreeStep::build) << "frame " << k << ": a build while one runs ahead";
+    if (in_flight || s.trees == TreeStep::adopt) {
+      EXPECT_FALSE(s.runs(FrontOp::update) || s.runs(FrontOp::generate) || s.runs(FrontOp::restructure))
+          << "frame " << k << ": " << format_plan_step(s);
+    }
+  }
+  return n;
+}
+
+// --rebuild-ahead (pipeline/front_pipeline.h): rebuilds built on the side stream and adopted
+// at a later frame. Every front pipeline that can build ahead, with rebuilds every second or
+// third frame (--rebuild-every) or from Formula 2 (c, every subtree a candidate), front and
+// pair buffers far too small (fronts built ahead outgrow theirs and are generated again at
+// the adoption): every frame exact, builds ahead in the plan and adopted, and the recorded
+// plan replayed on a fresh pipeline runs the same steps exactly. The reference strategy and
+// the radix orderings build in their frames.
+inline void check_rebuild_ahead(const std::string& device, const ExactFrames& scene) {
+  struct Case {
+    const char* pipeline;
+    uint32_t rebuild_every;
+    bool formula2;
+  };
+  for (const Case& c : {Case{"a", 2, false}, Case{"b", 3, false}, Case{"c", 2, false}, Case{"unordered", 2, false},
+                        Case{"periodic", 3, false}, Case{"c", 0, true}}) {
+    SCOPED_TRACE(std::string(c.pipeline) + (c.formula2 ? ", Formula 2 rebuilds" : ", rebuild every ") +
+                 (c.formula2 ? "" : std::to_string(c.rebuild_every)));
+    PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
+    cfg.name = c.pipeline;
+    cfg.tree.rebuild_ahead = AutoSwitch::on;
+    cfg.tree.rebuild_every = c.rebuild_every;
+    if (c.formula2) {
+      cfg.restructure.quality = 0.0;
+      cfg.restructure.min_leaves = 4;
+      cfg.restructure.threshold_refit = 0.0;
+      cfg.restructure.threshold_build = 0.0;
+    }
+    const std::vector<FrameStats> recorded = run_exact(cfg, scene);
+    if (testing::Test::HasFailure()) return;
+    const AheadSteps n = count_ahead_steps(recorded);
+    if (scene.topology.faces.size() > 1 && !c.formula2) {
+      EXPECT_GT(n.aheads, 0u);
+    }
+    EXPECT_GE(n.adopts + 1, n.aheads);
+    auto plan = std::make_shared<RecordedPlan>();
+    plan->source = c.pipeline;
+    plan->records_probes = true;
+    for (size_t k = 0; k < recorded.size(); ++k) plan->frames.push_back({uint32_t(k), *recorded[k].plan, 0});
+    auto p = make_pipeline(cfg);
+    ASSERT_TRUE(p->replay_plan(plan));
+    const std::vector<FrameStats> replayed = run_exact(*p, cfg, scene);
+    ASSERT_EQ(replayed.size(), recorded.size());
+    for (size_t k = 0; k < replayed.size(); ++k) EXPECT_EQ(replayed[k].plan, recorded[k].plan) << "frame " << k;
+  }
+  for (const char* name : {"reference", "radix-order"}) {
+    PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
+    cfg.name = name;
+    cfg.tree.rebuild_ahead = AutoSwitch::on;
+    cfg.tree.rebuild_every = 2;
+    EXPECT_EQ(count_ahead_steps(run_exact(cfg, scene)).aheads, 0u) << name;
+  }
+}
+
+// Scenes for check_rebuild_ahead: the front scenes and the soups at the extremes (none, one
+// and two triangles, identical centroids, duplicates, coordinates at 1e-20 and 1e20).
+inline std::vector<std::string> rebuild_ahead_scene_names() {
+  return {"cloth_wave", "funnel", "soup", "none", "one", "two", "identical", "duplicates", "tiny", "huge"};
+}
+inline ExactFrames rebuild_ahead_scene(const std::string& name, uint32_t cloth_res, uint32_t frames) {
+  const auto soup = [&](uint64_t n, const char* dist, double scale, double dups) {
+    return exact_frames(*make_generator("soup", {{"triangles", n},
+                                                 {"distribution", dist},
+                                                 {"scale", scale},
+                                                 {"duplicates", dups},
+                                                 {"jitter", 3.0},
+                                                 {"frames", frames},
+                                                 {"seed", 17 + n}}));
+  };
+  if (name == "none") return soup(0, "uniform", 1.0, 0.0);
+  if (name == "one") return soup(1, "uniform", 1.0, 0.0);
+  if (name == "two") return soup(2, "clustered", 1.0, 0.0);
+  if (name == "identical") return soup(600, "identical", 1.0, 0.0);
+  if (name == "duplicates") return soup(1000, "uniform", 1.0, 0.3);
+  if (name == "tiny") return soup(1000, "clustered", 1e-20, 0.0);
+  if (name == "huge") return soup(1000, "clustered", 1e20, 0.0);
+  return exact_frames(*front_scene(name, cloth_res, frames));
 }
 
 // Restructures hand-picked subtrees of a refitted tree — all nodes of a given depth,

@@ -386,6 +386,19 @@ TEST_P(CudaForcedDecisions, EveryBranchOfFormula2IsExact) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaForcedDecisions, testing::ValuesIn(front_scene_names()), front_scene_name);
 
+class CudaRebuildAhead : public testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  }
+};
+
+TEST_P(CudaRebuildAhead, EveryFrameExactAndTheBuildsAdopted) {
+  check_rebuild_ahead("cuda", rebuild_ahead_scene(GetParam(), 96, 16));
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, CudaRebuildAhead, testing::ValuesIn(rebuild_ahead_scene_names()), front_scene_name);
+
 TEST(CudaPipelines, ReplayedPlansRunTheRecordedStepsExactly) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   check_replayed_plans("cuda", exact_frames(*front_scene("funnel", 96, 16)));

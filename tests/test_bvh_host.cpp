@@ -174,6 +174,32 @@ TEST(HostPipelines, OneSynchronizationPerFrame) {
   }
 }
 
+// --rebuild-ahead: the ahead frame launches its build without waiting for it; the frame that
+// adopts it waits for the side stream and reads its fronts' sizes back, two more.
+TEST(HostPipelines, BuildsAheadSynchronizeOnlyWhereAdopted) {
+  auto wave = make_generator("cloth-wave", {{"res", 16}, {"frames", 9}});
+  for (const char* name : {"a", "b", "c"}) {
+    PipelineConfig cfg = config_for("cpu", 64.0, 64.0, 2);
+    cfg.name = name;
+    cfg.tree.rebuild_ahead = AutoSwitch::on;
+    cfg.tree.rebuild_every = 3;
+    auto p = make_pipeline(cfg);
+    p->set_topology(wave->topology());
+    std::vector<vec3f> v;
+    uint32_t adopted = 0;
+    for (uint32_t f = 0; f < 9; ++f) {
+      wave->frame(f, v);
+      const FrameStats s = p->run_frame(v);
+      ASSERT_TRUE(s.plan.has_value());
+      const bool adopts = s.plan->trees == TreeStep::adopt;
+      adopted += adopts;
+      EXPECT_EQ(s.timing.host_syncs, adopts ? 3u : 1u) << name << " frame " << f << " " << s.op;
+      EXPECT_EQ(s.timing.ahead_ms > 0.0, adopts) << name << " frame " << f;
+    }
+    EXPECT_EQ(adopted, 2u) << name;  // built ahead at frames 3 and 6, adopted at 4 and 7
+  }
+}
+
 TEST(HostPipelines, SecondPassAfterGrowthMatchesTheFirst) {
   auto funnel = make_generator("funnel", {{"res", 20}, {"frames", 6}, {"segments", 16}, {"ball_level", 1}});
   check_second_pass_matches_first(config_for("cpu", 0.01, 0.05, 2), *funnel);
@@ -203,6 +229,14 @@ TEST_P(HostForcedDecisions, EveryBranchOfFormula2IsExact) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HostForcedDecisions, testing::ValuesIn(front_scene_names()), front_scene_name);
+
+class HostRebuildAhead : public testing::TestWithParam<std::string> {};
+
+TEST_P(HostRebuildAhead, EveryFrameExactAndTheBuildsAdopted) {
+  check_rebuild_ahead("cpu", rebuild_ahead_scene(GetParam(), 24, 9));
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, HostRebuildAhead, testing::ValuesIn(rebuild_ahead_scene_names()), front_scene_name);
 
 TEST(HostPipelines, ReplayedPlansRunTheRecordedStepsExactly) {
   check_replayed_plans("cpu", exact_frames(*front_scene("funnel", 24, 8)));

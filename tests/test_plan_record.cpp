@@ -23,7 +23,8 @@ PlanStep step(TreeStep trees, FrontOp self, Formula2 decision = Formula2::none, 
   return s;
 }
 
-// Frames 0.. of one self query: b(uild), p(reserve), u(pdate and inspect), g(enerate), r(estructure), s(tale).
+// Frames 0.. of one self query: b(uild), p(reserve), u(pdate and inspect), g(enerate), r(estructure), s(tale),
+// a(head: refit, preserve and build ahead), d (adopt what was built ahead, preserve).
 RecordedPlan plan_of(const std::string& letters, const std::string& source = "plan.txt") {
   RecordedPlan plan;
   plan.source = source;
@@ -36,6 +37,8 @@ RecordedPlan plan_of(const std::string& letters, const std::string& source = "pl
       case 'g': s = step(TreeStep::refit, FrontOp::generate); break;
       case 'r': s = step(TreeStep::refit, FrontOp::restructure, Formula2::restructure); break;
       case 's': s = step(TreeStep::stale, FrontOp::preserve); break;
+      case 'a': s = step(TreeStep::ahead, FrontOp::preserve); break;
+      case 'd': s = step(TreeStep::adopt, FrontOp::preserve); break;
     }
     plan.frames.push_back({uint32_t(k), s, 0});
   }
@@ -44,6 +47,7 @@ RecordedPlan plan_of(const std::string& letters, const std::string& source = "pl
 
 const ReplayTarget kPipelineC{true, false, 1};
 const ReplayTarget kPipelineA{false, false, 1};
+const ReplayTarget kPipelineCAhead{true, false, 1, true};
 
 }  // namespace
 
@@ -97,8 +101,8 @@ TEST(PlanRecord, ParseErrorsNameTheFileLineAndField) {
       {h + "2 refit self=preserve\n",
        "p.txt line 3 field 1 ('2'): frame 2 after frame 0: a plan lists consecutive frames"},
       {h + "1 rebuild self=preserve\n",
-       "p.txt line 3 field 2 ('rebuild'): expected the trees' step: build, refit or stale"},
-      {h + "1\n", "p.txt line 3 field 2: missing the trees' step (build, refit or stale)"},
+       "p.txt line 3 field 2 ('rebuild'): expected the trees' step: build, refit, stale, ahead or adopt"},
+      {h + "1\n", "p.txt line 3 field 2: missing the trees' step (build, refit, stale, ahead or adopt)"},
       {h + "1 refit self=updte\n",
        "p.txt line 3 field 3 ('self=updte'): unknown operation 'updte' (generate, preserve, update, restructure)"},
       {h + "1 refit self=update cross=update\n",
@@ -121,6 +125,12 @@ TEST(PlanRecord, FrameListsAndOutline) {
   EXPECT_EQ(frame_list_text({1, 2, 3, 4, 6, 7}), "1-4,6,7");
   EXPECT_EQ(plan_outline(plan_of("bppuppgupr")), "build: 0; update: 3,7; generate: 6; restructure: 9");
   EXPECT_EQ(plan_outline(plan_of("bpsps")), "build: 0; update: —; generate: —; restructure: —; stale: 2,4");
+  EXPECT_EQ(plan_outline(plan_of("bpappdpappd")),
+            "build: 0; update: —; generate: —; restructure: —; built ahead: 2,7; adopted: 5,10");
+  const RecordedPlan ahead = parse_plan("cdbench-plan 1\n0 build self=generate\n1 ahead self=preserve\n2 adopt self=preserve\n", "p.txt");
+  EXPECT_EQ(ahead.frames[1].step.trees, TreeStep::ahead);
+  EXPECT_EQ(ahead.frames[2].step.trees, TreeStep::adopt);
+  EXPECT_EQ(format_plan_step(ahead.frames[1].step), "ahead self=preserve");
   RecordedPlan restructure = plan_of("bur");
   restructure.frames[2].step.op(Query::inter) = FrontOp::generate;  // part of the restructure, not a maintenance
   EXPECT_EQ(plan_outline(restructure), "build: 0; update: 1; generate: —; restructure: 2");
@@ -183,7 +193,25 @@ TEST(PlanRecord, StepsAPipelineCannotRunAreRefused) {
   }
   p = plan_of("bup");
   p.frames[2].step.decision = Formula2::rebuild;
-  EXPECT_EQ(error(p, kPipelineC), "plan.txt frame 2: decision=rebuild must build the trees");
+  EXPECT_EQ(error(p, kPipelineC), "plan.txt frame 2: decision=rebuild must build the trees (build, or ahead)");
+  // Builds ahead: only on a target that builds ahead, one at a time, each adopted, every
+  // front preserved meanwhile.
+  EXPECT_EQ(error(plan_of("bpappdpupappd"), kPipelineCAhead), "no error");
+  EXPECT_EQ(error(plan_of("bpapd"), kPipelineC),
+            "plan.txt frame 2: ahead, but this run does not build ahead (--rebuild-ahead, which needs a front "
+            "pipeline with the histogram sort, no rigid objects and --refit-every 1)");
+  EXPECT_EQ(error(plan_of("bpapa"), kPipelineCAhead),
+            "plan.txt frame 4: ahead, but the last build ahead was not adopted yet");
+  EXPECT_EQ(error(plan_of("bpd"), kPipelineCAhead), "plan.txt frame 2: adopt, but no build ahead runs");
+  EXPECT_EQ(error(plan_of("bpabd"), kPipelineCAhead), "plan.txt frame 3: build, but a build ahead was not adopted yet");
+  EXPECT_EQ(error(plan_of("bpaud"), kPipelineCAhead),
+            "plan.txt frame 3: while a build ahead runs every front is preserved; self updates");
+  p = plan_of("bpapd");
+  p.frames[3].step.probe = true;
+  EXPECT_EQ(error(p, kPipelineCAhead), "plan.txt frame 3: while a build ahead runs nothing is inspected or probed");
+  p = plan_of("buapd");
+  p.frames[2].step.decision = Formula2::rebuild;
+  EXPECT_EQ(error(p, kPipelineCAhead), "no error");
   // Stale boxes only where the run's --refit-every keeps them.
   EXPECT_EQ(error(plan_of("bspsp"), {false, false, 2}), "no error");
   EXPECT_EQ(error(plan_of("bspsp"), kPipelineA), "plan.txt frame 1: stale, but this run refits here (--refit-every 1)");

@@ -38,6 +38,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"refit_top_leaves", c.tree.refit_top_leaves},
       {"refit_levels", auto_switch_name(c.tree.refit_levels)},
       {"rebuild_degraded", c.tree.rebuild_degraded},
+      {"rebuild_ahead", auto_switch_name(c.tree.rebuild_ahead)},
       {"conservative", config_conservative(c)},
   };
 }

@@ -22,6 +22,7 @@ const std::vector<FrameColumn>& frame_columns() {
         {"t_total_noise", T::f64, "--repeat: relative standard deviation of t_total_ms over the passes (0: one pass)", [](R r) -> ColumnValue { return r.stats.timing.total_noise; }},
         {"host_syncs", T::u32, "host-device synchronizations in the frame (target: 1, the counters' read-back)", [](R r) -> ColumnValue { return uint64_t(r.stats.timing.host_syncs); }},
         {"bytes_floor", T::u64, "bytes the frame must move at least: 12 per vertex and per face read, 8 per pair written", [](R r) -> ColumnValue { return r.stats.timing.bytes_floor; }},
+        {"t_ahead_ms", T::f64, "--rebuild-ahead: on a frame that adopted a build ahead, what the build ran on its side stream beside earlier frames, ms (not in t_total_ms; 0: none)", [](R r) -> ColumnValue { return r.stats.timing.ahead_ms; }},
         {"query_reruns", T::u32, "queries re-run because a buffer grew", [](R r) -> ColumnValue { return uint64_t(r.stats.timing.query_reruns); }},
         {"front_int", T::u64, "internal front nodes after the frame", [](R r) -> ColumnValue { return r.stats.fronts.internal; }},
         {"front_ext", T::u64, "external front nodes after the frame", [](R r) -> ColumnValue { return r.stats.fronts.external; }},

@@ -168,19 +168,24 @@ ApetreiTree apetrei_tree(Lbvh<Exec>& bvh, const uint64_t* keys) {
           bvh.build_first.data(), bvh.build_last.data(), bvh.other_bound.data(), bvh.count_log.data()};
 }
 
-// Rebuilds the hierarchy over a subset of the mesh's faces: boxes, Morton codes, radix
-// sort, Apetrei build. Leaves end up sorted, holding mesh face indices; internal nodes are
-// in build order until order_depth_first runs. With `face_group` (per mesh face, < 2^6)
-// each group's faces form their own subtrees (MortonFn): a tree that is only refitted
-// while its groups move apart (rigid objects) loosens only the few nodes above them.
+// The first step of a build: the boxes of a subset's faces, in subset order, into the
+// build scratch. The only step that reads the mesh: a build ahead (--rebuild-ahead) runs it
+// on the frame's stream and the rest on a side stream, which the next frame's upload then
+// cannot race.
 template <class Exec>
-void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBits bits,
-                     FaceSubset subset, const uint32_t* face_group = nullptr) {
+void build_boxes(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, FaceSubset subset) {
+  bvh.reserve(exec, subset.count);
+  if (subset.count > 0)
+    exec.for_each_n(subset.count, SubsetFaceBoxFn{mesh, subset, bvh.prim_lo.data(), bvh.prim_hi.data()});
+}
+
+// The rest of the build from those boxes: Morton codes, radix sort, Apetrei build.
+template <class Exec>
+void build_from_boxes(Exec& exec, Lbvh<Exec>& bvh, MortonBits bits, FaceSubset subset,
+                      const uint32_t* face_group = nullptr) {
   const uint32_t n = subset.count;
-  bvh.reserve(exec, n);
   bvh.morton_bits = bits;
   if (n == 0) return;
-  exec.for_each_n(n, SubsetFaceBoxFn{mesh, subset, bvh.prim_lo.data(), bvh.prim_hi.data()});
   exec.reduce_box(n, CentroidFn{bvh.prim_lo.data(), bvh.prim_hi.data()}, bvh.centroid_box.data(),
                   bvh.temp.data(), bvh.temp.size());
   exec.for_each_n(n, MortonFn{bvh.prim_lo.data(), bvh.prim_hi.data(), bvh.centroid_box.data(), bits,
@@ -196,6 +201,18 @@ void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBi
   exec.fill(bvh.count_log.data(), size_t(n) + 1, 0u);
   exec.for_each_n(n, ApetreiBuildFn{apetrei_tree(bvh, bvh.morton_sorted.data()), n},
                   Balance::uneven);
+}
+
+// Rebuilds the hierarchy over a subset of the mesh's faces: boxes, Morton codes, radix
+// sort, Apetrei build. Leaves end up sorted, holding mesh face indices; internal nodes are
+// in build order until order_depth_first runs. With `face_group` (per mesh face, < 2^6)
+// each group's faces form their own subtrees (MortonFn): a tree that is only refitted
+// while its groups move apart (rigid objects) loosens only the few nodes above them.
+template <class Exec>
+void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBits bits,
+                     FaceSubset subset, const uint32_t* face_group = nullptr) {
+  build_boxes(exec, bvh, mesh, subset);
+  build_from_boxes(exec, bvh, bits, subset, face_group);
 }
 
 // The hierarchy over all of the mesh's faces.

@@ -1,7 +1,9 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
+#include <utility>
 
 #include "cdbench/bvh/bvh_view.h"
 #include "cdbench/bvh/refit_tiles.h"
@@ -74,6 +76,36 @@ struct Lbvh {
     t = t > exec.scan_temp_bytes(size_t(n) + 1) ? t : exec.scan_temp_bytes(size_t(n) + 1);
     t = t > exec.reduce_temp_bytes(n) ? t : exec.reduce_temp_bytes(n);
     temp.reserve(t > 256 ? t : 256);
+  }
+
+  // Exchanges every buffer and size with `o` (a tree built ahead replaces the current one:
+  // pipeline/front_pipeline.h); the build settings above stay, the two trees share them.
+  void swap(Lbvh& o) {
+    std::swap(num_leaves, o.num_leaves);
+    std::swap(morton_bits, o.morton_bits);
+    for (auto [a, b] : std::initializer_list<std::pair<Array<vec4f>*, Array<vec4f>*>>{
+             {&leaf_lo, &o.leaf_lo}, {&leaf_hi, &o.leaf_hi}, {&node_lo, &o.node_lo}, {&node_hi, &o.node_hi},
+             {&prim_lo, &o.prim_lo}, {&prim_hi, &o.prim_hi}, {&build_lo, &o.build_lo}, {&build_hi, &o.build_hi},
+             {&span_lo, &o.span_lo}, {&span_hi, &o.span_hi}})
+      std::swap(*a, *b);
+    for (auto [a, b] : std::initializer_list<std::pair<Array<uint32_t>*, Array<uint32_t>*>>{
+             {&leaf_prim, &o.leaf_prim},     {&leaf_parent, &o.leaf_parent},   {&leaf_escape, &o.leaf_escape},
+             {&node_left, &o.node_left},     {&node_right, &o.node_right},     {&node_parent, &o.node_parent},
+             {&node_escape, &o.node_escape}, {&node_first, &o.node_first},     {&node_last, &o.node_last},
+             {&count_log, &o.count_log},     {&offset_log, &o.offset_log},     {&prim_iota, &o.prim_iota},
+             {&build_left, &o.build_left},   {&build_right, &o.build_right},   {&build_parent, &o.build_parent},
+             {&build_first, &o.build_first}, {&build_last, &o.build_last},     {&other_bound, &o.other_bound},
+             {&new_index, &o.new_index},     {&refit_flag, &o.refit_flag},     {&tile_start, &o.tile_start},
+             {&tile_scan, &o.tile_scan},     {&tile_first, &o.tile_first},     {&tile_count, &o.tile_count},
+             {&span_flag, &o.span_flag},     {&span_scan, &o.span_scan},       {&span_count, &o.span_count},
+             {&span_node, &o.span_node},     {&span_parent, &o.span_parent},   {&span_child, &o.span_child},
+             {&span_depth, &o.span_depth},   {&level_node, &o.level_node},     {&level_code, &o.level_code},
+             {&level_link, &o.level_link}})
+      std::swap(*a, *b);
+    std::swap(morton, o.morton);
+    std::swap(morton_sorted, o.morton_sorted);
+    std::swap(centroid_box, o.centroid_box);
+    std::swap(temp, o.temp);
   }
 
   BvhView view() const {

@@ -55,7 +55,10 @@ CudaExec::CudaExec(const ExecOptions& options) : options_(options) {
   cuda_check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "SM count query");
   cuda_check(cudaDeviceGetAttribute(&per_sm, cudaDevAttrMaxThreadsPerMultiProcessor, device), "threads per SM query");
   resident_threads_ = uint64_t(sms) * uint64_t(per_sm);
-  cuda_check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "stream creation");
+  // The highest priority: a side task (on_side) gets only what the frames leave idle.
+  int least = 0, greatest = 0;
+  cuda_check(cudaDeviceGetStreamPriorityRange(&least, &greatest), "stream priority query");
+  cuda_check(cudaStreamCreateWithPriority(&stream_, cudaStreamNonBlocking, greatest), "stream creation");
   cuda_check(cudaEventCreateWithFlags(&staging_copied_, cudaEventDisableTiming), "event creation");
   cuda_check(cudaEventCreateWithFlags(&input_ready_, cudaEventDisableTiming), "event creation");
 }
@@ -64,7 +67,55 @@ CudaExec::~CudaExec() {
   if (staging_) cudaFreeHost(staging_);
   if (staging_copied_) cudaEventDestroy(staging_copied_);
   if (input_ready_) cudaEventDestroy(input_ready_);
+  if (side_stream_) {
+    cudaStreamSynchronize(side_stream_);
+    cudaStreamDestroy(side_stream_);
+    for (cudaEvent_t e : {side_fork_, side_begin_, side_end_}) cudaEventDestroy(e);
+  }
   if (stream_) cudaStreamDestroy(stream_);
+}
+
+void CudaExec::reserve_side() {
+  if (side_stream_) return;
+  int least = 0, greatest = 0;
+  cuda_check(cudaDeviceGetStreamPriorityRange(&least, &greatest), "stream priority query");
+  cuda_check(cudaStreamCreateWithPriority(&side_stream_, cudaStreamNonBlocking, least), "side stream creation");
+  cuda_check(cudaEventCreateWithFlags(&side_fork_, cudaEventDisableTiming), "event creation");
+  cuda_check(cudaEventCreate(&side_begin_), "event creation");
+  cuda_check(cudaEventCreate(&side_end_), "event creation");
+}
+
+void CudaExec::begin_side() {
+  if (!side_stream_) fail("a side task before reserve_side");
+  if (side_pending_) fail("a side task while another runs");
+  cuda_check(cudaEventRecord(side_fork_, stream_), "event record");
+  cuda_check(cudaStreamWaitEvent(side_stream_, side_fork_, 0), "side stream wait");
+  cuda_check(cudaEventRecord(side_begin_, side_stream_), "event record");
+  std::swap(stream_, side_stream_);
+}
+
+void CudaExec::end_side() {
+  std::swap(stream_, side_stream_);
+  cuda_check(cudaEventRecord(side_end_, side_stream_), "event record");
+  side_pending_ = true;
+}
+
+bool CudaExec::side_done() const {
+  if (!side_pending_) return true;
+  const cudaError_t status = cudaEventQuery(side_end_);
+  if (status == cudaErrorNotReady) return false;
+  cuda_check(status, "side task");
+  return true;
+}
+
+double CudaExec::finish_side() {
+  if (!side_pending_) return 0.0;
+  cuda_check(cudaEventSynchronize(side_end_), "side task");
+  ++host_syncs_;
+  side_pending_ = false;
+  float ms = 0.0f;
+  cuda_check(cudaEventElapsedTime(&ms, side_begin_, side_end_), "side task time");
+  return double(ms);
 }
 
 void CudaExec::reserve_upload(size_t bytes) {

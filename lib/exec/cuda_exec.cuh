@@ -361,6 +361,28 @@ class CudaExec {
   // no host synchronization. How a resident frame's positions, written by the caller on its
   // own stream, reach the frame (pipeline/device_mesh.h).
   void wait_for_stream(void* stream);
+  // Work off the frames' critical path (--rebuild-ahead, pipeline/front_pipeline.h): every
+  // launch `work` makes goes to a second stream, after all work queued so far on the
+  // executor's stream, while the frames go on on that one. The executor's stream has the
+  // device's highest priority and the side stream its lowest, so the block scheduler gives
+  // the side's kernels only what the frames leave idle. No host synchronization: side_done()
+  // asks whether the side's work has finished, finish_side() waits for it (a counted
+  // synchronization) and gives the milliseconds it ran. reserve_side() creates the stream,
+  // outside any frame; one side task at a time.
+  void reserve_side();
+  template <class F>
+  void on_side(F&& work) {
+    begin_side();
+    try {
+      work();
+    } catch (...) {
+      end_side();
+      throw;
+    }
+    end_side();
+  }
+  bool side_done() const;
+  double finish_side();
   // Waits for the stream; every read-back ends in one. Counted: the frame loop reports the
   // synchronizations each frame made (target: one, the counters' read-back).
   void sync() const;
@@ -376,6 +398,8 @@ class CudaExec {
   void copy_from_host_bytes(void* dst, const void* src, size_t bytes) const;
   void copy_bytes(void* dst, const void* src, size_t bytes) const;
   void upload_bytes(void* dst, const void* src, size_t bytes);
+  void begin_side();
+  void end_side();
   ExecOptions options_;
   uint64_t resident_threads_ = 0;
   cudaStream_t stream_ = nullptr;
@@ -385,6 +409,10 @@ class CudaExec {
   size_t staging_bytes_ = 0;
   cudaEvent_t staging_copied_ = nullptr;  // recorded after the last upload's copy
   cudaEvent_t input_ready_ = nullptr;     // wait_for_stream's, recorded on the caller's stream
+  cudaStream_t side_stream_ = nullptr;    // on_side's (reserve_side)
+  cudaEvent_t side_fork_ = nullptr;       // the executor's stream's work before the side task
+  cudaEvent_t side_begin_ = nullptr, side_end_ = nullptr;  // the side task's span
+  bool side_pending_ = false;             // a side task was queued and not finished
 };
 
 // Phase timer from CUDA events on the executor's stream; a phase that runs several times

@@ -196,6 +196,20 @@ class HostExec {
   // A resident frame's positions are host memory the caller wrote before the frame: nothing
   // to wait for (see CudaExec).
   void wait_for_stream(void*) const {}
+  // A side task (see CudaExec::on_side) runs here and now, its wall time kept for
+  // finish_side, which counts a synchronization as the CUDA executor's does.
+  void reserve_side() {}
+  template <class F>
+  void on_side(F&& work) {
+    const auto begin = std::chrono::steady_clock::now();
+    work();
+    side_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+  }
+  bool side_done() const { return true; }
+  double finish_side() {
+    ++host_syncs_;
+    return side_ms_;
+  }
   void sync() const { ++host_syncs_; }
   // Read-backs and waits so far: where the CUDA executor would stop the host until the
   // device caught up, counted the same way so CPU tests can check the per-frame count.
@@ -217,6 +231,7 @@ class HostExec {
 
   HostMemory memory_;
   mutable uint64_t host_syncs_ = 0;
+  double side_ms_ = 0.0;  // the last side task's wall time
 };
 
 // Wall-clock phase timer for the host executor; with phases off only the frame and its

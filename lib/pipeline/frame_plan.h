@@ -43,6 +43,11 @@ struct Candidates {
 struct FramePlan {
   bool rebuild = false;  // build the trees (else refit them)
   bool stale = false;    // --refit-every: keep the last boxes, refit nothing
+  // --rebuild-ahead: the frame refits and preserves, and a new T_D and its self fronts are
+  // built on the executor's side stream (ahead); or the frame first replaces T_D and its self
+  // fronts with those built ahead, then refits and preserves (adopt).
+  bool ahead = false;
+  bool adopt = false;
   // Each front query's operation, by Query (pipeline/front_counters.h).
   std::array<FrontOp, kQueryCount> ops = {FrontOp::preserve, FrontOp::preserve, FrontOp::preserve};
   // The updates write into the current fronts (FrontConfig::update_in_place), not whole
@@ -89,17 +94,24 @@ class FramePlanner {
   // A new run over the frames: the first frame builds. `running`: the queries that run in
   // the scene, which a replayed plan must give operations to, and only those; `wave`: the
   // device's resident threads (TreeMaintenance).
-  void reset(const QuerySet& running = {true, true, true}, uint64_t wave = 1) {
+  // `builds_ahead`: a rebuild after the first frame is built ahead (--rebuild-ahead, where
+  // the pipeline can: FrontPipeline).
+  void reset(const QuerySet& running = {true, true, true}, uint64_t wave = 1, bool builds_ahead = false) {
     frame_ = generated_ = produced_ = maintained_ = 0;
-    probed_ = false;
+    probed_ = in_flight_ = false;
     pending_ = {};
     q_ref_ = 0.0;
     maintenance_.reset();
     tree_.reset(wave);
     price_.reset();
     running_ = running;
-    if (replay_) check_plan_queries(*replay_, running_);
+    builds_ahead_ = builds_ahead;
+    if (replay_) {
+      check_plan_queries(*replay_, running_);
+      check_plan_steps(*replay_, target(builds_ahead_));
+    }
   }
+  bool builds_ahead() const { return builds_ahead_; }
 
   // Before a run (reset): each frame runs the recorded step of `plan` instead of deciding
   // one; nullptr decides again. The plan forces the trees' build, refit or stale boxes,
@@ -108,16 +120,17 @@ class FramePlanner {
   // In-place updates, balance and probes follow the configuration, as when deciding.
   // Throws Error naming the plan's frame when a step cannot run on this strategy.
   void replay(std::shared_ptr<const RecordedPlan> plan) {
-    if (plan) check_plan_steps(*plan, {strategy_.restructure, strategy_.rebuild_every_frame, config_.tree.refit_every});
+    if (plan) check_plan_steps(*plan, target(true));
     replay_ = std::move(plan);
   }
   bool replays() const { return replay_ != nullptr; }
 
   // The next frame's plan, for a tree T_D of `leaves` leaves and fronts of `front_nodes`
   // nodes in all, whose order updates in place have decayed by `disorder` (the largest
-  // FrontQuery::disorder of the queries).
-  FramePlan plan(uint32_t leaves, uint64_t front_nodes, double disorder = 0.0) {
-    FramePlan p = replay_ ? replayed() : decided(leaves, front_nodes);
+  // FrontQuery::disorder of the queries); `ahead_done`: the build ahead, if one runs, has
+  // finished on its stream (a decided plan adopts it then; a replayed one where recorded).
+  FramePlan plan(uint32_t leaves, uint64_t front_nodes, double disorder = 0.0, bool ahead_done = false) {
+    FramePlan p = replay_ ? replayed() : in_flight_ ? in_flight(ahead_done) : decided(leaves, front_nodes);
     const bool updates = p.updates();
     // In place while the fronts' order has decayed by less than the compact share; the
     // update after produces them whole and ordered.
@@ -131,7 +144,11 @@ class FramePlanner {
   // What a plan runs, as a plan records it: the queries that do not run have no operation.
   PlanStep step(const FramePlan& p) const {
     PlanStep s;
-    s.trees = p.rebuild ? TreeStep::build : p.stale ? TreeStep::stale : TreeStep::refit;
+    s.trees = p.rebuild ? TreeStep::build
+              : p.ahead ? TreeStep::ahead
+              : p.adopt ? TreeStep::adopt
+              : p.stale ? TreeStep::stale
+                        : TreeStep::refit;
     for (Query q : kQueries)
       if (running_[size_t(q)]) s.op(q) = p.op(q);
     s.decision = p.decision;
@@ -152,19 +169,25 @@ class FramePlanner {
     uint64_t pairs = 0;       // the pairs it reported
     uint64_t update_yield = 0;  // a probing frame: the front nodes an update would make at most
     double first_pass_ms = -1.0;  // a frame that ran again: its first pass, without upload
+    double ahead_ms = -1.0;       // an adopting frame: what the build ahead took on its stream
   };
+  // An adopting frame counts as the build: its cost is the frame's plus the build ahead's,
+  // which ran beside earlier frames (a bound: it shared the device with them).
   void finish(const FramePlan& p, const Outcome& o) {
     const FrontOp self = p.op(Query::self);
-    const bool steady = p.steady() && !p.stale, clean = o.ran_once && !o.recorded;
+    const bool built = p.rebuild || p.adopt;
+    const bool steady = p.steady() && !p.stale && !p.adopt, clean = o.ran_once && !o.recorded;
     // A build frame that ran again is priced by its first pass: the growth and the second
     // pass are one-offs, and counted whole they made the first maintenance's price a guess
     // up to twice too dear (docs/front-maintenance.md).
-    const double ms = p.rebuild && !o.ran_once && o.first_pass_ms >= 0.0 ? o.first_pass_ms : o.ms;
-    maintenance_.observe(steady, !p.rebuild && self == FrontOp::update, p.rebuild, clean, ms, o.front_nodes,
-                         !p.rebuild && self == FrontOp::generate);
+    const double ms = p.rebuild && !o.ran_once && o.first_pass_ms >= 0.0 ? o.first_pass_ms
+                      : p.adopt                                          ? o.ms + std::max(o.ahead_ms, 0.0)
+                                                                         : o.ms;
+    maintenance_.observe(steady, !built && self == FrontOp::update, built, clean, ms, o.front_nodes,
+                         !built && self == FrontOp::generate);
     tree_.observe(o.front_nodes, o.pairs, p.probe ? o.update_yield : 0);
-    if (p.rebuild) tree_.built();
-    if (!p.rebuild && p.changes_fronts()) tree_.maintained();
+    if (built) tree_.built();
+    if (!built && p.changes_fronts()) tree_.maintained();
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
     if (self == FrontOp::restructure)
       price_.observe_restructure(ms, p.restructuring.leaves, o.front_nodes, clean);
@@ -172,22 +195,26 @@ class FramePlanner {
       price_.observe_steady(ms, o.front_nodes);
     else
       price_.observe_other(o.front_nodes);
-    if (p.rebuild || self == FrontOp::update || self == FrontOp::generate) {
+    if (built || self == FrontOp::update || self == FrontOp::generate) {
       price_.maintained(frame_ - maintained_);
       maintained_ = frame_;
     }
-    if (p.rebuild || self == FrontOp::generate) generated_ = frame_;
-    if (p.changes_fronts()) {
+    if (built || self == FrontOp::generate) generated_ = frame_;
+    if (built || p.changes_fronts()) {
       produced_ = frame_;
       maintenance_.produced();
     }
-    if (strategy_.restructure && p.rebuild) q_ref_ = o.q_root;
+    if (strategy_.restructure && built) q_ref_ = o.q_root;
     if (p.inspect) pending_ = o.found;
     probed_ = p.probe;
+    if (p.ahead) in_flight_ = true;
+    if (p.adopt) in_flight_ = false;
     ++frame_;
   }
 
   uint64_t frame() const { return frame_; }
+  // A build ahead runs: launched, not adopted yet.
+  bool ahead_in_flight() const { return in_flight_; }
   // Q of the root after the last rebuild (pipeline c's reference quality; 0 before one).
   double q_ref() const { return q_ref_; }
 
@@ -225,7 +252,31 @@ class FramePlanner {
     // The probe rides on a preserve (a restructure frame's self fronts do not preserve).
     p.probe = config_.fronts.update_probe && !p.rebuild && step(p).runs(FrontOp::preserve) &&
               maintenance_.update_near(frame_, generated_, produced_, front_nodes);
+    // Built ahead: the frame refits and preserves, and the rebuild runs beside it and the
+    // frames after it (FramePlan::ahead), which preserve until it is adopted (in_flight).
+    // The first frame has no tree to preserve on: it builds.
+    if (p.rebuild && builds_ahead_ && frame_ > 0) {
+      p.rebuild = false;
+      p.ahead = true;
+      p.ops = {FrontOp::preserve, FrontOp::preserve, FrontOp::preserve};
+      p.inspect = p.probe = false;
+      p.restructuring = {};
+    }
     return p;
+  }
+
+  // A frame while a build ahead runs: every front preserved, nothing inspected or probed;
+  // the build adopted once done. Formula 2 waits for the inspection after the adopted tree's
+  // first maintenance.
+  FramePlan in_flight(bool ahead_done) {
+    FramePlan p;
+    p.adopt = ahead_done;
+    pending_ = {};
+    return p;
+  }
+
+  ReplayTarget target(bool builds_ahead) const {
+    return {strategy_.restructure, strategy_.rebuild_every_frame, config_.tree.refit_every, builds_ahead};
   }
 
   // The frame's recorded step (checked by replay and reset), with the candidates this
@@ -238,6 +289,8 @@ class FramePlanner {
     FramePlan p;
     p.rebuild = s.trees == TreeStep::build;
     p.stale = s.trees == TreeStep::stale;
+    p.ahead = s.trees == TreeStep::ahead;
+    p.adopt = s.trees == TreeStep::adopt;
     for (Query q : kQueries) p.op(q) = s.op(q).value_or(FrontOp::preserve);
     p.decision = s.decision;
     p.inspect = s.inspect;
@@ -293,6 +346,8 @@ class FramePlanner {
   uint64_t produced_ = 0;   // the last frame that produced any front
   uint64_t maintained_ = 0; // the last frame that built, updated or generated T_D's self fronts
   bool probed_ = false;     // the last frame probed
+  bool builds_ahead_ = false;  // rebuilds after the first frame are built ahead (reset)
+  bool in_flight_ = false;  // a build ahead runs: launched, not adopted yet
   Candidates pending_;      // found by the last inspection, decided on the next frame
   QuerySet running_ = {true, true, true};       // the queries that run in the scene
   std::shared_ptr<const RecordedPlan> replay_;  // the plan replayed, or none

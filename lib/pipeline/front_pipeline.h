@@ -20,6 +20,19 @@
 // three front queries run each frame, each only when a declared query needs it: the self
 // fronts of T_D, the cross fronts of T_D's leaves against T_R, and the self fronts of T_R.
 // Unsplit, T_D holds every face and only its self fronts run.
+//
+// --rebuild-ahead: a rebuild after the first frame runs off the frames' critical path. The
+// frame that would rebuild refits and preserves instead (a front preserved on the refitted
+// tree stays exact however stale, front/front.h), and computes the faces' boxes into a
+// second tree; the rest of that tree's build, its self fronts' generate and their ordering
+// run on the executor's side stream (lowest priority: exec/cuda_exec.cuh), beside this
+// frame and the next ones, which preserve. The first frame to find the side's work done
+// adopts it: the second tree and its fronts swap with the current ones, then it refits and
+// preserves them. The side's pairs are dropped (the frames' own preserves report each
+// frame's pairs), its fronts are checked against their buffers at the adoption (a front
+// that outgrew them is generated again there, in the frame). It needs what a plain build
+// frame would not read back: the histogram sort or no ordering, no rigid objects (T_R's
+// refit would race the cross fronts' generate), and --refit-every 1.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -48,7 +61,8 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   FrontPipeline(const PipelineConfig& config, FrontStrategy chosen)
       : Base(config), planner_(chosen, config), bvh_(exec_), rigid_bvh_(exec_, "rigid_bvh"), restructure_(exec_),
         queries_{{{exec_, "front", Query::self}, {exec_, "inter_front", Query::inter},
-                  {exec_, "rigid_front", Query::rigid_self}}} {
+                  {exec_, "rigid_front", Query::rigid_self}}},
+        ahead_bvh_(exec_, "ahead_bvh"), ahead_front_(exec_, "ahead_front", Query::self), ahead_pairs_(exec_) {
     radix_.bind(exec_.memory());
     if (strategy().restructure) check_restructure_config(config_);
   }
@@ -69,7 +83,9 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     for (const auto& fq : queries_) capacity = std::max(capacity, fq.capacity());
     if (strategy().radix_sort) radix_.reserve(exec_, capacity);
     if (strategy().restructure) restructure_.reserve(bvh_.num_leaves, config_.restructure.min_leaves);
-    planner_.reset(running_queries(), exec_.resident_threads());
+    builds_ahead_ = can_build_ahead();
+    if (builds_ahead_) reserve_ahead(per, in_place, probed);
+    planner_.reset(running_queries(), exec_.resident_threads(), builds_ahead_);
     stage_preserve_ = warp_preserve_ = true;
     bound_preserve_ = Occupancy::plain;
     exec_.sync();
@@ -85,8 +101,10 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     FrameStats stats;
     pairs_.reserve_ahead();
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
+    const FramePlan plan =
+        planner_.plan(bvh_.num_leaves, front_nodes(), disorder(), planner_.ahead_in_flight() && exec_.side_done());
+    const double ahead_ms = plan.adopt ? adopt_ahead() : -1.0;
     const uint64_t fronts = front_nodes();
-    const FramePlan plan = planner_.plan(bvh_.num_leaves, fronts, disorder());
     // The first frame's generate is timed, phases on or off, where maintenances may
     // generate: what a generate costs bounds a maintenance generate before one ran
     // (FrontMaintenance::generate_due). The first frame is left out of every summary.
@@ -110,10 +128,11 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     }
     timer_.force_phases(false);
     describe(plan, stats);
+    stats.timing.ahead_ms = std::max(ahead_ms, 0.0);
     const double generate_per_node = time_generate ? price_generate(stats) : -1.0;
     planner_.finish(plan, {stats.timing.total_ms, stats.timing.query_reruns == 0, fronts, stats.quality.q_root, found(plan),
                            stats.timing.graph == "captured", generate_per_node, stats.pairs, stats.fronts.update_yield,
-                           first_pass_ms});
+                           first_pass_ms, ahead_ms});
     if (plan.probe) stats.fronts.rebuild_growth = planner_.probed_growth();
     choose_preserve_launch(stats.pairs);
     return stats;
@@ -161,7 +180,12 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // The trees' upkeep and the work that must not be re-run with the front pass: balance
   // before updates, the restructure of T_D. Returns the frame's op (hierarchy + self front).
   std::string prepare_trees(const MeshView& mesh, const FramePlan& plan) {
-    const std::string op = plan.stale ? "stale" : plan.steady() ? "refit" : update_trees(mesh, plan.rebuild);
+    if (plan.ahead) build_ahead(mesh);
+    const std::string op = plan.stale    ? "stale"
+                           : plan.ahead  ? "refit-ahead"
+                           : plan.adopt  ? "adopt"
+                           : plan.steady() ? "refit"
+                                           : update_trees(mesh, plan.rebuild);
     if (plan.balance) balance(plan);
     if (plan.op(Query::self) == FrontOp::restructure) restructure_tree_and_classify_fronts(plan.restructuring);
     return op + "+" + (plan.patches(Query::self) ? "update-in-place" : front_op_name(plan.op(Query::self)));
@@ -290,6 +314,64 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       self().classify(exec_, restructure_.view());
       restructure_subtrees(exec_, bvh_, restructure_, restructuring.count, restructuring.leaves);
     });
+  }
+
+  // Whether rebuilds are built ahead (--rebuild-ahead; auto: on the GPU): where nothing the
+  // side stream runs needs a read-back or races the frames (see the top of this file).
+  bool can_build_ahead() const {
+    return switched_on(config_.tree.rebuild_ahead, Exec::is_device) && !strategy().rebuild_every_frame &&
+           !strategy().radix_sort && config_.tree.refit_every == 1 && self().active() &&
+           !queries_[size_t(Query::inter)].active() && !queries_[size_t(Query::rigid_self)].active();
+  }
+
+  // The second tree and its self fronts, sized as the current ones; its pairs are counted,
+  // not kept.
+  void reserve_ahead(double front_per_triangle, bool in_place, bool probed) {
+    ahead_bvh_.refit_top_max_leaves = bvh_.refit_top_max_leaves;
+    ahead_bvh_.refit_levels = bvh_.refit_levels;
+    ahead_bvh_.reserve(exec_, bvh_.num_leaves);
+    ahead_front_.plan(ahead_bvh_, ahead_bvh_, true, front_per_triangle, in_place, probed);
+    ahead_pairs_.reserve(0);
+    exec_.reserve_side();
+  }
+
+  // The ahead frame's part: the faces' boxes on the frame's stream (the build's only read of
+  // the mesh, whose buffer the next frame's upload overwrites), then the build, its order,
+  // the generate and the fronts' ordering on the side stream.
+  void build_ahead(const MeshView& mesh) {
+    timed(Phase::build, [&] { build_boxes(exec_, ahead_bvh_, mesh, mesh_.deformable()); });
+    exec_.on_side([&] {
+      build_from_boxes(exec_, ahead_bvh_, config_.tree.morton_bits, mesh_.deformable());
+      order_depth_first(exec_, ahead_bvh_);
+      generate_ahead();
+    });
+  }
+
+  void generate_ahead() {
+    ahead_pairs_.reset_counters(exec_);
+    ahead_front_.generate(exec_, ahead_pairs_, histogram_sorted(),
+                          shares_in_warp(config_.fronts.update_warp, ahead_front_.query_leaves()));
+    if (!sorts(FrontOp::generate)) return;
+    FrameFit fit;
+    ahead_front_.add_to_fit(fit, ahead_pairs_, false);
+    ahead_front_.order(exec_, ahead_pairs_, fit);
+  }
+
+  // The adopt frame's part, before its refit: waits for the side (done already where the
+  // planner decided; a replayed adopt may wait), reads the new fronts' sizes (the frame's
+  // second read-back), generates them again in the frame where they outgrew their buffers,
+  // then swaps tree and self fronts with the current ones. Returns the side's milliseconds.
+  double adopt_ahead() {
+    const double ms = exec_.finish_side();
+    const FrontCounters* c = &ahead_pairs_.read_counters(exec_);
+    while (ahead_front_.grow_if_needed(exec_, *c)) {
+      timed(Phase::generate, [&] { generate_ahead(); });
+      c = &ahead_pairs_.read_counters(exec_);
+    }
+    ahead_front_.adopt(exec_, *c, sorts(FrontOp::generate));
+    bvh_.swap(ahead_bvh_);
+    self().swap_fronts(ahead_front_);
+    return ms;
   }
 
   void inspect_quality() {
@@ -459,6 +541,11 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // By Query: T_D's leaves against T_D, T_D's leaves against T_R, T_R's against T_R.
   std::array<FrontQuery<Exec>, kQueryCount> queries_;
   typename Exec::FrameGraph graph_;  // the steady frame's recording (--cuda-graph)
+  // --rebuild-ahead: the tree built ahead, its self fronts and the counters of their generate.
+  bool builds_ahead_ = false;
+  Lbvh<Exec> ahead_bvh_;
+  FrontQuery<Exec> ahead_front_;
+  PairBuffer<Exec, FrontCounters> ahead_pairs_;
   bool stage_preserve_ = true;  // preserve's pairs staged per block (choose_preserve_launch)
   bool warp_preserve_ = true;   // preserve's traversals shared within warps (choose_preserve_launch)
   Occupancy bound_preserve_ = Occupancy::plain;  // preserve under its register bound (choose_preserve_launch)

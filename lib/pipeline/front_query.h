@@ -358,6 +358,18 @@ class FrontQuery {
     return grew;
   }
 
+  // Exchanges the fronts with `o`'s, each query keeping its trees: fronts generated ahead on
+  // a tree built ahead become current as that tree replaces this query's (Lbvh::swap).
+  void swap_fronts(FrontQuery& o) {
+    for (int k = 0; k < 2; ++k) {
+      std::swap(front_[k], o.front_[k]);
+      std::swap(dropped_[k], o.dropped_[k]);
+      std::swap(appended_[k], o.appended_[k]);
+    }
+    ++revision_;
+    ++o.revision_;
+  }
+
   // The produced fronts become current: ordered ones were scattered into the current
   // arrays already (order, radix_order); unordered ones are the raw arrays, swapped in.
   void adopt(Exec& exec, const FrontCounters& c, bool ordered) {

@@ -79,6 +79,11 @@ struct TreeConfig {
   // every front) instead of updating once the rent the fronts paid on the degraded tree pays
   // for it (pipeline/tree_maintenance.h); off: only --rebuild-every and pipeline c's Formula 2.
   bool rebuild_degraded = true;
+  // Front pipelines: a rebuild after the first frame is built ahead, on a side stream beside
+  // the frames, which preserve the current fronts until it is adopted
+  // (pipeline/front_pipeline.h); off: the rebuilding frame builds and generates itself.
+  // auto: on the GPU, off on the host (where the side's work runs in the frame).
+  AutoSwitch rebuild_ahead = AutoSwitch::automatic;
 };
 
 // Front maintenance of the front pipelines (pipeline/front_maintenance.h, frame_plan.h).
@@ -197,6 +202,9 @@ struct FrameTiming {
   double total_noise = 0.0;   // relative standard deviation of total_ms over them (0: one pass)
   uint32_t query_reruns = 0;  // queries re-run because the pair buffer had to grow
   uint32_t host_syncs = 0;    // host-device synchronizations in the frame (target: 1)
+  // --rebuild-ahead, on a frame that adopted a build ahead: what that build ran on its side
+  // stream, beside earlier frames (not part of total_ms); 0 elsewhere.
+  double ahead_ms = 0.0;
   // Bytes the frame must move at least (positions and faces read, pairs written): the
   // bandwidth floor's numerator, filled by the frame loop.
   uint64_t bytes_floor = 0;

@@ -18,7 +18,8 @@ std::optional<T> named(const std::string& word, const T (&values)[N], const char
   return std::nullopt;
 }
 
-constexpr TreeStep kTreeSteps[] = {TreeStep::build, TreeStep::refit, TreeStep::stale};
+constexpr TreeStep kTreeSteps[] = {TreeStep::build, TreeStep::refit, TreeStep::stale, TreeStep::ahead,
+                                    TreeStep::adopt};
 constexpr FrontOp kFrontOps[] = {FrontOp::generate, FrontOp::preserve, FrontOp::update, FrontOp::restructure};
 constexpr Formula2 kDecisions[] = {Formula2::refit, Formula2::restructure, Formula2::rebuild};
 
@@ -70,7 +71,7 @@ PlanStep parse_plan_step(const std::string& text, const std::string& where, size
     const std::string at = where + " field " + std::to_string(first_field + i) + " ('" + quoted(f) + "'): ";
     if (i == 0) {
       const std::optional<TreeStep> trees = named(f, kTreeSteps, tree_step_name);
-      if (!trees) fail(at + "expected the trees' step: build, refit or stale");
+      if (!trees) fail(at + "expected the trees' step: build, refit, stale, ahead or adopt");
       s.trees = *trees;
       continue;
     }
@@ -100,7 +101,7 @@ PlanStep parse_plan_step(const std::string& text, const std::string& where, size
     s.op(*q) = *op;
   }
   if (fields.empty())
-    fail(where + " field " + std::to_string(first_field) + ": missing the trees' step (build, refit or stale)");
+    fail(where + " field " + std::to_string(first_field) + ": missing the trees' step (build, refit, stale, ahead or adopt)");
   return s;
 }
 
@@ -162,10 +163,12 @@ std::string frame_list_text(const std::vector<uint32_t>& frames) {
 }
 
 std::string plan_outline(const RecordedPlan& plan) {
-  std::vector<uint32_t> build, update, generate, restructure, stale;
+  std::vector<uint32_t> build, update, generate, restructure, stale, ahead, adopt;
   for (const PlannedFrame& f : plan.frames) {
     const PlanStep& s = f.step;
     if (s.trees == TreeStep::build) build.push_back(f.frame);
+    if (s.trees == TreeStep::ahead) ahead.push_back(f.frame);
+    if (s.trees == TreeStep::adopt) adopt.push_back(f.frame);
     if (s.trees == TreeStep::stale) stale.push_back(f.frame);
     if (s.runs(FrontOp::update)) update.push_back(f.frame);
     // A build generates every front, and a restructure regenerates the cross fronts: those
@@ -177,6 +180,8 @@ std::string plan_outline(const RecordedPlan& plan) {
   std::string text = "build: " + frame_list_text(build) + "; update: " + frame_list_text(update) +
                      "; generate: " + frame_list_text(generate) + "; restructure: " + frame_list_text(restructure);
   if (!stale.empty()) text += "; stale: " + frame_list_text(stale);
+  if (!ahead.empty() || !adopt.empty())
+    text += "; built ahead: " + frame_list_text(ahead) + "; adopted: " + frame_list_text(adopt);
   return text;
 }
 
@@ -206,10 +211,28 @@ void check_plan_frames(const RecordedPlan& plan, uint32_t first, uint32_t last) 
 }
 
 void check_plan_steps(const RecordedPlan& plan, const ReplayTarget& target) {
+  bool ahead = false;  // a build ahead runs: launched, not adopted yet
   for (size_t k = 0; k < plan.frames.size(); ++k) {
     const PlanStep& s = plan.frames[k].step;
     const auto refuse = [&](const std::string& why) { fail(plan.where(k) + ": " + why); };
     const bool built = s.trees == TreeStep::build;
+    if ((s.trees == TreeStep::ahead || s.trees == TreeStep::adopt) && !target.builds_ahead)
+      refuse(std::string(tree_step_name(s.trees)) +
+             ", but this run does not build ahead (--rebuild-ahead, which needs a front pipeline with the histogram "
+             "sort, no rigid objects and --refit-every 1)");
+    if (s.trees == TreeStep::ahead && ahead) refuse("ahead, but the last build ahead was not adopted yet");
+    if (s.trees == TreeStep::adopt && !ahead) refuse("adopt, but no build ahead runs");
+    if (built && ahead) refuse("build, but a build ahead was not adopted yet");
+    const bool in_flight = ahead || s.trees == TreeStep::ahead;
+    if (in_flight) {
+      for (Query q : kQueries)
+        if (s.op(q) && *s.op(q) != FrontOp::preserve)
+          refuse(std::string("while a build ahead runs every front is preserved; ") + query_name(q) + " " +
+                 front_op_name(*s.op(q)) + "s");
+      if (s.inspect || s.probe) refuse("while a build ahead runs nothing is inspected or probed");
+    }
+    if (s.trees == TreeStep::ahead) ahead = true;
+    if (s.trees == TreeStep::adopt) ahead = false;
     if (k == 0 && !built)
       refuse(std::string("the first frame must build the trees (it has ") + tree_step_name(s.trees) + ")");
     for (Query q : kQueries) {
@@ -226,7 +249,8 @@ void check_plan_steps(const RecordedPlan& plan, const ReplayTarget& target) {
              "pipeline has none");
     if (s.decision != Formula2::none && !after_inspection)
       refuse(std::string("decision=") + formula2_name(s.decision) + " needs an inspection on the frame before");
-    if (s.decision == Formula2::rebuild && !built) refuse("decision=rebuild must build the trees");
+    if (s.decision == Formula2::rebuild && !built && s.trees != TreeStep::ahead)
+      refuse("decision=rebuild must build the trees (build, or ahead)");
     if (s.op(Query::self) == FrontOp::restructure) {
       if (built) refuse("a restructure refits the tree, it does not build it");
       if (s.decision != Formula2::restructure) refuse("a restructure is Formula 2's: it needs decision=restructure");

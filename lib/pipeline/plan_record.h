@@ -67,11 +67,14 @@ struct ReplayTarget {
   bool restructures = false;         // pipeline c: inspections, Formula 2, restructures
   bool rebuild_every_frame = false;  // never keeps stale boxes
   uint32_t refit_every = 1;          // --refit-every: which frames keep stale boxes
+  bool builds_ahead = false;         // --rebuild-ahead: builds on a side stream (ahead, adopt)
 };
 // Every step can run on the target: the first frame builds, a build generates every
 // query's fronts, a restructure (self only, pipeline c) follows an inspection and
 // regenerates the cross fronts, decisions and inspections only in c, and frames stale
-// exactly where the target's --refit-every keeps stale boxes.
+// exactly where the target's --refit-every keeps stale boxes; a build ahead only on a target
+// that builds ahead, each adopted once before the next, and every front preserved from the
+// ahead frame to its adopt frame.
 void check_plan_steps(const RecordedPlan& plan, const ReplayTarget& target);
 // Every step gives an operation to exactly the queries that run in the scene.
 void check_plan_queries(const RecordedPlan& plan, const QuerySet& running);

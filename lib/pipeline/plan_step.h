@@ -40,11 +40,17 @@ inline const char* formula2_name(Formula2 d) {
   return d == Formula2::refit ? "refit" : d == Formula2::restructure ? "restructure" : d == Formula2::rebuild ? "rebuild" : "";
 }
 
-// The hierarchy's upkeep in a frame: built, refitted, or (--refit-every) left stale.
-enum class TreeStep { build, refit, stale };
+// The hierarchy's upkeep in a frame: built, refitted, or (--refit-every) left stale; with
+// --rebuild-ahead, refitted while a new tree and its fronts are built on a side stream
+// (ahead), or replaced by that tree, which is then refitted (adopt).
+enum class TreeStep { build, refit, stale, ahead, adopt };
 
 inline const char* tree_step_name(TreeStep t) {
-  return t == TreeStep::build ? "build" : t == TreeStep::refit ? "refit" : "stale";
+  return t == TreeStep::build   ? "build"
+         : t == TreeStep::refit ? "refit"
+         : t == TreeStep::stale ? "stale"
+         : t == TreeStep::ahead ? "ahead"
+                                : "adopt";
 }
 
 struct PlanStep {
