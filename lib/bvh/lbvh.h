@@ -22,27 +22,7 @@ struct Lbvh {
   explicit Lbvh(Exec& exec, const std::string& name = "bvh") {
     MemoryResource& mr = exec.memory();
     const std::string p = name + ".";
-    bind_arrays<vec4f>(mr, p, {{&leaf_lo, "leaf_lo"}, {&leaf_hi, "leaf_hi"}, {&node_lo, "node_lo"},
-                               {&node_hi, "node_hi"}, {&prim_lo, "prim_lo"}, {&prim_hi, "prim_hi"},
-                               {&build_lo, "build_lo"}, {&build_hi, "build_hi"}, {&span_lo, "span_lo"},
-                               {&span_hi, "span_hi"}});
-    bind_arrays<uint32_t>(mr, p, {{&leaf_prim, "leaf_prim"}, {&leaf_parent, "leaf_parent"},
-                                  {&leaf_escape, "leaf_escape"}, {&node_left, "node_left"}, {&node_right, "node_right"},
-                                  {&node_parent, "node_parent"}, {&node_escape, "node_escape"},
-                                  {&node_first, "node_first"}, {&node_last, "node_last"}, {&count_log, "count_log"},
-                                  {&offset_log, "offset_log"}, {&prim_iota, "prim_iota"}, {&build_left, "build_left"},
-                                  {&build_right, "build_right"}, {&build_parent, "build_parent"},
-                                  {&build_first, "build_first"}, {&build_last, "build_last"},
-                                  {&other_bound, "other_bound"}, {&new_index, "new_index"}, {&refit_flag, "refit_flag"},
-                                  {&tile_start, "tile_start"}, {&tile_scan, "tile_scan"}, {&tile_first, "tile_first"},
-                                  {&tile_count, "tile_count"}, {&span_flag, "span_flag"}, {&span_scan, "span_scan"},
-                                  {&span_count, "span_count"}, {&span_node, "span_node"}, {&span_parent, "span_parent"},
-                                  {&span_child, "span_child"}, {&span_depth, "span_depth"},
-                                  {&level_node, "level_node"}, {&level_code, "level_code"},
-                                  {&level_link, "level_link"}});
-    bind_arrays<uint64_t>(mr, p, {{&morton, "morton"}, {&morton_sorted, "morton_sorted"}});
-    centroid_box.bind(mr, p + "centroid_box");
-    temp.bind(mr, p + "temp");
+    each_array([&](auto array, const char* buffer) { (this->*array).bind(mr, p + buffer); });
   }
 
   void reserve(Exec& exec, uint32_t n) {
@@ -83,29 +63,7 @@ struct Lbvh {
   void swap(Lbvh& o) {
     std::swap(num_leaves, o.num_leaves);
     std::swap(morton_bits, o.morton_bits);
-    for (auto [a, b] : std::initializer_list<std::pair<Array<vec4f>*, Array<vec4f>*>>{
-             {&leaf_lo, &o.leaf_lo}, {&leaf_hi, &o.leaf_hi}, {&node_lo, &o.node_lo}, {&node_hi, &o.node_hi},
-             {&prim_lo, &o.prim_lo}, {&prim_hi, &o.prim_hi}, {&build_lo, &o.build_lo}, {&build_hi, &o.build_hi},
-             {&span_lo, &o.span_lo}, {&span_hi, &o.span_hi}})
-      std::swap(*a, *b);
-    for (auto [a, b] : std::initializer_list<std::pair<Array<uint32_t>*, Array<uint32_t>*>>{
-             {&leaf_prim, &o.leaf_prim},     {&leaf_parent, &o.leaf_parent},   {&leaf_escape, &o.leaf_escape},
-             {&node_left, &o.node_left},     {&node_right, &o.node_right},     {&node_parent, &o.node_parent},
-             {&node_escape, &o.node_escape}, {&node_first, &o.node_first},     {&node_last, &o.node_last},
-             {&count_log, &o.count_log},     {&offset_log, &o.offset_log},     {&prim_iota, &o.prim_iota},
-             {&build_left, &o.build_left},   {&build_right, &o.build_right},   {&build_parent, &o.build_parent},
-             {&build_first, &o.build_first}, {&build_last, &o.build_last},     {&other_bound, &o.other_bound},
-             {&new_index, &o.new_index},     {&refit_flag, &o.refit_flag},     {&tile_start, &o.tile_start},
-             {&tile_scan, &o.tile_scan},     {&tile_first, &o.tile_first},     {&tile_count, &o.tile_count},
-             {&span_flag, &o.span_flag},     {&span_scan, &o.span_scan},       {&span_count, &o.span_count},
-             {&span_node, &o.span_node},     {&span_parent, &o.span_parent},   {&span_child, &o.span_child},
-             {&span_depth, &o.span_depth},   {&level_node, &o.level_node},     {&level_code, &o.level_code},
-             {&level_link, &o.level_link}})
-      std::swap(*a, *b);
-    std::swap(morton, o.morton);
-    std::swap(morton_sorted, o.morton_sorted);
-    std::swap(centroid_box, o.centroid_box);
-    std::swap(temp, o.temp);
+    each_array([&](auto array, const char*) { std::swap(this->*array, o.*array); });
   }
 
   BvhView view() const {
@@ -163,6 +121,38 @@ struct Lbvh {
   // The tiles' tables for refit_levels, by split (bvh/refit_levels.h).
   Array<uint32_t> level_node, level_code, level_link;
   Array<std::byte> temp;
+
+ private:
+  // Every buffer with its name, as f(&Lbvh::buffer, "buffer"): one list for the constructor's
+  // binding and for swap, so that neither can leave one out.
+  template <class F>
+  static void each_array(F&& f) {
+    for (auto [array, buffer] : {std::pair{&Lbvh::leaf_lo, "leaf_lo"}, {&Lbvh::leaf_hi, "leaf_hi"},
+                                 {&Lbvh::node_lo, "node_lo"}, {&Lbvh::node_hi, "node_hi"},
+                                 {&Lbvh::prim_lo, "prim_lo"}, {&Lbvh::prim_hi, "prim_hi"},
+                                 {&Lbvh::build_lo, "build_lo"}, {&Lbvh::build_hi, "build_hi"},
+                                 {&Lbvh::span_lo, "span_lo"}, {&Lbvh::span_hi, "span_hi"}})
+      f(array, buffer);
+    for (auto [array, buffer] :
+         {std::pair{&Lbvh::leaf_prim, "leaf_prim"}, {&Lbvh::leaf_parent, "leaf_parent"},
+          {&Lbvh::leaf_escape, "leaf_escape"}, {&Lbvh::node_left, "node_left"}, {&Lbvh::node_right, "node_right"},
+          {&Lbvh::node_parent, "node_parent"}, {&Lbvh::node_escape, "node_escape"},
+          {&Lbvh::node_first, "node_first"}, {&Lbvh::node_last, "node_last"}, {&Lbvh::count_log, "count_log"},
+          {&Lbvh::offset_log, "offset_log"}, {&Lbvh::prim_iota, "prim_iota"}, {&Lbvh::build_left, "build_left"},
+          {&Lbvh::build_right, "build_right"}, {&Lbvh::build_parent, "build_parent"},
+          {&Lbvh::build_first, "build_first"}, {&Lbvh::build_last, "build_last"},
+          {&Lbvh::other_bound, "other_bound"}, {&Lbvh::new_index, "new_index"}, {&Lbvh::refit_flag, "refit_flag"},
+          {&Lbvh::tile_start, "tile_start"}, {&Lbvh::tile_scan, "tile_scan"}, {&Lbvh::tile_first, "tile_first"},
+          {&Lbvh::tile_count, "tile_count"}, {&Lbvh::span_flag, "span_flag"}, {&Lbvh::span_scan, "span_scan"},
+          {&Lbvh::span_count, "span_count"}, {&Lbvh::span_node, "span_node"}, {&Lbvh::span_parent, "span_parent"},
+          {&Lbvh::span_child, "span_child"}, {&Lbvh::span_depth, "span_depth"},
+          {&Lbvh::level_node, "level_node"}, {&Lbvh::level_code, "level_code"}, {&Lbvh::level_link, "level_link"}})
+      f(array, buffer);
+    f(&Lbvh::morton, "morton");
+    f(&Lbvh::morton_sorted, "morton_sorted");
+    f(&Lbvh::centroid_box, "centroid_box");
+    f(&Lbvh::temp, "temp");
+  }
 };
 
 }  // namespace cdb
