@@ -547,6 +547,30 @@ TEST(FramePlan, KeepsATreeThatDegradedSlowly) {
   EXPECT_TRUE(tree.rebuild_due()) << "2/10 a frame";
 }
 
+// --rebuild-growth G: the same probe rebuilds under a lower G and keeps the tree under the
+// default; auto follows whether rebuilds are built ahead.
+TEST(FramePlan, RebuildGrowthSetsTheThreshold) {
+  for (const double g : {1.2, kRebuildGrowth}) {
+    TreeMaintenance tree(true);
+    tree.reset(1, g);
+    tree.built();
+    tree.observe(3000, 1000);
+    tree.observe(3000, 1000, 4800);  // an update would make 1.6 times a rebuild's fronts
+    EXPECT_DOUBLE_EQ(tree.probed_growth(), 1.6);
+    EXPECT_EQ(tree.rebuild_due(), g < 1.6) << "G " << g;
+  }
+  for (const bool ahead : {false, true}) {
+    for (const double set : {0.0, 1.2}) {
+      PipelineConfig cfg = cycle_config(0);
+      cfg.tree.rebuild_growth = set;
+      FramePlanner planner(FrontStrategy{}, cfg);
+      planner.reset({true, true, true}, 1, ahead);
+      const double want = set > 0.0 ? set : ahead ? kRebuildGrowthAhead : kRebuildGrowth;
+      EXPECT_DOUBLE_EQ(planner.rebuild_growth(), want) << "ahead " << ahead << " set " << set;
+    }
+  }
+}
+
 // Through the planner: the steady frames before a maintenance probe, and their count decides
 // it (a maintenance whose rent reached the price in one frame had no probe, and updates); a
 // tree whose updates would stay small keeps being updated, and off never rebuilds after the

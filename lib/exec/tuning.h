@@ -85,6 +85,10 @@ inline constexpr double kBuildPerUpdate = 4.0;
 // garment and the falling spheres (H200); 1.5 rebuilt the funnel and crumple, 2.5 missed
 // the garment's first maintenance.
 inline constexpr double kRebuildGrowth = 2.0;
+// The same where rebuilds are built ahead (--rebuild-ahead): the frames preserve while the
+// side stream builds, so a rebuild costs them its adoption and the device's share, not a
+// build frame. Measured: docs/front-maintenance.md "Rebuilds built ahead".
+inline constexpr double kRebuildGrowthAhead = 2.0;
 // ... and where that growth, less one, came at more than this much a frame since the build.
 // Measured by host replays of H200 plans at the probes that crossed kRebuildGrowth.
 inline constexpr double kRebuildRate = 0.08;

@@ -89,6 +89,8 @@ class FramePlanner {
   const FrontMaintenance& maintenance() const { return maintenance_; }
   // The last probe's count of an update over a rebuild (TreeMaintenance::probed_growth).
   double probed_growth() const { return tree_.probed_growth(); }
+  // The growth past which a maintenance rebuilds (TreeMaintenance, --rebuild-growth).
+  double rebuild_growth() const { return tree_.rebuild_growth(); }
   const RestructurePrice& restructure_price() const { return price_; }
 
   // A new run over the frames: the first frame builds. `running`: the queries that run in
@@ -102,7 +104,9 @@ class FramePlanner {
     pending_ = {};
     q_ref_ = 0.0;
     maintenance_.reset();
-    tree_.reset(wave);
+    tree_.reset(wave, config_.tree.rebuild_growth > 0.0 ? config_.tree.rebuild_growth
+                      : builds_ahead                    ? kRebuildGrowthAhead
+                                                        : kRebuildGrowth);
     price_.reset();
     running_ = running;
     builds_ahead_ = builds_ahead;

@@ -16,8 +16,9 @@
 // a preserve spreads a smaller front over a wave (front/warp_traversal.h), so it costs a
 // wave's latency however many nodes it has.
 //
-// The maintenance rebuilds when the update's count is more than kRebuildGrowth times the
-// rebuild's, and the tree got there fast: that growth, less one, over the frames since the
+// The maintenance rebuilds when the update's count is more than a growth G times the
+// rebuild's (kRebuildGrowth; kRebuildGrowthAhead where rebuilds are built ahead, whose
+// frames do not wait for them; --rebuild-growth), and the tree got there fast: that growth, less one, over the frames since the
 // build, is more than kRebuildRate. A tree that degrades slowly is one whose neighbourhoods
 // hold under the motion, as a tree of a cloth built on its flat rest shape does while the
 // cloth drapes; a Morton tree rebuilt on the folded cloth groups folds that slide apart and
@@ -34,19 +35,22 @@ class TreeMaintenance {
  public:
   explicit TreeMaintenance(bool enabled = false) : enabled_(enabled) {}
 
-  // A new run; `wave`: the device's resident threads, the fewest nodes a front counts as.
-  void reset(uint64_t wave = 1) {
+  // A new run; `wave`: the device's resident threads, the fewest nodes a front counts as;
+  // `rebuild_growth`: G.
+  void reset(uint64_t wave = 1, double rebuild_growth = kRebuildGrowth) {
     *this = TreeMaintenance(enabled_);
     wave_ = std::max<uint64_t>(wave, 1);
+    rebuild_growth_ = rebuild_growth;
   }
 
   // Whether a maintenance due now should rebuild the tree.
-  bool rebuild_due() const { return enabled_ && growth_ > kRebuildGrowth && probed_rate() > kRebuildRate; }
+  bool rebuild_due() const { return enabled_ && growth_ > rebuild_growth_ && probed_rate() > kRebuildRate; }
 
   // The fronts' nodes per pair right after the last build, and what the last probe since
   // the fronts were produced counted an update would make over what a rebuild would
   // (0: no probe).
   double fresh_per_pair() const { return fresh_; }
+  double rebuild_growth() const { return rebuild_growth_; }
   double probed_growth() const { return growth_; }
   // That growth, less one, per frame since the build (0: no probe).
   double probed_rate() const { return growth_ > 0.0 ? (growth_ - 1.0) / double(std::max<uint32_t>(age_, 1)) : 0.0; }
@@ -75,6 +79,7 @@ class TreeMaintenance {
  private:
   bool enabled_;
   uint64_t wave_ = 1;
+  double rebuild_growth_ = kRebuildGrowth;
   bool fresh_pending_ = false;
   double fresh_ = 0.0;
   double growth_ = 0.0;

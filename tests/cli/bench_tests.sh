@@ -73,4 +73,14 @@ check "steady_breakdown without steady frames" 1 "no steady refit\+preserve fram
 check "perf_targets unknown control" 1 "--controls: unknown pipeline\(s\) gird" -- \
   "$python" "$root/bench/perf_targets.py" "$tmp/targets" --base "$tmp/targets" --controls gird
 
+# bar_report.py: the new binary's five pipelines and a base binary's c and b on one scene;
+# the base is the same files, so base over new is 1.00x, and funnel has no peer to judge.
+mkdir -p "$tmp/bar/new" "$tmp/bar/base"
+"$cdbench" run --device cpu --quiet --scene funnel --set res=16 --frames 0:4 --repeat 2 --pipeline c,b,a,grid,hash \
+  --out "$tmp/bar/new/funnel-{pipeline}.h5" >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; fail "cdbench run (bar)"; }
+cp "$tmp/bar/new/funnel-c.h5" "$tmp/bar/new/funnel-b.h5" "$tmp/bar/base/"
+check "bar_report scene row" 0 "^\| funnel \| [0-9,]+ \| [0-9,]+ \| [0-9.]+ / [0-9.]+ / [0-9.]+ \| [0-9.]+ \|( [0-9.]+ \|){4} [0-9]+ \| [0-9.]+ \| [0-9.]+ \| 1\.00x \|$" -- \
+  "$python" "$root/bench/bar_report.py" "$tmp/bar" --base base
+has "bar_report targets row" "$tmp/out" "^\| funnel \| [0-9.]+ \| — \| [abc] [0-9.]+ / (grid|hash) [0-9.]+ = [0-9.]+x \((met|not met)\) \| [0-9.]+ \| [0-9.]+ \((met|not met)\) \|$"
+
 finish bench

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# Runs on the GPU machine from a device bundle: the bar's scenes (../shared/ANCHORS.md's
+# analogues: cloth-wave, spheres, cloth-wave-522k, cloth-wave-1m, crumple, garment) and the
+# paper's six benchmarks (flag, funnel-large, cloth-ball, flamenco, n-body, dragon) with the
+# funnel, each generated once as OBJ frames so that every binary runs the very same frames.
+# Per scene, in one process each: the new binary's c, b, a, grid and hash, then each base
+# binary's c and b (BASE_BIN="NAME=PATH ..."), `--repeat 3 --phase-timing off`, the default
+# warm-up; the order of new and base alternates from scene to scene. BAR_10M=1 adds the 10M
+# cloth wave, generated in memory by each process (`--scene cloth-wave --set res=2237`).
+# Files: $OUT/bar/BINARY/SCENE-PIPELINE.h5 and bar.log in $OUT/bar-h5.tar.xz, refreshed
+# after each scene (what a cut-short call finished still comes back);
+# bench/bar_report.py makes the tables.
+#
+#   BAR_SCENES   scenes to run (default: the thirteen above)
+#   BAR_CAP      seconds after which no further scene starts (default 540)
+#   SCENE_DATA   directory holding BCN_Epileptic.X and cgal-data.tar.gz, for machines
+#                without assimp-testmodels and libcgal-demo (flamenco, garment, dragon)
+set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
+bin=$bundle/bin/cdbench
+archive=$out/bar-h5.tar.xz
+out=$out/bar
+frames=${FRAMES_DIR:-/tmp/bar-frames}
+cap=${BAR_CAP:-540}
+mkdir -p "$out/new" "$frames"
+start=$(date +%s)
+scenes=${BAR_SCENES:-cloth-wave spheres cloth-wave-522k cloth-wave-1m crumple garment flag funnel-large cloth-ball flamenco n-body dragon funnel}
+
+generate_args() {
+  local data=${SCENE_DATA:-}
+  [[ -n "$data" ]] || return 0
+  case $1 in
+    dragon) echo "--set scan=$data/cgal-data.tar.gz" ;;
+    flamenco | garment) echo "--set body=$data/BCN_Epileptic.X" ;;
+  esac
+}
+
+run() {
+  local b=$1 dir=$2 scene=$3 name=$4 pipelines=$5
+  shift 5
+  mkdir -p "$dir"
+  echo "=== $name $pipelines ($b) at $(($(date +%s) - start)) s"
+  "$b" run --device cuda --scene "$scene" --pipeline "$pipelines" --quiet --phase-timing off --repeat 3 \
+    --out "$dir/$name-{pipeline}.h5" "$@" 2>&1 |
+    grep -E "commit|^device|^pipeline:|per frame|pairs |memory|error"
+}
+
+each_binary() {
+  local index=$1 scene=$2 name=$3
+  shift 3
+  local order=(new ${BASE_BIN:-})
+  if (( index % 2 == 1 )); then order=(${BASE_BIN:-} new); fi
+  for entry in "${order[@]}"; do
+    if [[ $entry == new ]]; then
+      run "$bin" "$out/new" "$scene" "$name" c,b,a,grid,hash "$@"
+    else
+      run "${entry#*=}" "$out/${entry%%=*}" "$scene" "$name" c,b "$@"
+    fi
+  done
+}
+
+{
+  nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem,temperature.gpu --format=csv
+  "$bin" --version | head -3
+  i=0
+  for s in $scenes; do
+    (( $(date +%s) - start > cap )) && { echo "cap: $s and later scenes not run"; break; }
+    # shellcheck disable=SC2046
+    [[ -d "$frames/$s" ]] || "$bin" scenes generate "$s" $(generate_args "$s") --out "$frames/$s" > /dev/null ||
+      { echo "generate $s failed"; continue; }
+    each_binary $i "$frames/$s" "$s"
+    i=$((i + 1))
+    tar -C "$out" -cJf "$archive" .
+  done
+  if [[ "${BAR_10M:-0}" == 1 ]] && (( $(date +%s) - start <= cap )); then
+    each_binary $i cloth-wave cloth-wave-10m --set res=2237 --set frames=4
+  fi
+  echo "end at $(($(date +%s) - start)) s"
+} 2>&1 | tee "$out/bar.log"
+tar -C "$out" -cJf "$archive" . && rm -rf "$out"

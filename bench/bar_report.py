@@ -1,0 +1,124 @@
+#!/usr/bin/python3
+"""The tables of bench/bar.sh: per scene the new binary's c (mean, median, p95, and the
+median over its passes of each pass's p95 over its median), b, a, grid and hash, each base
+binary's c and b with base over new, and the targets: c at a third of the strongest peer's
+mean (the bar's scenes), the best of a/b/c against the best of grid and hash, c against b.
+
+  bench/bar_report.py DIR [--base NAME ...] > report.md
+
+DIR holds bar.sh's files: the new binary's under DIR/new, a base binary's under DIR/NAME.
+Times are ms per frame over the measured frames (the first left out), upload excluded.
+"""
+import argparse
+import os
+import re
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+import cdb_results as cr  # noqa: E402
+
+FILE = re.compile(r"^(.+)-([a-z]+)\.h5$")
+NEW = ["c", "b", "a", "grid", "hash"]
+FRONTS = ["a", "b", "c"]
+CELLS = ["grid", "hash"]
+# The strongest peer's mean on the bar's scenes (cuBQL refit + query, one NVIDIA H200,
+# ../shared/ANCHORS.md, 2026-12-01); the target is a third of it.
+PEER_MS = {"cloth-wave": 0.141, "spheres": 0.417, "cloth-wave-522k": 0.642, "cloth-wave-1m": 1.116,
+           "crumple": 0.381, "garment": 0.720, "cloth-wave-10m": 10.80}
+
+
+def index(directory):
+    """{(scene, pipeline): Run} for every complete file in directory."""
+    runs = {}
+    if not os.path.isdir(directory):
+        return runs
+    for name in sorted(os.listdir(directory)):
+        m = FILE.match(name)
+        if not m:
+            continue
+        run = cr.Run(os.path.join(directory, name))
+        if not run.complete:
+            print(f"bar_report: {run.path}: {run.incomplete_reason()}; left out", file=sys.stderr)
+            continue
+        runs[(m.group(1), run.pipeline)] = run
+    return runs
+
+
+def mean(run):
+    return run.stat("t_total_ms_mean") if run is not None else float("nan")
+
+
+def single_pass_tail(run):
+    """The median over the passes of each pass's p95 over its median (nan without /passes)."""
+    times = run.pass_times() if run is not None else None
+    if times is None or times.size == 0:
+        return float("nan")
+    return float(np.median(np.percentile(times, 95, axis=0) / np.median(times, axis=0)))
+
+
+def ms(x):
+    return "—" if np.isnan(x) else f"{x:.4f}"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("dir")
+    ap.add_argument("--base", action="append", default=[])
+    args = ap.parse_args()
+    new = index(os.path.join(args.dir, "new"))
+    bases = {b: index(os.path.join(args.dir, b)) for b in args.base}
+    scenes = sorted({s for (s, _) in new}, key=lambda s: new[(s, next(p for (t, p) in new if t == s))].triangles)
+
+    header = ["scene", "triangles", "pairs", "c mean / median / p95", "c pass p95/median"]
+    header += [f"{p} mean" for p in NEW[1:]] + ["c peak MiB"]
+    for b in args.base:
+        header += [f"{b} c", f"{b} b", f"{b} c ÷ new c"]
+    rows, targets = [], []
+    for s in scenes:
+        c = new.get((s, "c"))
+        if c is None:
+            continue
+        row = [s, f"{c.triangles:,}", f"{c.stat('pairs_mean'):,.0f}",
+               f"{mean(c):.4f} / {c.stat('t_total_ms_median'):.4f} / {c.stat('t_total_ms_p95'):.4f}",
+               f"{single_pass_tail(c):.2f}"]
+        row += [ms(mean(new.get((s, p)))) for p in NEW[1:]]
+        row.append(f"{c.peak_bytes() / 2**20:.0f}")
+        for b in args.base:
+            bc, bb = bases[b].get((s, "c")), bases[b].get((s, "b"))
+            row += [ms(mean(bc)), ms(mean(bb)), f"{mean(bc) / mean(c):.2f}x" if bc else "—"]
+        rows.append(row)
+
+        fronts = {p: mean(new.get((s, p))) for p in FRONTS}
+        cells = {p: mean(new.get((s, p))) for p in CELLS}
+        best_front = min(fronts, key=lambda p: np.inf if np.isnan(fronts[p]) else fronts[p])
+        best_cell = min(cells, key=lambda p: np.inf if np.isnan(cells[p]) else cells[p])
+        peer = PEER_MS.get(s)
+        target = [s, f"{mean(c):.4f}"]
+        target.append(f"{peer / 3:.4f} ({'met' if mean(c) <= peer / 3 else 'not met'}; {peer / mean(c):.2f}x the peer)"
+                      if peer else "—")
+        ratio = cells[best_cell] / fronts[best_front]
+        target.append(f"{best_front} {fronts[best_front]:.4f} / {best_cell} {cells[best_cell]:.4f} = "
+                      f"{ratio:.2f}x ({'met' if ratio >= 1.0 else 'not met'})")
+        cb = fronts["c"] / fronts["b"]
+        target.append(f"{cb:.3f}")
+        tail = single_pass_tail(c)
+        target.append(f"{tail:.2f} ({'met' if tail <= 2.0 else 'not met'})")
+        targets.append(target)
+
+    runs = list(new.values()) + [r for b in bases.values() for r in b.values()]
+    print(cr.provenance(runs) + "\n")
+    print("## Every scene\n")
+    print("\n".join(cr.markdown_table(header, rows)))
+    print("\n## Targets\n")
+    print("c ≤ a third of the strongest peer's mean (the bar's scenes); the best of a/b/c at least as fast as the "
+          "best of grid and hash; c over b (1 or less: c never slower); p95 at most twice the median in single "
+          "passes (the median over the passes of each pass's p95 over its median).\n")
+    print("\n".join(cr.markdown_table(
+        ["scene", "c mean", "a third of the peer", "best front / best cell", "c ÷ b", "pass p95/median"], targets)))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(cr.run_main(main))
