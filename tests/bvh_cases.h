@@ -558,6 +558,29 @@ inline void check_rebuild_ahead(const std::string& device, const ExactFrames& sc
     ASSERT_EQ(replayed.size(), recorded.size());
     for (size_t k = 0; k < replayed.size(); ++k) EXPECT_EQ(replayed[k].plan, recorded[k].plan) << "frame " << k;
   }
+  // A pass that ends with its build ahead in flight (the last frame rebuilds), then another
+  // pass on the same pipeline, as the run loop's warm-up and repeats do: it starts clean,
+  // exact from its first frame.
+  if (scene.num_frames() >= 3) {
+    ExactFrames odd = scene;
+    const size_t frames = odd.num_frames() % 2 == 1 ? odd.num_frames() : odd.num_frames() - 1;
+    odd.vertices.resize(frames);
+    odd.pairs.resize(frames);
+    {
+      SCOPED_TRACE("c, a pass after one ending in flight");
+      PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
+      cfg.name = "c";
+      cfg.tree.rebuild_ahead = AutoSwitch::on;
+      cfg.tree.rebuild_every = 2;
+      auto p = make_pipeline(cfg);
+      const std::vector<FrameStats> first = run_exact(*p, cfg, odd);
+      if (scene.topology.faces.size() > 1) {
+        ASSERT_TRUE(first.back().plan.has_value());
+        EXPECT_EQ(first.back().plan->trees, TreeStep::ahead) << "the last frame builds ahead";
+      }
+      if (!testing::Test::HasFailure()) run_exact(*p, cfg, odd);
+    }
+  }
   for (const char* name : {"reference", "radix-order"}) {
     PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
     cfg.name = name;

@@ -548,7 +548,7 @@ TEST(FramePlan, KeepsATreeThatDegradedSlowly) {
 }
 
 // --rebuild-growth G: the same probe rebuilds under a lower G and keeps the tree under the
-// default; auto follows whether rebuilds are built ahead.
+// default; the planner takes G from the configuration.
 TEST(FramePlan, RebuildGrowthSetsTheThreshold) {
   for (const double g : {1.2, kRebuildGrowth}) {
     TreeMaintenance tree(true);
@@ -559,16 +559,12 @@ TEST(FramePlan, RebuildGrowthSetsTheThreshold) {
     EXPECT_DOUBLE_EQ(tree.probed_growth(), 1.6);
     EXPECT_EQ(tree.rebuild_due(), g < 1.6) << "G " << g;
   }
-  for (const bool ahead : {false, true}) {
-    for (const double set : {0.0, 1.2}) {
-      PipelineConfig cfg = cycle_config(0);
-      cfg.tree.rebuild_growth = set;
-      FramePlanner planner(FrontStrategy{}, cfg);
-      planner.reset({true, true, true}, 1, ahead);
-      const double want = set > 0.0 ? set : ahead ? kRebuildGrowthAhead : kRebuildGrowth;
-      EXPECT_DOUBLE_EQ(planner.rebuild_growth(), want) << "ahead " << ahead << " set " << set;
-    }
-  }
+  PipelineConfig cfg = cycle_config(0);
+  EXPECT_DOUBLE_EQ(FramePlanner(FrontStrategy{}, cfg).rebuild_growth(), kRebuildGrowth);
+  cfg.tree.rebuild_growth = 1.2;
+  FramePlanner planner(FrontStrategy{}, cfg);
+  planner.reset();
+  EXPECT_DOUBLE_EQ(planner.rebuild_growth(), 1.2);
 }
 
 // Through the planner: the steady frames before a maintenance probe, and their count decides

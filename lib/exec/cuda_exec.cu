@@ -118,6 +118,10 @@ double CudaExec::finish_side() {
   return double(ms);
 }
 
+void CudaExec::drop_side() {
+  if (side_pending_) finish_side();
+}
+
 void CudaExec::reserve_upload(size_t bytes) {
   if (bytes <= staging_bytes_) return;
   // The buffer being replaced may still feed a copy.

@@ -383,6 +383,9 @@ class CudaExec {
   }
   bool side_done() const;
   double finish_side();
+  // Waits for a side task that will not be adopted (a run that ended with it in flight) and
+  // forgets it; nothing if none runs.
+  void drop_side();
   // Waits for the stream; every read-back ends in one. Counted: the frame loop reports the
   // synchronizations each frame made (target: one, the counters' read-back).
   void sync() const;

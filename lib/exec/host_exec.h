@@ -206,6 +206,7 @@ class HostExec {
     side_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
   }
   bool side_done() const { return true; }
+  void drop_side() {}
   double finish_side() {
     ++host_syncs_;
     return side_ms_;

@@ -104,9 +104,7 @@ class FramePlanner {
     pending_ = {};
     q_ref_ = 0.0;
     maintenance_.reset();
-    tree_.reset(wave, config_.tree.rebuild_growth > 0.0 ? config_.tree.rebuild_growth
-                      : builds_ahead                    ? kRebuildGrowthAhead
-                                                        : kRebuildGrowth);
+    tree_.reset(wave, config_.tree.rebuild_growth);
     price_.reset();
     running_ = running;
     builds_ahead_ = builds_ahead;

@@ -68,6 +68,9 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   }
 
   void set_topology(const Topology& topology) override {
+    // A build ahead of the last run that was never adopted still writes the second tree and
+    // fronts, which this run reserves again: waited for and dropped.
+    exec_.drop_side();
     this->set_mesh(topology);
     const ObjectSplit& split = mesh_.split();
     bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.tree.refit_top_leaves;

@@ -85,9 +85,8 @@ struct TreeConfig {
   // auto: on the GPU, off on the host (where the side's work runs in the frame).
   AutoSwitch rebuild_ahead = AutoSwitch::automatic;
   // --rebuild-degraded: the growth of the fronts (an update's count over a rebuild's) past
-  // which a maintenance rebuilds (pipeline/tree_maintenance.h); 0 (auto): kRebuildGrowth, or
-  // kRebuildGrowthAhead where rebuilds are built ahead, whose frames do not wait for them.
-  double rebuild_growth = 0.0;
+  // which a maintenance rebuilds (pipeline/tree_maintenance.h).
+  double rebuild_growth = kRebuildGrowth;
 };
 
 // Front maintenance of the front pipelines (pipeline/front_maintenance.h, frame_plan.h).

@@ -17,8 +17,7 @@
 // wave's latency however many nodes it has.
 //
 // The maintenance rebuilds when the update's count is more than a growth G times the
-// rebuild's (kRebuildGrowth; kRebuildGrowthAhead where rebuilds are built ahead, whose
-// frames do not wait for them; --rebuild-growth), and the tree got there fast: that growth, less one, over the frames since the
+// rebuild's (--rebuild-growth, default kRebuildGrowth), and the tree got there fast: that growth, less one, over the frames since the
 // build, is more than kRebuildRate. A tree that degrades slowly is one whose neighbourhoods
 // hold under the motion, as a tree of a cloth built on its flat rest shape does while the
 // cloth drapes; a Morton tree rebuilt on the folded cloth groups folds that slide apart and
