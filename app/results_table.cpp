@@ -20,6 +20,7 @@
 
 #include "cdbench/core/error.h"
 #include "cdbench/core/phase.h"
+#include "harness/results/gpu_attributes.h"
 #include "harness/results/results_reader.h"
 
 namespace cdb {
@@ -108,6 +109,21 @@ std::string exact(double x) {
   char text[64];
   const auto end = std::to_chars(text, text + sizeof text, x).ptr;
   return std::string(text, end);
+}
+
+// The GPU's conditions at a glance, where NVML read them: the SM clock and temperature
+// before and after the measured passes ("" otherwise).
+std::string gpu_cell(const ResultsOverview& r) {
+  const auto source = r.gpu_text.find("gpu_source");
+  if (source == r.gpu_text.end() || source->second != "nvml") return "";
+  const auto value = [&r](const char* name) {
+    const auto it = r.gpu_number.find(name);
+    return it == r.gpu_number.end() ? std::nan("") : it->second;
+  };
+  char text[128];
+  std::snprintf(text, sizeof text, "SM %.0f to %.0f MHz, %.0f to %.0f C", value("gpu_sm_clock_mhz_before"),
+                value("gpu_sm_clock_mhz_after"), value("gpu_temperature_c_before"), value("gpu_temperature_c_after"));
+  return text;
 }
 
 // Phases in the pipeline's order; names this build does not know go last, by name.
@@ -331,6 +347,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   const bool warnings =
       csv || any([](const ResultsOverview& r) { return !r.noise_warning.empty() || r.conditions == "poor"; });
   const bool plans = any([](const ResultsOverview& r) { return r.has_plans; });
+  const bool gpus = any([](const ResultsOverview& r) { return !gpu_cell(r).empty(); });
 
   // One list of columns drives the header, the cells and the Markdown alignment.
   const double none = std::nan("");
@@ -423,6 +440,18 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     text("host_warning", [](const Row& row) { return row.r.host_warning; });
     numeric("host_busy_before", [](const Row& row) { return exact(row.r.host_busy_before); });
     numeric("host_busy_after", [](const Row& row) { return exact(row.r.host_busy_after); });
+    for (const GpuAttribute& a : gpu_attributes()) {
+      if (a.text)
+        text(a.name, [name = a.name](const Row& row) {
+          const auto it = row.r.gpu_text.find(name);
+          return it == row.r.gpu_text.end() ? std::string() : it->second;
+        });
+      else
+        numeric(a.name, [name = a.name](const Row& row) {
+          const auto it = row.r.gpu_number.find(name);
+          return it == row.r.gpu_number.end() ? std::string() : exact(it->second);
+        });
+    }
     text("options_json", [&read](const Row& row) {
       if (!read(row)) return std::string();
       nlohmann::json shown = nlohmann::json::object();
@@ -436,7 +465,8 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     text("commit", [](const Row& row) { return row.r.git_sha; });
     // The hash's first 8 digits tell inputs apart at a glance; CSV has all 16.
     if (hashes) text("input", [](const Row& row) { return row.r.input_hash.substr(0, 8); });
-    // A poor run says why in a word: its notes name a busy host, a noise warning or both.
+    if (gpus) text("gpu", [](const Row& row) { return gpu_cell(row.r); });
+    // A poor run says why in a word: its notes name a busy host, a noise warning, the GPU.
     if (warnings)
       text("warning", [](const Row& row) {
         if (row.r.conditions == "poor") return "poor conditions: " + row.r.conditions_notes;
