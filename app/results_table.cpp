@@ -1,7 +1,6 @@
 #include "results_table.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +13,7 @@
 
 #include "cell_status.h"
 #include "damaged_file_guard.h"
+#include "exact_number.h"
 #include "exit_codes.h"
 #include "library_errors.h"
 #include "plan_table.h"
@@ -101,14 +101,6 @@ std::string number(double x, const char* format = "%.3f") {
   char text[64];
   std::snprintf(text, sizeof text, format, x);
   return text;
-}
-
-// For CSV: the shortest text that reads back as the same double, so nothing is rounded away.
-std::string exact(double x) {
-  if (std::isnan(x)) return "";
-  char text[64];
-  const auto end = std::to_chars(text, text + sizeof text, x).ptr;
-  return std::string(text, end);
 }
 
 // The GPU's conditions at a glance, where NVML read them: the SM clock and temperature
@@ -357,7 +349,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   };
   const auto has_check = [&stats](const Row& row) { return stats(row) && row.r.checked_frames > 0; };
   // Markdown rounds for reading; CSV keeps every digit.
-  const auto shown = [csv](double x, const char* format = "%.3f") { return csv ? exact(x) : number(x, format); };
+  const auto shown = [csv](double x, const char* format = "%.3f") { return csv ? exact_number(x) : number(x, format); };
   std::vector<Column> columns;
   const auto text = [&columns](std::string name, CellOf cell) { columns.push_back({std::move(name), true, std::move(cell)}); };
   const auto numeric = [&columns](std::string name, CellOf cell) {
@@ -438,8 +430,8 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     text("conditions", [](const Row& row) { return row.r.conditions; });
     text("conditions_notes", [](const Row& row) { return row.r.conditions_notes; });
     text("host_warning", [](const Row& row) { return row.r.host_warning; });
-    numeric("host_busy_before", [](const Row& row) { return exact(row.r.host_busy_before); });
-    numeric("host_busy_after", [](const Row& row) { return exact(row.r.host_busy_after); });
+    numeric("host_busy_before", [](const Row& row) { return exact_number(row.r.host_busy_before); });
+    numeric("host_busy_after", [](const Row& row) { return exact_number(row.r.host_busy_after); });
     for (const GpuAttribute& a : gpu_attributes()) {
       if (a.text)
         text(a.name, [name = a.name](const Row& row) {
@@ -449,7 +441,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
       else
         numeric(a.name, [name = a.name](const Row& row) {
           const auto it = row.r.gpu_number.find(name);
-          return it == row.r.gpu_number.end() ? std::string() : exact(it->second);
+          return it == row.r.gpu_number.end() ? std::string() : exact_number(it->second);
         });
     }
     text("options_json", [&read](const Row& row) {

@@ -193,7 +193,22 @@ if [[ "$(head -1 "$tmp/csv1")" == "$(head -1 "$tmp/csv2")" && "$(head -1 "$tmp/c
 else
   fail "compare CSV headers differ: $(head -1 "$tmp/csv1") / $(head -1 "$tmp/csv2")"
 fi
-has "CSV row of the regression" "$tmp/csv2" ",50\.0000,REGRESSION,0\.0079,,,6,0,same,,"
+has "CSV row of the regression" "$tmp/csv2" ",(50(\.0*[0-9]*)?|49\.9+[0-9]*),REGRESSION,0\.007936507936507936,,,6,0,same,,"
+# Full precision: every number of the CSV row is the very double of compare --json (which
+# writes doubles that read back exactly), the exact test's p = 2 / C(10, 5) among them.
+"$cdbench" compare "$tmp/base.h5" "$tmp/slow.h5" --json >"$tmp/json2" 2>/dev/null
+check "compare CSV has every double exactly" 0 "^exact: [1-9][0-9]* numbers$" -- "$python" - "$tmp/csv2" "$tmp/json2" <<'PY'
+import csv, json, sys
+row = next(csv.DictReader(open(sys.argv[1])))
+expected = json.load(open(sys.argv[2]))["rows"][0]
+numbers = [k for k, v in expected.items() if isinstance(v, float)]
+bad = [k for k in numbers if float(row[k]) != expected[k]]
+bad += [] if float(row["p_value"]) == 2 / 252 else ["p_value is not 2 / C(10, 5)"]
+bad += [] if abs(float(row["change_pct"]) - 50) < 1e-9 else ["change_pct is not 50%"]
+print("differ: " + ", ".join(bad) if bad else f"exact: {len(numbers)} numbers")
+PY
+check "an unbounded interval end is inf in CSV" 0 "^funnel\[res=16\],c,cpu,before,before,p95,[0-9.e-]+,[0-9.e-]+,inf,5,frames," -- \
+  "$cdbench" compare "$tmp/a.h5" "$tmp/a-copy.h5" --metric p95 --csv
 has "CSV row of the mismatch" "$tmp/csv3" ",6,0,same,\"pipeline: 'c' in A, 'brute' in B\","
 check "JSON parses" 0 '"verdict": "REGRESSION"' -- \
   bash -c "'$cdbench' compare '$tmp/base.h5' '$tmp/slow.h5' --json 2>/dev/null | $python -m json.tool"
