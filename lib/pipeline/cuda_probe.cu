@@ -19,12 +19,12 @@ class CudaProbe final : public DeviceProbe {
     int device = 0, l2 = 0;
     cuda_check(cudaGetDevice(&device), "device query");
     cuda_check(cudaDeviceGetAttribute(&l2, cudaDevAttrL2CacheSize, device), "L2 size query");
-    flush_bytes_ = 2 * size_t(std::max(l2, 1 << 20));
-    cuda_check(cudaMalloc(&flush_, flush_bytes_), "cache flush buffer");
     // NVML numbers devices its own way: the run's device is the one on its PCI bus.
     char bus_id[32] = {};
     cuda_check(cudaDeviceGetPCIBusId(bus_id, int(sizeof bus_id), device), "PCI bus id query");
     nvml_ = std::make_unique<NvmlReader>(bus_id);
+    flush_bytes_ = 2 * size_t(std::max(l2, 1 << 20));
+    cuda_check(cudaMalloc(&flush_, flush_bytes_), "cache flush buffer");
   }
   ~CudaProbe() override { cudaFree(flush_); }
   CudaProbe(const CudaProbe&) = delete;
