@@ -14,6 +14,7 @@
 
 #include "cdbench/core/error.h"
 #include "damaged_file_guard.h"
+#include "exact_number.h"
 #include "exit_codes.h"
 #include "cdbench/pipeline/plan_record.h"
 #include "harness/results/results_reader.h"
@@ -347,10 +348,16 @@ const std::vector<std::string>& columns() {
   return c;
 }
 
-nlohmann::json json_number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+// How a row's numbers that are not finite are written: JSON has no infinity (null), CSV
+// says `inf`/`-inf` (an unbounded interval end); a NaN is no value in both.
+enum class NonFinite { null, text };
 
-nlohmann::json row_json(const Row& r, Metric m) {
+nlohmann::json row_json(const Row& r, Metric m, NonFinite non_finite = NonFinite::null) {
   const ResultsOverview &a = r.a->first(), &b = r.b->first();
+  const auto json_number = [non_finite](double x) {
+    if (std::isfinite(x)) return nlohmann::json(x);
+    return non_finite == NonFinite::text && std::isinf(x) ? nlohmann::json(exact_number(x)) : nlohmann::json(nullptr);
+  };
   return {{"scene", a.scene_label},
           {"pipeline", a.pipeline},
           {"device", a.backend},
@@ -384,10 +391,11 @@ nlohmann::json row_json(const Row& r, Metric m) {
           {"files_b", files_of(*r.b)}};
 }
 
+// A CSV cell: numbers at full precision, as report --csv writes them.
 std::string cell_text(const nlohmann::json& v) {
   if (v.is_null()) return "";
   if (v.is_string()) return v.get<std::string>();
-  if (v.is_number_float()) return fixed(v.get<double>());
+  if (v.is_number_float()) return exact_number(v.get<double>());
   return v.dump();
 }
 
@@ -501,7 +509,7 @@ int compare_command(const CompareOptions& c) {
     for (const auto& col : columns()) header.push_back(csv_cell(col));
     std::printf("%s\n", join(header, ",").c_str());
     for (const Row& r : rows) {
-      const nlohmann::json j = row_json(r, m);
+      const nlohmann::json j = row_json(r, m, NonFinite::text);
       std::vector<std::string> cells;
       for (const auto& col : columns()) cells.push_back(csv_cell(cell_text(j[col])));
       std::printf("%s\n", join(cells, ",").c_str());

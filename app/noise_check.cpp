@@ -117,7 +117,8 @@ std::string host_load_warning(const HostLoad& load, const std::string& when) {
   return text;
 }
 
-std::string poor_conditions(const HostLoad& before, const HostLoad& after, const std::string& noise_warning) {
+std::string poor_conditions(const HostLoad& before, const HostLoad& after, const std::string& noise_warning,
+                            const std::string& gpu_notes) {
   std::string notes;
   const auto add = [&notes](const std::string& why) { notes += (notes.empty() ? "" : "; ") + why; };
   char text[128];
@@ -127,6 +128,7 @@ std::string poor_conditions(const HostLoad& before, const HostLoad& after, const
       add(text);
     }
   if (!noise_warning.empty()) add("noise warning");
+  if (!gpu_notes.empty()) add(gpu_notes);
   return notes;
 }
 

@@ -47,8 +47,10 @@ inline constexpr double kBusyHostShare = 0.5;
 std::string host_load_warning(const HostLoad& load, const std::string& when);
 
 // Whether the run's conditions allow its times to be compared: the reasons they do not (a
-// busy host before or after the measured frames, a noise warning), joined by "; "; "" when
-// they were good. Stored in the results file (conditions, conditions_notes).
-std::string poor_conditions(const HostLoad& before, const HostLoad& after, const std::string& noise_warning);
+// busy host before or after the measured frames, a noise warning, and `gpu_notes`, the
+// GPU's: cdbench/pipeline/gpu_conditions.h), joined by "; "; "" when they were good.
+// Stored in the results file (conditions, conditions_notes).
+std::string poor_conditions(const HostLoad& before, const HostLoad& after, const std::string& noise_warning,
+                            const std::string& gpu_notes = "");
 
 }  // namespace cdb

@@ -1,7 +1,6 @@
 #include "results_table.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,12 +13,14 @@
 
 #include "cell_status.h"
 #include "damaged_file_guard.h"
+#include "exact_number.h"
 #include "exit_codes.h"
 #include "library_errors.h"
 #include "plan_table.h"
 
 #include "cdbench/core/error.h"
 #include "cdbench/core/phase.h"
+#include "harness/results/gpu_attributes.h"
 #include "harness/results/results_reader.h"
 
 namespace cdb {
@@ -102,12 +103,19 @@ std::string number(double x, const char* format = "%.3f") {
   return text;
 }
 
-// For CSV: the shortest text that reads back as the same double, so nothing is rounded away.
-std::string exact(double x) {
-  if (std::isnan(x)) return "";
-  char text[64];
-  const auto end = std::to_chars(text, text + sizeof text, x).ptr;
-  return std::string(text, end);
+// The GPU's conditions at a glance, where NVML read them: the SM clock and temperature
+// before and after the measured passes ("" otherwise).
+std::string gpu_cell(const ResultsOverview& r) {
+  const auto source = r.gpu_text.find("gpu_source");
+  if (source == r.gpu_text.end() || source->second != "nvml") return "";
+  const auto value = [&r](const char* name) {
+    const auto it = r.gpu_number.find(name);
+    return it == r.gpu_number.end() ? std::nan("") : it->second;
+  };
+  char text[128];
+  std::snprintf(text, sizeof text, "SM %.0f to %.0f MHz, %.0f to %.0f C", value("gpu_sm_clock_mhz_before"),
+                value("gpu_sm_clock_mhz_after"), value("gpu_temperature_c_before"), value("gpu_temperature_c_after"));
+  return text;
 }
 
 // Phases in the pipeline's order; names this build does not know go last, by name.
@@ -331,6 +339,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   const bool warnings =
       csv || any([](const ResultsOverview& r) { return !r.noise_warning.empty() || r.conditions == "poor"; });
   const bool plans = any([](const ResultsOverview& r) { return r.has_plans; });
+  const bool gpus = any([](const ResultsOverview& r) { return !gpu_cell(r).empty(); });
 
   // One list of columns drives the header, the cells and the Markdown alignment.
   const double none = std::nan("");
@@ -340,7 +349,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
   };
   const auto has_check = [&stats](const Row& row) { return stats(row) && row.r.checked_frames > 0; };
   // Markdown rounds for reading; CSV keeps every digit.
-  const auto shown = [csv](double x, const char* format = "%.3f") { return csv ? exact(x) : number(x, format); };
+  const auto shown = [csv](double x, const char* format = "%.3f") { return csv ? exact_number(x) : number(x, format); };
   std::vector<Column> columns;
   const auto text = [&columns](std::string name, CellOf cell) { columns.push_back({std::move(name), true, std::move(cell)}); };
   const auto numeric = [&columns](std::string name, CellOf cell) {
@@ -421,8 +430,20 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     text("conditions", [](const Row& row) { return row.r.conditions; });
     text("conditions_notes", [](const Row& row) { return row.r.conditions_notes; });
     text("host_warning", [](const Row& row) { return row.r.host_warning; });
-    numeric("host_busy_before", [](const Row& row) { return exact(row.r.host_busy_before); });
-    numeric("host_busy_after", [](const Row& row) { return exact(row.r.host_busy_after); });
+    numeric("host_busy_before", [](const Row& row) { return exact_number(row.r.host_busy_before); });
+    numeric("host_busy_after", [](const Row& row) { return exact_number(row.r.host_busy_after); });
+    for (const GpuAttribute& a : gpu_attributes()) {
+      if (a.text)
+        text(a.name, [name = a.name](const Row& row) {
+          const auto it = row.r.gpu_text.find(name);
+          return it == row.r.gpu_text.end() ? std::string() : it->second;
+        });
+      else
+        numeric(a.name, [name = a.name](const Row& row) {
+          const auto it = row.r.gpu_number.find(name);
+          return it == row.r.gpu_number.end() ? std::string() : exact_number(it->second);
+        });
+    }
     text("options_json", [&read](const Row& row) {
       if (!read(row)) return std::string();
       nlohmann::json shown = nlohmann::json::object();
@@ -436,7 +457,8 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     text("commit", [](const Row& row) { return row.r.git_sha; });
     // The hash's first 8 digits tell inputs apart at a glance; CSV has all 16.
     if (hashes) text("input", [](const Row& row) { return row.r.input_hash.substr(0, 8); });
-    // A poor run says why in a word: its notes name a busy host, a noise warning or both.
+    if (gpus) text("gpu", [](const Row& row) { return gpu_cell(row.r); });
+    // A poor run says why in a word: its notes name a busy host, a noise warning, the GPU.
     if (warnings)
       text("warning", [](const Row& row) {
         if (row.r.conditions == "poor") return "poor conditions: " + row.r.conditions_notes;

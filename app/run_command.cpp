@@ -24,6 +24,7 @@
 #include "cdbench/geometry/float_spacing.h"
 #include "cdbench/geometry/hashed_frames.h"
 #include "harness/plans/plan_source.h"
+#include "harness/results/gpu_attributes.h"
 #include "harness/results/results_file.h"
 #include "scenes/load/scene_label.h"
 #include "noise_check.h"
@@ -107,6 +108,17 @@ class StdoutToStderr {
   int saved_ = -1;
 };
 
+// The GPU's conditions around the measured passes, under the results file's attribute
+// names (harness/results/gpu_attributes.h); a number not read is null.
+nlohmann::json gpu_json(const GpuConditions& gpu) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const GpuAttribute& a : gpu_attributes()) {
+    const double x = a.text ? 0.0 : a.number(gpu);
+    j[a.name] = a.text ? nlohmann::json(a.words(gpu)) : std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+  }
+  return j;
+}
+
 // One pipeline's entry of run --json.
 nlohmann::json run_json(const Scene& scene, const RunOptions& r, const std::string& pipeline,
                         const std::string& device, FrameRange range, const RunResult& res, const std::string& out) {
@@ -131,6 +143,7 @@ nlohmann::json run_json(const Scene& scene, const RunOptions& r, const std::stri
           {"noise_warning", res.noise_warning},
           {"conditions", res.poor_conditions.empty() ? "good" : "poor"},
           {"conditions_notes", res.poor_conditions},
+          {"gpu", gpu_json(res.gpu)},
           {"pairs_mean", number(s.pairs_mean)},
           {"peak_bytes", res.memory.peak_bytes},
           {"commit", build_info().git_sha},

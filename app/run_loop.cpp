@@ -175,6 +175,16 @@ void print_plan_line(const std::vector<FrameStats>& frames, const RunLoopOptions
                 mixed.size(), frames.size(), frame_list_text(mixed).c_str());
 }
 
+// The GPU's readings around the measured passes, where NVML gave them.
+void print_gpu_line(const GpuConditions& gpu) {
+  if (!gpu.before.read() || !gpu.after.read()) return;
+  const GpuReading &b = gpu.before, &a = gpu.after;
+  std::printf("  gpu         SM %.0f to %.0f MHz, memory %.0f MHz, %.0f to %.0f C, %.0f to %.0f W; clock limits after: "
+              "%s (NVML, before and after the measured passes)\n",
+              b.sm_clock_mhz, a.sm_clock_mhz, a.mem_clock_mhz, b.temperature_c, a.temperature_c, b.power_w,
+              a.power_w, throttle_reasons_text(a.throttle_reasons).c_str());
+}
+
 void print_accuracy_warning(const std::string& why, const std::vector<FrameStats>& frames, uint32_t warmup) {
   const RunSummary r = summarize_run(frames, warmup);
   if (r.checked_frames)
@@ -227,14 +237,18 @@ class FrameLoop {
   // Every pass (--repeat), the last one recorded; stops between frames on a signal.
   void run_passes() {
     warm_up();
+    // Around the measured passes, not the warm-up, which brings the clocks up first.
+    gpu_.before = gpu_reading();
     run_earlier_passes();
     if (interrupts_.signal() && earlier_.count() > 0) {
       keep_finished_passes();
+      gpu_.after = gpu_reading();
       return;
     }
     // Each pass starts from a fresh state, so every pass takes the same decisions.
     if (earlier_.count() > 0) pipeline_.set_topology(source_.topology());
     run_recording_pass();
+    gpu_.after = gpu_reading();
   }
 
   // After an error: the file closed as incomplete, saying at which frame and why.
@@ -267,7 +281,11 @@ class FrameLoop {
     findings.host_busy_after = after.busy_share;
     findings.host_warning_after = host_load_warning(after, "after the measured frames");
     if (!findings.host_warning_after.empty()) std::printf("  warning     %s\n", findings.host_warning_after.c_str());
-    findings.poor_conditions = poor_conditions(options_.host_before, after, findings.noise_warning);
+    findings.gpu = gpu_;
+    print_gpu_line(gpu_);
+    const std::string gpu_notes = gpu_poor_conditions(gpu_.before, gpu_.after);
+    if (!gpu_notes.empty()) std::printf("  warning     %s\n", gpu_notes.c_str());
+    findings.poor_conditions = poor_conditions(options_.host_before, after, findings.noise_warning, gpu_notes);
     if (!findings.poor_conditions.empty())
       std::printf("  conditions  poor: %s (recorded; compare calls its differences inconclusive)\n",
                   findings.poor_conditions.c_str());
@@ -278,6 +296,7 @@ class FrameLoop {
       result->noise_warning = findings.noise_warning;
       result->input_hash = findings.input_hash;
       result->poor_conditions = findings.poor_conditions;
+      result->gpu = gpu_;
     }
     if (out_) finish_file(findings);
     return kExitOk;
@@ -288,6 +307,10 @@ class FrameLoop {
     RunSummary s = summarize_run(frames_, options_.warmup);
     s.warmup_frames = warmup_frames_;
     return s;
+  }
+
+  GpuReading gpu_reading() const {
+    return options_.probe ? options_.probe->gpu_conditions() : absent_gpu_reading("no device probe");
   }
 
   FrameStats run_one(uint32_t frame) {
@@ -453,6 +476,7 @@ class FrameLoop {
   PositionRounding contact_rounding_{true};
   std::vector<vec3f> vertices_, previous_;
   EarlierPasses earlier_;
+  GpuConditions gpu_;  // read just before the measured passes and right after them
   uint64_t warmup_frames_ = 0;  // frames --warmup-ms ran untimed
   uint32_t kept_passes_ = 0;  // --repeat stopped by a signal: the finished passes recorded
   uint32_t f_;                // the frame under way, for the message of an error

@@ -88,6 +88,7 @@ struct RunResult {
   std::string noise_warning;  // "" when the noise is within kNoiseWarningLimit
   std::string input_hash;
   std::string poor_conditions;  // why the conditions were poor, "" when good
+  GpuConditions gpu;  // the GPU's readings around the measured passes
 };
 
 // Runs the frames of `range` (repeat passes of them), prints the summary and, given a results file, records every

@@ -89,8 +89,27 @@ def scene_label(attrs):
     return label_of(attrs["scene"], overrides)
 
 
+PLAN_QUERIES = ("self", "inter", "rigid_self")
+
+
+def plan_steps(group):
+    """/plans as {pass: {frame: step text}}, a step as a plan file's line after its frame
+    index writes it: `refit self=preserve probe`."""
+    columns = {name: ds[()] for name, ds in group.items()}
+    steps = {}
+    for i in range(len(columns["pass"])):
+        words = [text(columns["trees"][i])]
+        words += [f"{q}={text(columns[q][i])}" for q in PLAN_QUERIES if q in columns and text(columns[q][i])]
+        if "decision" in columns and text(columns["decision"][i]):
+            words.append(f"decision={text(columns['decision'][i])}")
+        words += [flag for flag in ("inspect", "probe") if flag in columns and int(columns[flag][i])]
+        steps.setdefault(int(columns["pass"][i]), {})[int(columns["frame"][i])] = " ".join(words)
+    return steps
+
+
 class Run:
-    """One results file: root attributes, every /frames column, /summary (or None)."""
+    """One results file: root attributes, every /frames column, /summary (or None), every
+    pass's times (/passes) and plans (/plans)."""
 
     def __init__(self, path):
         self.path = path
@@ -120,6 +139,10 @@ class Run:
             # Every pass's times per /frames row, {"t_total_ms": array (rows, passes), ...}:
             # empty for files before schema 5, which keep only the mean over the passes.
             self.passes = {name: ds[()] for name, ds in f["passes"].items()} if "passes" in f else {}
+            # Every pass's plan per frame (/plans, front pipelines; schema 4): {pass: {frame: step}}
+            # with each step as a plan file's line writes it (docs/usage.md "Plans"), empty
+            # for pipelines without a frame plan and older files.
+            self.plans = plan_steps(f["plans"]) if "plans" in f else {}
         self.attrs = attrs
         # Runs group by the scene with its --set overrides (funnel[res=24]), never by the
         # descriptor's name alone; scene_name is the bare name.

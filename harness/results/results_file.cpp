@@ -387,6 +387,10 @@ void ResultsFile::finish(const RunSummary& summary, const MemoryStats& memory, c
                                      ? host_warning_ + findings.host_warning_after
                                      : host_warning_ + "; " + findings.host_warning_after;
     write_attr(file_.get(), "host_warning", warnings, where_ + ": /");
+    for (const GpuAttribute& a : gpu_attributes()) {
+      if (a.text) write_attr(file_.get(), a.name.c_str(), a.words(findings.gpu), where_ + ": /");
+      else write_attr(file_.get(), a.name.c_str(), a.number(findings.gpu), where_ + ": /");
+    }
     write_attr(file_.get(), "conditions", findings.poor_conditions.empty() ? "good" : "poor", where_ + ": /");
     write_attr(file_.get(), "conditions_notes", findings.poor_conditions, where_ + ": /");
     close("complete");

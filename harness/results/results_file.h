@@ -16,6 +16,7 @@
 
 #include "cdbench/core/pair.h"
 #include "cdbench/exec/memory.h"
+#include "harness/results/gpu_attributes.h"
 #include "harness/results/hdf5_handle.h"
 #include "harness/results/results_columns.h"
 #include "cdbench/pipeline/pipeline.h"
@@ -88,7 +89,11 @@ struct RunFindings {
   // (NaN: not measured) and its busy warning then ("" when none).
   double host_busy_after = std::nan("");
   std::string host_warning_after;
-  // Why the run's conditions were poor (a busy host, a noise warning), "" when good.
+  // The GPU's readings before and after the measured passes (absent, with the reason, on
+  // the host executor and where NVML is not there).
+  GpuConditions gpu;
+  // Why the run's conditions were poor (a busy host, a noise warning, the GPU's
+  // conditions), "" when good.
   std::string poor_conditions;
 };
 

@@ -5,6 +5,7 @@
 
 #include "cdbench/core/error.h"
 #include "cdbench/core/phase.h"
+#include "harness/results/gpu_attributes.h"
 #include "harness/results/hdf5_handle.h"
 #include "harness/results/results_file.h"
 #include "scenes/load/scene_label.h"
@@ -110,6 +111,11 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   };
   r.host_busy_before = optional_share("host_busy_before");
   r.host_busy_after = optional_share("host_busy_after");
+  for (const GpuAttribute& a : gpu_attributes()) {
+    if (!h5::has_attr(root, a.name.c_str())) continue;
+    if (a.text) r.gpu_text[a.name] = h5::read_string_attr(root, a.name.c_str(), at);
+    else r.gpu_number[a.name] = h5::read_double_attr(root, a.name.c_str(), at);
+  }
   if (h5::has_attr(root, "warmup")) r.warmup = uint64_t(h5::read_int_attr(root, "warmup", at));
   if (h5::has_attr(root, "cold")) r.cold = h5::read_int_attr(root, "cold", at) != 0;
   if (h5::has_attr(root, "params_json")) {

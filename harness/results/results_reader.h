@@ -4,6 +4,7 @@
 // its /summary when there is one.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -59,6 +60,11 @@ struct ResultsOverview {
   std::string conditions, conditions_notes, host_warning, cpu_model;
   double host_busy_before = 0, host_busy_after = 0;
   uint64_t passes_kept = 0;  // passes whose times /passes keeps (0: none, files before schema 5)
+  // The GPU's conditions (harness/results/gpu_attributes.h), by attribute name: its texts
+  // and its numbers (NaN: not read); neither holds a name the file lacks (files written
+  // before they were recorded).
+  std::map<std::string, std::string> gpu_text;
+  std::map<std::string, double> gpu_number;
 };
 
 ResultsOverview read_results_overview(const std::filesystem::path& path);

@@ -1,9 +1,11 @@
 // The CUDA backend's measurement aids (device_probe.h) and device query (pipeline.h).
 #include <algorithm>
+#include <memory>
 
 #include "cdbench/core/error.h"
 #include "cdbench/exec/cuda_exec.cuh"
 #include "cdbench/pipeline/device_probe.h"
+#include "cdbench/pipeline/nvml_reader.h"
 #include "cdbench/pipeline/pipeline.h"
 
 namespace cdb {
@@ -17,6 +19,10 @@ class CudaProbe final : public DeviceProbe {
     int device = 0, l2 = 0;
     cuda_check(cudaGetDevice(&device), "device query");
     cuda_check(cudaDeviceGetAttribute(&l2, cudaDevAttrL2CacheSize, device), "L2 size query");
+    // NVML numbers devices its own way: the run's device is the one on its PCI bus.
+    char bus_id[32] = {};
+    cuda_check(cudaDeviceGetPCIBusId(bus_id, int(sizeof bus_id), device), "PCI bus id query");
+    nvml_ = std::make_unique<NvmlReader>(bus_id);
     flush_bytes_ = 2 * size_t(std::max(l2, 1 << 20));
     cuda_check(cudaMalloc(&flush_, flush_bytes_), "cache flush buffer");
   }
@@ -56,10 +62,13 @@ class CudaProbe final : public DeviceProbe {
     return 2.0 * double(bytes) / (double(best_ms) * 1e-3) / 1e9;
   }
 
+  GpuReading gpu_conditions() override { return nvml_->read(); }
+
  private:
   void* flush_ = nullptr;
   size_t flush_bytes_ = 0;
   unsigned char fill_ = 0;
+  std::unique_ptr<NvmlReader> nvml_;
 };
 
 }  // namespace

@@ -1,9 +1,12 @@
 #pragma once
 // Measurement aids of a backend, for the frame loop to use between frames, never inside a
-// timed one: evicting the caches before a frame (--cold, nvbench's cold measurement) and
-// the device's copy bandwidth, the yardstick that achieved traffic is reported against.
+// timed one: evicting the caches before a frame (--cold, nvbench's cold measurement), the
+// device's copy bandwidth, the yardstick that achieved traffic is reported against, and the
+// GPU's conditions (clocks, temperature, power, clock limits) around the measured frames.
 #include <memory>
 #include <string>
+
+#include "cdbench/pipeline/gpu_conditions.h"
 
 namespace cdb {
 
@@ -17,6 +20,9 @@ class DeviceProbe {
   // large device-to-device copies (host: memcpy on one thread). Allocates and frees its
   // buffers; call it once per run, before the frames.
   virtual double copy_bandwidth_gbps() = 0;
+  // The GPU's conditions now (NVML, nvml_reader.h); absent with the reason on the host
+  // executor and where NVML is not there.
+  virtual GpuReading gpu_conditions() = 0;
 };
 
 // For --device cuda or cpu (fails like make_pipeline on an unknown or absent device).

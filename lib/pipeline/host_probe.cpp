@@ -44,6 +44,8 @@ class HostProbe final : public DeviceProbe {
     return best;
   }
 
+  GpuReading gpu_conditions() override { return absent_gpu_reading("host executor (--device cpu): no GPU in use"); }
+
  private:
   std::vector<unsigned char> flush_;
   unsigned char fill_ = 0;

@@ -83,4 +83,36 @@ check "bar_report scene row" 0 "^\| funnel \| [0-9,]+ \| [0-9,]+ \| [0-9.]+ / [0
   "$python" "$root/bench/bar_report.py" "$tmp/bar" --base base
 has "bar_report targets row" "$tmp/out" "^\| funnel \| [0-9.]+ \| — \| [abc] [0-9.]+ / (grid|hash) [0-9.]+ = [0-9.]+x \((met|not met)\) \| [0-9.]+ \| [0-9.]+ \((met|not met)\) \|$"
 
+# interleave.sh: one binary as A and as B, two rounds on a tiny funnel; every process
+# replays the plan A recorded first, into its own labelled file, then compare pools each
+# side's files as repeats.
+ab=$tmp/interleave
+check "interleave: A and B compared" 0 "^verdict: [a-zA-Z-]+( \(.*\))?: funnel\[res=8\] c cpu, B against A over 2 interleaved processes each.*; plan: replayed $ab/plan/plan\.h5$" -- \
+  "$root/bench/interleave.sh" --a "$cdbench" --rounds 2 --scene funnel --device cpu --frames 0:6 "$ab" -- \
+  --set res=8 --repeat 3 --warmup-ms 0
+has "interleave: the compare table is printed" "$tmp/out" "^\| funnel\[res=8\] \| c \| cpu \| .* over repeats n=6 \| .* over repeats n=6 \|"
+grep "^interleave: round" "$tmp/out" | tr '\n' ' ' >"$tmp/order"
+has "interleave: A and B alternate process by process" "$tmp/order" \
+  "^interleave: round 1 of 2: A interleave: round 1 of 2: B interleave: round 2 of 2: A interleave: round 2 of 2: B $"
+has "interleave: the compare Markdown is kept with the files" "$ab/compare.md" "^\| funnel\[res=8\] \| c \| cpu \|"
+check "interleave: every process replayed A's plan, labelled" 0 "^4 files: a a b b, replayed .*plan\.h5 \(pipeline c, pass 0\), plan_mixed 0$" -- \
+  "$python" - "$ab" <<'PY'
+import glob, sys
+import h5py
+files = sorted(glob.glob(sys.argv[1] + "/[ab]/run-*.h5"))
+labels, sources, mixed = [], set(), 0
+for path in files:
+    with h5py.File(path, "r") as f:
+        labels.append(f.attrs["label"])
+        sources.add(f.attrs["plan_source"])
+        mixed += int(f["summary"].attrs["plan_mixed_frames"])
+print(f"{len(files)} files: {' '.join(labels)}, replayed {' / '.join(sorted(sources))}, plan_mixed {mixed}")
+PY
+check "interleave: the plan is the recording's" 0 "^0 build self=generate" -- cat "$ab/plan/plan.txt"
+check "interleave --no-replay: each process plans its own" 0 "plan: each process planned its own$" -- \
+  "$root/bench/interleave.sh" --a "$cdbench" --b "$cdbench" --b-args "--front-cycle 3" --rounds 1 --scene funnel \
+  --device cpu --frames 0:6 --no-replay --compare-args "--metric median" "$tmp/free" -- --set res=8 --repeat 2 --warmup-ms 0
+has "interleave --no-replay: compare flags B's other plan" "$tmp/free/compare.md" "PLANS DIFFER at frames"
+check "interleave: a bad option is a usage error" 2 "unknown option --round" -- "$root/bench/interleave.sh" --round 2 "$tmp/x"
+
 finish bench

@@ -91,6 +91,32 @@ check "a busy host recorded: inconclusive, not a regression" 0 \
   "$cdbench" compare "$tmp/busy.h5" "$tmp/slow.h5" --fail-on-regression
 check "report shows the poor conditions" 0 "busy\.h5 \|.*\| poor conditions: host busy before the run \(90%\) \| complete \|$" -- \
   "$cdbench" report "$tmp/busy.h5"
+# GPU conditions as NVML would have recorded them on a card whose clock fell during the
+# frames: report shows the readings and the poor conditions, compare gives no verdict.
+$python - "$tmp/base.h5" "$tmp/gpu-slowed.h5" <<'PY'
+import shutil, sys
+import h5py
+shutil.copy(sys.argv[1], sys.argv[2])
+why = "GPU SM clock changed during the measured frames (1980 to 1500 MHz)"
+with h5py.File(sys.argv[2], "r+") as f:
+    f.attrs["gpu_source"] = "nvml"
+    f.attrs["gpu_name"] = "NVIDIA H200"
+    for name, before, after in (("sm_clock_mhz", 1980.0, 1500.0), ("temperature_c", 45.0, 61.5)):
+        f.attrs[f"gpu_{name}_before"] = before
+        f.attrs[f"gpu_{name}_after"] = after
+    f.attrs["gpu_throttle_reasons_after"] = "none"
+    f.attrs["gpu_warning"] = why
+    f.attrs["conditions"] = "poor"
+    f.attrs["conditions_notes"] = why
+PY
+check "report shows the GPU's readings and its poor conditions" 0 \
+  "gpu-slowed\.h5 \|.*\| SM 1980 to 1500 MHz, 45 to 62 C \| poor conditions: GPU SM clock changed during the measured frames \(1980 to 1500 MHz\) \| complete \|$" -- \
+  "$cdbench" report "$tmp/gpu-slowed.h5"
+check "report CSV has the GPU's readings" 0 "^1980,1500,45,61\.5,none,GPU SM clock changed" -- \
+  "$python" -c "import csv, sys; r = next(csv.DictReader(open(sys.argv[1]))); print(','.join(r[k] for k in ('gpu_sm_clock_mhz_before', 'gpu_sm_clock_mhz_after', 'gpu_temperature_c_before', 'gpu_temperature_c_after', 'gpu_throttle_reasons_after', 'gpu_warning')))" \
+  <("$cdbench" report --csv "$tmp/gpu-slowed.h5")
+check "a GPU whose clock changed: inconclusive" 0 "\| inconclusive \| same \(6 frames\) \| poor conditions \(B: GPU SM clock changed" -- \
+  "$cdbench" compare "$tmp/base.h5" "$tmp/gpu-slowed.h5" --fail-on-regression
 # Three passes against three cannot reach p < 0.05 even fully separated (p = 0.1).
 $python - "$tmp/c3.h5" "$tmp/three.h5" "$tmp/three-slow.h5" <<'PY'
 import shutil, sys
@@ -167,7 +193,22 @@ if [[ "$(head -1 "$tmp/csv1")" == "$(head -1 "$tmp/csv2")" && "$(head -1 "$tmp/c
 else
   fail "compare CSV headers differ: $(head -1 "$tmp/csv1") / $(head -1 "$tmp/csv2")"
 fi
-has "CSV row of the regression" "$tmp/csv2" ",50\.0000,REGRESSION,0\.0079,,,6,0,same,,"
+has "CSV row of the regression" "$tmp/csv2" ",(50(\.0*[0-9]*)?|49\.9+[0-9]*),REGRESSION,0\.007936507936507936,,,6,0,same,,"
+# Full precision: every number of the CSV row is the very double of compare --json (which
+# writes doubles that read back exactly), the exact test's p = 2 / C(10, 5) among them.
+"$cdbench" compare "$tmp/base.h5" "$tmp/slow.h5" --json >"$tmp/json2" 2>/dev/null
+check "compare CSV has every double exactly" 0 "^exact: [1-9][0-9]* numbers$" -- "$python" - "$tmp/csv2" "$tmp/json2" <<'PY'
+import csv, json, sys
+row = next(csv.DictReader(open(sys.argv[1])))
+expected = json.load(open(sys.argv[2]))["rows"][0]
+numbers = [k for k, v in expected.items() if isinstance(v, float)]
+bad = [k for k in numbers if float(row[k]) != expected[k]]
+bad += [] if float(row["p_value"]) == 2 / 252 else ["p_value is not 2 / C(10, 5)"]
+bad += [] if abs(float(row["change_pct"]) - 50) < 1e-9 else ["change_pct is not 50%"]
+print("differ: " + ", ".join(bad) if bad else f"exact: {len(numbers)} numbers")
+PY
+check "an unbounded interval end is inf in CSV" 0 "^funnel\[res=16\],c,cpu,before,before,p95,[0-9.e-]+,[0-9.e-]+,inf,5,frames," -- \
+  "$cdbench" compare "$tmp/a.h5" "$tmp/a-copy.h5" --metric p95 --csv
 has "CSV row of the mismatch" "$tmp/csv3" ",6,0,same,\"pipeline: 'c' in A, 'brute' in B\","
 check "JSON parses" 0 '"verdict": "REGRESSION"' -- \
   bash -c "'$cdbench' compare '$tmp/base.h5' '$tmp/slow.h5' --json 2>/dev/null | $python -m json.tool"
