@@ -237,6 +237,9 @@ class FrameLoop {
     run_recording_pass();
   }
 
+  // The frame under way (at an error, the one that failed).
+  uint32_t frame() const { return f_; }
+
   // After an error: the file closed as incomplete, saying at which frame and why.
   void abandon(const std::exception& e) {
     progress_.finish();
@@ -469,6 +472,11 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
   FrameLoop loop(pipeline, source, range, out, interrupts, options);
   try {
     loop.run_passes();
+  } catch (const UsageError& e) {
+    // An option the frame's data cannot serve (--box-margin past float range): named
+    // with the frame, as the results file's reason is.
+    loop.abandon(e);
+    throw UsageError("frame " + std::to_string(loop.frame()) + ": " + e.what());
   } catch (const std::exception& e) {
     loop.abandon(e);
     throw;

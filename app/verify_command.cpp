@@ -11,6 +11,7 @@
 #include "cdbench/oracle/sweep_oracle.h"
 #include "cdbench/core/error.h"
 #include "frame_range.h"
+#include "cdbench/geometry/margin_range.h"
 #include "cdbench/geometry/position_rounding.h"
 #include "harness/pairs/pairs_file.h"
 #include "report.h"
@@ -177,6 +178,11 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   for (uint32_t f = range.first; f < range.last; ++f) {
     scene.source->positions(f, positions);
     rounding.round(positions, vertices);
+    try {
+      check_margin_in_float_range(vertices, c.boxes.margin, widens_boxes(c.boxes));
+    } catch (const UsageError& e) {
+      throw UsageError("frame " + std::to_string(f) + ": " + e.what());
+    }
     std::vector<PrimPair> expected;
     if (oracle) {
       oracle->run_frame(positions);

@@ -13,6 +13,7 @@
 #include "cdbench/core/pair.h"
 #include "cdbench/core/phase.h"
 #include "cdbench/exec/memory.h"
+#include "cdbench/geometry/margin_range.h"
 #include "cdbench/geometry/mesh.h"
 #include "cdbench/geometry/position_rounding.h"
 #include "cdbench/pipeline/plan_step.h"
@@ -57,6 +58,10 @@ struct BoxConfig {
   // Rebased or 16-bit quantized boxes (BoxPrecision).
   BoxPrecision precision = BoxPrecision::fp32;
 };
+
+// fp64's rounding keeps every overlap on its own; with a margin each box first widens by
+// one float spacing (geometry/position_rounding.h, geometry/mesh.h).
+inline bool widens_boxes(const BoxConfig& b) { return b.precision == BoxPrecision::fp64 && b.margin > 0.0f; }
 
 // The hierarchy's build and upkeep.
 struct TreeConfig {
@@ -310,9 +315,11 @@ class Pipeline {
   FrameStats run_frame(const std::vector<vec3f>& vertices) { return run_frame(FrameVertices{vertices.data(), vertices.size()}); }
   // A frame as the scene holds it, in double: rounded to floats as the box precision says
   // (fp64 rebases; the origin is picked at the first frame after set_topology), then run.
-  // The rounding is host work before the frame, not part of its time.
+  // The rounding is host work before the frame, not part of its time. Throws UsageError
+  // when --box-margin takes a box of the rounded frame past float range.
   FrameStats run_frame(const std::vector<vec3d>& positions) {
     rounding_.round(positions, rounded_);
+    check_margin_in_float_range(rounded_, margin_, widen_);
     return run_frame(rounded_);
   }
   // The last frame's pairs, sorted, for verification (a download; not part of a frame).
@@ -321,13 +328,16 @@ class Pipeline {
   virtual MemoryStats memory() const = 0;
 
  protected:
-  explicit Pipeline(BoxPrecision precision) : rounding_(precision == BoxPrecision::fp64) {}
+  explicit Pipeline(const BoxConfig& boxes)
+      : rounding_(boxes.precision == BoxPrecision::fp64), margin_(boxes.margin), widen_(widens_boxes(boxes)) {}
   // For set_topology: the next double frame picks the origin again.
   void restart_rounding() { rounding_.restart(); }
 
  private:
   PositionRounding rounding_;
   std::vector<vec3f> rounded_;
+  float margin_;
+  bool widen_;
 };
 
 // The GPU this process would run on, or why there is none.

@@ -67,6 +67,30 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/bad/frame_2.obj"
 check "box and mesh frames in one directory refused" 1 "mixes box frames .* and mesh frames \(frame_2.obj\)" -- \
   "$cdbench" scenes info "$tmp/bad"
 
+# Boxes at float's limit: every pipeline exact, with and without a margin that keeps them
+# within float range; a margin that takes a box past +-FLT_MAX is refused (exit 2), naming
+# the option and the frame, before the pipelines run it. Frame 1 moves box 0 to FLT_MAX.
+mkdir -p "$tmp/limit"
+"$python" - "$tmp/limit" <<'PY'
+import sys, numpy as np
+big = float(np.finfo(np.float32).max)
+c = 0.9 * big
+boxes = np.array([[c - 1e36 * k] * 3 + [c - 1e36 * k + 1e37] * 3 for k in range(3)] +
+                 [[-c - 1e37 + 1e36 * k] * 3 + [-c + 1e36 * k] * 3 for k in range(3)])
+boxes.astype("<f4").tofile(f"{sys.argv[1]}/frame_0.boxes")
+boxes[0, 3:] = big
+boxes.astype("<f4").tofile(f"{sys.argv[1]}/frame_1.boxes")
+PY
+check "boxes at float's limit verify" 0 "all pipelines match the oracle" -- \
+  "$cdbench" verify --device cpu --scene "$tmp/limit"
+check "a margin within float range verifies there" 0 "all pipelines match the oracle" -- \
+  "$cdbench" verify --device cpu --scene "$tmp/limit" --box-margin 1e36 --frames 0
+check "verify: a margin past float range refused" 2 \
+  "^cdbench: error: frame 1: --box-margin 1e\+36 takes a box past float range: vertex 1's x is 3.40282e\+38" -- \
+  "$cdbench" verify --device cpu --scene "$tmp/limit" --box-margin 1e36 --frames 0:2
+check "run: a margin past float range refused" 2 "^cdbench: error: frame 0: --box-margin 1e\+38 takes a box past float range" -- \
+  "$cdbench" run --device cpu --quiet --scene "$tmp/limit" --pipeline grid --box-margin 1e38
+
 # The worked example of docs/usage.md, step by step.
 ex=$tmp/my-scene
 check "example: cloth frames" 0 "wrote 12 frames" -- \
