@@ -20,6 +20,7 @@
 #include "interrupt.h"
 #include "library_errors.h"
 #include "noise_check.h"
+#include "query_pairs.h"
 #include "cdbench/narrow/contacts.h"
 #include "cdbench/pipeline/plan_record.h"
 #include "cdbench/pipeline/run_summary.h"
@@ -298,6 +299,7 @@ class FrameLoop {
     if (options_.cold) options_.probe->flush_caches();
     FrameStats s = pipeline_.run_frame(positions_);
     s.timing.bytes_floor = frame_bytes_floor(source_.topology(), s.pairs);
+    if (query_pairs_.active()) s.query_pairs = query_pairs_.count(pipeline_.sorted_pairs());
     progress_.update(++done_);
     return s;
   }
@@ -451,6 +453,7 @@ class FrameLoop {
   uint32_t done_ = 0;
   std::vector<FrameStats> frames_;
   std::vector<vec3d> positions_;
+  const QueryPairCounter query_pairs_{source_.topology()};
   // --check's contacts: the frame (and the one before) rebased and rounded as fp64 rounds
   // them, so exact float tests see the scene's geometry whatever the pipeline's precision.
   PositionRounding contact_rounding_{true};

@@ -157,6 +157,8 @@ ResultsOverview read_results_overview(const std::filesystem::path& path) {
   };
   r.repeats = h5::has_attr(s, "repeats") ? double(h5::read_int_attr(s, "repeats", st)) : std::nan("");
   r.noise_median = optional_double("noise_median");
+  r.pairs_self_mean = optional_double("pairs_self_mean");
+  r.pairs_inter_mean = optional_double("pairs_inter_mean");
   r.host_syncs_mean = optional_double("host_syncs_mean");
   if (h5::has_attr(s, "plan_mixed_frames"))
     r.plan_mixed_frames = uint64_t(h5::read_int_attr(s, "plan_mixed_frames", st));
@@ -205,6 +207,12 @@ ResultsFrames read_results_frames(const std::filesystem::path& path) {
                       : std::vector<double>(rows, 0.0);
   if (f.repeats.size() != rows || f.total_noise.size() != rows)
     fail(where + ": /frames: repeats and t_total_noise have other lengths than frame");
+  if (H5Lexists(root, "frames/pairs_self", H5P_DEFAULT) > 0) {
+    f.pairs_self = read_column<uint64_t>(root, where, "pairs_self", H5T_NATIVE_UINT64);
+    f.pairs_inter = read_column<uint64_t>(root, where, "pairs_inter", H5T_NATIVE_UINT64);
+    if (f.pairs_self.size() != rows || f.pairs_inter.size() != rows)
+      fail(where + ": /frames: pairs_self and pairs_inter have other lengths than frame");
+  }
   return f;
 }
 

@@ -263,8 +263,17 @@ struct FrameCheck {
   uint64_t discrete_missed_contacts = 0;
 };
 
+// A frame's pairs by query kind in a scene that declares queries: within one object (self)
+// and between two (inter); self + inter = pairs.
+struct QueryPairs {
+  uint64_t self = 0, inter = 0;
+};
+
 struct FrameStats {
   uint64_t pairs = 0;
+  // Scenes with declared queries: the pairs by query kind (counted by the run loop after the
+  // frame, outside its time); none otherwise.
+  std::optional<QueryPairs> query_pairs;
   std::string op;  // what the frame did: hierarchy (build/refit) + front operation
   // Front pipelines: the frame's plan step (pipeline/plan_step.h), recorded per pass in the
   // results file and replayed by later passes; none for pipelines without a frame plan.

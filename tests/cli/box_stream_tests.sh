@@ -105,4 +105,39 @@ check "example verifies" 0 "all pipelines match the oracle" -- \
 check "example runs with --check" 0 "check +12 frames against the oracle: recall min 1\.0+," -- \
   "$cdbench" run --device cpu --scene "$ex/cloth-and-collider.json" --check every --pipeline bvh --quiet
 
+# Its declared queries: each frame's pairs by kind (self within the cloth, inter between
+# cloth and ball, which meet from frame 6), self + inter = pairs every frame, in the file,
+# its summary, report and run --json.
+check "example: pairs by query in the summary" 0 "^  pairs +mean [0-9]+ per frame \\(self [0-9]+, inter [0-9]+\\)" -- \
+  "$cdbench" run --device cpu --scene "$ex/cloth-and-collider.json" --pipeline c,grid --quiet --warmup-ms 0 \
+    --out "$tmp/queries-{pipeline}.h5"
+for p in c grid; do
+  check "example: $p's self + inter = pairs every frame" 0 "^12 frames: self \\+ inter = pairs, inter > 0$" -- \
+    "$python" - "$tmp/queries-$p.h5" <<'PY'
+import sys, h5py, numpy as np
+with h5py.File(sys.argv[1], "r") as f:
+    fr, s = f["frames"], f["summary"].attrs
+    self_, inter, pairs = fr["pairs_self"][()], fr["pairs_inter"][()], fr["pairs"][()]
+    assert (self_ + inter == pairs).all(), (self_, inter, pairs)
+    w = int(s["warmup"])
+    assert np.isclose(s["pairs_self_mean"], self_[w:].mean()) and np.isclose(s["pairs_inter_mean"], inter[w:].mean())
+    print(f"{len(pairs)} frames: self + inter = pairs, inter {'> 0' if inter.sum() > 0 else '= 0'}")
+PY
+done
+check "example: results format documented with queries" 0 "^0 differences" -- \
+  "$python" "$root/tests/cli/results_format_check.py" "$root/docs/results-format.md" "$tmp/queries-c.h5"
+check "example: report shows pairs by query" 0 "\\| pairs \\| pairs_self \\| pairs_inter \\|" -- \
+  "$cdbench" report "$tmp/queries-c.h5"
+"$cdbench" run --device cpu --scene "$ex/cloth-and-collider.json" --pipeline bvh --quiet --warmup-ms 0 --frames 5:8 \
+  --json >"$tmp/queries.json" 2>/dev/null
+check "example: run --json gives pairs by query" 0 "^self [0-9.]+ \\+ inter [0-9.]+ = pairs$" -- \
+  "$python" -c "
+import json, sys
+r = json.load(open(sys.argv[1]))['runs'][0]
+q = r['pairs_by_query']
+assert q['self_mean'] + q['inter_mean'] == r['pairs_mean'], (q, r['pairs_mean'])
+print(f\"self {q['self_mean']} + inter {q['inter_mean']} = pairs\")" "$tmp/queries.json"
+check "run --json without declared queries: pairs_by_query null" 0 '"pairs_by_query": null' -- \
+  "$cdbench" run --device cpu --scene "$ex/cloth/" --pipeline bvh --quiet --warmup-ms 0 --frames 0:2 --json
+
 finish "box stream"
