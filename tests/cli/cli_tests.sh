@@ -88,6 +88,8 @@ check "pipeline c runs and decides" 0 "formula 2 +[0-9]+ refit, [0-9]+ restructu
 check "verify with co-vertex filtering" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:3 --skip-adjacent
 check "verify with co-vertex filtering, sweep oracle" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:2 --skip-adjacent --brute-limit 10
 check "scene objects and queries" 0 "query       inter cloth - ball" -- "$cdbench" scenes info funnel-inter --set frames=1
+check "scenes info takes --scene as run does" 0 "query       inter cloth - ball" -- \
+  "$cdbench" scenes info --scene funnel-inter --set frames=1
 check "declared queries verify" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --scene funnel-inter --frames 0:3
 # Scenes from packaged models (scripts/install-deps.sh --scenes --scenes-extra; CI installs them).
 check "MD2 keyframes scene" 0 "^frames +198" -- "$cdbench" scenes info sydney-md2
