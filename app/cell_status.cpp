@@ -3,6 +3,8 @@
 #include <string.h>
 
 #include <fstream>
+#include <string>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
@@ -30,25 +32,52 @@ void write_cell_status(const std::filesystem::path& file, const CellStatus& s) {
   std::filesystem::rename(tmp, file);
 }
 
+namespace {
+
+template <class T>
+constexpr const char* json_type_word() {
+  if constexpr (std::is_same_v<T, std::string>)
+    return "a string";
+  else
+    return "a number";
+}
+
+// The value of `key` in a status file (`fallback` when absent or null); a value of another
+// type is refused naming the file and the key, since the sweep wrote it and its reading of
+// the cell would be wrong.
+template <class T>
+T status_field(const nlohmann::json& j, const char* key, T fallback, const std::filesystem::path& file) {
+  const auto it = j.find(key);
+  if (it == j.end() || it->is_null()) return fallback;
+  const bool fits = std::is_same_v<T, std::string> ? it->is_string() : it->is_number();
+  if (!fits)
+    fail(file.string() + ": \"" + key + "\" is " + it->dump() + " (a " + it->type_name() + "), not " +
+         json_type_word<T>() + ": the sweep writes this file; remove it and run the sweep again to run the cell anew");
+  return it->get<T>();
+}
+
+}  // namespace
+
 std::optional<CellStatus> read_cell_status(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) return std::nullopt;
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   if (!j.is_object() || !j.contains("cell") || !j.contains("state")) return std::nullopt;
+  const auto text = [&](const char* key) { return status_field<std::string>(j, key, "", file); };
   CellStatus s;
-  s.cell = j.value("cell", "");
-  s.scene = j.value("scene", "");
-  s.pipeline = j.value("pipeline", "");
-  s.device = j.value("device", "");
-  s.state = j.value("state", "");
-  s.exit_code = j.value("exit_code", -1);
-  s.signal = j.value("signal", 0);
-  s.seconds = j.value("seconds", 0.0);
-  s.command = j.value("command", "");
-  s.log = j.value("log", "");
-  s.log_tail = j.value("log_tail", "");
-  s.job = j.value("job", "");
-  s.host = j.value("host", "");
+  s.cell = text("cell");
+  s.scene = text("scene");
+  s.pipeline = text("pipeline");
+  s.device = text("device");
+  s.state = text("state");
+  s.exit_code = status_field<int>(j, "exit_code", -1, file);
+  s.signal = status_field<int>(j, "signal", 0, file);
+  s.seconds = status_field<double>(j, "seconds", 0.0, file);
+  s.command = text("command");
+  s.log = text("log");
+  s.log_tail = text("log_tail");
+  s.job = text("job");
+  s.host = text("host");
   return s;
 }
 

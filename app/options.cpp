@@ -38,7 +38,10 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
       ->capture_default_str();
   cmd->add_option("--set", o.sets, "override a generator parameter of a procedural scene: key=value (repeatable)")
       ->group(kSceneGroup);
-  cmd->add_option("--frames", o.frames, "frame range A:B (half-open), A: or A; default all")->group(kSceneGroup);
+  cmd->add_option("--frames", o.frames,
+                  "frames to run: A:B is A to B-1 (half-open), A: is A to the last, A is frame A only "
+                  "(--frames 3: frame 3 alone, not three frames); default all")
+      ->group(kSceneGroup);
   cmd->add_option("--scenes-dir", o.scenes_dir, "where named scenes live")->group(kSceneGroup);
   cmd->add_option("--rebuild-every", c.tree.rebuild_every,
                   "bvh pipeline: rebuild every K frames (0: build on the first frame only)")

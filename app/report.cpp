@@ -92,7 +92,11 @@ void print_summary(const std::vector<FrameStats>& frames, uint32_t warmup, const
     std::printf("  %-11s mean %.3f  median %.3f  p95 %.3f ms  (%zu frames)\n", kPhaseNames[p], s.mean,
                 s.median, s.p95, s.count);
   }
-  std::printf("  pairs       mean %.0f per frame\n", r.pairs_mean);
+  if (r.by_query)
+    std::printf("  pairs       mean %.0f per frame (self %.0f, inter %.0f)\n", r.pairs_mean, r.pairs_self_mean,
+                r.pairs_inter_mean);
+  else
+    std::printf("  pairs       mean %.0f per frame\n", r.pairs_mean);
   const FrameStats& last = frames.back();
   if (last.fronts.internal + last.fronts.external)
     std::printf("  front       %llu internal + %llu external nodes at the end, Q(root) %.3f\n",

@@ -334,6 +334,7 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     return std::any_of(rows.begin(), rows.end(), [&](const Row& row) { return row.unreadable.empty() && has(row.r); });
   };
   const bool checked = csv || any([](const ResultsOverview& r) { return r.checked_frames > 0; });
+  const bool by_query = csv || any([](const ResultsOverview& r) { return !std::isnan(r.pairs_self_mean); });
   const bool labels = csv || any([](const ResultsOverview& r) { return !r.label.empty(); });
   const bool hashes = csv || any([](const ResultsOverview& r) { return !r.input_hash.empty(); });
   const bool warnings =
@@ -392,6 +393,10 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
       return shown(mean);
     });
   numeric("pairs", [&](const Row& row) { return shown(stats(row) ? row.r.pairs_mean : none, "%.0f"); });
+  if (by_query) {
+    numeric("pairs_self", [&](const Row& row) { return shown(stats(row) ? row.r.pairs_self_mean : none, "%.0f"); });
+    numeric("pairs_inter", [&](const Row& row) { return shown(stats(row) ? row.r.pairs_inter_mean : none, "%.0f"); });
+  }
   if (checked) {
     numeric("recall_min", [&](const Row& row) { return shown(has_check(row) ? row.r.recall_min : none, "%.6f"); });
     numeric("precision_min",

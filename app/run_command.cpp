@@ -145,6 +145,9 @@ nlohmann::json run_json(const Scene& scene, const RunOptions& r, const std::stri
           {"conditions_notes", res.poor_conditions},
           {"gpu", gpu_json(res.gpu)},
           {"pairs_mean", number(s.pairs_mean)},
+          {"pairs_by_query", s.by_query ? nlohmann::json{{"self_mean", number(s.pairs_self_mean)},
+                                                         {"inter_mean", number(s.pairs_inter_mean)}}
+                                        : nlohmann::json(nullptr)},
           {"peak_bytes", res.memory.peak_bytes},
           {"commit", build_info().git_sha},
           {"input_hash", res.input_hash},

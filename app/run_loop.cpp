@@ -20,6 +20,7 @@
 #include "interrupt.h"
 #include "library_errors.h"
 #include "noise_check.h"
+#include "query_pairs.h"
 #include "cdbench/narrow/contacts.h"
 #include "cdbench/pipeline/plan_record.h"
 #include "cdbench/pipeline/run_summary.h"
@@ -251,6 +252,9 @@ class FrameLoop {
     gpu_.after = gpu_reading();
   }
 
+  // The frame under way (at an error, the one that failed).
+  uint32_t frame() const { return f_; }
+
   // After an error: the file closed as incomplete, saying at which frame and why.
   void abandon(const std::exception& e) {
     progress_.finish();
@@ -318,6 +322,7 @@ class FrameLoop {
     if (options_.cold) options_.probe->flush_caches();
     FrameStats s = pipeline_.run_frame(positions_);
     s.timing.bytes_floor = frame_bytes_floor(source_.topology(), s.pairs);
+    if (query_pairs_.active()) s.query_pairs = query_pairs_.count(pipeline_.sorted_pairs());
     progress_.update(++done_);
     return s;
   }
@@ -471,6 +476,7 @@ class FrameLoop {
   uint32_t done_ = 0;
   std::vector<FrameStats> frames_;
   std::vector<vec3d> positions_;
+  const QueryPairCounter query_pairs_{source_.topology()};
   // --check's contacts: the frame (and the one before) rebased and rounded as fp64 rounds
   // them, so exact float tests see the scene's geometry whatever the pipeline's precision.
   PositionRounding contact_rounding_{true};
@@ -493,6 +499,11 @@ int run_frames(Pipeline& pipeline, const FrameSource& source, FrameRange range, 
   FrameLoop loop(pipeline, source, range, out, interrupts, options);
   try {
     loop.run_passes();
+  } catch (const UsageError& e) {
+    // An option the frame's data cannot serve (--box-margin past float range): named
+    // with the frame, as the results file's reason is.
+    loop.abandon(e);
+    throw UsageError("frame " + std::to_string(loop.frame()) + ": " + e.what());
   } catch (const std::exception& e) {
     loop.abandon(e);
     throw;

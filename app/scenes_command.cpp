@@ -24,10 +24,11 @@ ScenesCommand add_scenes_command(CLI::App& app, ScenesOptions& s) {
   ScenesCommand c;
   c.list = scenes->add_subcommand("list", "list scenes with sizes");
   c.info = scenes->add_subcommand("info", "a scene's size, bounding box and motion per frame");
-  c.info->add_option("scene", s.scene, "scene name, .json descriptor or mesh directory")->required();
+  // The scene as run and verify take it (--scene) or as the first argument.
+  c.info->add_option("scene,--scene", s.scene, "scene name, .json descriptor or mesh directory")->required();
   c.info->add_option("--set", s.sets, "override a generator parameter: key=value (repeatable)");
   c.generate = scenes->add_subcommand("generate", "write a scene's frames as OBJ files");
-  c.generate->add_option("scene", s.scene, "scene name or .json descriptor")->required();
+  c.generate->add_option("scene,--scene", s.scene, "scene name or .json descriptor")->required();
   c.generate->add_option("--set", s.sets, "override a generator parameter: key=value, e.g. res=128 frames=10");
   c.generate->add_option("--out", s.out_dir, "output directory (frame_0000.obj, ...)")->required()->check(non_empty_path());
   scenes->require_subcommand(1);

@@ -120,6 +120,8 @@ Axis option_axis(const std::string& key, const json& j, const std::string& at,
   if (std::find(kReserved.begin(), kReserved.end(), key) != kReserved.end())
     fail(at + ": set by the sweep itself (use scenes, pipelines, devices, frames, warmup)");
   if (known == run_options.end()) fail(at + ": not an option of cdbench run");
+  // --help makes run print its help and measure nothing.
+  if (key == "help") fail(at + ": prints run's help instead of running a cell; not an option a sweep cell can take");
   Axis axis{key, {}};
   const json values = j.is_array() ? j : json::array({j});
   if (values.empty()) fail(at + ": empty list");

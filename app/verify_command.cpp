@@ -7,10 +7,13 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "cdbench/oracle/sweep_oracle.h"
 #include "cdbench/core/error.h"
 #include "frame_range.h"
+#include "cdbench/geometry/margin_range.h"
 #include "cdbench/geometry/position_rounding.h"
 #include "harness/pairs/pairs_file.h"
 #include "report.h"
@@ -80,6 +83,36 @@ class PairsCheck {
   uint64_t mismatched_ = 0, unreadable_ = 0, missed_ = 0, extra_ = 0, duplicates_ = 0;
 };
 
+// The pipelines to check, each once, and the line each is shown under: names that build one
+// pipeline (an alias, static = b and restructure = c, or a name given twice) share its run,
+// shown under every distinct name given, "b = static". An unknown name is kept as it is,
+// for make_pipelines to refuse.
+struct VerifiedPipelines {
+  std::vector<std::string> names, labels;
+};
+
+VerifiedPipelines distinct_pipelines(const std::vector<std::string>& given) {
+  VerifiedPipelines out;
+  std::vector<const PipelineKind*> kinds;
+  for (const std::string& name : given) {
+    const PipelineKind* kind = find_pipeline_kind(name);
+    const auto same = [&](size_t k) {
+      return out.names[k] == name || (kind && kinds[k] && kinds[k]->builds == kind->builds);
+    };
+    size_t k = 0;
+    while (k < kinds.size() && !same(k)) ++k;
+    if (k < kinds.size()) {
+      const bool named = out.names[k] == name || out.labels[k].find(" = " + name) != std::string::npos;
+      if (!named) out.labels[k] += " = " + name;
+      continue;
+    }
+    kinds.push_back(kind);
+    out.names.push_back(name);
+    out.labels.push_back(name);
+  }
+  return out;
+}
+
 }  // namespace
 
 CLI::App* add_verify_command(CLI::App& app, CommonOptions& o, VerifyOptions& v) {
@@ -134,6 +167,8 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
       if (!alias && kinds[k].name != oracle_pipeline()) pipelines.push_back(kinds[k].name);
     }
   }
+  const VerifiedPipelines verified = distinct_pipelines(pipelines);
+  pipelines = verified.names;
   std::vector<std::unique_ptr<Pipeline>> runs = make_pipelines(o, pipelines, device);
   print_environment(device);
   Scene scene = load_scene(o);
@@ -177,6 +212,11 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   for (uint32_t f = range.first; f < range.last; ++f) {
     scene.source->positions(f, positions);
     rounding.round(positions, vertices);
+    try {
+      check_margin_in_float_range(vertices, c.boxes.margin, widens_boxes(c.boxes));
+    } catch (const UsageError& e) {
+      throw UsageError("frame " + std::to_string(f) + ": " + e.what());
+    }
     std::vector<PrimPair> expected;
     if (oracle) {
       oracle->run_frame(positions);
@@ -199,7 +239,7 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
       const PairSetDiff d = diff_pair_sets(expected, reported);
       if (!d.equal()) {
         ++mismatched_frames[p];
-        print_mismatch(pipelines[p], f, d);
+        print_mismatch(verified.labels[p], f, d);
       }
       const PairSetDiff g = diff_pair_sets(exact, reported, 0);
       double_missed[p] += g.missing_count;
@@ -210,7 +250,7 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   for (size_t p = 0; p < runs.size(); ++p) {
     const bool lost = keeps_double_pairs && double_missed[p] > 0;
     std::printf("  %-12s %s (%u frames); double geometry: %llu of %llu pairs missed%s, %llu extra\n",
-                pipelines[p].c_str(), mismatched_frames[p] ? "MISMATCH" : "exact", range.last - range.first,
+                verified.labels[p].c_str(), mismatched_frames[p] ? "MISMATCH" : "exact", range.last - range.first,
                 static_cast<unsigned long long>(double_missed[p]), static_cast<unsigned long long>(double_pairs),
                 lost ? " (LOST)" : "", static_cast<unsigned long long>(double_extra[p]));
     ok = ok && mismatched_frames[p] == 0 && !lost;

@@ -21,6 +21,8 @@ import numpy as np
 # 3: label, input_path, input_hash, noise_warning (optional: older files lack them).
 # 4: /plans, repeat_plan, plan_source, /frames/plan_mixed, /summary plan_mixed_frames (optional).
 # 5: /passes (every pass's frame and phase times) and the run's conditions (optional).
+# Scenes with declared queries: /frames/pairs_self, /frames/pairs_inter, /summary pairs_self_mean,
+# pairs_inter_mean (optional: other scenes and older files lack them).
 SUPPORTED_SCHEMA = 5
 # What `cdbench compare` matches runs on besides the pipeline (app/compare_command.cpp):
 # the options that change the pair set or how time is measured.
@@ -211,6 +213,13 @@ class Run:
         if self.summary is None or key not in self.summary:
             raise ResultsError(f"{self.path}: no /summary attribute {key}")
         return float(self.summary[key])
+
+    def pairs_by_query(self):
+        """Per frame, the pairs within one object and between two ({'self': [...], 'inter': [...]}),
+        for a scene with declared queries; None for other scenes and older files."""
+        if "pairs_self" not in self.frames:
+            return None
+        return {"self": self.frames["pairs_self"], "inter": self.frames["pairs_inter"]}
 
     def peak_bytes(self):
         if self.summary is not None and "peak_bytes" in self.summary:

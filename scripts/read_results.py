@@ -24,7 +24,8 @@ import numpy as np
 # In step with kResultsSchemaVersion (harness/results/results_file.h); 3 added label, input_path,
 # input_hash and noise_warning, which older files lack (they are printed when present); 4
 # added each pass's front plan (/plans) and the columns and attributes of --repeat-plan; 5
-# every pass's times (/passes) and the run's conditions.
+# every pass's times (/passes) and the run's conditions. Scenes with declared queries add
+# /frames/pairs_self, /frames/pairs_inter and /summary pairs_self_mean, pairs_inter_mean.
 SUPPORTED_SCHEMA = 5
 HEADER_ATTRS = ["scene", "pipeline", "backend", "device_name", "frame_first", "frame_last",
                 "warmup", "triangles", "label", "input_path", "input_hash", "noise_warning", "git_sha",
@@ -104,7 +105,9 @@ def print_summary(f):
             continue
         stats = "  ".join(f"{s} {text(attrs[key + '_' + s])}" for s in ("mean", "median", "p95", "min"))
         print(f"  {p:<12} {stats} ms  ({text(attrs.get(key + '_frames', '?'))} frames)")
-    print(f"  pairs        mean {text(attrs['pairs_mean'])} per frame")
+    by_query = (f", self {text(attrs['pairs_self_mean'])}, inter {text(attrs['pairs_inter_mean'])}"
+                if "pairs_self_mean" in attrs else "")
+    print(f"  pairs        mean {text(attrs['pairs_mean'])} per frame{by_query}")
     if int(attrs.get("checked_frames", 0)):
         print(f"  check        {text(attrs['checked_frames'])} frames: recall min {text(attrs['recall_min'])}, "
               f"precision min {text(attrs['precision_min'])}")

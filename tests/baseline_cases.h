@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <ostream>
 #include <random>
 #include <string>
@@ -174,6 +175,51 @@ inline SceneFrames straddling_pairs(uint32_t g) {
   return s;
 }
 
+// n boxes at float's limit, each a triangle (min, max, max) as a box stream makes them:
+// on each axis a box lies near +FLT_MAX, near -FLT_MAX, around 0 or across the whole range,
+// up to 4e37 wide, a third of those at an end reaching it exactly (FLT_MAX - lo overflows
+// float there); boxes of one region overlap often. Frame 1 mirrors frame 0 through 0. With
+// a margin (check_baselines), the boxes at the ends overflow to +-inf.
+inline SceneFrames float_limit_boxes(uint32_t n, uint32_t seed) {
+  const float big = std::numeric_limits<float>::max();
+  SceneFrames s;
+  s.frames.resize(2);
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> region(0, 3), third(0, 2);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (uint32_t b = 0; b < n; ++b) {
+    float lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      const float w = 1e36f + 3.9e37f * unit(rng);
+      switch (region(rng)) {
+        case 0:
+          lo[k] = big - 4e37f * unit(rng);
+          hi[k] = third(rng) == 0 ? big : std::min(lo[k] + w, big);
+          break;
+        case 1:
+          hi[k] = -big + 4e37f * unit(rng);
+          lo[k] = third(rng) == 0 ? -big : std::max(hi[k] - w, -big);
+          break;
+        case 2:
+          lo[k] = -2e37f * unit(rng);
+          hi[k] = lo[k] + w;
+          break;
+        default:
+          lo[k] = -big;
+          hi[k] = big;
+          break;
+      }
+    }
+    s.topology.faces.push_back({2 * b, 2 * b + 1, 2 * b + 1});
+    s.frames[0].push_back({lo[0], lo[1], lo[2]});
+    s.frames[0].push_back({hi[0], hi[1], hi[2]});
+    s.frames[1].push_back({-hi[0], -hi[1], -hi[2]});
+    s.frames[1].push_back({-lo[0], -lo[1], -lo[2]});
+  }
+  s.topology.num_vertices = 2 * n;
+  return s;
+}
+
 // The grid pipeline through the factory on every frame of `scene`: exact against the
 // oracle; returns each frame's op.
 inline std::vector<std::string> grid_pipeline_ops(const std::string& device,
@@ -261,6 +307,7 @@ inline std::vector<BaselineCase> extreme_cases() {
          return frames_of(*make_generator("soup", {{"triangles", 500}, {"scale", 1e38}, {"frames", 2}}));
        }},
       {"degenerate_400", [] { return degenerate_triangles(400); }},
+      {"float_limit_200", [] { return float_limit_boxes(200, 1); }},
   };
 }
 
@@ -295,6 +342,7 @@ inline std::vector<BaselineCase> baseline_cases() {
                      return frames_of(*make_generator(
                          "soup", {{"triangles", 1000}, {"scale", 1e38}, {"frames", 2}}));
                    }});
+  cases.push_back({"float_limit_300", [] { return float_limit_boxes(300, 3); }});
   cases.push_back({"cubes_unit_8", [] { return cube_lattice(8, 1.0f); }});
   cases.push_back({"cubes_tiny_5", [] { return cube_lattice(5, 0x1p-70f); }});
   cases.push_back({"cubes_huge_5", [] { return cube_lattice(5, 0x1p60f); }});
@@ -373,10 +421,27 @@ GridPlacement grid_placement(const SceneFrames& scene) {
   return p;
 }
 
+// The pairs of the boxes every baseline computes from frame `v` with `margin` (face_box,
+// rounded outward, so past float range they reach +-inf), tested pair by pair on the host.
+inline std::vector<PrimPair> margin_box_pairs(const Topology& topo, const std::vector<vec3f>& v, float margin) {
+  const uint32_t n = uint32_t(topo.faces.size());
+  MeshView mesh{v.data(), topo.faces.data(), n};
+  mesh.margin = margin;
+  std::vector<vec4f> lo(n), hi(n);
+  for (uint32_t f = 0; f < n; ++f) face_box(mesh, f, lo[f], hi[f]);
+  std::vector<PrimPair> pairs;
+  for (uint32_t a = 0; a < n; ++a)
+    for (uint32_t b = a + 1; b < n; ++b)
+      if (overlaps(lo[a], hi[a], lo[b], hi[b])) pairs.push_back({a, b});
+  return pairs;
+}
+
 // The baselines on every frame. With `tiny_grid_plan`, the grid starts each frame with a
 // plan of 1024 entries and 1 key bit, so a frame with more must re-run, never truncate.
+// With a `margin`, every box grows by it (as --box-margin grows them) and the expected
+// pairs are those of the grown boxes, every pair tested.
 template <class Exec>
-BaselineReruns check_baselines(const SceneFrames& scene, bool tiny_grid_plan = false) {
+BaselineReruns check_baselines(const SceneFrames& scene, bool tiny_grid_plan = false, float margin = 0.0f) {
   const Topology& topo = scene.topology;
   const uint32_t n = uint32_t(topo.faces.size());
   Exec exec;
@@ -398,8 +463,10 @@ BaselineReruns check_baselines(const SceneFrames& scene, bool tiny_grid_plan = f
   for (uint32_t f = 0; f < scene.frames.size(); ++f) {
     const std::vector<vec3f>& v = scene.frames[f];
     exec.copy_from_host(vertices.data(), v.data(), v.size());
-    const MeshView mesh{vertices.data(), faces.data(), n};
-    const std::vector<PrimPair> expected = sweep_oracle_pairs(topo, v);
+    MeshView mesh{vertices.data(), faces.data(), n};
+    mesh.margin = margin;
+    const std::vector<PrimPair> expected =
+        margin == 0.0f ? sweep_oracle_pairs(topo, v) : margin_box_pairs(topo, v, margin);
     pairs.reserve(expected.size() + 1);
     const PairSink sink{pairs.data(), count.data(), pairs.capacity()};
 

@@ -93,6 +93,13 @@ TEST(CudaHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
   EXPECT_GT(check_baselines<CudaExec>(soup_with_giants(3000, 100, false)).hash_regrids, 0u);
 }
 
+TEST(CudaCellBaselines, ExactAtFloatLimitAndPastItToInfinity) {
+  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+  check_baselines<CudaExec>(float_limit_boxes(300, 3));
+  check_baselines<CudaExec>(float_limit_boxes(300, 3), false, 1e38f);
+  check_baselines<CudaExec>(float_limit_boxes(300, 3), true, 1e37f);
+}
+
 TEST(CudaHashBaseline, SecondPassSortsTheEntriesTheFirstGrewTo) {
   if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   check_hash_second_pass<CudaExec>(bimodal_soup(3000, 0.05f, 7));

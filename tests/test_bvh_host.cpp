@@ -67,6 +67,14 @@ TEST(HostHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
   EXPECT_GT(check_baselines<HostExec>(soup_with_giants(3000, 100, false)).hash_regrids, 0u);
 }
 
+// Boxes at float's limit, and grown past it by a margin to +-inf (outward rounding): the
+// cells come from their finite bounds, so grid and hash stay exact.
+TEST(HostCellBaselines, ExactAtFloatLimitAndPastItToInfinity) {
+  check_baselines<HostExec>(float_limit_boxes(300, 3));
+  check_baselines<HostExec>(float_limit_boxes(300, 3), false, 1e38f);
+  check_baselines<HostExec>(float_limit_boxes(300, 3), true, 1e37f);
+}
+
 TEST(HostHashBaseline, SecondPassSortsTheEntriesTheFirstGrewTo) { check_hash_second_pass<HostExec>(bimodal_soup(3000, 0.05f, 7)); }
 
 // The grid plans its sort from the last frame: steady frames fit the plan; a plan far too

@@ -208,6 +208,53 @@ TEST(ResultsFile, CheckedFramesRecordContacts) {
   EXPECT_DOUBLE_EQ(o.contact_precision, 0.4);
 }
 
+// A scene with declared queries: each frame's pairs by kind are /frames columns, their
+// means /summary attributes, and the reader gives both; a scene without has neither.
+TEST(ResultsFile, DeclaredQueriesRecordPairsByQuery) {
+  TempDir dir;
+  std::vector<FrameStats> frames(3);
+  const uint64_t self[] = {6, 0, 9}, inter[] = {4, 2, 0};
+  for (uint32_t i = 0; i < 3; ++i) {
+    frames[i].pairs = self[i] + inter[i];
+    frames[i].query_pairs = QueryPairs{self[i], inter[i]};
+  }
+  const MemoryStats memory;
+  const RunSummary summary = summarize_run(frames, 1);
+  EXPECT_TRUE(summary.by_query);
+  EXPECT_DOUBLE_EQ(summary.pairs_self_mean, 4.5);
+  EXPECT_DOUBLE_EQ(summary.pairs_inter_mean, 1.0);
+  const fs::path path = dir / "queries.h5";
+  {
+    ResultsFile out(path, info_for("c", 3));
+    for (uint32_t i = 0; i < 3; ++i) out.append_frame(i, frames[i], memory);
+    out.finish(summary, memory);
+  }
+  {
+    File f(path);
+    ASSERT_GE(f.id, 0) << path;
+    EXPECT_EQ(integers(f.id, "frames/pairs_self"), (std::vector<uint64_t>{6, 0, 9}));
+    EXPECT_EQ(integers(f.id, "frames/pairs_inter"), (std::vector<uint64_t>{4, 2, 0}));
+    EXPECT_EQ(number_attr(f.id, "summary", "pairs_self_mean"), 4.5);
+    EXPECT_EQ(number_attr(f.id, "summary", "pairs_inter_mean"), 1.0);
+  }
+  const ResultsFrames read = read_results_frames(path);
+  EXPECT_EQ(read.pairs_self, (std::vector<uint64_t>{6, 0, 9}));
+  EXPECT_EQ(read.pairs_inter, (std::vector<uint64_t>{4, 2, 0}));
+  const ResultsOverview o = read_results_overview(path);
+  EXPECT_DOUBLE_EQ(o.pairs_self_mean, 4.5);
+  EXPECT_DOUBLE_EQ(o.pairs_inter_mean, 1.0);
+
+  const fs::path plain = dir / "plain.h5";
+  for (FrameStats& s : frames) s.query_pairs.reset();
+  {
+    ResultsFile out(plain, info_for("c", 3));
+    for (uint32_t i = 0; i < 3; ++i) out.append_frame(i, frames[i], memory);
+    out.finish(summarize_run(frames, 1), memory);
+  }
+  EXPECT_TRUE(read_results_frames(plain).pairs_self.empty());
+  EXPECT_TRUE(std::isnan(read_results_overview(plain).pairs_self_mean));
+}
+
 // A run with --set overrides: the label and the overrides are root attributes, and the
 // reader gives the label; runs of one descriptor at other sizes never share it.
 TEST(ResultsFile, SetOverridesMakeTheSceneLabel) {

@@ -1,21 +1,29 @@
 #pragma once
 // The first reduction of the cell baselines (grid and hash), from which each sizes its
 // cells: the scene's bounds and the sum over the boxes of their widths. Widths and extents
-// are in double: those of 1e38-scale boxes overflow float.
+// are in double: those of 1e38-scale boxes overflow float. A box side at +-inf (a margin
+// past float range) counts as +-FLT_MAX (cell_coord.h finite_bound), so the bounds, the
+// widths and the cells sized from them are finite: a scene's bounds span at most
+// 2 FLT_MAX, which double holds.
 #include <cstdint>
 #include <limits>
 
+#include "baselines/common/cell_coord.h"
 #include "cdbench/core/hd.h"
 #include "cdbench/core/vec.h"
 
 namespace cdb {
 
+// The extent of a box along one axis, from lo to hi, of its finite bounds.
+template <class Real>
+CDB_HD_INLINE double finite_extent(Real lo, Real hi) {
+  return double(finite_bound(hi)) - double(finite_bound(lo));
+}
+
 // The width of a box: its largest extent.
 template <class Real>
 CDB_HD_INLINE double box_width(const vec4<Real>& lo, const vec4<Real>& hi) {
-  const double ex = double(hi.x) - double(lo.x), ey = double(hi.y) - double(lo.y),
-               ez = double(hi.z) - double(lo.z);
-  return max_of(ex, max_of(ey, ez));
+  return max_of(finite_extent(lo.x, hi.x), max_of(finite_extent(lo.y, hi.y), finite_extent(lo.z, hi.z)));
 }
 
 struct SceneStats {
@@ -51,7 +59,9 @@ struct SceneStatsFn {
   const vec4f* hi;
   CDB_HD SceneStats operator()(uint32_t i) const {
     const vec4f a = lo[i], b = hi[i];
-    return {box_width(a, b), {a.x, a.y, a.z}, {b.x, b.y, b.z}};
+    return {box_width(a, b),
+            {finite_bound(a.x), finite_bound(a.y), finite_bound(a.z)},
+            {finite_bound(b.x), finite_bound(b.y), finite_bound(b.z)}};
   }
 };
 

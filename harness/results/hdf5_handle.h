@@ -22,6 +22,14 @@ struct IoError : Error {
   std::string reason;
 };
 
+// An HDF5 call that failed inside the library, with no errno: in a reader, a file that is
+// truncated or damaged (a bad address, a signature or conversion HDF5 cannot make sense of).
+// `reason` is HDF5's innermost message.
+struct LibraryError : Error {
+  LibraryError(const std::string& message, std::string why) : Error(message), reason(std::move(why)) {}
+  std::string reason;
+};
+
 class Handle {
  public:
   using Closer = herr_t (*)(hid_t);
@@ -50,7 +58,7 @@ class Handle {
 void silence_library_errors();
 
 // Throws "WHERE: WHAT failed: <reason>" when an HDF5 call returned a negative value: an
-// IoError when the failure carries an errno, Error otherwise.
+// IoError when the failure carries an errno, LibraryError otherwise.
 hid_t check(hid_t result, const std::string& where, const char* what);
 
 // Wraps a fresh id, throwing as check() does when it is invalid.

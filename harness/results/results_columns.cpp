@@ -56,6 +56,18 @@ const std::vector<FrameColumn>& frame_columns() {
   return columns;
 }
 
+const std::vector<FrameColumn>& query_pair_columns() {
+  static const std::vector<FrameColumn> columns = [] {
+    using T = ColumnType;
+    using R = const FrameRow&;
+    return std::vector<FrameColumn>{
+        {"pairs_self", T::u64, "declared queries: pairs within one object (the self queries); pairs_self + pairs_inter = pairs", [](R r) -> ColumnValue { return r.stats.query_pairs->self; }},
+        {"pairs_inter", T::u64, "declared queries: pairs between two objects (the inter queries)", [](R r) -> ColumnValue { return r.stats.query_pairs->inter; }},
+    };
+  }();
+  return columns;
+}
+
 const std::vector<PlanColumn>& plan_columns() {
   static const std::vector<PlanColumn> columns = [] {
     using T = ColumnType;

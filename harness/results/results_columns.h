@@ -51,6 +51,9 @@ using FrameColumn = TableColumn<FrameRow>;
 using PlanColumn = TableColumn<PlanRow>;
 
 const std::vector<FrameColumn>& frame_columns();
+// /frames columns of a scene that declares queries only (FrameStats::query_pairs): made with
+// the first frame that has them; every frame of such a run does.
+const std::vector<FrameColumn>& query_pair_columns();
 const std::vector<PlanColumn>& plan_columns();
 
 }  // namespace cdb

@@ -177,7 +177,20 @@ void ResultsFile::writing(const std::string& what, Write write) {
 
 void ResultsFile::append_frame(uint32_t frame, const FrameStats& stats, const MemoryStats& memory) {
   const std::string row = "frame " + std::to_string(frame);
-  writing(row, [&] { append_row(frame_columns(), columns_, rows_, FrameRow{frame, stats, memory}, "frames", row); });
+  writing(row, [&] {
+    const FrameRow values{frame, stats, memory};
+    if (stats.query_pairs) {
+      if (query_pair_columns_.empty()) {
+        if (rows_ > 0) fail(where_ + ": /frames " + row + ": pairs by query from this frame on only");
+        query_pair_columns_ = create_columns(frames_.get(), "frames", query_pair_columns());
+      }
+      uint64_t query_rows = rows_;
+      append_row(query_pair_columns(), query_pair_columns_, query_rows, values, "frames", row);
+    } else if (!query_pair_columns_.empty()) {
+      fail(where_ + ": /frames " + row + ": no pairs by query, where earlier frames have them");
+    }
+    append_row(frame_columns(), columns_, rows_, values, "frames", row);
+  });
 }
 
 template <class Row>
@@ -351,6 +364,10 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
   put_stat("t_total_ms", s.total);
   for (size_t p = 0; p < kPhaseCount; ++p) put_stat(std::string("t_") + kPhaseNames[p] + "_ms", s.phase[p]);
   write_attr(loc, "pairs_mean", s.total.count ? s.pairs_mean : none, at);
+  if (s.by_query) {
+    write_attr(loc, "pairs_self_mean", s.total.count ? s.pairs_self_mean : none, at);
+    write_attr(loc, "pairs_inter_mean", s.total.count ? s.pairs_inter_mean : none, at);
+  }
   write_attr(loc, "query_reruns", uint64_t(s.query_reruns), at);
   write_attr(loc, "repeats", uint64_t(s.repeats), at);
   write_attr(loc, "noise_median", s.noise_median, at);

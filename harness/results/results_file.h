@@ -169,6 +169,7 @@ class ResultsFile {
   h5::Handle file_, frames_, pairs_, plans_, passes_;
   std::vector<h5::Handle> columns_;       // one dataset per frame_columns() entry
   std::vector<h5::Handle> plan_columns_;  // one dataset per plan_columns() entry
+  std::vector<h5::Handle> query_pair_columns_;  // one per query_pair_columns() entry, or none
   // /passes: (frames x passes) datasets, t_total_ms first, then the timed phases'.
   std::vector<h5::Handle> pass_columns_;
   std::vector<int> pass_phases_;  // the phase of each pass column after the first

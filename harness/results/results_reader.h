@@ -38,6 +38,9 @@ struct ResultsOverview {
   bool has_summary = false;
   uint64_t measured_frames = 0;
   double mean_ms = 0, median_ms = 0, p95_ms = 0, min_ms = 0, first_ms = 0, pairs_mean = 0;
+  // Scenes with declared queries: the mean pairs within one object and between two (NaN
+  // for other scenes and older files).
+  double pairs_self_mean = 0, pairs_inter_mean = 0;
   uint64_t peak_bytes = 0;
   // Written by newer files only (NaN when absent): --repeat passes and the median noise
   // (relative std. dev.), host-device synchronizations per frame.
@@ -76,6 +79,9 @@ struct ResultsFrames {
   // --repeat: relative standard deviation of total_ms over the passes (0 with one pass;
   // files without the column read as 0).
   std::vector<double> total_noise;
+  // Scenes with declared queries: pairs within one object and between two (self + inter =
+  // pairs); empty for other scenes and older files.
+  std::vector<uint64_t> pairs_self, pairs_inter;
 };
 
 ResultsFrames read_results_frames(const std::filesystem::path& path);

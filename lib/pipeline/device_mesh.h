@@ -88,9 +88,7 @@ class DeviceMesh {
     swept_ = config.boxes.swept;
     margin_ = config.boxes.margin;
     precision_ = config.boxes.precision;
-    // fp64's rounding keeps every overlap on its own; with a margin it needs the spacing
-    // (geometry/position_rounding.h).
-    widen_ = precision_ == BoxPrecision::fp64 && margin_ > 0.0f;
+    widen_ = widens_boxes(config.boxes);
   }
   bool quantized() const { return precision_ == BoxPrecision::q16; }
   // Swept boxes: the two vertex buffers swap roles, the new positions go over the older

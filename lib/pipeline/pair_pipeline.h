@@ -27,7 +27,7 @@ class PairPipeline : public Pipeline {
 
  protected:
   explicit PairPipeline(const PipelineConfig& config)
-      : Pipeline(config.boxes.precision),
+      : Pipeline(config.boxes),
         config_(config),
         exec_(ExecOptions{config.launch.dependent_launch}),
         timer_(exec_, config.launch.phase_timing),

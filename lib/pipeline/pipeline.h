@@ -13,6 +13,7 @@
 #include "cdbench/core/pair.h"
 #include "cdbench/core/phase.h"
 #include "cdbench/exec/memory.h"
+#include "cdbench/geometry/margin_range.h"
 #include "cdbench/geometry/mesh.h"
 #include "cdbench/geometry/position_rounding.h"
 #include "cdbench/pipeline/plan_step.h"
@@ -57,6 +58,10 @@ struct BoxConfig {
   // Rebased or 16-bit quantized boxes (BoxPrecision).
   BoxPrecision precision = BoxPrecision::fp32;
 };
+
+// fp64's rounding keeps every overlap on its own; with a margin each box first widens by
+// one float spacing (geometry/position_rounding.h, geometry/mesh.h).
+inline bool widens_boxes(const BoxConfig& b) { return b.precision == BoxPrecision::fp64 && b.margin > 0.0f; }
 
 // The hierarchy's build and upkeep.
 struct TreeConfig {
@@ -261,8 +266,17 @@ struct FrameCheck {
   uint64_t discrete_missed_contacts = 0;
 };
 
+// A frame's pairs by query kind in a scene that declares queries: within one object (self)
+// and between two (inter); self + inter = pairs.
+struct QueryPairs {
+  uint64_t self = 0, inter = 0;
+};
+
 struct FrameStats {
   uint64_t pairs = 0;
+  // Scenes with declared queries: the pairs by query kind (counted by the run loop after the
+  // frame, outside its time); none otherwise.
+  std::optional<QueryPairs> query_pairs;
   std::string op;  // what the frame did: hierarchy (build/refit) + front operation
   // Front pipelines: the frame's plan step (pipeline/plan_step.h), recorded per pass in the
   // results file and replayed by later passes; none for pipelines without a frame plan.
@@ -313,9 +327,11 @@ class Pipeline {
   FrameStats run_frame(const std::vector<vec3f>& vertices) { return run_frame(FrameVertices{vertices.data(), vertices.size()}); }
   // A frame as the scene holds it, in double: rounded to floats as the box precision says
   // (fp64 rebases; the origin is picked at the first frame after set_topology), then run.
-  // The rounding is host work before the frame, not part of its time.
+  // The rounding is host work before the frame, not part of its time. Throws UsageError
+  // when --box-margin takes a box of the rounded frame past float range.
   FrameStats run_frame(const std::vector<vec3d>& positions) {
     rounding_.round(positions, rounded_);
+    check_margin_in_float_range(rounded_, margin_, widen_);
     return run_frame(rounded_);
   }
   // The last frame's pairs, sorted, for verification (a download; not part of a frame).
@@ -324,13 +340,16 @@ class Pipeline {
   virtual MemoryStats memory() const = 0;
 
  protected:
-  explicit Pipeline(BoxPrecision precision) : rounding_(precision == BoxPrecision::fp64) {}
+  explicit Pipeline(const BoxConfig& boxes)
+      : rounding_(boxes.precision == BoxPrecision::fp64), margin_(boxes.margin), widen_(widens_boxes(boxes)) {}
   // For set_topology: the next double frame picks the origin again.
   void restart_rounding() { rounding_.restart(); }
 
  private:
   PositionRounding rounding_;
   std::vector<vec3f> rounded_;
+  float margin_;
+  bool widen_;
 };
 
 // The GPU this process would run on, or why there is none.

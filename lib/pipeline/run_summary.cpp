@@ -28,7 +28,8 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
   r.first_op = frames[0].op;
   std::vector<double> total;
   std::array<std::vector<double>, kPhaseCount> ran;
-  double pairs = 0, syncs = 0, floor = 0;
+  double pairs = 0, syncs = 0, floor = 0, pairs_self = 0, pairs_inter = 0;
+  r.by_query = frames.back().query_pairs.has_value();
   std::vector<double> noise;
   for (size_t f = r.warmup; f < frames.size(); ++f) {
     total.push_back(frames[f].timing.total_ms);
@@ -39,6 +40,10 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
     for (size_t p = 0; p < kPhaseCount; ++p)
       if (frames[f].timing.phase_ms[p] > 0) ran[p].push_back(frames[f].timing.phase_ms[p]);
     pairs += double(frames[f].pairs);
+    if (frames[f].query_pairs) {
+      pairs_self += double(frames[f].query_pairs->self);
+      pairs_inter += double(frames[f].query_pairs->inter);
+    }
   }
   for (const auto& f : frames) {
     r.query_reruns += f.timing.query_reruns;
@@ -62,6 +67,8 @@ RunSummary summarize_run(const std::vector<FrameStats>& frames, uint32_t warmup)
   r.total = stat_of(std::move(total));
   for (size_t p = 0; p < kPhaseCount; ++p) r.phase[p] = stat_of(std::move(ran[p]));
   r.pairs_mean = pairs / double(r.total.count);
+  r.pairs_self_mean = pairs_self / double(r.total.count);
+  r.pairs_inter_mean = pairs_inter / double(r.total.count);
   r.host_syncs_mean = syncs / double(r.total.count);
   r.bytes_floor_mean = floor / double(r.total.count);
   r.repeats = frames.back().timing.repeats;

@@ -29,6 +29,9 @@ struct RunSummary {
   // cycle, so zeros would drag its mean down).
   std::array<Stat, kPhaseCount> phase{};
   double pairs_mean = 0;
+  // Scenes with declared queries (FrameStats::query_pairs): the mean pairs of each kind.
+  bool by_query = false;
+  double pairs_self_mean = 0, pairs_inter_mean = 0;
   // --repeat: passes each frame's times are the mean of, and the median over the measured
   // frames of their relative standard deviation (the noise reported beside every time).
   uint32_t repeats = 1;

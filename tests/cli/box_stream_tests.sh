@@ -67,6 +67,30 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/bad/frame_2.obj"
 check "box and mesh frames in one directory refused" 1 "mixes box frames .* and mesh frames \(frame_2.obj\)" -- \
   "$cdbench" scenes info "$tmp/bad"
 
+# Boxes at float's limit: every pipeline exact, with and without a margin that keeps them
+# within float range; a margin that takes a box past +-FLT_MAX is refused (exit 2), naming
+# the option and the frame, before the pipelines run it. Frame 1 moves box 0 to FLT_MAX.
+mkdir -p "$tmp/limit"
+"$python" - "$tmp/limit" <<'PY'
+import sys, numpy as np
+big = float(np.finfo(np.float32).max)
+c = 0.9 * big
+boxes = np.array([[c - 1e36 * k] * 3 + [c - 1e36 * k + 1e37] * 3 for k in range(3)] +
+                 [[-c - 1e37 + 1e36 * k] * 3 + [-c + 1e36 * k] * 3 for k in range(3)])
+boxes.astype("<f4").tofile(f"{sys.argv[1]}/frame_0.boxes")
+boxes[0, 3:] = big
+boxes.astype("<f4").tofile(f"{sys.argv[1]}/frame_1.boxes")
+PY
+check "boxes at float's limit verify" 0 "all pipelines match the oracle" -- \
+  "$cdbench" verify --device cpu --scene "$tmp/limit"
+check "a margin within float range verifies there" 0 "all pipelines match the oracle" -- \
+  "$cdbench" verify --device cpu --scene "$tmp/limit" --box-margin 1e36 --frames 0
+check "verify: a margin past float range refused" 2 \
+  "^cdbench: error: frame 1: --box-margin 1e\+36 takes a box past float range: vertex 1's x is 3.40282e\+38" -- \
+  "$cdbench" verify --device cpu --scene "$tmp/limit" --box-margin 1e36 --frames 0:2
+check "run: a margin past float range refused" 2 "^cdbench: error: frame 0: --box-margin 1e\+38 takes a box past float range" -- \
+  "$cdbench" run --device cpu --quiet --scene "$tmp/limit" --pipeline grid --box-margin 1e38
+
 # The worked example of docs/usage.md, step by step.
 ex=$tmp/my-scene
 check "example: cloth frames" 0 "wrote 12 frames" -- \
@@ -80,5 +104,40 @@ check "example verifies" 0 "all pipelines match the oracle" -- \
   "$cdbench" verify --device cpu --scene "$ex/cloth-and-collider.json"
 check "example runs with --check" 0 "check +12 frames against the oracle: recall min 1\.0+," -- \
   "$cdbench" run --device cpu --scene "$ex/cloth-and-collider.json" --check every --pipeline bvh --quiet
+
+# Its declared queries: each frame's pairs by kind (self within the cloth, inter between
+# cloth and ball, which meet from frame 6), self + inter = pairs every frame, in the file,
+# its summary, report and run --json.
+check "example: pairs by query in the summary" 0 "^  pairs +mean [0-9]+ per frame \\(self [0-9]+, inter [0-9]+\\)" -- \
+  "$cdbench" run --device cpu --scene "$ex/cloth-and-collider.json" --pipeline c,grid --quiet --warmup-ms 0 \
+    --out "$tmp/queries-{pipeline}.h5"
+for p in c grid; do
+  check "example: $p's self + inter = pairs every frame" 0 "^12 frames: self \\+ inter = pairs, inter > 0$" -- \
+    "$python" - "$tmp/queries-$p.h5" <<'PY'
+import sys, h5py, numpy as np
+with h5py.File(sys.argv[1], "r") as f:
+    fr, s = f["frames"], f["summary"].attrs
+    self_, inter, pairs = fr["pairs_self"][()], fr["pairs_inter"][()], fr["pairs"][()]
+    assert (self_ + inter == pairs).all(), (self_, inter, pairs)
+    w = int(s["warmup"])
+    assert np.isclose(s["pairs_self_mean"], self_[w:].mean()) and np.isclose(s["pairs_inter_mean"], inter[w:].mean())
+    print(f"{len(pairs)} frames: self + inter = pairs, inter {'> 0' if inter.sum() > 0 else '= 0'}")
+PY
+done
+check "example: results format documented with queries" 0 "^0 differences" -- \
+  "$python" "$root/tests/cli/results_format_check.py" "$root/docs/results-format.md" "$tmp/queries-c.h5"
+check "example: report shows pairs by query" 0 "\\| pairs \\| pairs_self \\| pairs_inter \\|" -- \
+  "$cdbench" report "$tmp/queries-c.h5"
+"$cdbench" run --device cpu --scene "$ex/cloth-and-collider.json" --pipeline bvh --quiet --warmup-ms 0 --frames 5:8 \
+  --json >"$tmp/queries.json" 2>/dev/null
+check "example: run --json gives pairs by query" 0 "^self [0-9.]+ \\+ inter [0-9.]+ = pairs$" -- \
+  "$python" -c "
+import json, sys
+r = json.load(open(sys.argv[1]))['runs'][0]
+q = r['pairs_by_query']
+assert q['self_mean'] + q['inter_mean'] == r['pairs_mean'], (q, r['pairs_mean'])
+print(f\"self {q['self_mean']} + inter {q['inter_mean']} = pairs\")" "$tmp/queries.json"
+check "run --json without declared queries: pairs_by_query null" 0 '"pairs_by_query": null' -- \
+  "$cdbench" run --device cpu --scene "$ex/cloth/" --pipeline bvh --quiet --warmup-ms 0 --frames 0:2 --json
 
 finish "box stream"

@@ -54,6 +54,14 @@ check "a command far from any is named" 2 "^cdbench: error: unknown command 'xyz
 check "verify takes --pipeline as run does" 0 "^  bvh +exact \\(2 frames\\)" -- "$cdbench" verify --device cpu --frames 0:2 --pipeline bvh
 check "verify checks every pipeline once" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:2
 if grep -qE "^  (static|restructure) " "$tmp/out"; then fail "verify ran an alias (static, restructure) beside b and c"; else echo "ok   no alias run twice"; fi
+check "verify runs a pipeline named twice once, under both names" 0 "^  b = static +exact \\(2 frames\\)" -- \
+  "$cdbench" verify --device cpu --frames 0:2 --pipeline b,static,restructure,c,c
+has "verify shows an alias given first under both names" "$tmp/out" "^  restructure = c +exact \\(2 frames\\)"
+[[ $(grep -cE "^  [a-z= ]+ +exact \\(" "$tmp/out") -eq 2 ]] && echo "ok   verify ran two pipelines for five names" ||
+  fail "verify ran other than two pipelines for b,static,restructure,c,c"
+for cmd in run verify; do
+  check "$cmd --help says --frames 3 is frame 3 alone" 0 "frame 3 alone, not three frames" -- "$cdbench" "$cmd" --help
+done
 check "verify rejects an unknown pipeline first" 2 "unknown pipeline 'foo'" -- "$cdbench" verify --device cpu --pipelines b foo
 check "default pipeline is c" 0 "^pipeline: c on cpu" -- "$cdbench" run --device cpu --quiet --frames 0:2
 check "help groups the options" 0 "^Tuning \\(speed only\\):" -- "$cdbench" run --help
@@ -80,6 +88,8 @@ check "pipeline c runs and decides" 0 "formula 2 +[0-9]+ refit, [0-9]+ restructu
 check "verify with co-vertex filtering" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:3 --skip-adjacent
 check "verify with co-vertex filtering, sweep oracle" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:2 --skip-adjacent --brute-limit 10
 check "scene objects and queries" 0 "query       inter cloth - ball" -- "$cdbench" scenes info funnel-inter --set frames=1
+check "scenes info takes --scene as run does" 0 "query       inter cloth - ball" -- \
+  "$cdbench" scenes info --scene funnel-inter --set frames=1
 check "declared queries verify" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --scene funnel-inter --frames 0:3
 # Scenes from packaged models (scripts/install-deps.sh --scenes --scenes-extra; CI installs them).
 check "MD2 keyframes scene" 0 "^frames +198" -- "$cdbench" scenes info sydney-md2

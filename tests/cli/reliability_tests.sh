@@ -397,5 +397,18 @@ ln -s self "$tmp/looped/self"
 check "report beside a link loop reports the valid file" 1 "^\| $tmp/looped/r.h5 \| funnel\[res=16\] .*\| complete \|$" -- "$cdbench" report "$tmp/looped"
 has "and names the entry skipped and why" "$tmp/out" "cdbench: report: skipped $tmp/looped/self: its symbolic links form a loop"
 
+# --- results files cut short or damaged: named, said so, and what to do; not HDF5's text ---
+mkdir -p "$tmp/cut"
+head -c 100 "$tmp/looped/r.h5" >"$tmp/cut/r100.h5"
+head -c 20000 "$tmp/looped/r.h5" >"$tmp/cut/r20000.h5"
+damaged="the results file is truncated or damaged and cannot be read \\(HDF5: .*\\); write it again"
+for f in r100 r20000; do
+  check "report on a file cut to ${f#r} bytes" 1 "\\| unreadable: $tmp/cut/$f.h5: $damaged" -- "$cdbench" report "$tmp/cut/$f.h5"
+  check "compare on a file cut to ${f#r} bytes" 1 "^cdbench: error: $tmp/cut/$f.h5: $damaged" -- \
+    "$cdbench" compare "$tmp/cut/$f.h5" "$tmp/looped/r.h5"
+  check "--front-cycle on a file cut to ${f#r} bytes" 2 "^cdbench: error: --front-cycle: $tmp/cut/$f.h5: $damaged" -- \
+    "$cdbench" run --device cpu --quiet --scene funnel --set res=16 --frames 0:2 --front-cycle "$tmp/cut/$f.h5"
+done
+
 [[ $skipped -ne 0 ]] && echo "$skipped check(s) skipped (reasons above)"
 finish reliability

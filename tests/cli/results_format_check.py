@@ -2,7 +2,7 @@
 """docs/results-format.md against a results file: every root attribute, /frames and /plans
 dataset and /summary attribute the file has is documented in its section, and every name
 documented there is in the file (`error` only in incomplete files, /plans only in a front
-pipeline's). A group's attributes other than its description are documented as `@name`. Prints each difference and exits 1.
+pipeline's, pairs by query only for scenes that declare queries). A group's attributes other than its description are documented as `@name`. Prints each difference and exits 1.
 
   results_format_check.py docs/results-format.md RUN.h5
 """
@@ -14,6 +14,8 @@ import h5py
 SECTIONS = {"## Root attributes": "/", "## `/frames/`": "frames", "## `/summary`": "summary", "## `/plans/`": "plans",
             "## `/passes/`": "passes"}
 ABSENT_WHEN_COMPLETE = {"error"}
+# Only in files of scenes that declare queries.
+ONLY_WITH_QUERIES = {"pairs_self", "pairs_inter", "pairs_self_mean", "pairs_inter_mean"}
 
 
 def documented(doc):
@@ -39,6 +41,7 @@ def main():
     problems = []
     with h5py.File(h5_path, "r") as f:
         present = {"/": list(f.attrs), "frames": list(f["frames"]), "summary": list(f["summary"].attrs)}
+        queries = "pairs_self" in f["frames"]
         for group in ("plans", "passes"):
             if group in f:
                 present[group] = list(f[group]) + [f"@{a}" for a in f[group].attrs if a != "description"]
@@ -48,7 +51,8 @@ def main():
                 if not any(re.fullmatch(p, name) for p in patterns):
                     problems.append(f"{section}: {name} is in the file but not documented")
             for p in patterns:
-                if not any(re.fullmatch(p, n) for n in names) and p not in ABSENT_WHEN_COMPLETE:
+                optional = ABSENT_WHEN_COMPLETE | (set() if queries else ONLY_WITH_QUERIES)
+                if not any(re.fullmatch(p, n) for n in names) and p not in optional:
                     problems.append(f"{section}: {p} is documented but not in the file")
         groups = sorted(f.keys())
     if not {"frames", "summary", "passes"} <= set(groups) <= {"frames", "pairs", "plans", "passes", "summary"}:

@@ -104,6 +104,17 @@ printf '{"scenes": ["funnel", {"scene": "funnel"}], "pipelines": ["bvh"]}' >"$tm
 check "duplicate cell names refused" 2 "bad4.json: cells 0 and 1 are both named 'funnel_bvh_cuda'" -- "$cdbench" sweep "$tmp/bad4.json" --out "$tmp/x"
 printf '{"scenes": ["funnel"], "pipeline": ["bvh"]}' >"$tmp/bad5.json"
 check "unknown key" 2 "bad5.json: /pipeline: unknown key" -- "$cdbench" sweep "$tmp/bad5.json" --out "$tmp/x"
+printf '{"scenes": ["funnel"], "pipelines": ["bvh"], "options": {"help": true}}' >"$tmp/bad6.json"
+check "help as a cell option refused" 2 "bad6.json: /options/help: prints run's help instead of running a cell" -- \
+  "$cdbench" sweep "$tmp/bad6.json" --out "$tmp/x" --dry-run
+
+# A status file whose value has another type than the sweep writes: the file and key named.
+cp -r "$out" "$tmp/badstatus"
+sed -i 's/"state": "[a-z]*"/"state": 5/' "$tmp/badstatus/nowhere_bvh_cpu.status.json"
+check "a status value of the wrong type names the file and key" 1 \
+  "badstatus/nowhere_bvh_cpu.status.json: \"state\" is 5 \\(a number\\), not a string" -- "$cdbench" report "$tmp/badstatus"
+check "and the sweep names them too" 1 "badstatus/nowhere_bvh_cpu.status.json: \"state\" is 5" -- \
+  "$cdbench" sweep "$tmp/failing.json" --out "$tmp/badstatus" --dry-run
 
 check "committed paper sweep expands" 0 "paper-fig9.json: 66 cells" -- "$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" --dry-run
 check "run takes --set" 0 "frames 0:2" -- "$cdbench" run --device cpu --quiet --scene funnel --set res=12 --set frames=2
