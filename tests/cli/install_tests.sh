@@ -2,7 +2,9 @@
 # The installed package (docs/library.md): `cmake --install` into a fresh prefix, moved
 # elsewhere (the package must be relocatable), then examples/ configured and built out of
 # tree against it with find_package(cdbench) alone and run on the CPU: its frames must equal
-# the oracle's. Also a wrong pipeline name must fail in the library's words.
+# the oracle's. Also a wrong pipeline name must fail in the library's words. Where the build
+# has the Python module: the installed one runs examples/cloth.py, and python/ built on its
+# own against the moved prefix passes tests/python.
 set -u
 build=$1
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
@@ -63,6 +65,24 @@ if [[ -f $build/CMakeCache.txt ]] && grep -q '^CDB_PYTHON:INTERNAL=' "$build/CMa
       echo "ok   examples/cloth.py on the installed module: every frame equals the oracle"
     else
       fail "examples/cloth.py exited $rc:"; tail -5 <<<"$out" | sed 's/^/    /'
+    fi
+  fi
+  # python/ on its own against the package, as on a machine with another Python: configured
+  # with find_package(cdbench) and Debian's pybind11, then tests/python run on what it built.
+  if ! out=$(cmake -S "$root/python" -B "$work/python" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+               -DCMAKE_PREFIX_PATH="$prefix" -DPython_EXECUTABLE="$python" 2>&1 &&
+             cmake --build "$work/python" 2>&1); then
+    fail "python/ does not configure and build on its own against the package:"; tail -15 <<<"$out" | sed 's/^/    /'
+  elif ! grep -qxF "cdbench_DIR:PATH=$prefix/lib/cmake/cdbench" "$work/python/CMakeCache.txt"; then
+    fail "python/ on its own did not take cdbench from the package: $(grep '^cdbench_DIR' "$work/python/CMakeCache.txt")"
+  else
+    echo "ok   python/ built on its own against the installed package"
+    out=$(cd "$root/tests/python" && PYTHONPATH=$work/python OMP_NUM_THREADS=2 "$python" -m unittest test_cdbench 2>&1)
+    rc=$?
+    if [[ $rc -eq 0 ]] && grep -q "^OK" <<<"$out"; then
+      echo "ok   tests/python on the module built on its own: $(tail -1 <<<"$out")"
+    else
+      fail "tests/python on the module built on its own exited $rc:"; tail -15 <<<"$out" | sed 's/^/    /'
     fi
   fi
 else
