@@ -2,7 +2,7 @@
 # The installed package (docs/library.md): `cmake --install` into a fresh prefix, moved
 # elsewhere (the package must be relocatable), then examples/ configured and built out of
 # tree against it with find_package(cdbench) alone and run on the CPU: its frames must equal
-# the oracle's. Also a wrong pipeline name must fail in the library's words. Where the build
+# the oracle's, and the overhead benchmark's (api_frames) must too, allocating nothing. Also a wrong pipeline name must fail in the library's words. Where the build
 # has the Python module: the installed one runs examples/cloth.py, and python/ built on its
 # own against the moved prefix passes tests/python.
 set -u
@@ -44,6 +44,25 @@ else
       fail "cloth_loop $pipeline exited $rc:"; tail -5 <<<"$out" | sed 's/^/    /'
     fi
   done
+  # The overhead benchmark on the CPU, few frames: its checked frames equal the oracle, and
+  # frames whose buffers did not grow allocate nothing.
+  out=$(OMP_NUM_THREADS=2 "$work/example/api_frames" c cpu 8 2 2>&1)
+  rc=$?
+  if [[ $rc -eq 0 ]] && grep -q "^api_frames c on cpu: PASS" <<<"$out" && grep -q "^  overhead  mean" <<<"$out" &&
+     [[ $(grep -c "= oracle" <<<"$out") -ge 3 ]]; then
+    echo "ok   api_frames c cpu: $(grep '^  overhead' <<<"$out" | tr -s ' ')"
+  else
+    fail "api_frames c cpu exited $rc:"; tail -12 <<<"$out" | sed 's/^/    /'
+  fi
+  out=$("$work/example/api_frames" c cuda 4 1 2>&1)
+  rc=$?
+  if grep -q "^set(cdbench_CUDA OFF)" "$prefix/lib/cmake/cdbench/cdbenchConfig.cmake"; then
+    if [[ $rc -eq 2 ]] && grep -q "api_frames: " <<<"$out"; then
+      echo "ok   api_frames on cuda without CUDA: exit 2, $(tail -1 <<<"$out")"
+    else
+      fail "api_frames c cuda on a package without CUDA: expected exit 2 and a message, got $rc: $out"
+    fi
+  fi
   out=$("$work/example/cloth_loop" no-such-pipeline cpu 2 2>&1)
   rc=$?
   if [[ $rc -eq 2 ]] && grep -q "unknown pipeline 'no-such-pipeline' (known: bvh," <<<"$out"; then
