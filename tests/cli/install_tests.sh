@@ -107,5 +107,35 @@ if [[ -f $build/CMakeCache.txt ]] && grep -q '^CDB_PYTHON:INTERNAL=' "$build/CMa
 else
   echo "ok   no Python module in this build (pybind11 not found): its install not checked"
 fi
+# bench/api_check.sh, the GPU machine's check, on the host executor against the same moved
+# prefix (with the CLI beside it, and the Python module built on its own): every step passes.
+# Then on "cuda", which this package or machine lacks: steps fail, and the script says so.
+if [[ -n ${python:-} && -x $build/app/cdbench ]]; then
+  check=(env PREFIX="$prefix" OUT="$work/api_check" PYTHON="$python" JOBS=2 LONG_FRAMES=12 OMP_NUM_THREADS=2
+         CDBENCH="$build/app/cdbench" bash "$root/bench/api_check.sh")
+  out=$(cd "$root" && EXECUTOR=cpu "${check[@]}" 2>&1)
+  rc=$?
+  steps=$(grep -c "^PASS " <<<"$out")
+  if [[ $rc -eq 0 ]] && grep -q "^api_check: $steps passed, 0 failed" <<<"$out" && ((steps >= 13)) &&
+     grep -q "^PASS cli-api-same-pairs" <<<"$out" && grep -q "^PASS python-check-cpu" <<<"$out" &&
+     [[ -s $work/api_check/api_check.log ]]; then
+    echo "ok   bench/api_check.sh on cpu: $steps steps passed, the CLI's pairs equal the API's"
+  else
+    fail "bench/api_check.sh on cpu exited $rc:"; grep -E "^(FAIL|api_check)" <<<"$out" | sed 's/^/    /'
+  fi
+  if ! cdb_cuda_available=$(PYTHONPATH=$work/python "$python" -c 'import cdbench; print(cdbench.cuda_available()[0])'); then
+    fail "cdbench.cuda_available() did not run"
+  elif [[ $cdb_cuda_available == False ]]; then
+    out=$(cd "$root" && EXECUTOR=cuda "${check[@]}" 2>&1)
+    rc=$?
+    if [[ $rc -eq 1 ]] && grep -q "^FAIL cloth_loop-c" <<<"$out" && grep -q "^FAIL python-check-cuda" <<<"$out" &&
+       grep -Eq "^api_check: [0-9]+ passed, [1-9][0-9]* failed" <<<"$out"; then
+      echo "ok   bench/api_check.sh on cuda without a GPU: exit 1, $(grep -E '^api_check: [0-9]+ passed' <<<"$out")"
+    else
+      fail "bench/api_check.sh on cuda without a GPU: expected exit 1 and FAIL lines, got $rc:"
+      tail -8 <<<"$out" | sed 's/^/    /'
+    fi
+  fi
+fi
 if ((failures)); then echo "$failures install test(s) failed"; exit 1; fi
 echo "all install tests passed"
