@@ -88,8 +88,12 @@ struct BroadPhase::State {
   size_t num_vertices = 0, num_triangles = 0;
   FrameStats stats;
   std::vector<cdb::vec3d> doubles;  // run(double*)'s frame, reused
+  size_t allocations = 0;           // the executor's, up to the last frame
 
   const FrameStats& keep(const cdb::FrameStats& s) {
+    const size_t now = pipeline->memory().allocations;
+    stats.buffer_allocations = uint32_t(now - allocations);
+    allocations = now;
     stats.pairs = s.pairs;
     stats.time_ms = s.timing.total_ms;
     stats.upload_ms = s.timing.phase_ms[size_t(cdb::Phase::upload)];
@@ -110,6 +114,7 @@ BroadPhase::BroadPhase(const Options& options, const Topology& topology) : state
   const cdb::Topology t = engine_topology(topology);
   state_->pipeline = cdb::make_pipeline(engine_config(options));
   state_->pipeline->set_topology(t);
+  state_->allocations = state_->pipeline->memory().allocations;
   state_->num_vertices = t.num_vertices;
   state_->num_triangles = t.faces.size();
 }

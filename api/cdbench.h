@@ -97,6 +97,9 @@ struct FrameStats {
   double q_root = 0.0;
   uint32_t query_reruns = 0;  // queries run again because a buffer had to grow
   uint32_t host_syncs = 0;    // host-device synchronizations (1 once sizes settle)
+  // Executor buffers (device memory on "cuda") allocated by the call, to hold a count that
+  // outgrew them: 0 once sizes settle, when a frame allocates nothing at all.
+  uint32_t buffer_allocations = 0;
 };
 
 // The names of FrameStats::phase_ms's entries.

@@ -130,6 +130,7 @@ py::dict stats_dict(const cdbench::FrameStats& s) {
   d["q_root"] = s.q_root;
   d["query_reruns"] = s.query_reruns;
   d["host_syncs"] = s.host_syncs;
+  d["buffer_allocations"] = s.buffer_allocations;
   return d;
 }
 

@@ -1,6 +1,6 @@
 // The public API (api/cdbench.h, docs/library.md) on the host executor: every pipeline
 // against the oracle, frames read in place against the same frames uploaded through the
-// engine (every box option), pairs into a reused vector, and its errors.
+// engine (every box option), pairs into a reused vector, buffer allocations, and its errors.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -45,6 +45,28 @@ TEST(Api, EveryPipelineEqualsTheOracleEveryFrame) {
         EXPECT_FALSE(s.op.empty());
       }
     }
+}
+
+// A frame's buffer allocations: some on a frame whose pairs outgrow the buffers (the cloth
+// shrunk until every box overlaps nearly every other), for every pipeline; none once that
+// frame has run before, for the pipelines whose frames do the same work each time (the front
+// pipelines' maintenance follows measured times, so their fronts may grow on any frame).
+TEST(Api, BufferAllocationsOnlyWhileSizesGrow) {
+  constexpr uint32_t side = 24;  // crushed: 1,152 triangles, some 660,000 pairs
+  const cdbench::Topology topology = api_cloth(side);
+  const std::vector<float> flat = api_cloth_waving(side, 0);
+  std::vector<float> crushed = flat;
+  for (float& x : crushed) x *= 0.01f;
+  const std::vector<std::string> same_work = {"bvh", "sweep", "hash", "grid", "brute"};
+  for (const std::string& name : cdbench::pipelines()) {
+    cdbench::BroadPhase bp({.pipeline = name}, topology);
+    bp.run(flat.data(), bp.num_vertices());
+    EXPECT_GT(bp.run(crushed.data(), bp.num_vertices()).buffer_allocations, 0u)
+        << name << ": the crushed frame's pairs outgrow the buffers";
+    if (std::find(same_work.begin(), same_work.end(), name) == same_work.end()) continue;
+    bp.run(crushed.data(), bp.num_vertices());
+    EXPECT_EQ(bp.run(crushed.data(), bp.num_vertices()).buffer_allocations, 0u) << name << ": the same frame again";
+  }
 }
 
 // On the host executor a float frame is read where the caller holds it (FrameVertices

@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <memory>
 #include <new>
+#include <type_traits>
+#include <vector>
 
 #include "cdbench/core/aabb.h"
 #include "cdbench/core/phase.h"
@@ -66,9 +69,17 @@ class HostExec {
   }
 
   // F's phases in one block (see CudaExec): on the host, one thread runs each phase.
+  // The block's shared memory is kept from call to call (a refit runs this every frame, and a
+  // frame allocates nothing once sizes settle), zeroed each time as a fresh one was.
   template <class F>
   void in_one_block(const F& f) const {
-    const auto shared = std::make_unique<typename F::Shared>();
+    using Shared = typename F::Shared;
+    static_assert(std::is_trivially_copyable_v<Shared> && alignof(Shared) <= alignof(std::max_align_t),
+                  "block memory is reused as plain bytes");
+    const size_t words = (sizeof(Shared) + sizeof(std::max_align_t) - 1) / sizeof(std::max_align_t);
+    if (block_shared_.size() < words) block_shared_.resize(words);
+    std::memset(static_cast<void*>(block_shared_.data()), 0, sizeof(Shared));
+    Shared* shared = new (block_shared_.data()) Shared;
     const uint32_t phases = f.phases();
     for (uint32_t p = 0; p < phases; ++p) f.phase(p, 0, 1, *shared);
   }
@@ -231,6 +242,7 @@ class HostExec {
   }
 
   HostMemory memory_;
+  mutable std::vector<std::max_align_t> block_shared_;  // in_one_block's
   mutable uint64_t host_syncs_ = 0;
   double side_ms_ = 0.0;  // the last side task's wall time
 };

@@ -23,7 +23,7 @@ class PairPipeline : public Pipeline {
   using Pipeline::run_frame;
   std::vector<PrimPair> sorted_pairs() override { return pairs_.sorted_pairs(exec_); }
   ResidentPairs resident_pairs() const override { return {pairs_.data(), size_t(pairs_.count())}; }
-  MemoryStats memory() const override { return const_cast<Exec&>(exec_).memory().stats(); }
+  const MemoryStats& memory() const override { return const_cast<Exec&>(exec_).memory().stats(); }
 
  protected:
   explicit PairPipeline(const PipelineConfig& config)

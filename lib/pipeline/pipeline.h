@@ -337,7 +337,7 @@ class Pipeline {
   // The last frame's pairs, sorted, for verification (a download; not part of a frame).
   virtual std::vector<PrimPair> sorted_pairs() = 0;
   virtual ResidentPairs resident_pairs() const = 0;
-  virtual MemoryStats memory() const = 0;
+  virtual const MemoryStats& memory() const = 0;
 
  protected:
   explicit Pipeline(const BoxConfig& boxes)

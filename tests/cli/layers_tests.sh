@@ -8,7 +8,8 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 failures=0
 fail() { echo "FAIL $1"; failures=$((failures + 1)); }
 
-# The prefixes each directory may include ("" allows the directory's own bare names: app/).
+# The prefixes each directory may include; "own": also headers beside the including file,
+# by bare name (examples/, a project of its own on the installed package).
 declare -A allowed=(
   [lib]="cdbench"
   [baselines]="cdbench baselines"
@@ -16,7 +17,7 @@ declare -A allowed=(
   [registry]="cdbench baselines registry"
   [api]="cdbench registry"
   [python]="cdbench"
-  [examples]="cdbench"
+  [examples]="cdbench own"
   [harness]="cdbench scenes registry harness"
 )
 cd "$root" || exit 1
@@ -26,6 +27,9 @@ for dir in "${!allowed[@]}"; do
     file=${line%%:*}
     name=$(sed -E 's/.*#\s*include\s+"([^"]+)".*/\1/' <<<"${line#*:}")
     prefix=${name%%/*}
+    if [[ $name != */* && " ${allowed[$dir]} " == *" own "* && -f $(dirname "$file")/$name ]]; then
+      continue
+    fi
     if [[ $name == *..* || $name != */* || " ${allowed[$dir]} " != *" $prefix "* ]]; then
       fail "$file includes \"$name\": $dir/ may include only ${allowed[$dir]// /, }"
       bad=1
