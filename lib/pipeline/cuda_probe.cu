@@ -1,6 +1,7 @@
 // The CUDA backend's measurement aids (device_probe.h) and device query (pipeline.h).
 #include <algorithm>
 #include <memory>
+#include <string>
 
 #include "cdbench/core/error.h"
 #include "cdbench/exec/cuda_exec.cuh"
@@ -71,6 +72,26 @@ class CudaProbe final : public DeviceProbe {
   std::unique_ptr<NvmlReader> nvml_;
 };
 
+// Why no device can run, in the user's terms: the runtime's own text ("CUDA driver version
+// is insufficient for CUDA runtime version") reads as a version mismatch on a machine that
+// has no NVIDIA driver at all, which is the common case.
+std::string no_device_reason(cudaError_t status, int count) {
+  int runtime = 0;
+  cudaRuntimeGetVersion(&runtime);
+  const std::string built = std::to_string(runtime / 1000) + "." + std::to_string(runtime % 1000 / 10);
+  switch (status) {
+    case cudaSuccess:
+      return count == 0 ? "no CUDA device" : "";
+    case cudaErrorInsufficientDriver:
+      return "no usable NVIDIA driver: none is installed, or it is older than this build's CUDA " + built +
+             " runtime";
+    case cudaErrorNoDevice:
+      return "no CUDA device (the NVIDIA driver finds none)";
+    default:
+      return std::string("no usable CUDA device (") + cudaGetErrorString(status) + ")";
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<DeviceProbe> make_cuda_probe() {
@@ -84,9 +105,7 @@ CudaDeviceInfo cuda_device_info() {
   int count = 0;
   const cudaError_t status = cudaGetDeviceCount(&count);
   if (status != cudaSuccess || count == 0) {
-    info.reason = status != cudaSuccess ? std::string("no usable CUDA device (") +
-                                              cudaGetErrorString(status) + ")"
-                                        : std::string("no CUDA device");
+    info.reason = no_device_reason(status, count);
     return info;
   }
   cudaDeviceProp prop{};
