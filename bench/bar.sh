@@ -11,13 +11,14 @@
 # after each scene (what a cut-short call finished still comes back);
 # bench/bar_report.py makes the tables.
 #
+#   CDBENCH      the new binary (default: the bundle's bin/cdbench)
 #   BAR_SCENES   scenes to run (default: the thirteen above)
 #   BAR_CAP      seconds after which no further scene starts (default 540)
 #   SCENE_DATA   directory holding BCN_Epileptic.X and cgal-data.tar.gz, for machines
 #                without assimp-testmodels and libcgal-demo (flamenco, garment, dragon)
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/bundle_env.sh"
-bin=$bundle/bin/cdbench
+bin=${CDBENCH:-$bundle/bin/cdbench}
 archive=$out/bar-h5.tar.xz
 out=$out/bar
 frames=${FRAMES_DIR:-/tmp/bar-frames}
