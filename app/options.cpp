@@ -61,7 +61,7 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
          "since the fronts were generated (the paper's fixed cycle); FILE: replay a recorded plan, every "
          "frame's build or refit and front operations as recorded: a plan file, or a results file "
          "FILE.h5[:PIPELINE[:PASS]] (its pipeline's, or PIPELINE's, pass 0 or PASS); {pipeline} in FILE is "
-         "replaced by each pipeline's name (docs/usage.md \"Plans\"); run only")
+         "replaced by each pipeline's name (docs/usage.md \"Plans\"); FILE on run only, verify takes auto and K")
       ->check(CLI::Validator(
           [](std::string& v) -> std::string {
             if (v == "auto" || (!v.empty() && v.find_first_not_of("0123456789") != std::string::npos)) return "";
