@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Runs on the GPU machine from a device bundle: the bar's scenes (../shared/ANCHORS.md's
-# analogues: cloth-wave, spheres, cloth-wave-522k, cloth-wave-1m, crumple, garment) and the
-# paper's six benchmarks (flag, funnel-large, cloth-ball, flamenco, n-body, dragon) with the
+# Runs on the GPU machine from a device bundle: the bar's scenes (the cross-system
+# comparison's analogues, bench/bar_report.py's PEER_MS: cloth-wave, spheres,
+# cloth-wave-522k, cloth-wave-1m, crumple, garment) and the paper's six benchmarks (flag,
+# funnel-large, cloth-ball, flamenco, n-body, dragon) with the
 # funnel, each generated once as OBJ frames so that every binary runs the very same frames.
 # Per scene, in one process each: the new binary's c, b, a, grid and hash, then each base
 # binary's c and b (BASE_BIN="NAME=PATH ..."), `--repeat 3 --phase-timing off`, the default

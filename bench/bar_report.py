@@ -23,8 +23,9 @@ FILE = re.compile(r"^(.+)-([a-z]+)\.h5$")
 NEW = ["c", "b", "a", "grid", "hash"]
 FRONTS = ["a", "b", "c"]
 CELLS = ["grid", "hash"]
-# The strongest peer's mean on the bar's scenes (cuBQL refit + query, one NVIDIA H200,
-# ../shared/ANCHORS.md, 2026-12-01); the target is a third of it.
+# The strongest peer's mean on the bar's scenes (cuBQL refit + query on the same frames, one
+# NVIDIA H200, driver 580.159.04, 2026-12-01, measured outside this repository); the target
+# is a third of it.
 PEER_MS = {"cloth-wave": 0.141, "spheres": 0.417, "cloth-wave-522k": 0.642, "cloth-wave-1m": 1.116,
            "crumple": 0.381, "garment": 0.720, "cloth-wave-10m": 10.80}
 
