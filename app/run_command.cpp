@@ -326,8 +326,9 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
   run->add_option("--warmup-ms", r.loop.warmup_ms,
                   "before the measured passes, frames run untimed from the first (again from the first after "
                   "the last) for at least this long, then the pipeline starts afresh; a process's first pass "
-                  "otherwise runs slower (0: none)")
+                  "otherwise runs slower (0: none; the default is CDBENCH_WARMUP_MS where set, as the tests set it)")
       ->group(kMeasurementGroup)
+      ->envname("CDBENCH_WARMUP_MS")
       ->check(finite_at_least(0))
       ->capture_default_str();
   run->add_option("--repeat", r.loop.repeat,
@@ -437,6 +438,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   // Measured once, before any frame: the yardstick of the bandwidth floor; and the cache
   // flush of --cold, allocated here rather than in the frame loop.
   const std::unique_ptr<DeviceProbe> probe = make_device_probe(device);
+  if (r.loop.cold) probe->reserve_cache_flush();
   const double copy_gbps = probe->copy_bandwidth_gbps();
   std::printf("copy bandwidth: %.0f GB/s (%s, measured; read + written)\n", copy_gbps, device.c_str());
   std::unique_ptr<FrameSource> cached;

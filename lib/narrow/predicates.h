@@ -40,7 +40,10 @@ CDB_HD_INLINE point2f drop_axis(const vec3f& p, int axis) {
   return axis == 0 ? point2f{p.y, p.z} : axis == 1 ? point2f{p.z, p.x} : point2f{p.x, p.y};
 }
 
-CDB_HD_INLINE int orient2d_exact(point2f a, point2f b, point2f c) {
+// The exact evaluations run only where a filter cannot decide. Out of line in device code:
+// inlined into every filter of triangles_intersect they made its kernel about 400K lines of PTX
+// and its test file minutes of ptxas.
+CDB_HD_CALL int orient2d_exact(point2f a, point2f b, point2f c) {
   const double ax = a.x, ay = a.y, bx = b.x, by = b.y, cx = c.x, cy = c.y;
   // det [[ax ay 1] [bx by 1] [cx cy 1]]; each product of two floats is exact in a double.
   const double terms[6] = {ax * by, -ax * cy, -ay * bx, ay * cx, bx * cy, -by * cx};
@@ -87,7 +90,7 @@ CDB_HD_INLINE void push_det3(double* terms, int& n, double sign, const vec3f& p,
 
 }  // namespace detail
 
-CDB_HD_INLINE int orient3d_exact(const vec3f& a, const vec3f& b, const vec3f& c, const vec3f& d) {
+CDB_HD_CALL int orient3d_exact(const vec3f& a, const vec3f& b, const vec3f& c, const vec3f& d) {
   // det[b-a; c-a; d-a] = -det4[a 1; b 1; c 1; d 1]; expanding the 4x4 determinant along its
   // column of ones gives det3(b,c,d) - det3(a,c,d) + det3(a,b,d) - det3(a,b,c).
   double terms[48];

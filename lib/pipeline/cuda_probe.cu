@@ -24,14 +24,20 @@ class CudaProbe final : public DeviceProbe {
     char bus_id[32] = {};
     cuda_check(cudaDeviceGetPCIBusId(bus_id, int(sizeof bus_id), device), "PCI bus id query");
     nvml_ = std::make_unique<NvmlReader>(bus_id);
-    flush_bytes_ = 2 * size_t(std::max(l2, 1 << 20));
-    cuda_check(cudaMalloc(&flush_, flush_bytes_), "cache flush buffer");
+    l2_bytes_ = size_t(std::max(l2, 1 << 20));
   }
   ~CudaProbe() override { cudaFree(flush_); }
   CudaProbe(const CudaProbe&) = delete;
   CudaProbe& operator=(const CudaProbe&) = delete;
 
+  void reserve_cache_flush() override {
+    if (flush_) return;
+    flush_bytes_ = 2 * l2_bytes_;
+    cuda_check(cudaMalloc(&flush_, flush_bytes_), "cache flush buffer");
+  }
+
   void flush_caches() override {
+    if (!flush_) fail("cache flush: reserve_cache_flush() was not called before the frames");
     ++fill_;
     cuda_check(cudaMemsetAsync(flush_, fill_, flush_bytes_, nullptr), "cache flush");
     cuda_check(cudaDeviceSynchronize(), "cache flush");
@@ -68,6 +74,7 @@ class CudaProbe final : public DeviceProbe {
  private:
   void* flush_ = nullptr;
   size_t flush_bytes_ = 0;
+  size_t l2_bytes_ = 0;
   unsigned char fill_ = 0;
   std::unique_ptr<NvmlReader> nvml_;
 };

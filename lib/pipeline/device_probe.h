@@ -13,8 +13,12 @@ namespace cdb {
 class DeviceProbe {
  public:
   virtual ~DeviceProbe() = default;
-  // Overwrites a buffer twice the size of the last-level cache (the GPU's L2, the CPU's L3)
-  // and waits for it, so the next frame starts with none of its data cached.
+  // Allocates flush_caches()'s buffer, twice the size of the last-level cache (the GPU's L2,
+  // the CPU's L3): once, before the frames, and only for a run that flushes (--cold). On a
+  // server CPU that is hundreds of MB to fill, too much to spend on every run.
+  virtual void reserve_cache_flush() = 0;
+  // Overwrites that buffer and waits for it, so the next frame starts with none of its data
+  // cached; fails where reserve_cache_flush() was not called.
   virtual void flush_caches() = 0;
   // Copy bandwidth in GB/s, counting bytes read plus bytes written: the best of several
   // large device-to-device copies (host: memcpy on one thread). Allocates and frees its

@@ -13,7 +13,7 @@ run "$tmp/a.h5" --label before
 run "$tmp/b.h5" --label after
 run "$tmp/skip.h5" --skip-adjacent
 run "$tmp/margin.h5" --box-margin 0.5
-run "$tmp/cold-start.h5" --warmup-ms 0
+run "$tmp/cold-start.h5" --warmup-ms 1
 run "$tmp/c3.h5" --repeat 3
 run "$tmp/c5.h5" --repeat 5
 run "$tmp/brute3.h5" --repeat 3 --pipeline brute
@@ -38,7 +38,7 @@ has "the labels and commits are named" "$tmp/out" "\[before\] \(commit [0-9a-f]+
 # A mismatch in an option that changes the pair set is refused, naming it and both values.
 check "mismatch refused" 2 "--skip-adjacent: 'false' in A, 'true' in B" -- "$cdbench" compare "$tmp/a.h5" "$tmp/skip.h5"
 has "mismatch suggests --allow-mismatch" "$tmp/out" "--allow-mismatch"
-check "another warm-up is another measurement" 2 "--warmup-ms: '1000(\.0)?' in A, '0(\.0)?' in B" -- "$cdbench" compare "$tmp/a.h5" "$tmp/cold-start.h5"
+check "another warm-up is another measurement" 2 "--warmup-ms: '0(\.0)?' in A, '1(\.0)?' in B" -- "$cdbench" compare "$tmp/a.h5" "$tmp/cold-start.h5"
 check "allow-mismatch compares, flagged" 0 "\*\*MISMATCH: --box-margin: '0(\.0)?' in A, '0\.5' in B\*\*" -- \
   "$cdbench" compare "$tmp/a.h5" "$tmp/margin.h5" --allow-mismatch
 has "fatter boxes: other pairs" "$tmp/out" "\*\*DIFFER in [1-9][0-9]* of 6 frames\*\*"
