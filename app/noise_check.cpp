@@ -1,10 +1,12 @@
 #include "noise_check.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <map>
+#include <thread>
 #include <utility>
 
 #include <sys/times.h>
@@ -89,18 +91,19 @@ bool cpu_jiffies(unsigned long long& busy, unsigned long long& total) {
 
 }  // namespace
 
-HostLoad sample_host_load() {
+HostLoad sample_host_load(double window_ms) {
   // Sampled now rather than the load average, which still holds a build that just ended.
   HostLoad load;
   load.busy_share = std::nan("");
   load.cores = sysconf(_SC_NPROCESSORS_ONLN);
+  if (!(window_ms > 0)) return load;
   // The process's own time is taken out: after the frames its OpenMP threads may still spin
   // at their barrier, which is this run's doing, not other work's. times() counts in clock
   // ticks, the unit of /proc/stat.
   unsigned long long busy0 = 0, total0 = 0, busy1 = 0, total1 = 0;
   tms own0{}, own1{};
   if (!cpu_jiffies(busy0, total0) || times(&own0) == clock_t(-1)) return load;
-  usleep(200000);
+  std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(window_ms));
   if (!cpu_jiffies(busy1, total1) || total1 <= total0 || times(&own1) == clock_t(-1)) return load;
   const double own = double((own1.tms_utime + own1.tms_stime) - (own0.tms_utime + own0.tms_stime));
   load.busy_share = std::max(0.0, double(busy1 - busy0) - own) / double(total1 - total0);

@@ -29,13 +29,14 @@ NoiseMeasure measure_noise(const std::vector<FrameStats>& frames, uint32_t warmu
 // The warning, naming the number and what to do; "" when the noise is within the limit.
 std::string noise_warning(const NoiseMeasure& m);
 
-// The host's load: the share of all its cores' time in use, sampled over 0.2 s (NaN where
-// /proc/stat cannot be read), and its online cores.
+// The host's load: the share of all its cores' time in use by other processes, sampled over
+// window_ms (NaN where /proc/stat cannot be read or window_ms is 0), and its online cores.
+// /proc/stat counts in ticks of 10 ms: a window of 200 ms on 2 cores has 40.
 struct HostLoad {
   double busy_share = 0;
   long cores = 0;
 };
-HostLoad sample_host_load();
+HostLoad sample_host_load(double window_ms);
 
 // A host is busy at this share of its CPU time in use by other work: others' work then
 // shares the cores and the memory bus (two runs of one CPU scene on a loaded host measured

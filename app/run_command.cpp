@@ -352,6 +352,14 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
       ->capture_default_str();
   run->add_flag("--cold", r.loop.cold, "flush the device's last-level cache before every frame (outside its timing)")
       ->group(kMeasurementGroup);
+  run->add_option("--load-window-ms", r.loop.load_window_ms,
+                  "the span over which the host's load is sampled, before the run and after each pipeline's "
+                  "measured frames, to flag a run on a busy host (0: not sampled, recorded as absent; the default "
+                  "is CDBENCH_LOAD_WINDOW_MS where set, as the tests set it)")
+      ->group(kMeasurementGroup)
+      ->envname("CDBENCH_LOAD_WINDOW_MS")
+      ->check(finite_at_least(0))
+      ->capture_default_str();
   auto* out_option = run->add_option(
       "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced")
       ->check(non_empty_path())
@@ -397,7 +405,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   give_plans(pipelines, plans, names);
   const std::vector<OutputClaim> existing = check_results_paths(r, names);
   print_environment(device);
-  const HostLoad load_before = sample_host_load();
+  const HostLoad load_before = sample_host_load(r.loop.load_window_ms);
   const std::string busy = host_load_warning(load_before, "before the run");
   if (!busy.empty()) std::printf("warning: %s\n", busy.c_str());
   // A stopped run's partial file, which its message pointed to, is where this run stages

@@ -281,7 +281,7 @@ class FrameLoop {
     findings.noise_warning = noise_warning(measure_noise(frames_, options_.warmup));
     if (!findings.noise_warning.empty()) std::printf("  warning     %s\n", findings.noise_warning.c_str());
     // After the frames, so that load which began during the run is seen too.
-    const HostLoad after = sample_host_load();
+    const HostLoad after = sample_host_load(options_.load_window_ms);
     findings.host_busy_after = after.busy_share;
     findings.host_warning_after = host_load_warning(after, "after the measured frames");
     if (!findings.host_warning_after.empty()) std::printf("  warning     %s\n", findings.host_warning_after.c_str());

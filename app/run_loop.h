@@ -54,6 +54,9 @@ struct RunLoopOptions {
   double max_noise_pct = 0.0;
   // --cold: caches flushed through `probe` before every frame (outside its timing).
   bool cold = false;
+  // --load-window-ms: the host's load is sampled over this span before the run and after
+  // each pipeline's measured frames (0: not sampled, recorded as absent).
+  double load_window_ms = 200.0;
 
   bool frame_lines = true;  // one line per frame on stdout
   bool list_growth = true;  // the summary names each buffer that grew (--quiet: only their count)

@@ -6,6 +6,17 @@ read_results=("$python" "$root/scripts/read_results.py")
 
 check "run default scene on cpu" 0 "summary: 19 frames measured" -- "$cdbench" run --device cpu --quiet
 check "run prints environment" 0 "commit [0-9a-f]+" -- "$cdbench" run --device cpu --quiet --frames 0:2
+# A busy host, made busy here: one spinning process per core while a run samples the load.
+hogs=()
+for _ in $(seq "$(nproc)"); do (while :; do :; done) & hogs+=($!); done
+check "a run on a busy host says so" 0 "^warning: the host is busy before the run \\([0-9]+% of its [0-9]+ cores in use by other work\\)" -- \
+  "$cdbench" run --device cpu --quiet --frames 0:2 --load-window-ms 300 --out "$tmp/busy.h5"
+kill "${hogs[@]}" 2>/dev/null; wait "${hogs[@]}" 2>/dev/null
+check "report flags the run made on a busy host" 0 "busy\\.h5 \\|.*poor conditions: host busy before the run \\([0-9]+%\\)" -- \
+  "$cdbench" report "$tmp/busy.h5"
+"$cdbench" run --device cpu --quiet --frames 0:2 --load-window-ms 0 --out "$tmp/quiet.h5" >/dev/null 2>&1
+check "--load-window-ms 0 samples nothing" 0 "^absent$" -- "$python" -c \
+  'import h5py, math, sys; v = h5py.File(sys.argv[1]).attrs["host_busy_before"]; print("absent" if math.isnan(v) else v)' "$tmp/quiet.h5"
 check "verify all pipelines" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --frames 0:5
 check "verify with sweep oracle" 0 "sort-and-sweep" -- "$cdbench" verify --device cpu --frames 0:2 --brute-limit 10
 check "unknown pipeline" 2 "unknown pipeline 'nope'" -- "$cdbench" run --device cpu --pipeline nope
