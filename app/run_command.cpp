@@ -351,6 +351,7 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
       ->capture_default_str();
   run->add_flag("--cold", r.loop.cold, "flush the device's last-level cache before every frame (outside its timing)")
       ->group(kMeasurementGroup);
+  add_measurement(run, o);
   auto* out_option = run->add_option(
       "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced")
       ->check(non_empty_path())
