@@ -154,6 +154,16 @@ check "scenes list takes --scenes-dir" 0 "^tiny +[0-9]+ triangles" -- "$cdbench"
 check "scenes generate takes --scenes-dir" 0 "wrote 2 frames of tiny" -- \
   "$cdbench" scenes generate tiny --scenes-dir "$tmp/own-scenes" --out "$tmp/gen-tiny"
 check "scenes takes --scenes-dir before the subcommand too" 0 "^scene +tiny" -- "$cdbench" scenes --scenes-dir "$tmp/own-scenes" info tiny
+# A results file a run is still writing holds HDF5's lock: said to be in use, not the
+# system's "resource temporarily unavailable".
+"$cdbench" run --device cpu --quiet --scene funnel --set res=8 --set frames=20 --repeat 100000 --out "$tmp/busy.h5" \
+  >/dev/null 2>&1 &
+busy_run=$!
+for _ in $(seq 100); do [[ -s $tmp/busy.h5 ]] && break; sleep 0.1; done
+check "report of a file a run is writing says it is in use" 1 "busy.h5: the file is in use by another process" -- \
+  "$cdbench" report "$tmp/busy.h5"
+kill "$busy_run"
+wait "$busy_run" 2>/dev/null
 check "unknown generator parameter lists the known" 2 "--set nope=1: generator 'funnel', parameter 'nope': unknown parameter \\(known: res, frames, warmup, substeps, seed, segments, ball_level, ball_speed\\)" -- "$cdbench" scenes info funnel --set nope=1
 check "scenes info lists the parameters" 0 "^parameter +res +integer +16 \\(default 56\\) +range 2\\.\\.20000" -- "$cdbench" scenes info funnel --set res=16 --set frames=2
 check "a count past its range is refused, not wrapped" 2 "--set res=4294967312: generator 'funnel', parameter 'res': 4294967312 is out of range: must be between 2 and 20000" -- "$cdbench" run --device cpu --scene funnel --set res=4294967312
