@@ -51,8 +51,9 @@ std::string cell_option_error(const std::vector<std::string>& args) {
 
 // The error `cdbench run` would stop each cell with once it opens the cell's scene: a scene
 // that does not open (unknown, missing data, a bad descriptor) or --frames past its end;
-// "" where none. Opening reads descriptors and frame counts, not frames, and each scene
-// with its --set values is opened once for all its cells.
+// "" where none. Each scene with its --set values is opened once for all its cells; a
+// procedural scene's frames are not made for it, a directory of frames is read through
+// (as run checks it before its first frame).
 std::vector<std::string> cell_scene_errors(const SweepPlan& plan, const std::string& scenes_dir_given) {
   struct Opened {
     std::string error;
