@@ -104,6 +104,13 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
   cmd->get_option("--front-cycle")->group(kPipelineGroup);
 }
 
+void add_measurement(CLI::App* cmd, CommonOptions& o) {
+  add_switch(cmd, "--phase-timing", o.config.launch.phase_timing,
+             "time each phase of a frame with events; off: only the frame and its upload (no event between "
+             "kernels, which in a CUDA graph costs a node and keeps the next kernel from launching early)")
+      ->group(kMeasurementGroup);
+}
+
 // The defaults were tuned on the H100 (sm_90); where a default depends on the GPU the help says so.
 void add_tuning(CLI::App* cmd, CommonOptions& o) {
   PipelineConfig& c = o.config;
@@ -124,10 +131,6 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
              "a Hopper (sm_90) feature, the kernels' wait is compiled for sm_90 and later only; its effect "
              "on earlier GPUs is not measured")
       ->group(kTuningGroup);
-  add_switch(cmd, "--phase-timing", c.launch.phase_timing,
-             "time each phase of a frame with events; off: only the frame and its upload (no event between "
-             "kernels, which in a CUDA graph costs a node and keeps the next kernel from launching early)")
-      ->group(kMeasurementGroup);
   add_choice<AutoSwitch>(
       cmd, "--preserve-warp", c.fronts.preserve_warp,
       "front pipelines on cuda: preserve shares each front node's traversal with the idle lanes of its warp; auto: "

@@ -31,7 +31,8 @@ struct CommonOptions {
 
 // The headings of `run --help` and `verify --help`. CLI11 lists them in the order their
 // first option was added, so commands add --pipeline(s) first, then add_common,
-// add_restructure, their own options, and add_tuning last.
+// add_restructure, their accuracy options, add_measurement with their own measurement
+// options, their output options, and add_tuning last.
 inline constexpr const char* kSceneGroup = "Scene";
 inline constexpr const char* kPipelineGroup = "Pipeline";
 inline constexpr const char* kAccuracyGroup = "Accuracy";
@@ -54,7 +55,9 @@ CLI::Option* add_choice(CLI::App* cmd, const std::string& name, T& field, const 
 
 // Scene, pipeline and accuracy options.
 void add_common(CLI::App* cmd, CommonOptions& o);
-// Speed knobs that change no result (and --phase-timing, a measurement choice).
+// The measurement options run and verify share (--phase-timing).
+void add_measurement(CLI::App* cmd, CommonOptions& o);
+// Speed knobs that change no result.
 void add_tuning(CLI::App* cmd, CommonOptions& o);
 // Pipeline c's restructuring (paper section 4, Formulas 1 and 2).
 void add_restructure(CLI::App* cmd, CommonOptions& o);

@@ -360,6 +360,7 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
       ->envname("CDBENCH_LOAD_WINDOW_MS")
       ->check(finite_at_least(0))
       ->capture_default_str();
+  add_measurement(run, o);
   auto* out_option = run->add_option(
       "--out", r.out, "write the results to this HDF5 file (docs/results-format.md); {pipeline} in the name is replaced")
       ->check(non_empty_path())

@@ -30,7 +30,18 @@ ScenesCommand add_scenes_command(CLI::App& app, ScenesOptions& s) {
   c.generate = scenes->add_subcommand("generate", "write a scene's frames as OBJ files");
   c.generate->add_option("scene,--scene", s.scene, "scene name or .json descriptor")->required();
   c.generate->add_option("--set", s.sets, "override a generator parameter: key=value, e.g. res=128 frames=10");
-  c.generate->add_option("--out", s.out_dir, "output directory (frame_0000.obj, ...)")->required()->check(non_empty_path());
+  auto* out_option = c.generate->add_option("--out", s.out_dir, "output directory (frame_0000.obj, ...)")
+                         ->required()
+                         ->check(non_empty_path());
+  c.generate
+      ->add_flag("--overwrite", s.overwrite,
+                 "let --out replace the frames an earlier generation left there (and remove those past the new "
+                 "frame count)")
+      ->needs(out_option);
+  // Also after the subcommand, where run and verify take it: `scenes info funnel
+  // --scenes-dir X` as well as `scenes --scenes-dir X info funnel`.
+  for (CLI::App* sub : {c.list, c.info, c.generate})
+    sub->add_option("--scenes-dir", s.scenes_dir, "where named scenes live");
   scenes->require_subcommand(1);
   return c;
 }
@@ -62,19 +73,27 @@ std::optional<uint64_t> written_frame(const std::filesystem::path& file) {
   return std::stoull(m[1].str());
 }
 
-// --out DIR may hold only frames an earlier `scenes generate` wrote: the command replaces
-// them, and anything else there (another scene's meshes, notes) would be mixed into the
-// sequence that reads the directory back. Checked before any work.
-void check_generate_dir(const std::filesystem::path& dir) {
+// --out DIR may hold only frames an earlier `scenes generate` wrote: anything else there
+// (another scene's meshes, notes) would be mixed into the sequence that reads the
+// directory back. Those frames may be another scene's, kept on purpose: replaced only
+// with `overwrite`, as `run --out` replaces a file. Checked before any work.
+void check_generate_dir(const std::filesystem::path& dir, bool overwrite) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(dir, ec)) return;
   if (!fs::is_directory(dir, ec)) fail_usage("--out " + dir.string() + ": not a directory");
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+  size_t frames = 0;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     if (!it->is_regular_file(ec) || !written_frame(it->path()))
       fail_usage("--out " + dir.string() + ": holds " + it->path().filename().string() +
                  ", which `scenes generate` did not write; give an empty or new directory");
+    ++frames;
+  }
   if (ec) fail("--out " + dir.string() + ": cannot list the directory: " + ec.message());
+  if (frames && !overwrite)
+    fail_usage("--out " + dir.string() + ": holds " + std::to_string(frames) +
+               (frames == 1 ? " frame" : " frames") +
+               " an earlier generation wrote; pass --overwrite to replace them, or give an empty or new directory");
 }
 
 // Frames an earlier, longer generation left past the new last one: removed, so the
@@ -96,7 +115,7 @@ size_t remove_stale_frames(const std::filesystem::path& dir, uint32_t frames) {
 
 int scenes_generate(const ScenesOptions& opts) {
   const auto dir = scenes_dir(opts.scenes_dir);
-  check_generate_dir(opts.out_dir);
+  check_generate_dir(opts.out_dir, opts.overwrite);
   const Scene s = open_scene(opts.scene, dir, parse_set_overrides(opts.sets));
   write_obj_sequence(*s.source, opts.out_dir);
   const size_t removed = remove_stale_frames(opts.out_dir, s.source->num_frames());

@@ -13,6 +13,7 @@ struct ScenesOptions {
   std::string scene;
   std::vector<std::string> sets;  // generator overrides, key=value
   std::string out_dir;            // generate
+  bool overwrite = false;         // generate: replace the frames an earlier generation left in out_dir
 };
 
 struct ScenesCommand {

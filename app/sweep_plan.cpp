@@ -200,14 +200,16 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
 
   // Cartesian product, scenes outermost and repeats innermost, so the cells of one scene
   // run together and a listing reads like a table.
-  for (const SceneEntry& s : scenes)
+  for (size_t si = 0; si < scenes.size(); ++si)
     for (const std::string& p : pipeline_list)
       for (const std::string& d : devices) {
         std::vector<size_t> pick(axes.size(), 0);
         for (;;) {
           for (unsigned r = 1; r <= repeat; ++r) {
+            const SceneEntry& s = scenes[si];
             SweepCell c;
             c.scene = s.spec;
+            c.scene_index = si;
             c.scene_label = s.label;
             c.set = s.set;
             c.frames = s.frames;

@@ -21,6 +21,7 @@ struct RunOptionInfo {
 struct SweepCell {
   std::string name;        // file-name safe, stable: scene, pipeline, device, axes, repeat
   std::string scene;       // a scene name, or an absolute path
+  size_t scene_index = 0;  // its entry in the sweep file's /scenes, for messages
   std::string scene_label;
   std::vector<std::pair<std::string, std::string>> set;  // generator overrides, key order
   std::string frames;      // --frames, empty for all

@@ -149,7 +149,7 @@ void list_cells(const SweepPlan& plan, const SweepRunOptions& options, const std
   }
   std::printf("sweep %s: %zu cells, %zu complete, %zu to run", plan.file.c_str(), plan.cells.size(), complete,
               plan.cells.size() - complete - invalid);
-  if (invalid) std::printf(", %zu invalid (run refuses their options)", invalid);
+  if (invalid) std::printf(", %zu invalid (run refuses them)", invalid);
   std::printf("\n");
 }
 

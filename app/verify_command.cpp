@@ -135,6 +135,7 @@ CLI::App* add_verify_command(CLI::App& app, CommonOptions& o, VerifyOptions& v) 
                    "docs/extending.md")
       ->check(non_empty_path())
       ->group(kAccuracyGroup);
+  add_measurement(verify, o);
   verify->add_option("--write-pairs", v.write_pairs_dir, "write the oracle's pairs of each frame into this directory, as --pairs reads them")
       ->check(non_empty_path())
       ->group(kOutputGroup);

@@ -94,7 +94,7 @@ hid_t check(hid_t result, const std::string& where, const char* what) {
   if (result < 0) {
     const LibraryFailure f = library_failure();
     const std::string message = where + ": " + what + " failed" + (f.reason.empty() ? "" : ": " + f.reason);
-    if (f.error_number) throw IoError(message, f.reason);
+    if (f.error_number) throw IoError(message, f.reason, f.error_number);
     throw LibraryError(message, f.reason);
   }
   return result;

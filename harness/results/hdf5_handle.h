@@ -15,11 +15,15 @@ namespace cdb::h5 {
 
 // An HDF5 call that failed on the operating system's side (an errno on HDF5's error stack:
 // a full disk, a file size limit, an I/O error). `reason` is the system's text for the
-// errno ("no space left on device"), not HDF5's. What was written since the last flush
-// may be lost, and the library's cache cannot be flushed again.
+// errno ("no space left on device"), not HDF5's, and `error_number` the errno itself, so
+// a reader can tell a file another process holds locked (EWOULDBLOCK) from a failed disk.
+// What was written since the last flush may be lost, and the library's cache cannot be
+// flushed again.
 struct IoError : Error {
-  IoError(const std::string& message, std::string why) : Error(message), reason(std::move(why)) {}
+  IoError(const std::string& message, std::string why, int error)
+      : Error(message), reason(std::move(why)), error_number(error) {}
   std::string reason;
+  int error_number;
 };
 
 // An HDF5 call that failed inside the library, with no errno: in a reader, a file that is

@@ -1,6 +1,7 @@
 #include "harness/results/results_reader.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 
 #include "cdbench/core/error.h"
@@ -64,7 +65,16 @@ std::vector<std::string> read_text_column(hid_t root, const std::string& where, 
 h5::Handle open_results(const std::filesystem::path& path, const std::string& where) {
   h5::silence_library_errors();
   if (!std::filesystem::is_regular_file(path)) fail(where + ": no such file");
-  return h5::own(H5Fopen(where.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, where, "open results file");
+  try {
+    return h5::own(H5Fopen(where.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, where, "open results file");
+  } catch (const h5::IoError& e) {
+    // A writer (a run still going) holds HDF5's exclusive lock on the file; the system's
+    // "resource temporarily unavailable" says nothing of that.
+    if (e.error_number == EWOULDBLOCK || e.error_number == EAGAIN)
+      fail(where + ": the file is in use by another process (HDF5's file lock is held: a run still writing it?); "
+                   "read it once that process ends");
+    throw;
+  }
 }
 
 // A read of the file at `path`, with HDF5's own failures (a file cut short by a full disk or

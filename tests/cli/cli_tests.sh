@@ -152,6 +152,29 @@ check "bad threshold order" 2 "threshold" -- "$cdbench" run --device cpu --quiet
 check "scenes info" 0 "vertex motion mean" -- "$cdbench" scenes info funnel --set frames=3
 check "scenes generate" 0 "wrote 2 frames" -- "$cdbench" scenes generate funnel --set frames=2 --out "$tmp/gen"
 check "generated scene runs" 0 "frames 0:2" -- "$cdbench" run --device cpu --scene "$tmp/gen"
+# Frames already in --out may be another scene's: replaced only with --overwrite, as run --out.
+check "scenes generate over earlier frames refused" 2 "^cdbench: error: --out $tmp/gen: holds 2 frames an earlier generation wrote; pass --overwrite" -- \
+  "$cdbench" scenes generate cloth-wave --set res=4 --set frames=3 --out "$tmp/gen"
+[[ ! -e $tmp/gen/frame_0002.obj ]] && echo "ok   refused generation wrote nothing" || fail "refused generation wrote frames"
+check "scenes generate --overwrite replaces them" 0 "wrote 3 frames of cloth-wave" -- \
+  "$cdbench" scenes generate cloth-wave --set res=4 --set frames=3 --out "$tmp/gen" --overwrite
+mkdir -p "$tmp/own-scenes"
+printf '{"generator": "funnel", "params": {"res": 4, "frames": 2}}' >"$tmp/own-scenes/tiny.json"
+check "scenes info takes --scenes-dir after the scene" 0 "^scene +tiny" -- "$cdbench" scenes info tiny --scenes-dir "$tmp/own-scenes"
+check "scenes list takes --scenes-dir" 0 "^tiny +[0-9]+ triangles" -- "$cdbench" scenes list --scenes-dir "$tmp/own-scenes"
+check "scenes generate takes --scenes-dir" 0 "wrote 2 frames of tiny" -- \
+  "$cdbench" scenes generate tiny --scenes-dir "$tmp/own-scenes" --out "$tmp/gen-tiny"
+check "scenes takes --scenes-dir before the subcommand too" 0 "^scene +tiny" -- "$cdbench" scenes --scenes-dir "$tmp/own-scenes" info tiny
+# A results file a run is still writing holds HDF5's lock: said to be in use, not the
+# system's "resource temporarily unavailable".
+"$cdbench" run --device cpu --quiet --scene funnel --set res=8 --set frames=20 --repeat 100000 --out "$tmp/busy.h5" \
+  >/dev/null 2>&1 &
+busy_run=$!
+for _ in $(seq 100); do [[ -s $tmp/busy.h5 ]] && break; sleep 0.1; done
+check "report of a file a run is writing says it is in use" 1 "busy.h5: the file is in use by another process" -- \
+  "$cdbench" report "$tmp/busy.h5"
+kill "$busy_run"
+wait "$busy_run" 2>/dev/null
 check "unknown generator parameter lists the known" 2 "--set nope=1: generator 'funnel', parameter 'nope': unknown parameter \\(known: res, frames, warmup, substeps, seed, segments, ball_level, ball_speed\\)" -- "$cdbench" scenes info funnel --set nope=1
 check "scenes info lists the parameters" 0 "^parameter +res +integer +16 \\(default 56\\) +range 2\\.\\.20000" -- "$cdbench" scenes info funnel --set res=16 --set frames=2
 check "a count past its range is refused, not wrapped" 2 "--set res=4294967312: generator 'funnel', parameter 'res': 4294967312 is out of range: must be between 2 and 20000" -- "$cdbench" run --device cpu --scene funnel --set res=4294967312

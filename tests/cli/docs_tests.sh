@@ -32,11 +32,7 @@ NOT_CDBENCH = {
 }
 # Commands whose help headings are known to be out of the documented order; each entry
 # must still be out of order (remove it once the help is fixed).
-KNOWN_HEADING_ORDER = {
-    # --phase-timing (heading Measurement) is registered in add_tuning (app/options.cpp),
-    # after verify's Tuning options, so its one-option Measurement heading prints last.
-    "verify": "Measurement printed after Tuning",
-}
+KNOWN_HEADING_ORDER = {}
 # Each exit code's word in docs/usage.md's table, per constant of app/exit_codes.h; the word
 # must also be in the constant's name or its comment there, so neither side drifts alone.
 MEANING = {"Ok": "success", "Failure": "failed", "Usage": "usage", "signal": "signal"}

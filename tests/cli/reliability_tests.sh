@@ -249,7 +249,7 @@ if grep -qE "^frame " "$tmp/out"; then fail "frames ran before the changed faces
 # --- scenes generate into a directory used before ---
 check "generate 6 frames" 0 "wrote 6 frames" -- "$cdbench" scenes generate funnel --set res=4 --set frames=6 --out "$tmp/gen"
 check "generate 3 frames over them" 0 "removed 3 frames left there by an earlier generation" -- \
-  "$cdbench" scenes generate funnel --set res=4 --set frames=3 --out "$tmp/gen"
+  "$cdbench" scenes generate funnel --set res=4 --set frames=3 --out "$tmp/gen" --overwrite
 listing=$(ls "$tmp/gen" | tr '\n' ' ')
 [[ $listing == "frame_0000.obj frame_0001.obj frame_0002.obj " ]] && echo "ok   only the new frames remain" || fail "left: $listing"
 check "the directory reads as 3 frames" 0 "frames 0:3" -- "$cdbench" run --device cpu --quiet --scene "$tmp/gen"

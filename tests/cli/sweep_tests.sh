@@ -45,7 +45,14 @@ check "sweep.log has the failure" 0 "failed midway_bvh_cpu exit 1: .*non-finite"
 check "report shows the cell with a bad frame, exit 1" 1 "midway_bvh_cpu\.h5 \| midway \| bvh \| cpu \|.*\| failed, no results file: exit 1: .*frame 2, vertex 2: non-finite" -- "$cdbench" report "$out"
 check "report shows the cell without a file" 1 "nowhere_bvh_cpu\.h5 \| nowhere \| bvh \| cpu \|.*\| failed, no results file: exit 2: .*nowhere" -- "$cdbench" report "$out"
 count "report still has the six complete rows" 6 "\| complete \|$"
-check "dry run says which cells failed" 0 "nowhere_bvh_cpu  to run again \(failed: exit 2" -- "$cdbench" sweep "$tmp/failing.json" --out "$out" --dry-run
+# The dry run opens every cell's scene as run would: the missing scene and the bad frame are
+# refused there (the sweep itself ran them, so the other cells ran too).
+check "dry run refuses the cells run would stop" 2 "cell nowhere_bvh_cpu: /scenes/2: unknown scene '$tmp/nowhere'" -- \
+  "$cdbench" sweep "$tmp/failing.json" --out "$out" --dry-run
+has "dry run refuses the cell with a bad frame" "$tmp/out" "midway_bvh_cpu  INVALID: /scenes/1: .*frame 2, vertex 2: non-finite"
+mkdir -p "$tmp/nowhere" && cp "$tmp/midway/frame_0000.obj" "$tmp/midway/frame_0001.obj" "$tmp/nowhere/"
+printf '{"scenes": ["nowhere/"], "pipelines": ["bvh"], "devices": ["cpu"]}' >"$tmp/found.json"
+check "dry run says which cells failed" 0 "nowhere_bvh_cpu  to run again \(failed: exit 2" -- "$cdbench" sweep "$tmp/found.json" --out "$out" --dry-run
 
 # Slurm: one array task per cell; the script itself runs a cell when given a task id.
 check "slurm script written" 0 "6 array tasks" -- "$cdbench" sweep "$sweep" --out "$tmp/slurm" --slurm "$tmp/job.sh"
@@ -117,6 +124,25 @@ check "and the sweep names them too" 1 "badstatus/nowhere_bvh_cpu.status.json: \
   "$cdbench" sweep "$tmp/failing.json" --out "$tmp/badstatus" --dry-run
 
 check "committed paper sweep expands" 0 "paper-fig9.json: 66 cells" -- "$cdbench" sweep "$root/sweeps/paper-fig9.json" --out "$tmp/fig9" --dry-run
+# A dry run refuses what run would stop a cell for once it opens the scene, and an --out
+# where nothing can be written; a cuda cell without a GPU is only a warning.
+printf '{"scenes": ["no-such-scene", "/nonexistent/dir/", {"scene": "funnel", "set": {"res": 8}, "frames": "0:50"}, {"scene": "funnel", "set": {"res": 8}, "frames": "0:2", "label": "fine"}], "pipelines": ["bvh"], "devices": ["cpu"]}' >"$tmp/scenes.json"
+check "dry run refuses an unknown scene" 2 "^cdbench: error: $tmp/scenes.json: cell no-such-scene_bvh_cpu: /scenes/0: unknown scene 'no-such-scene'" -- \
+  "$cdbench" sweep "$tmp/scenes.json" --out "$tmp/sw" --dry-run
+has "dry run refuses a missing scene directory" "$tmp/out" "cell dir_bvh_cpu: /scenes/1: unknown scene '/nonexistent/dir'"
+has "dry run refuses frames past the scene's end" "$tmp/out" "cell funnel\.res=8_bvh_cpu: /scenes/2: --frames '0:50': the scene has only 20 frames"
+has "dry run lists the valid cell" "$tmp/out" "^ +3  fine_bvh_cpu  to run$"
+has "dry run counts the refused cells" "$tmp/out" "1 to run, 3 invalid"
+check "dry run refuses an --out where nothing can be written" 2 "^cdbench: error: --out /proc/cdbench-sweep: cannot write in /proc" -- \
+  "$cdbench" sweep "$sweep" --out /proc/cdbench-sweep --dry-run
+check "sweep refuses it too" 2 "^cdbench: error: --out /proc/cdbench-sweep: cannot write in /proc" -- \
+  "$cdbench" sweep "$sweep" --out /proc/cdbench-sweep
+for file in "$root"/sweeps/*.json; do
+  check "committed $(basename "$file") dry-runs here" 0 "cells, 0 complete" -- "$cdbench" sweep "$file" --out "$tmp/committed" --dry-run
+  if grep -qE "_cuda(_[^ ]*)?  to run" "$tmp/out" && "$cdbench" --version | grep -qE "^cuda +none"; then
+    has "  and warns of its cuda cells without a GPU" "$tmp/out" "^warning: .*cells run on cuda and this machine has no CUDA device"
+  fi
+done
 check "run takes --set" 0 "frames 0:2" -- "$cdbench" run --device cpu --quiet --scene funnel --set res=12 --set frames=2
 
 finish sweep
