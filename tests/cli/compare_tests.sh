@@ -292,6 +292,11 @@ has "run --json: the summary went to stderr" "$tmp/json.err" "^summary: 5 frames
 check "read_results knows this schema" 0 "^label: before$" -- "$python" "$root/scripts/read_results.py" --summary "$tmp/a.h5"
 if grep -q "newer than" "$tmp/out"; then fail "read_results warns about the schema"; else echo "ok   no schema warning"; fi
 has "read_results shows the input hash" "$tmp/out" "^input_hash: [0-9a-f]{16}$"
+# The scripts match runs as compare does: another warm-up is another identity, another
+# label is not.
+check "the scripts' identity agrees with compare's" 0 "^warm-up: --warmup-ms: 1000(\.0)? vs 0(\.0)?; label: none$" -- \
+  "$python" -c "import sys; sys.path.insert(0, sys.argv[1]); import cdb_results as c; a, cold, b = (c.Run(p) for p in sys.argv[2:]); print('warm-up: ' + '; '.join(c.identity_differences(a, cold)) + '; label: ' + ('; '.join(c.identity_differences(a, b)) or 'none'))" \
+  "$root/scripts" "$tmp/a.h5" "$tmp/cold-start.h5" "$tmp/b.h5"
 mkdir -p "$tmp/tp"
 run "$tmp/tp/grid-skip.h5" --pipeline grid --skip-adjacent
 run "$tmp/tp/c.h5" --pipeline c
