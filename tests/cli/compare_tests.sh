@@ -270,6 +270,34 @@ pairs = {"mean_ms": "t_total_ms_mean", "median_ms": "t_total_ms_median", "p95_ms
 bad = [k for k, a in pairs.items() if float(row[k]) != float(s[a])]
 print("differ: " + ", ".join(bad) if bad else "exact")
 PY
+# report --json: one object per file, the CSV's columns as keys in their order, every
+# number the very double of the CSV cell, the options an object.
+"$cdbench" report --csv "$tmp/a.h5" "$tmp/c3.h5" >"$tmp/rcsv3"
+"$cdbench" report --json "$tmp/a.h5" "$tmp/c3.h5" >"$tmp/rjson3"
+check "report --json has the CSV's statistics exactly" 0 "^2 runs, [1-9][0-9]* numbers exact, options an object$" -- "$python" - "$tmp/rcsv3" "$tmp/rjson3" <<'PY'
+import csv, json, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+out = json.load(open(sys.argv[2]))
+runs = out["runs"]
+bad = [] if out["command"] == "report" and len(runs) == len(rows) else ["not one object per file"]
+numbers = 0
+for row, run in zip(rows, runs):
+    keys = ["options" if k == "options_json" else k for k in row]
+    bad += [] if list(run) == keys else [f"keys {list(run)} vs {keys}"]
+    for k, cell in row.items():
+        v = run["options" if k == "options_json" else k]
+        if k == "options_json":
+            bad += [] if v == json.loads(cell) and isinstance(v, dict) else ["options"]
+        elif isinstance(v, (int, float)) and not isinstance(v, bool):
+            numbers += 1
+            bad += [] if float(cell) == v else [f"{k}: {cell} vs {v}"]
+        elif v is None:
+            bad += [] if cell in ("", "inf", "-inf", "nan") else [f"{k}: {cell} vs null"]
+        else:
+            bad += [] if cell == v else [f"{k}: {cell!r} vs {v!r}"]
+print("differ: " + "; ".join(bad) if bad else f"{len(runs)} runs, {numbers} numbers exact, options an object")
+PY
+check "report --json and --csv are refused together" 2 "excludes" -- "$cdbench" report --json --csv "$tmp/a.h5"
 # read_results --csv is CSV alone: csv.DictReader reads every frame of every file.
 "$python" "$root/scripts/read_results.py" --csv "$tmp/a.h5" "$tmp/c5.h5" >"$tmp/frames.csv"
 check "read_results --csv is pure CSV" 0 "^12 rows, exact$" -- "$python" - "$tmp/frames.csv" "$tmp/a.h5" <<'PY'
