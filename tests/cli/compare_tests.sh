@@ -56,6 +56,13 @@ has "each one-sided run is named on stderr" "$tmp/out" "B run [^ ]*margin\.h5 ma
 check "the other way round, the other side" 0 "\| only in A \| — \| nearest B [^|]*sideA/a\.h5: --box-margin: '0\.5' in A, '0(\.0)?' in B( \||;)" -- \
   "$cdbench" compare "$tmp/sideB" "$tmp/sideA"
 has "and A's former run is B's now" "$tmp/out" "\| only in B \| — \| nearest A [^|]*a-copy\.h5: --skip-adjacent: 'false' in A, 'true' in B( \||;)"
+# Two runs of B of one identity, other tuning knobs: the one of A's configuration pairs, the
+# other is B's only, said so.
+mkdir -p "$tmp/tuned"
+cp "$tmp/cycle2.h5" "$tmp/tuned/cycle2-copy.h5"
+cp "$tmp/cycle3.h5" "$tmp/tuned/"
+check "another tuning of the same identity is B's only" 0 "\| only in B \| — \| nearest A [^|]*cycle2\.h5 pairs with another run of this identity \(other tuning options\)" -- \
+  "$cdbench" compare "$tmp/cycle2.h5" "$tmp/tuned"
 check "one-sided rows in CSV: verdict, no value of the other side" 0 "^only in A,,;only in B,,$" -- \
   "$python" -c "import csv, subprocess, sys; rows = list(csv.DictReader(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[3], '--csv'], capture_output=True, text=True).stdout.splitlines())); print(';'.join(','.join((r['verdict'], r['b_ms'] if r['verdict'] == 'only in A' else r['a_ms'], r['pair_frames'])) for r in rows if r['verdict'].startswith('only')))" "$cdbench" "$tmp/sideA" "$tmp/sideB"
 check "one-sided rows in JSON: no files of the other side" 0 "^\[\] \[\]$" -- \
