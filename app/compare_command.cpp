@@ -257,12 +257,14 @@ const RunGroup* partner(const RunGroup& g, const char* side, const std::vector<R
   if (exact.size() != 1)
     fail_usage(std::string(side) + " run " + g.files.front().info.path + " matches " + std::to_string(same.size()) +
                " runs of " + other_side + " (" + same[0]->files.front().info.path + ", " +
-               same[1]->files.front().info.path + ", ...): compare files or directories that hold one run per configuration");
+               same[1]->files.front().info.path +
+               ", ...): compare files or directories that hold one run per configuration");
   return exact.front();
 }
 
 // The run of `others` with the fewest identity fields unlike g's, among those not taken.
-const RunGroup* nearest(const RunGroup& g, const std::vector<RunGroup>& others, const std::set<const RunGroup*>& taken) {
+const RunGroup* nearest(const RunGroup& g, const std::vector<RunGroup>& others,
+                        const std::set<const RunGroup*>& taken) {
   const RunGroup* best = nullptr;
   size_t fewest = SIZE_MAX;
   for (const RunGroup& o : others) {

@@ -161,7 +161,8 @@ nlohmann::ordered_json scene_json(const Scene& s) {
   const auto xyz = [](const vec3d& p) { return nlohmann::ordered_json::array({p.x, p.y, p.z}); };
   nlohmann::ordered_json parameters = nlohmann::ordered_json::array();
   for (const GeneratorParameter& p : s.parameters)
-    parameters.push_back({{"key", p.key}, {"kind", p.kind}, {"value", p.value}, {"default", p.fallback}, {"range", p.range}});
+    parameters.push_back(
+        {{"key", p.key}, {"kind", p.kind}, {"value", p.value}, {"default", p.fallback}, {"range", p.range}});
   nlohmann::ordered_json objects = nlohmann::ordered_json::array();
   for (const auto& ob : topo.objects)
     objects.push_back({{"name", ob.name}, {"first_face", ob.first_face}, {"faces", ob.num_faces}, {"rigid", ob.rigid}});
