@@ -61,8 +61,9 @@ struct RunFile {
 // One configuration of one side: its files are repeats of each other.
 struct RunGroup {
   std::vector<std::pair<std::string, std::string>> identity;  // (field, value), in a fixed order
-  std::string config;  // identity, content hash and every other recorded option
-  std::string key;     // config and label: what makes files repeats of one run
+  // Identity, content hash and every other recorded option: what makes files repeats of
+  // one run. Not the --label, a display name only: files of other labels pool.
+  std::string config;
   std::vector<RunFile> files;
   const ResultsOverview& first() const { return files.front().info; }
 };
@@ -124,10 +125,10 @@ std::vector<RunGroup> load_side(const std::string& arg, const char* side) {
     for (size_t row = skip; row < passes.total_ms.size(); ++row)
       for (size_t p = 0; p < passes.passes; ++p) f.pass_ms[p].push_back(passes.total_ms[row][p]);
     f.plans = read_results_plans(path);
-    const std::string config = config_of(f.info), key = config + "label=" + f.info.label;
-    auto g = std::find_if(groups.begin(), groups.end(), [&](const RunGroup& x) { return x.key == key; });
+    const std::string config = config_of(f.info);
+    auto g = std::find_if(groups.begin(), groups.end(), [&](const RunGroup& x) { return x.config == config; });
     if (g == groups.end()) {
-      groups.push_back({identity_of(f.info), config, key, {}});
+      groups.push_back({identity_of(f.info), config, {}});
       g = groups.end() - 1;
     }
     g->files.push_back(std::move(f));
@@ -173,6 +174,12 @@ Estimate estimate(const RunGroup& g, const Samples& s, Metric m) {
   return estimate_over_frames(f.measured_ms, m);
 }
 
+std::string join(const std::vector<std::string>& v, const char* sep) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
 // Identity fields that differ, as "field: A value vs B value"; the content hash only where
 // both files recorded one.
 std::vector<std::string> differences(const RunGroup& a, const RunGroup& b) {
@@ -186,9 +193,12 @@ std::vector<std::string> differences(const RunGroup& a, const RunGroup& b) {
   return d;
 }
 
+// One row of the comparison: a run of A against its run of B, or a run of one side only
+// (the other nullptr).
 struct Row {
-  const RunGroup* a;
-  const RunGroup* b;
+  const RunGroup* a = nullptr;
+  const RunGroup* b = nullptr;
+  std::string only;                   // a run of one side only: what sets it apart from the other's nearest
   std::vector<std::string> mismatch;  // with --allow-mismatch: what differs
   Estimate ea, eb;
   double change = 0;
@@ -196,8 +206,14 @@ struct Row {
   Decision decision;
   std::vector<uint32_t> plan_differ;  // frames where the passes of A and B ran different plans
   size_t pair_frames = 0, pair_differ = 0;  // frames of both, and those with other pair counts
-  std::string hash;                         // same | differs | unknown
 };
+
+Row row_of(const RunGroup* a, const RunGroup* b) {
+  Row row;
+  row.a = a;
+  row.b = b;
+  return row;
+}
 
 // Pair counts of the frames both runs have (their first files: the repeats of a run
 // report the same pairs, --repeat checks it).
@@ -226,56 +242,103 @@ void compare_plans(Row& row) {
     if (distinct.size() > 1) row.plan_differ.push_back(frame);
 }
 
-std::vector<Row> match(const std::vector<RunGroup>& as, const std::vector<RunGroup>& bs, bool allow_mismatch) {
-  std::vector<Row> rows;
-  std::set<const RunGroup*> used;
-  for (const RunGroup& a : as) {
-    std::vector<const RunGroup*> same;
-    for (const RunGroup& b : bs)
-      if (differences(a, b).empty()) same.push_back(&b);
-    // Several B runs of this identity (other tuning knobs, other labels): the one of the
-    // same configuration, if there is exactly one.
-    if (same.size() > 1) {
-      std::vector<const RunGroup*> exact;
-      for (const RunGroup* b : same)
-        if (b->config == a.config) exact.push_back(b);
-      if (exact.size() != 1)
-        fail_usage("A run " + a.files.front().info.path + " matches " + std::to_string(same.size()) +
-                   " runs of B (" + same[0]->files.front().info.path + ", " + same[1]->files.front().info.path +
-                   ", ...): compare files or directories that hold one run per configuration");
-      same = exact;
+// The run of the other side that g pairs with: the one of the same identity; where there
+// are several (other tuning knobs), the one of g's very configuration. nullptr when none;
+// several of one configuration cannot be told apart, a usage error.
+const RunGroup* partner(const RunGroup& g, const char* side, const std::vector<RunGroup>& others,
+                        const char* other_side) {
+  std::vector<const RunGroup*> same;
+  for (const RunGroup& o : others)
+    if (differences(g, o).empty()) same.push_back(&o);
+  if (same.size() <= 1) return same.empty() ? nullptr : same.front();
+  std::vector<const RunGroup*> exact;
+  for (const RunGroup* o : same)
+    if (o->config == g.config) exact.push_back(o);
+  if (exact.size() != 1)
+    fail_usage(std::string(side) + " run " + g.files.front().info.path + " matches " + std::to_string(same.size()) +
+               " runs of " + other_side + " (" + same[0]->files.front().info.path + ", " +
+               same[1]->files.front().info.path +
+               ", ...): compare files or directories that hold one run per configuration");
+  return exact.front();
+}
+
+// The run of `others` with the fewest identity fields unlike g's, among those not taken.
+const RunGroup* nearest(const RunGroup& g, const std::vector<RunGroup>& others,
+                        const std::set<const RunGroup*>& taken) {
+  const RunGroup* best = nullptr;
+  size_t fewest = SIZE_MAX;
+  for (const RunGroup& o : others) {
+    const size_t n = differences(g, o).size();
+    if (!taken.count(&o) && n < fewest) {
+      fewest = n;
+      best = &o;
     }
-    Row row{&a, nullptr, {}, {}, {}, 0, Verdict::unchanged, {}, {}, 0, 0, ""};
-    if (same.size() == 1) {
-      row.b = same.front();
-    } else {
-      // No B run of this identity: the nearest one says which option differs.
-      const RunGroup* nearest = nullptr;
-      size_t fewest = SIZE_MAX;
-      for (const RunGroup& b : bs) {
-        const size_t n = differences(a, b).size();
-        if (n < fewest) {
-          fewest = n;
-          nearest = &b;
-        }
-      }
-      row.b = nearest;
-      row.mismatch = differences(a, *nearest);
-      if (!allow_mismatch) {
-        std::string all;
-        for (const auto& d : row.mismatch) all += "\n  " + d;
-        fail_usage("runs do not match: A " + a.files.front().info.path + ", nearest B " +
-                   nearest->files.front().info.path + ":" + all +
-                   "\n(--allow-mismatch compares them anyway, flagged)");
-      }
-    }
-    used.insert(row.b);
-    rows.push_back(std::move(row));
   }
+  return best;
+}
+
+// What sets a run of one side only apart from the nearest run of the other.
+std::string only_note(const RunGroup& g, bool in_a, const std::vector<RunGroup>& others) {
+  const RunGroup* other = nearest(g, others, {});
+  const std::vector<std::string> d = in_a ? differences(g, *other) : differences(*other, g);
+  const std::string name = std::string(in_a ? "B" : "A") + " " + other->files.front().info.path;
+  if (d.empty()) return "nearest " + name + " pairs with another run of this identity (other tuning options)";
+  return "nearest " + name + ": " + join(d, "; ");
+}
+
+// Pairs the runs of A and B symmetrically: two runs pair when each is the other's partner.
+// With allow_mismatch, a run left over on A pairs with the nearest run left over on B,
+// flagged. Every run still without a pair is a row of its side only ("only in A", "only
+// in B"); they do not stop the comparison, but when no run pairs at all nothing was
+// compared: a usage error naming what differs.
+std::vector<Row> match(const std::vector<RunGroup>& as, const std::vector<RunGroup>& bs, bool allow_mismatch) {
+  std::vector<const RunGroup*> partner_of_a, partner_of_b;
+  for (const RunGroup& a : as) partner_of_a.push_back(partner(a, "A", bs, "B"));
+  for (const RunGroup& b : bs) partner_of_b.push_back(partner(b, "B", as, "A"));
+  std::vector<Row> rows;
+  std::set<const RunGroup*> paired;
+  for (size_t i = 0; i < as.size(); ++i) {
+    const RunGroup* b = partner_of_a[i];
+    if (b && partner_of_b[size_t(b - bs.data())] == &as[i]) {
+      rows.push_back(row_of(&as[i], b));
+      paired.insert(&as[i]);
+      paired.insert(b);
+    }
+  }
+  if (allow_mismatch)
+    for (const RunGroup& a : as) {
+      if (paired.count(&a)) continue;
+      const RunGroup* b = nearest(a, bs, paired);
+      if (!b) break;
+      Row row = row_of(&a, b);
+      row.mismatch = differences(a, *b);
+      rows.push_back(std::move(row));
+      paired.insert(&a);
+      paired.insert(b);
+    }
+  if (rows.empty()) {
+    const RunGroup& a = as.front();
+    const RunGroup& b = *nearest(a, bs, {});
+    fail_usage("runs do not match: A " + a.files.front().info.path + ", nearest B " + b.files.front().info.path +
+               ":\n  " + join(differences(a, b), "\n  ") + "\n(--allow-mismatch compares them anyway, flagged)");
+  }
+  for (const RunGroup& a : as)
+    if (!paired.count(&a)) {
+      Row row = row_of(&a, nullptr);
+      row.only = only_note(a, true, bs);
+      rows.push_back(std::move(row));
+    }
   for (const RunGroup& b : bs)
-    if (!used.count(&b))
-      std::fprintf(stderr, "cdbench: compare: B run %s matches no run of A, not compared\n",
-                   b.files.front().info.path.c_str());
+    if (!paired.count(&b)) {
+      Row row = row_of(nullptr, &b);
+      row.only = only_note(b, false, as);
+      rows.push_back(std::move(row));
+    }
+  for (const Row& r : rows)
+    if (!r.a || !r.b)
+      std::fprintf(stderr, "cdbench: compare: %s run %s matches no run of %s, listed as only in %s (%s)\n",
+                   r.a ? "A" : "B", (r.a ? r.a : r.b)->files.front().info.path.c_str(), r.a ? "B" : "A",
+                   r.a ? "A" : "B", r.only.c_str());
   return rows;
 }
 
@@ -287,9 +350,29 @@ std::string fixed(double x, const char* format = "%.4f") {
   return text;
 }
 
-std::string files_of(const RunGroup& g) {
+nlohmann::json files_of(const RunGroup& g) {
+  nlohmann::json paths = nlohmann::json::array();
+  for (const RunFile& f : g.files) paths.push_back(f.info.path);
+  return paths;
+}
+
+// The side's --label values, each once, in file order: the files of one run may be named
+// apart (pooling ignores labels).
+std::string labels_of(const RunGroup& g) {
+  std::vector<std::string> labels;
+  for (const RunFile& f : g.files)
+    if (!f.info.label.empty() && std::find(labels.begin(), labels.end(), f.info.label) == labels.end())
+      labels.push_back(f.info.label);
   std::string s;
-  for (const RunFile& f : g.files) s += (s.empty() ? "" : " ") + f.info.path;
+  for (const auto& l : labels) s += (s.empty() ? "" : ", ") + l;
+  return s;
+}
+
+// The side's files for reading, each with its label: "a.h5 [before] b.h5".
+std::string labelled_files_of(const RunGroup& g) {
+  std::string s;
+  for (const RunFile& f : g.files)
+    s += (s.empty() ? "" : " ") + f.info.path + (f.info.label.empty() ? "" : " [" + f.info.label + "]");
   return s;
 }
 
@@ -305,8 +388,14 @@ bool noisy(const RunGroup& g) {
   return std::any_of(g.files.begin(), g.files.end(), [](const RunFile& f) { return !f.info.noise_warning.empty(); });
 }
 
+// f of a side's run; the empty value of its type for the side of a one-sided row.
+template <class F>
+auto of_side(const RunGroup* g, F f) -> decltype(f(*g)) {
+  return g ? f(*g) : decltype(f(*g)){};
+}
+
 std::string noisy_text(const Row& r) {
-  const bool a = noisy(*r.a), b = noisy(*r.b);
+  const bool a = of_side(r.a, noisy), b = of_side(r.b, noisy);
   return a && b ? "A,B" : a ? "A" : b ? "B" : "";
 }
 
@@ -324,17 +413,11 @@ std::string poor_of(const RunGroup& g) {
 }
 
 std::string poor_text(const Row& r) {
-  const std::string a = poor_of(*r.a), b = poor_of(*r.b);
+  const std::string a = of_side(r.a, poor_of), b = of_side(r.b, poor_of);
   if (a.empty() && b.empty()) return "";
   if (b.empty()) return "A: " + a;
   if (a.empty()) return "B: " + b;
   return "A: " + a + " | B: " + b;
-}
-
-std::string join(const std::vector<std::string>& v, const char* sep) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
-  return s;
 }
 
 // The columns of --csv and the keys of --json, the same whatever the inputs.
@@ -343,7 +426,7 @@ const std::vector<std::string>& columns() {
       "scene",      "pipeline",  "device",    "label_a",    "label_b",   "metric",       "a_ms",
       "a_ci_lo",    "a_ci_hi",   "a_n",       "a_ci_over",  "b_ms",      "b_ci_lo",      "b_ci_hi",
       "b_n",        "b_ci_over", "change_pct", "verdict",   "p_value",    "why",         "plan_differ",
-      "pair_frames", "pair_differ", "input_hash",
+      "pair_frames", "pair_differ", "input_hash_a", "input_hash_b",
       "mismatch",   "noisy",     "poor_conditions", "commit_a",  "commit_b",   "files_a",   "files_b"};
   return c;
 }
@@ -352,49 +435,72 @@ const std::vector<std::string>& columns() {
 // says `inf`/`-inf` (an unbounded interval end); a NaN is no value in both.
 enum class NonFinite { null, text };
 
+// The row's verdict: the test's, or the one side a run is of.
+std::string verdict_text(const Row& r) {
+  if (!r.b) return "only in A";
+  if (!r.a) return "only in B";
+  return verdict_name(r.v);
+}
+
 nlohmann::json row_json(const Row& r, Metric m, NonFinite non_finite = NonFinite::null) {
-  const ResultsOverview &a = r.a->first(), &b = r.b->first();
+  const ResultsOverview& run = (r.a ? r.a : r.b)->first();
+  const auto hash = [](const RunGroup& g) { return g.first().input_hash; };
+  const auto files = [](const RunGroup* g) { return g ? files_of(*g) : nlohmann::json::array(); };
   const auto json_number = [non_finite](double x) {
     if (std::isfinite(x)) return nlohmann::json(x);
     return non_finite == NonFinite::text && std::isinf(x) ? nlohmann::json(exact_number(x)) : nlohmann::json(nullptr);
   };
-  return {{"scene", a.scene_label},
-          {"pipeline", a.pipeline},
-          {"device", a.backend},
-          {"label_a", a.label},
-          {"label_b", b.label},
+  const auto side_n = [](const RunGroup* g, const Estimate& e) { return g ? nlohmann::json(e.n) : nlohmann::json(); };
+  const auto side_over = [](const RunGroup* g, const Estimate& e) {
+    return g ? nlohmann::json(ci_basis_name(e.basis)) : nlohmann::json();
+  };
+  const auto pairs = [&r](size_t n) { return r.a && r.b ? nlohmann::json(n) : nlohmann::json(); };
+  const double none = std::nan("");
+  const auto side_number = [&](const RunGroup* g, double x) { return json_number(g ? x : none); };
+  return {{"scene", run.scene_label},
+          {"pipeline", run.pipeline},
+          {"device", run.backend},
+          {"label_a", of_side(r.a, labels_of)},
+          {"label_b", of_side(r.b, labels_of)},
           {"metric", metric_name(m)},
-          {"a_ms", json_number(r.ea.value)},
-          {"a_ci_lo", json_number(r.ea.lo)},
-          {"a_ci_hi", json_number(r.ea.hi)},
-          {"a_n", r.ea.n},
-          {"a_ci_over", ci_basis_name(r.ea.basis)},
-          {"b_ms", json_number(r.eb.value)},
-          {"b_ci_lo", json_number(r.eb.lo)},
-          {"b_ci_hi", json_number(r.eb.hi)},
-          {"b_n", r.eb.n},
-          {"b_ci_over", ci_basis_name(r.eb.basis)},
+          {"a_ms", side_number(r.a, r.ea.value)},
+          {"a_ci_lo", side_number(r.a, r.ea.lo)},
+          {"a_ci_hi", side_number(r.a, r.ea.hi)},
+          {"a_n", side_n(r.a, r.ea)},
+          {"a_ci_over", side_over(r.a, r.ea)},
+          {"b_ms", side_number(r.b, r.eb.value)},
+          {"b_ci_lo", side_number(r.b, r.eb.lo)},
+          {"b_ci_hi", side_number(r.b, r.eb.hi)},
+          {"b_n", side_n(r.b, r.eb)},
+          {"b_ci_over", side_over(r.b, r.eb)},
           {"change_pct", json_number(r.change)},
-          {"verdict", verdict_name(r.v)},
+          {"verdict", verdict_text(r)},
           {"p_value", json_number(r.decision.p)},
-          {"why", r.decision.why},
+          {"why", r.a && r.b ? r.decision.why : r.only},
           {"plan_differ", r.plan_differ.empty() ? std::string() : frame_list_text(r.plan_differ)},
-          {"pair_frames", r.pair_frames},
-          {"pair_differ", r.pair_differ},
-          {"input_hash", r.hash},
+          {"pair_frames", pairs(r.pair_frames)},
+          {"pair_differ", pairs(r.pair_differ)},
+          {"input_hash_a", of_side(r.a, hash)},
+          {"input_hash_b", of_side(r.b, hash)},
           {"mismatch", join(r.mismatch, "; ")},
           {"noisy", noisy_text(r)},
           {"poor_conditions", poor_text(r)},
-          {"commit_a", commits_of(*r.a)},
-          {"commit_b", commits_of(*r.b)},
-          {"files_a", files_of(*r.a)},
-          {"files_b", files_of(*r.b)}};
+          {"commit_a", of_side(r.a, commits_of)},
+          {"commit_b", of_side(r.b, commits_of)},
+          {"files_a", files(r.a)},
+          {"files_b", files(r.b)}};
 }
 
-// A CSV cell: numbers at full precision, as report --csv writes them.
+// A CSV cell: numbers at full precision, as report --csv writes them; a list (the files)
+// space-separated.
 std::string cell_text(const nlohmann::json& v) {
   if (v.is_null()) return "";
   if (v.is_string()) return v.get<std::string>();
+  if (v.is_array()) {
+    std::string joined;
+    for (const auto& e : v) joined += (joined.empty() ? "" : " ") + cell_text(e);
+    return joined;
+  }
   if (v.is_number_float()) return exact_number(v.get<double>());
   return v.dump();
 }
@@ -414,46 +520,59 @@ std::string md_cell(const std::string& s) {
 
 std::string interval(const Estimate& e) { return "[" + fixed(e.lo) + ", " + fixed(e.hi) + "]"; }
 
+// A side's cells for reading: the value, and the interval with what it is over; dashes for
+// the side a one-sided row has no run of.
+std::pair<std::string, std::string> side_cells(const RunGroup* g, const Estimate& e) {
+  if (!g) return {"—", "—"};
+  return {fixed(e.value), interval(e) + " over " + ci_basis_name(e.basis) + " n=" + std::to_string(e.n)};
+}
+
+// A side's files and commits under the table; "none" for the side of a one-sided row.
+std::string side_files(const RunGroup* g) {
+  return g ? labelled_files_of(*g) + " (commit " + commits_of(*g) + ")" : "none";
+}
+
 void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metric m) {
   std::printf("%s per-frame ms (warm-up left out), B against A; threshold %.1f%%\n\n", metric_name(m),
               c.threshold_pct);
   std::printf("| scene | pipeline | device | A | A 95%% CI | B | B 95%% CI | change | verdict | pairs | flags |\n");
   std::printf("| --- | --- | --- | ---: | --- | ---: | --- | ---: | --- | --- | --- |\n");
   for (const Row& r : rows) {
-    const ResultsOverview& a = r.a->first();
+    const ResultsOverview& run = (r.a ? r.a : r.b)->first();
     std::vector<std::string> flags;
+    if (!r.only.empty()) flags.push_back(r.only);
     if (!r.mismatch.empty()) flags.push_back("**MISMATCH: " + join(r.mismatch, "; ") + "**");
     if (!poor_text(r).empty()) flags.push_back("poor conditions (" + poor_text(r) + ")");
     else if (!noisy_text(r).empty()) flags.push_back("noisy run (" + noisy_text(r) + ")");
-    if (r.hash == "unknown") flags.push_back("input hash not recorded");
+    if (r.a && r.b && (r.a->first().input_hash.empty() || r.b->first().input_hash.empty()))
+      flags.push_back("input hash not recorded");
     if (!r.plan_differ.empty())
       flags.push_back("**PLANS DIFFER at frames " + frame_list_text(r.plan_differ) + "**");
     if (!r.decision.why.empty() && r.decision.why.rfind("poor conditions", 0) != 0)
       flags.push_back(r.decision.why);
-    const std::string pairs = r.pair_frames == 0 ? "no common frames"
-                              : r.pair_differ   ? "**DIFFER in " + std::to_string(r.pair_differ) + " of " +
-                                                    std::to_string(r.pair_frames) + " frames**"
-                                                : "same (" + std::to_string(r.pair_frames) + " frames)";
-    const auto side = [](const Estimate& e) {
-      return std::string(ci_basis_name(e.basis)) + " n=" + std::to_string(e.n);
-    };
-    std::printf("| %s | %s | %s | %s | %s over %s | %s | %s over %s | %s%% | %s | %s | %s |\n",
-                md_cell(a.scene_label).c_str(), md_cell(a.pipeline).c_str(), md_cell(a.backend).c_str(),
-                fixed(r.ea.value).c_str(), interval(r.ea).c_str(), side(r.ea).c_str(), fixed(r.eb.value).c_str(),
-                interval(r.eb).c_str(), side(r.eb).c_str(), fixed(r.change, "%+.1f").c_str(), verdict_name(r.v),
-                pairs.c_str(), md_cell(join(flags, "; ")).c_str());
+    const std::string pairs = !r.a || !r.b       ? "—"
+                              : r.pair_frames == 0 ? "no common frames"
+                              : r.pair_differ      ? "**DIFFER in " + std::to_string(r.pair_differ) + " of " +
+                                                       std::to_string(r.pair_frames) + " frames**"
+                                                   : "same (" + std::to_string(r.pair_frames) + " frames)";
+    const auto [a_value, a_interval] = side_cells(r.a, r.ea);
+    const auto [b_value, b_interval] = side_cells(r.b, r.eb);
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s%s | %s | %s | %s |\n", md_cell(run.scene_label).c_str(),
+                md_cell(run.pipeline).c_str(), md_cell(run.backend).c_str(), a_value.c_str(), a_interval.c_str(),
+                b_value.c_str(), b_interval.c_str(), fixed(r.change, "%+.1f").c_str(),
+                std::isnan(r.change) ? "" : "%", verdict_text(r).c_str(), pairs.c_str(),
+                md_cell(join(flags, "; ")).c_str());
   }
   std::printf("\nVerdict: Mann-Whitney U over the passes' values (pooled over a side's files; one value per file "
               "where a file keeps no passes), a difference at p < %.2f whose Hodges-Lehmann shift (the change) "
               "exceeds the threshold; inconclusive where conditions were poor or the samples too few. CI: Student "
-              "t over the same values (passes, repeats), else over one pass's frames.\n",
+              "t over the same values (passes, repeats), on the log scale, else over one pass's frames. A run of "
+              "one side only is a row of its own (only in A, only in B), with no verdict.\n",
               kSignificance);
   for (const Row& r : rows) {
-    const ResultsOverview &a = r.a->first(), &b = r.b->first();
-    std::printf("\n- %s %s %s: A %s%s (commit %s), B %s%s (commit %s)", a.scene_label.c_str(), a.pipeline.c_str(),
-                a.backend.c_str(), files_of(*r.a).c_str(), a.label.empty() ? "" : (" [" + a.label + "]").c_str(),
-                commits_of(*r.a).c_str(), files_of(*r.b).c_str(),
-                b.label.empty() ? "" : (" [" + b.label + "]").c_str(), commits_of(*r.b).c_str());
+    const ResultsOverview& run = (r.a ? r.a : r.b)->first();
+    std::printf("\n- %s %s %s: A %s, B %s", run.scene_label.c_str(), run.pipeline.c_str(), run.backend.c_str(),
+                side_files(r.a).c_str(), side_files(r.b).c_str());
   }
   std::printf("\n");
 }
@@ -485,6 +604,13 @@ int compare_command(const CompareOptions& c) {
   std::vector<Row> rows = match(as, bs, c.allow_mismatch);
   bool regressed = false;
   for (Row& r : rows) {
+    if (!r.a || !r.b) {
+      // A run of one side only: its estimate, nothing to test it against.
+      const RunGroup& g = r.a ? *r.a : *r.b;
+      (r.a ? r.ea : r.eb) = estimate(g, samples_of(g, m), m);
+      r.change = r.decision.p = std::nan("");
+      continue;
+    }
     const Samples sa = samples_of(*r.a, m), sb = samples_of(*r.b, m);
     r.ea = estimate(*r.a, sa, m);
     r.eb = estimate(*r.b, sb, m);
@@ -497,8 +623,6 @@ int compare_command(const CompareOptions& c) {
     regressed |= r.v == Verdict::regression;
     compare_pairs(r);
     compare_plans(r);
-    const std::string &ha = r.a->first().input_hash, &hb = r.b->first().input_hash;
-    r.hash = ha.empty() || hb.empty() ? "unknown" : ha == hb ? "same" : "differs";
   }
   if (c.json) {
     nlohmann::json out = {{"metric", metric_name(m)}, {"threshold_pct", c.threshold_pct}, {"rows", nlohmann::json::array()}};

@@ -34,7 +34,7 @@ using namespace cdb;
 
 namespace {
 
-// What a command prints on stdout is its result (report --csv, compare --json, run --json,
+// What a command prints on stdout is its result (report --csv/--json, compare --json, run --json,
 // report --plan): a stdout the system refused (a full disk, /dev/full) fails the command,
 // said on stderr, where it would otherwise end 0 with its output lost. Checked by the
 // flush at the end, which also writes out what the buffer still held.
@@ -106,19 +106,25 @@ int run_cli(int argc, char** argv) {
   ScenesOptions s;
   const ScenesCommand scenes = add_scenes_command(app, s);
 
-  auto* report = app.add_subcommand("report", "summarize results files as a Markdown (or CSV) table");
+  auto* report = app.add_subcommand("report", "summarize results files as a Markdown table (or CSV, or JSON)");
   std::vector<std::string> report_files;
   bool csv = false;
   report->add_option("files", report_files,
                      "results files written by run --out, or directories: every .h5 under them, and the sweep cells that left none")
       ->required();
-  report->add_flag("--csv", csv, "CSV instead of Markdown");
+  auto* report_csv = report->add_flag("--csv", csv, "CSV instead of Markdown");
+  bool report_json = false;
+  report
+      ->add_flag("--json", report_json,
+                 "JSON instead of Markdown: one object per file, the CSV's columns as keys, numbers at full precision")
+      ->excludes(report_csv);
   bool plan = false;
   report
       ->add_flag("--plan", plan,
                  "print one pass's front plan as a plan file for run --front-cycle, instead of the table: the file "
                  "given is FILE.h5 (pass 0), FILE.h5:PIPELINE or FILE.h5:PIPELINE:PASS, or a plan file to check")
-      ->excludes("--csv");
+      ->excludes("--csv")
+      ->excludes("--json");
 
   SweepOptions w;
   CLI::App* sweep = add_sweep_command(app, w);
@@ -144,7 +150,10 @@ int run_cli(int argc, char** argv) {
     if (*scenes.info) return scenes_info(s);
     if (*scenes.generate) return scenes_generate(s);
     if (*report && plan) return print_plan_file(report_files);
-    if (*report) return print_results_table(report_files, csv);
+    if (*report)
+      return print_results_table(report_files, report_json ? ReportFormat::json
+                                               : csv       ? ReportFormat::csv
+                                                           : ReportFormat::markdown);
     if (*sweep) return sweep_command(w, *run);
     if (*compare) return compare_command(cmp);
   } catch (const UsageError& e) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -262,9 +263,22 @@ int print_plans(const std::vector<Row>& rows) {
   return rc;
 }
 
+// A CSV cell as a JSON value: a number column's text as the number it reads back as
+// exactly (integers as integers), text as text; an empty cell, or a number that is not
+// finite, is null.
+nlohmann::ordered_json json_cell(const Column& column, const std::string& cell) {
+  if (column.text) return cell;
+  if (cell.empty()) return nullptr;
+  if (cell.find_first_not_of("0123456789") == std::string::npos) return std::stoull(cell);
+  const double x = std::strtod(cell.c_str(), nullptr);
+  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
+}
+
 }  // namespace
 
-int print_results_table(const std::vector<std::string>& args, bool csv) {
+int print_results_table(const std::vector<std::string>& args, ReportFormat format) {
+  // JSON has CSV's columns: every one whatever the files, and CSV's full-precision cells.
+  const bool csv = format != ReportFormat::markdown;
   const Inputs inputs = expand_inputs(args);
   std::vector<Row> rows;
   int rc = kExitOk;
@@ -481,6 +495,23 @@ int print_results_table(const std::vector<std::string>& args, bool csv) {
     table.push_back(std::move(cells));
   }
 
+  if (format == ReportFormat::json) {
+    // In the CSV's column order.
+    nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+    for (const auto& cells : table) {
+      nlohmann::ordered_json run = nlohmann::ordered_json::object();
+      for (size_t i = 0; i < columns.size(); ++i) {
+        // The options as the object they are, not as the text of a CSV cell.
+        if (columns[i].name == "options_json")
+          run["options"] = cells[i].empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json::parse(cells[i]);
+        else
+          run[columns[i].name] = json_cell(columns[i], cells[i]);
+      }
+      runs.push_back(std::move(run));
+    }
+    std::printf("%s\n", nlohmann::ordered_json{{"command", "report"}, {"runs", std::move(runs)}}.dump(2).c_str());
+    return rc;
+  }
   if (csv) {
     auto line = [](const std::vector<std::string>& cells) {
       std::string s;

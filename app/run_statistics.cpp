@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "cdbench/core/error.h"
@@ -20,6 +21,17 @@ double sample_sd(const std::vector<double>& v, double mean) {
   double ss = 0;
   for (double x : v) ss += (x - mean) * (x - mean);
   return std::sqrt(ss / double(v.size() - 1));
+}
+
+// The 95% interval of a positive time from its half-width on the linear scale, taken on the
+// log scale (the delta method: se(log x) = se(x) / x), so that a wide spread never gives a
+// negative lower bound: value * exp(-+half / value). For a half-width small against the
+// value it is value -+ half to first order. A value that is not positive has no log: the
+// linear interval.
+std::pair<double, double> positive_interval(double value, double half) {
+  if (!(value > 0)) return {value - half, value + half};
+  const double factor = std::exp(half / value);
+  return {value / factor, value * factor};
 }
 
 double mean_of(const std::vector<double>& v) {
@@ -87,8 +99,7 @@ Estimate estimate_over_runs(const std::vector<double>& run_values) {
     return e;
   }
   const double half = student_t95(e.n - 1) * sample_sd(run_values, e.value) / std::sqrt(double(e.n));
-  e.lo = e.value - half;
-  e.hi = e.value + half;
+  std::tie(e.lo, e.hi) = positive_interval(e.value, half);
   return e;
 }
 
@@ -132,8 +143,7 @@ Estimate estimate_over_passes(const std::vector<double>& frame_ms, const std::ve
   }
   const double sd = e.value * spread / total;
   const double half = student_t95(passes - 1) * sd / std::sqrt(double(passes));
-  e.lo = e.value - half;
-  e.hi = e.value + half;
+  std::tie(e.lo, e.hi) = positive_interval(e.value, half);
   return e;
 }
 

@@ -9,6 +9,8 @@
 #include <regex>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cdbench/core/error.h"
 #include "cdbench/geometry/float_spacing.h"
 #include "scenes/load/obj_sequence.h"
@@ -27,6 +29,7 @@ ScenesCommand add_scenes_command(CLI::App& app, ScenesOptions& s) {
   // The scene as run and verify take it (--scene) or as the first argument.
   c.info->add_option("scene,--scene", s.scene, "scene name, .json descriptor or mesh directory")->required();
   c.info->add_option("--set", s.sets, "override a generator parameter: key=value (repeatable)");
+  c.info->add_flag("--json", s.json, "JSON instead of text: one object with the same fields");
   c.generate = scenes->add_subcommand("generate", "write a scene's frames as OBJ files");
   c.generate->add_option("scene,--scene", s.scene, "scene name or .json descriptor")->required();
   c.generate->add_option("--set", s.sets, "override a generator parameter: key=value, e.g. res=128 frames=10");
@@ -127,9 +130,105 @@ int scenes_generate(const ScenesOptions& opts) {
   return 0;
 }
 
+namespace {
+
+// One frame of a scene as `scenes info` describes it: its vertices' bounding box and, from
+// the second frame on, how far they moved since the previous one.
+struct FrameExtent {
+  vec3d lo, hi;
+  bool moved = false;  // a previous frame to move from
+  double mean_move = 0, max_move = 0;
+};
+
+std::vector<FrameExtent> frame_extents(const Scene& s) {
+  std::vector<FrameExtent> extents;
+  std::vector<vec3d> v, prev;
+  for (uint32_t f = 0; f < s.source->num_frames(); ++f) {
+    s.source->positions(f, v);
+    FrameExtent e;
+    e.lo = v.empty() ? vec3d{} : v[0];
+    e.hi = e.lo;
+    double sum_move = 0;
+    for (size_t k = 0; k < v.size(); ++k) {
+      e.lo = {std::min(e.lo.x, v[k].x), std::min(e.lo.y, v[k].y), std::min(e.lo.z, v[k].z)};
+      e.hi = {std::max(e.hi.x, v[k].x), std::max(e.hi.y, v[k].y), std::max(e.hi.z, v[k].z)};
+      if (!prev.empty()) {
+        const double dx = v[k].x - prev[k].x, dy = v[k].y - prev[k].y, dz = v[k].z - prev[k].z;
+        const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+        e.max_move = std::max(e.max_move, d);
+        sum_move += d;
+      }
+    }
+    e.moved = !prev.empty() && !v.empty();
+    if (e.moved) e.mean_move = sum_move / double(v.size());
+    extents.push_back(e);
+    prev = v;
+  }
+  return extents;
+}
+
+std::optional<FloatSpacing> first_frame_spacing(const Scene& s) {
+  if (s.source->num_frames() == 0) return std::nullopt;
+  std::vector<vec3d> first;
+  s.source->positions(0, first);
+  return float_spacing(s.source->topology(), first, {0, 0, 0});
+}
+
+// What the text shows, as one JSON object (the numbers at full precision).
+nlohmann::ordered_json scene_json(const Scene& s) {
+  const Topology& topo = s.source->topology();
+  const auto xyz = [](const vec3d& p) { return nlohmann::ordered_json::array({p.x, p.y, p.z}); };
+  nlohmann::ordered_json parameters = nlohmann::ordered_json::array();
+  for (const GeneratorParameter& p : s.parameters)
+    parameters.push_back(
+        {{"key", p.key}, {"kind", p.kind}, {"value", p.value}, {"default", p.fallback}, {"range", p.range}});
+  nlohmann::ordered_json objects = nlohmann::ordered_json::array();
+  for (const auto& ob : topo.objects)
+    objects.push_back({{"name", ob.name}, {"first_face", ob.first_face}, {"faces", ob.num_faces}, {"rigid", ob.rigid}});
+  nlohmann::ordered_json queries = nullptr;  // every overlapping pair
+  if (topo.queries.declared) {
+    queries = {{"self", nlohmann::ordered_json::array()}, {"inter", nlohmann::ordered_json::array()}};
+    for (uint32_t o : topo.queries.self) queries["self"].push_back(topo.objects[o].name);
+    for (const auto& [a, b] : topo.queries.inter)
+      queries["inter"].push_back(nlohmann::ordered_json::array({topo.objects[a].name, topo.objects[b].name}));
+  }
+  nlohmann::ordered_json precision = nullptr;
+  if (const auto fs = first_frame_spacing(s))
+    precision = {{"median_edge", fs->median_edge}, {"float_spacing", fs->spacing}, {"largest", fs->largest},
+                 {"too_coarse", fs->too_coarse()}};
+  nlohmann::ordered_json frames = nlohmann::ordered_json::array();
+  const std::vector<FrameExtent> extents = frame_extents(s);
+  for (size_t f = 0; f < extents.size(); ++f) {
+    const FrameExtent& e = extents[f];
+    frames.push_back({{"frame", f},
+                      {"box_min", xyz(e.lo)},
+                      {"box_max", xyz(e.hi)},
+                      {"motion_mean", e.moved ? nlohmann::ordered_json(e.mean_move) : nlohmann::ordered_json()},
+                      {"motion_max", e.moved ? nlohmann::ordered_json(e.max_move) : nlohmann::ordered_json()}});
+  }
+  return {{"command", "scenes info"},
+          {"scene", s.name},
+          {"description", s.description},
+          {"triangles", topo.faces.size()},
+          {"vertices", topo.num_vertices},
+          {"frames", s.source->num_frames()},
+          {"parameters", std::move(parameters)},
+          {"box_faces", topo.box_faces},
+          {"objects", std::move(objects)},
+          {"queries", std::move(queries)},
+          {"precision", std::move(precision)},
+          {"frame_extents", std::move(frames)}};
+}
+
+}  // namespace
+
 int scenes_info(const ScenesOptions& opts) {
   const auto dir = scenes_dir(opts.scenes_dir);
   const Scene s = open_scene(opts.scene, dir, parse_set_overrides(opts.sets));
+  if (opts.json) {
+    std::printf("%s\n", scene_json(s).dump(2).c_str());
+    return 0;
+  }
   const Topology& topo = s.source->topology();
   std::printf("scene       %s\n", s.name.c_str());
   std::printf("            %s\n", s.description.c_str());
@@ -152,33 +251,16 @@ int scenes_info(const ScenesOptions& opts) {
     for (const auto& [a, b] : topo.queries.inter)
       std::printf("query       inter %s - %s\n", topo.objects[a].name.c_str(), topo.objects[b].name.c_str());
   }
-  if (s.source->num_frames() > 0) {
-    std::vector<vec3d> first;
-    s.source->positions(0, first);
-    const FloatSpacing fs = float_spacing(topo, first, {0, 0, 0});
-    std::printf("precision   median edge %.4g, float spacing %.4g at the largest coordinate %.6g%s\n", fs.median_edge,
-                fs.spacing, fs.largest, fs.too_coarse() ? ": too coarse for fp32 (use --box-precision fp64)" : "");
-  }
-  std::vector<vec3d> v, prev;
-  for (uint32_t f = 0; f < s.source->num_frames(); ++f) {
-    s.source->positions(f, v);
-    vec3d lo = v.empty() ? vec3d{} : v[0], hi = lo;
-    double max_move = 0, sum_move = 0;
-    for (size_t k = 0; k < v.size(); ++k) {
-      lo = {std::min(lo.x, v[k].x), std::min(lo.y, v[k].y), std::min(lo.z, v[k].z)};
-      hi = {std::max(hi.x, v[k].x), std::max(hi.y, v[k].y), std::max(hi.z, v[k].z)};
-      if (!prev.empty()) {
-        const double dx = v[k].x - prev[k].x, dy = v[k].y - prev[k].y, dz = v[k].z - prev[k].z;
-        const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-        max_move = std::max(max_move, d);
-        sum_move += d;
-      }
-    }
-    std::printf("frame %4u  box [%.4g %.4g %.4g]..[%.4g %.4g %.4g]", f, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
-    if (!prev.empty() && !v.empty())
-      std::printf("  vertex motion mean %.4g max %.4g", sum_move / double(v.size()), max_move);
+  if (const auto fs = first_frame_spacing(s))
+    std::printf("precision   median edge %.4g, float spacing %.4g at the largest coordinate %.6g%s\n", fs->median_edge,
+                fs->spacing, fs->largest, fs->too_coarse() ? ": too coarse for fp32 (use --box-precision fp64)" : "");
+  const std::vector<FrameExtent> extents = frame_extents(s);
+  for (size_t f = 0; f < extents.size(); ++f) {
+    const FrameExtent& e = extents[f];
+    std::printf("frame %4zu  box [%.4g %.4g %.4g]..[%.4g %.4g %.4g]", f, e.lo.x, e.lo.y, e.lo.z, e.hi.x, e.hi.y,
+                e.hi.z);
+    if (e.moved) std::printf("  vertex motion mean %.4g max %.4g", e.mean_move, e.max_move);
     std::printf("\n");
-    prev = v;
   }
   return 0;
 }

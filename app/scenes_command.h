@@ -12,6 +12,7 @@ struct ScenesOptions {
   std::string scenes_dir;
   std::string scene;
   std::vector<std::string> sets;  // generator overrides, key=value
+  bool json = false;              // info: JSON instead of text
   std::string out_dir;            // generate
   bool overwrite = false;         // generate: replace the frames an earlier generation left in out_dir
 };

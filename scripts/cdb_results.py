@@ -24,10 +24,11 @@ import numpy as np
 # Scenes with declared queries: /frames/pairs_self, /frames/pairs_inter, /summary pairs_self_mean,
 # pairs_inter_mean (optional: other scenes and older files lack them).
 SUPPORTED_SCHEMA = 5
-# What `cdbench compare` matches runs on besides the pipeline (app/compare_command.cpp):
-# the options that change the pair set or how time is measured.
+# What `cdbench compare` matches runs on besides the pipeline (app/compare_command.cpp,
+# kIdentityOptions, in its order): the options that change the pair set or how time is
+# measured. Not the run's --label, a display name.
 IDENTITY_OPTIONS = ["skip-adjacent", "box-precision", "box-margin", "boxes", "refit-every", "check",
-                    "contact-distance", "contact-substeps", "cold", "phase-timing"]
+                    "contact-distance", "contact-substeps", "cold", "phase-timing", "warmup-ms"]
 # Root attributes every file has from its creation (schema 1 on); a file without them is not ours.
 REQUIRED_ATTRS = ["status", "schema_version", "scene", "pipeline", "device_name", "git_sha",
                   "triangles", "frame_first", "frame_last", "warmup"]

@@ -37,9 +37,26 @@ TEST(Estimate, OverRunsIsStudentT) {
   EXPECT_EQ(e.basis, CiBasis::repeats);
   EXPECT_EQ(e.n, 3u);
   EXPECT_DOUBLE_EQ(e.value, 11);
-  const double half = 4.3027 / std::sqrt(3.0);  // t(2) * sd 1 / sqrt(3)
-  EXPECT_NEAR(e.lo, 11 - half, 1e-9);
-  EXPECT_NEAR(e.hi, 11 + half, 1e-9);
+  // t(2) * sd 1 / sqrt(3), on the log scale: 11 * exp(-+half / 11).
+  const double half = 4.3027 / std::sqrt(3.0);
+  EXPECT_NEAR(e.lo, 11 * std::exp(-half / 11), 1e-3);
+  EXPECT_NEAR(e.hi, 11 * std::exp(half / 11), 1e-3);
+}
+
+TEST(Estimate, WideSpreadStaysPositive) {
+  // Mean 3.7, sd 4.95: the linear interval 3.7 -+ 12.7 * 4.95 / sqrt(2) would reach -40.8.
+  const Estimate runs = estimate_over_runs({0.2, 7.2});
+  EXPECT_GT(runs.lo, 0);
+  EXPECT_GT(runs.hi, runs.value);
+  const Estimate times = estimate_over_runs({0.5, 0.6, 9.0});
+  EXPECT_GT(times.lo, 0);
+  EXPECT_LT(times.lo, 0.5);  // wide: it still covers the smallest time
+  // Per-frame noise of 100% over 2 passes: sd <= the value, t(1) 12.7.
+  const Estimate passes = estimate_over_passes({2, 2}, {1.0, 1.0}, 2, Metric::mean);
+  EXPECT_GT(passes.lo, 0);
+  EXPECT_LT(passes.lo, 2);
+  // A mean over frames uses the same interval.
+  EXPECT_GT(estimate_over_frames({0.5, 0.6, 9.0}, Metric::mean).lo, 0);
 }
 
 TEST(Estimate, OneRunIsUnbounded) {
@@ -71,8 +88,8 @@ TEST(Estimate, PassesBoundFromTheFrameNoise) {
   EXPECT_EQ(e.basis, CiBasis::passes);
   EXPECT_EQ(e.n, 4u);
   const double half = 3.1824 * 0.2 / 2;
-  EXPECT_NEAR(e.lo, 2 - half, 1e-9);
-  EXPECT_NEAR(e.hi, 2 + half, 1e-9);
+  EXPECT_NEAR(e.lo, 2 * std::exp(-half / 2), 1e-3);
+  EXPECT_NEAR(e.hi, 2 * std::exp(half / 2), 1e-3);
 }
 
 TEST(MannWhitney, ExactSmallSamples) {

@@ -101,6 +101,12 @@ check "verify with co-vertex filtering, sweep oracle" 0 "all pipelines match the
 check "scene objects and queries" 0 "query       inter cloth - ball" -- "$cdbench" scenes info funnel-inter --set frames=1
 check "scenes info takes --scene as run does" 0 "query       inter cloth - ball" -- \
   "$cdbench" scenes info --scene funnel-inter --set frames=1
+# scenes info --json: the text's fields as one object, the numbers exact.
+"$cdbench" scenes info funnel-inter --set frames=2 --set res=8 --json >"$tmp/info.json" 2>"$tmp/info.err"
+check "scenes info --json has the text's fields" 0 "^funnel-inter 2 frames, inter cloth-[a-z]+, boxes ok, motion null then [0-9.e-]+$" -- \
+  "$python" -c "import json, sys; j = json.load(open(sys.argv[1])); f = j['frame_extents']; print(j['scene'], j['frames'], 'frames, inter ' + '-'.join(j['queries']['inter'][0]) + ',', 'boxes ok,' if all(len(e['box_min']) == 3 and all(a <= b for a, b in zip(e['box_min'], e['box_max'])) for e in f) else 'boxes bad,', 'motion', json.dumps(f[0]['motion_mean']), 'then', f[1]['motion_mean'])" "$tmp/info.json"
+check "scenes info --json agrees with the text" 0 "^triangles [0-9]+ [0-9]+ same$" -- \
+  bash -c "t=\$('$cdbench' scenes info funnel-inter --set frames=2 --set res=8 | awk '/^triangles/ {print \$2}'); j=\$('$python' -c \"import json; print(json.load(open('$tmp/info.json'))['triangles'])\"); echo triangles \$t \$j \$([[ \$t == \$j ]] && echo same || echo differ)"
 check "declared queries verify" 0 "all pipelines match the oracle" -- "$cdbench" verify --device cpu --scene funnel-inter --frames 0:3
 # Scenes from packaged models (scripts/install-deps.sh --scenes --scenes-extra; CI installs them).
 check "MD2 keyframes scene" 0 "^frames +198" -- "$cdbench" scenes info sydney-md2

@@ -43,6 +43,31 @@ check "allow-mismatch compares, flagged" 0 "\*\*MISMATCH: --box-margin: '0(\.0)?
   "$cdbench" compare "$tmp/a.h5" "$tmp/margin.h5" --allow-mismatch
 has "fatter boxes: other pairs" "$tmp/out" "\*\*DIFFER in [1-9][0-9]* of 6 frames\*\*"
 
+# Runs of one side only are rows of their own, alike from either side, and do not stop the
+# comparison: A holds a and skip, B a copy of a and margin.
+mkdir -p "$tmp/sideA" "$tmp/sideB"
+cp "$tmp/a.h5" "$tmp/skip.h5" "$tmp/sideA/"
+cp "$tmp/a-copy.h5" "$tmp/margin.h5" "$tmp/sideB/"
+check "a run of A only is a row" 0 "\| — \| — \|  \| only in A \| — \| nearest B [^|]*a-copy\.h5: --skip-adjacent: 'true' in A, 'false' in B( \||;)" -- \
+  "$cdbench" compare "$tmp/sideA" "$tmp/sideB"
+has "a run of B only is a row" "$tmp/out" "^\| funnel\[res=16\] \| c \| cpu \| — \| — \| [0-9.]+ \| \[[0-9.]+, [0-9.]+\] over frames n=5 \|  \| only in B \| — \| nearest A [^|]*sideA/a\.h5: --box-margin: '0(\.0)?' in A, '0\.5' in B( \||;)"
+has "the matching runs are compared" "$tmp/out" "^\| funnel\[res=16\] \| c \| cpu \| [0-9.]+ \| .* \| same \(6 frames\) \|"
+has "each one-sided run is named on stderr" "$tmp/out" "B run [^ ]*margin\.h5 matches no run of A, listed as only in B"
+check "the other way round, the other side" 0 "\| only in A \| — \| nearest B [^|]*sideA/a\.h5: --box-margin: '0\.5' in A, '0(\.0)?' in B( \||;)" -- \
+  "$cdbench" compare "$tmp/sideB" "$tmp/sideA"
+has "and A's former run is B's now" "$tmp/out" "\| only in B \| — \| nearest A [^|]*a-copy\.h5: --skip-adjacent: 'false' in A, 'true' in B( \||;)"
+# Two runs of B of one identity, other tuning knobs: the one of A's configuration pairs, the
+# other is B's only, said so.
+mkdir -p "$tmp/tuned"
+cp "$tmp/cycle2.h5" "$tmp/tuned/cycle2-copy.h5"
+cp "$tmp/cycle3.h5" "$tmp/tuned/"
+check "another tuning of the same identity is B's only" 0 "\| only in B \| — \| nearest A [^|]*cycle2\.h5 pairs with another run of this identity \(other tuning options\)" -- \
+  "$cdbench" compare "$tmp/cycle2.h5" "$tmp/tuned"
+check "one-sided rows in CSV: verdict, no value of the other side" 0 "^only in A,,;only in B,,$" -- \
+  "$python" -c "import csv, subprocess, sys; rows = list(csv.DictReader(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[3], '--csv'], capture_output=True, text=True).stdout.splitlines())); print(';'.join(','.join((r['verdict'], r['b_ms'] if r['verdict'] == 'only in A' else r['a_ms'], r['pair_frames'])) for r in rows if r['verdict'].startswith('only')))" "$cdbench" "$tmp/sideA" "$tmp/sideB"
+check "one-sided rows in JSON: no files of the other side" 0 "^\[\] \[\]$" -- \
+  "$python" -c "import json, subprocess, sys; rows = json.loads(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[3], '--json'], capture_output=True, text=True).stdout)['rows']; print(*[r['files_b'] if r['verdict'] == 'only in A' else r['files_a'] for r in rows if r['verdict'].startswith('only')])" "$cdbench" "$tmp/sideA" "$tmp/sideB"
+
 # Two pipelines, allowed as a mismatch: the same pairs, and brute force (2-3x slower here)
 # never an improvement. Whether it is a regression depends on the machine's noise.
 check "other pipeline compared, flagged" 0 "\| (REGRESSION|within-noise|inconclusive) \| same \(6 frames\) \| \*\*MISMATCH: pipeline: 'c' in A, 'brute' in B\*\*" -- \
@@ -183,6 +208,14 @@ cp "$tmp/b.h5" "$tmp/repeats/cell_r2.h5"
 "$cdbench" run "${scene[@]}" --out "$tmp/repeats/cell_r2.h5" --label r --overwrite >/dev/null 2>&1
 check "directory repeats combine" 0 "over repeats n=2 \|.*over repeats n=2 \|" -- \
   "$cdbench" compare "$tmp/repeats" "$tmp/repeats"
+# A label names a file, it does not tell runs apart: two labels of one configuration pool.
+mkdir -p "$tmp/labelled"
+cp "$tmp/a.h5" "$tmp/b.h5" "$tmp/labelled/"
+check "files of other labels pool as repeats" 0 "over repeats n=2 \|.*over repeats n=2 \|" -- \
+  "$cdbench" compare "$tmp/labelled" "$tmp/labelled"
+has "each pooled file is named with its label" "$tmp/out" "a\.h5 \[before\] [^ ]*b\.h5 \[after\] \(commit"
+check "the CSV lists both labels" 0 "^before, after$" -- \
+  "$python" -c "import csv, sys, subprocess; print(next(csv.DictReader(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[2], '--csv'], capture_output=True, text=True).stdout.splitlines()))['label_a'])" "$cdbench" "$tmp/labelled"
 
 # Stable machine-readable output: the same CSV header whatever the inputs.
 "$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --csv >"$tmp/csv1" 2>/dev/null
@@ -193,7 +226,7 @@ if [[ "$(head -1 "$tmp/csv1")" == "$(head -1 "$tmp/csv2")" && "$(head -1 "$tmp/c
 else
   fail "compare CSV headers differ: $(head -1 "$tmp/csv1") / $(head -1 "$tmp/csv2")"
 fi
-has "CSV row of the regression" "$tmp/csv2" ",(50(\.0*[0-9]*)?|49\.9+[0-9]*),REGRESSION,0\.007936507936507936,,,6,0,same,,"
+has "CSV row of the regression" "$tmp/csv2" ",(50(\.0*[0-9]*)?|49\.9+[0-9]*),REGRESSION,0\.007936507936507936,,,6,0,([0-9a-f]{16}),\3,,"
 # Full precision: every number of the CSV row is the very double of compare --json (which
 # writes doubles that read back exactly), the exact test's p = 2 / C(10, 5) among them.
 "$cdbench" compare "$tmp/base.h5" "$tmp/slow.h5" --json >"$tmp/json2" 2>/dev/null
@@ -209,10 +242,17 @@ print("differ: " + ", ".join(bad) if bad else f"exact: {len(numbers)} numbers")
 PY
 check "an unbounded interval end is inf in CSV" 0 "^funnel\[res=16\],c,cpu,before,before,p95,[0-9.e-]+,[0-9.e-]+,inf,5,frames," -- \
   "$cdbench" compare "$tmp/a.h5" "$tmp/a-copy.h5" --metric p95 --csv
-has "CSV row of the mismatch" "$tmp/csv3" ",6,0,same,\"pipeline: 'c' in A, 'brute' in B\","
+has "CSV row of the mismatch" "$tmp/csv3" ",6,0,([0-9a-f]{16}),\1,\"pipeline: 'c' in A, 'brute' in B\","
 check "JSON parses" 0 '"verdict": "REGRESSION"' -- \
   bash -c "'$cdbench' compare '$tmp/base.h5' '$tmp/slow.h5' --json 2>/dev/null | $python -m json.tool"
-has "JSON has the input hash comparison" "$tmp/out" '"input_hash": "same"'
+# Each side's content hash as its files recorded it, and each side's files as a list.
+check "JSON has both hashes and the files as lists" 0 "^hashes [0-9a-f]{16} [0-9a-f]{16}; files \['[^']*base\.h5'\] \['[^']*slow\.h5'\]$" -- \
+  "$python" -c "import json, sys; r = json.load(open(sys.argv[1]))['rows'][0]; print('hashes', r['input_hash_a'], r['input_hash_b'] + ';', 'files', r['files_a'], r['files_b'])" "$tmp/json2"
+"$cdbench" compare "$tmp/base.h5" "$tmp/otherinput.h5" --allow-mismatch --json >"$tmp/json-other" 2>/dev/null
+check "JSON of other inputs names both hashes" 0 "^[0-9a-f]{16} 0123456789abcdef$" -- \
+  "$python" -c "import json, sys; r = json.load(open(sys.argv[1]))['rows'][0]; print(r['input_hash_a'], r['input_hash_b'])" "$tmp/json-other"
+check "JSON of repeats lists every file" 0 "^2 2$" -- \
+  "$python" -c "import json, subprocess, sys; r = json.loads(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[2], '--json'], capture_output=True, text=True).stdout)['rows'][0]; print(len(r['files_a']), len(r['files_b']))" "$cdbench" "$tmp/labelled"
 
 # report: the commit column, the label, the same CSV columns for any set of files.
 check "report has the commit column" 0 "\| label \| commit \| input \| (warning \| )?status \|" -- "$cdbench" report "$tmp/a.h5" "$tmp/skip.h5"
@@ -237,6 +277,34 @@ pairs = {"mean_ms": "t_total_ms_mean", "median_ms": "t_total_ms_median", "p95_ms
 bad = [k for k, a in pairs.items() if float(row[k]) != float(s[a])]
 print("differ: " + ", ".join(bad) if bad else "exact")
 PY
+# report --json: one object per file, the CSV's columns as keys in their order, every
+# number the very double of the CSV cell, the options an object.
+"$cdbench" report --csv "$tmp/a.h5" "$tmp/c3.h5" >"$tmp/rcsv3"
+"$cdbench" report --json "$tmp/a.h5" "$tmp/c3.h5" >"$tmp/rjson3"
+check "report --json has the CSV's statistics exactly" 0 "^2 runs, [1-9][0-9]* numbers exact, options an object$" -- "$python" - "$tmp/rcsv3" "$tmp/rjson3" <<'PY'
+import csv, json, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+out = json.load(open(sys.argv[2]))
+runs = out["runs"]
+bad = [] if out["command"] == "report" and len(runs) == len(rows) else ["not one object per file"]
+numbers = 0
+for row, run in zip(rows, runs):
+    keys = ["options" if k == "options_json" else k for k in row]
+    bad += [] if list(run) == keys else [f"keys {list(run)} vs {keys}"]
+    for k, cell in row.items():
+        v = run["options" if k == "options_json" else k]
+        if k == "options_json":
+            bad += [] if v == json.loads(cell) and isinstance(v, dict) else ["options"]
+        elif isinstance(v, (int, float)) and not isinstance(v, bool):
+            numbers += 1
+            bad += [] if float(cell) == v else [f"{k}: {cell} vs {v}"]
+        elif v is None:
+            bad += [] if cell in ("", "inf", "-inf", "nan") else [f"{k}: {cell} vs null"]
+        else:
+            bad += [] if cell == v else [f"{k}: {cell!r} vs {v!r}"]
+print("differ: " + "; ".join(bad) if bad else f"{len(runs)} runs, {numbers} numbers exact, options an object")
+PY
+check "report --json and --csv are refused together" 2 "excludes" -- "$cdbench" report --json --csv "$tmp/a.h5"
 # read_results --csv is CSV alone: csv.DictReader reads every frame of every file.
 "$python" "$root/scripts/read_results.py" --csv "$tmp/a.h5" "$tmp/c5.h5" >"$tmp/frames.csv"
 check "read_results --csv is pure CSV" 0 "^12 rows, exact$" -- "$python" - "$tmp/frames.csv" "$tmp/a.h5" <<'PY'
@@ -259,6 +327,11 @@ has "run --json: the summary went to stderr" "$tmp/json.err" "^summary: 5 frames
 check "read_results knows this schema" 0 "^label: before$" -- "$python" "$root/scripts/read_results.py" --summary "$tmp/a.h5"
 if grep -q "newer than" "$tmp/out"; then fail "read_results warns about the schema"; else echo "ok   no schema warning"; fi
 has "read_results shows the input hash" "$tmp/out" "^input_hash: [0-9a-f]{16}$"
+# The scripts match runs as compare does: another warm-up is another identity, another
+# label is not.
+check "the scripts' identity agrees with compare's" 0 "^warm-up: --warmup-ms: 1000(\.0)? vs 0(\.0)?; label: none$" -- \
+  "$python" -c "import sys; sys.path.insert(0, sys.argv[1]); import cdb_results as c; a, cold, b = (c.Run(p) for p in sys.argv[2:]); print('warm-up: ' + '; '.join(c.identity_differences(a, cold)) + '; label: ' + ('; '.join(c.identity_differences(a, b)) or 'none'))" \
+  "$root/scripts" "$tmp/a.h5" "$tmp/cold-start.h5" "$tmp/b.h5"
 mkdir -p "$tmp/tp"
 run "$tmp/tp/grid-skip.h5" --pipeline grid --skip-adjacent
 run "$tmp/tp/c.h5" --pipeline c
