@@ -53,7 +53,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 CLI::App* add_picture_command(CLI::App& app, CommonOptions& o, PictureOptions& p) {
   auto* picture = app.add_subcommand(
-      "picture", "draw one frame of a scene as a PNG picture, the triangles in its pairs marked red-orange");
+      "picture", "draw one frame as a PNG, the triangles in its pairs red-orange");
   picture
       ->add_option("--pipeline", p.pipeline,
                    "the pipeline whose pairs are marked: one of " + pipeline_list() +

@@ -47,4 +47,7 @@ check "--out under a file" 1 "--out $tmp/plainfile/f.png: cannot create director
   "$cdbench" picture --out "$tmp/plainfile/f.png"
 check "--size too small" 2 "--size" -- "$cdbench" picture --size 4
 check "an unknown view" 2 "--view" -- "$cdbench" picture --view top
+COLUMNS=100 "$cdbench" picture --help >"$tmp/help.txt" 2>&1
+[[ $(awk 'length > 100' "$tmp/help.txt" | wc -l) -eq 0 ]] && echo "ok   picture --help fits 100 columns" ||
+  fail "picture --help: lines over 100 columns"
 finish picture
