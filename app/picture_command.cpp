@@ -97,17 +97,16 @@ int picture_command(const CommonOptions& o, const PictureOptions& p) {
   if (p.frame >= frames)
     fail_usage("--frame " + std::to_string(p.frame) + ": scene " + scene.name + " has " + std::to_string(frames) +
                " frame" + (frames == 1 ? "" : "s") + " (0 to " + std::to_string(frames - 1) + ")");
-  std::vector<vec3d> positions;
-  // Swept boxes span the interval from the frame before; the first frame's are its own.
-  pipeline->set_topology(topo);
-  if (o.config.boxes.swept && p.frame > 0) {
-    scene.source->positions(p.frame - 1, positions);
-    pipeline->run_frame(positions);
-  }
+  // Swept boxes span the interval from the frame before (the first frame's are its own),
+  // read first: a simulated scene steps forward from it.
+  std::vector<vec3d> previous, positions;
+  if (o.config.boxes.swept && p.frame > 0) scene.source->positions(p.frame - 1, previous);
   scene.source->positions(p.frame, positions);
   const double load_s = seconds_since(start);
 
   const auto pairs_start = std::chrono::steady_clock::now();
+  pipeline->set_topology(topo);
+  if (!previous.empty()) pipeline->run_frame(previous);
   pipeline->run_frame(positions);
   const std::vector<PrimPair> pairs = pipeline->sorted_pairs();
   const std::vector<uint8_t> marked = faces_in_pairs(pairs, topo.faces.size());
@@ -129,8 +128,9 @@ int picture_command(const CommonOptions& o, const PictureOptions& p) {
     by_query = " (" + std::to_string(q.self) + " self, " + std::to_string(q.inter) + " inter)";
   }
   std::printf("picture: %s, %ux%u pixels, view %s\n", p.out.c_str(), p.size, p.size, p.view.c_str());
-  std::printf("  scene     %s frame %u (of %u), %zu triangles, %zu objects\n", scene.name.c_str(), p.frame, frames,
-              topo.faces.size(), topo.objects.empty() ? size_t(1) : topo.objects.size());
+  const size_t objects = topo.objects.empty() ? 1 : topo.objects.size();
+  std::printf("  scene     %s frame %u (of %u), %zu triangles, %zu object%s\n", scene.name.c_str(), p.frame, frames,
+              topo.faces.size(), objects, objects == 1 ? "" : "s");
   std::printf("  marked    %zu triangles (red-orange) in %zu pairs%s of pipeline %s on %s%s\n", marked_faces,
               pairs.size(), by_query.c_str(), p.pipeline.c_str(), device.c_str(),
               o.config.skip_adjacent ? "" : "; triangles sharing a vertex are pairs too (--skip-adjacent: not)");

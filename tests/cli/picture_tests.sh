@@ -29,6 +29,16 @@ pixels "picture without pairs" "$tmp/apart.png" 64
 if ((drawn > 0 && contact == 0)); then echo "ok   no pairs: $drawn pixels drawn, none in the contact colour"
 else fail "no pairs: $contact of $drawn drawn pixels in the contact colour"; fi
 
+# Swept boxes span frame 0 to 1 of a fast soup: more pairs than frame 1's discrete boxes.
+soup=(--scene random-100k --set triangles=3000 --set jitter=1 --set frames=2 --frame 1 --size 32)
+pairs_of() { sed -nE 's/.* in ([0-9]+) pairs .*/\1/p' "$tmp/out"; }
+check "discrete boxes" 0 "pairs of pipeline sweep" -- "$cdbench" picture "${soup[@]}" --out "$tmp/discrete.png"
+discrete=$(pairs_of)
+check "swept boxes" 0 "pairs of pipeline sweep" -- "$cdbench" picture "${soup[@]}" --boxes swept --out "$tmp/swept.png"
+swept=$(pairs_of)
+if [[ -n $discrete && -n $swept && $swept -gt $discrete ]]; then echo "ok   swept boxes: $swept pairs, discrete $discrete"
+else fail "swept boxes: '$swept' pairs, discrete '$discrete'"; fi
+
 for view in x y z; do
   check "view $view" 0 "view $view" -- "$cdbench" picture --view "$view" --size 32 --pipeline hash --out "$tmp/$view.png"
   pixels "view $view" "$tmp/$view.png" 32
