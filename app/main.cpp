@@ -1,6 +1,6 @@
 // cdbench command line: builds the commands' options and runs the one given. Each command
 // lives in its own file (run_command, verify_command, scenes_command, sweep_command,
-// compare_command; report in results_table); the options they share in options.h. Nothing algorithmic lives here.
+// compare_command, picture_command; report in results_table); the options they share in options.h. Nothing algorithmic lives here.
 #include <CLI/CLI.hpp>
 
 #include <csignal>
@@ -22,6 +22,7 @@
 #include "help_format.h"
 #include "library_errors.h"
 #include "options.h"
+#include "picture_command.h"
 #include "plan_table.h"
 #include "results_table.h"
 #include "run_command.h"
@@ -79,7 +80,7 @@ void check_command(const CLI::App& app, int argc, char** argv) {
     if (d < best) best = d, nearest = command->get_name();
   }
   fail_usage("unknown command '" + given + "'" + (nearest.empty() ? "" : " (did you mean " + nearest + "?)") +
-             "; the commands: run, verify, report, compare, sweep, scenes (cdbench --help)");
+             "; the commands: run, verify, report, compare, sweep, scenes, picture (cdbench --help)");
 }
 
 int run_cli(int argc, char** argv) {
@@ -98,7 +99,7 @@ int run_cli(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text());
 
-  CommonOptions o;  // run and verify
+  CommonOptions o;  // run, verify and picture
   RunOptions r;
   CLI::App* run = add_run_command(app, o, r);
   VerifyOptions v;
@@ -130,6 +131,8 @@ int run_cli(int argc, char** argv) {
   CLI::App* sweep = add_sweep_command(app, w);
   CompareOptions cmp;
   CLI::App* compare = add_compare_command(app, cmp);
+  PictureOptions pic;
+  CLI::App* picture = add_picture_command(app, o, pic);
 
   try {
     check_command(app, argc, argv);
@@ -156,6 +159,7 @@ int run_cli(int argc, char** argv) {
                                                            : ReportFormat::markdown);
     if (*sweep) return sweep_command(w, *run);
     if (*compare) return compare_command(cmp);
+    if (*picture) return picture_command(o, pic);
   } catch (const UsageError& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "cdbench: error: %s\n", e.what());
