@@ -163,6 +163,16 @@ Samples samples_of(const RunGroup& g, Metric m) {
   return s;
 }
 
+// One value per process (file), its frames' mean over its passes. Where the sides ran
+// different plans, a process's passes replay the one plan it chose, so they share its
+// effect: they are not independent samples of the build, its processes are.
+Samples process_samples_of(const RunGroup& g, Metric m) {
+  Samples s;
+  s.over = CiBasis::repeats;
+  for (const RunFile& f : g.files) s.values.push_back(metric_of(f.measured_ms, m));
+  return s;
+}
+
 Estimate estimate(const RunGroup& g, const Samples& s, Metric m) {
   if (s.values.size() > 1) {
     Estimate e = estimate_over_runs(s.values);
@@ -614,15 +624,24 @@ int compare_command(const CompareOptions& c) {
     const Samples sa = samples_of(*r.a, m), sb = samples_of(*r.b, m);
     r.ea = estimate(*r.a, sa, m);
     r.eb = estimate(*r.b, sb, m);
-    r.decision = decide(sa.values, sb.values, c.threshold_pct, poor_text(r));
+    compare_plans(r);
+    const bool plans_differ = !r.plan_differ.empty();
+    const Samples pa = plans_differ ? process_samples_of(*r.a, m) : sa, pb = plans_differ ? process_samples_of(*r.b, m) : sb;
+    r.decision = decide(pa.values, pb.values, c.threshold_pct, poor_text(r));
+    const bool too_few = r.decision.verdict == Verdict::inconclusive && r.decision.why.rfind("too few", 0) == 0;
     const std::string note = !sa.note.empty() ? sa.note : sb.note;
-    if (r.decision.verdict == Verdict::inconclusive && !note.empty() && r.decision.why.rfind("too few", 0) == 0)
+    if (too_few && plans_differ)
+      r.decision.why = "plans differ at frames " + frame_list_text(r.plan_differ) + ", and " +
+                       std::to_string(pa.values.size()) + " and " + std::to_string(pb.values.size()) +
+                       " processes are too few to test: a process's passes replay its one plan, so only "
+                       "processes are samples; replay one plan on both sides (--front-cycle FILE, as "
+                       "bench/interleave.sh does) or give each side 4 or more runs";
+    else if (too_few && !note.empty())
       r.decision.why += " (" + note + ")";
     r.change = r.decision.shift_pct;
     r.v = r.decision.verdict;
     regressed |= r.v == Verdict::regression;
     compare_pairs(r);
-    compare_plans(r);
   }
   if (c.json) {
     nlohmann::json out = {{"metric", metric_name(m)}, {"threshold_pct", c.threshold_pct}, {"rows", nlohmann::json::array()}};

@@ -10,10 +10,10 @@ check "run prints environment" 0 "commit [0-9a-f]+" -- "$cdbench" run --device c
 hogs=()
 for _ in $(seq "$(nproc)"); do (while :; do :; done) & hogs+=($!); done
 check "a run on a busy host says so" 0 "^warning: the host is busy before the run \\([0-9]+% of its [0-9]+ cores in use by other work\\)" -- \
-  "$cdbench" run --device cpu --quiet --frames 0:2 --load-window-ms 300 --out "$tmp/busy.h5"
+  "$cdbench" run --device cpu --quiet --frames 0:2 --load-window-ms 300 --out "$tmp/busy-host.h5"
 kill "${hogs[@]}" 2>/dev/null; wait "${hogs[@]}" 2>/dev/null
-check "report flags the run made on a busy host" 0 "busy\\.h5 \\|.*poor conditions: host busy before the run \\([0-9]+%\\)" -- \
-  "$cdbench" report "$tmp/busy.h5"
+check "report flags the run made on a busy host" 0 "busy-host\\.h5 \\|.*poor conditions: host busy before the run \\([0-9]+%\\)" -- \
+  "$cdbench" report "$tmp/busy-host.h5"
 "$cdbench" run --device cpu --quiet --frames 0:2 --load-window-ms 0 --out "$tmp/quiet.h5" >/dev/null 2>&1
 check "--load-window-ms 0 samples nothing" 0 "^absent$" -- "$python" -c \
   'import h5py, math, sys; v = h5py.File(sys.argv[1]).attrs["host_busy_before"]; print("absent" if math.isnan(v) else v)' "$tmp/quiet.h5"

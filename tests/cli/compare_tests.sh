@@ -175,6 +175,26 @@ check "report reads the schema 4 file" 0 "schema4\.h5 \|.*\| 5 \(means only\) \|
 # Other plans: the runs pair (--front-cycle is a tuning knob), flagged with the frames.
 check "other plans are flagged with their frames" 0 "\*\*PLANS DIFFER at frames [0-9][-0-9,]*\*\*" -- \
   "$cdbench" compare "$tmp/cycle2.h5" "$tmp/cycle3.h5"
+# The same two files with their conditions marked good, so that the plans alone decide:
+# one process a side is too few; four copies a side are tested over the processes.
+mkdir -p "$tmp/plans-a" "$tmp/plans-b"
+$python - "$tmp/cycle2.h5" "$tmp/cycle3.h5" "$tmp/plans-a" "$tmp/plans-b" <<'PY'
+import shutil, sys
+import h5py
+for src, side in ((sys.argv[1], sys.argv[3]), (sys.argv[2], sys.argv[4])):
+    for k in range(1, 5):
+        dst = f"{side}/r{k}.h5"
+        shutil.copy(src, dst)
+        with h5py.File(dst, "r+") as f:
+            f.attrs["noise_warning"] = ""
+            f.attrs["conditions"] = "good"
+            f.attrs["conditions_notes"] = ""
+PY
+check "other plans in one process a side: inconclusive, processes too few" 0 "\\| inconclusive \\|.*plans differ at frames [0-9][-0-9,]*, and 1 and 1 processes are too few to test" -- \
+  "$cdbench" compare "$tmp/plans-a/r1.h5" "$tmp/plans-b/r1.h5"
+"$cdbench" compare "$tmp/plans-a" "$tmp/plans-b" --csv >"$tmp/plans4.csv" 2>/dev/null
+check "other plans, 4 processes a side: tested over the processes" 0 "^(REGRESSION|improvement|within-noise|unchanged) " -- \
+  "$python" -c "import csv, sys; r = next(csv.DictReader(open(sys.argv[1]))); print(r['verdict'], r['p_value'], r['why'])" "$tmp/plans4.csv"
 "$cdbench" compare "$tmp/cycle2.h5" "$tmp/cycle3.h5" --csv >"$tmp/plans.csv" 2>/dev/null
 check "the CSV names the frames" 0 "^[1-9][-0-9,]*$" -- \
   "$python" -c "import csv, sys; print(next(csv.DictReader(open(sys.argv[1])))['plan_differ'])" "$tmp/plans.csv"
@@ -329,7 +349,7 @@ if grep -q "newer than" "$tmp/out"; then fail "read_results warns about the sche
 has "read_results shows the input hash" "$tmp/out" "^input_hash: [0-9a-f]{16}$"
 # The scripts match runs as compare does: another warm-up is another identity, another
 # label is not.
-check "the scripts' identity agrees with compare's" 0 "^warm-up: --warmup-ms: 1000(\.0)? vs 0(\.0)?; label: none$" -- \
+check "the scripts' identity agrees with compare's" 0 "^warm-up: --warmup-ms: 0(\.0)? vs 1(\.0)?; label: none$" -- \
   "$python" -c "import sys; sys.path.insert(0, sys.argv[1]); import cdb_results as c; a, cold, b = (c.Run(p) for p in sys.argv[2:]); print('warm-up: ' + '; '.join(c.identity_differences(a, cold)) + '; label: ' + ('; '.join(c.identity_differences(a, b)) or 'none'))" \
   "$root/scripts" "$tmp/a.h5" "$tmp/cold-start.h5" "$tmp/b.h5"
 mkdir -p "$tmp/tp"
