@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "cdbench/core/error.h"
+#include "cdbench/narrow/contacts.h"
 #include "exit_codes.h"
+#include "number_checks.h"
 #include "harness/picture/frame_picture.h"
 #include "harness/picture/png_writer.h"
 #include "path_checks.h"
@@ -77,6 +79,20 @@ CLI::App* add_picture_command(CLI::App& app, CommonOptions& o, PictureOptions& p
       ->check(CLI::IsMember({"x", "y", "z", "iso"}))
       ->group(kOutputGroup)
       ->capture_default_str();
+  picture
+      ->add_option("--mark", p.mark,
+                   "what is marked: pairs (the triangles in the pipeline's pairs) or contacts (those of its pairs "
+                   "whose triangles lie within --contact-distance and share no vertex, by the exact narrow phase)")
+      ->check(CLI::IsMember({"pairs", "contacts"}))
+      ->group(kOutputGroup)
+      ->capture_default_str();
+  picture
+      ->add_option("--contact-distance", p.contact_distance,
+                   "with --mark contacts: how close two triangles are to count as in contact (0: touching or "
+                   "intersecting); the pairs come from boxes grown by --box-margin, so give at least this")
+      ->check(finite_at_least(0))
+      ->group(kOutputGroup)
+      ->capture_default_str();
   picture->add_option("--size", p.size, "the picture's width and height in pixels")
       ->check(CLI::Range(16u, 16384u))
       ->group(kOutputGroup)
@@ -109,7 +125,14 @@ int picture_command(const CommonOptions& o, const PictureOptions& p) {
   if (!previous.empty()) pipeline->run_frame(previous);
   pipeline->run_frame(positions);
   const std::vector<PrimPair> pairs = pipeline->sorted_pairs();
-  const std::vector<uint8_t> marked = faces_in_pairs(pairs, topo.faces.size());
+  std::vector<PrimPair> contacts;
+  if (p.mark == "contacts") {
+    std::vector<vec3f> corners(positions.size());
+    for (size_t v = 0; v < positions.size(); ++v)
+      corners[v] = {float(positions[v].x), float(positions[v].y), float(positions[v].z)};
+    contacts = contacts_apart_from_neighbours(topo.faces, corners, pairs, p.contact_distance);
+  }
+  const std::vector<uint8_t> marked = faces_in_pairs(p.mark == "contacts" ? contacts : pairs, topo.faces.size());
   const double pairs_s = seconds_since(pairs_start);
 
   const auto draw_start = std::chrono::steady_clock::now();
@@ -131,9 +154,15 @@ int picture_command(const CommonOptions& o, const PictureOptions& p) {
   const size_t objects = topo.objects.empty() ? 1 : topo.objects.size();
   std::printf("  scene     %s frame %u (of %u), %zu triangles, %zu object%s\n", scene.name.c_str(), p.frame, frames,
               topo.faces.size(), objects, objects == 1 ? "" : "s");
-  std::printf("  marked    %zu triangles (red-orange) in %zu pairs%s of pipeline %s on %s%s\n", marked_faces,
-              pairs.size(), by_query.c_str(), p.pipeline.c_str(), device.c_str(),
-              o.config.skip_adjacent ? "" : "; triangles sharing a vertex are pairs too (--skip-adjacent: not)");
+  if (p.mark == "contacts")
+    std::printf("  marked    %zu triangles (red-orange) in %zu contacts within %g (sharing no vertex) of %zu pairs%s "
+                "of pipeline %s on %s\n",
+                marked_faces, contacts.size(), double(p.contact_distance), pairs.size(), by_query.c_str(),
+                p.pipeline.c_str(), device.c_str());
+  else
+    std::printf("  marked    %zu triangles (red-orange) in %zu pairs%s of pipeline %s on %s%s\n", marked_faces,
+                pairs.size(), by_query.c_str(), p.pipeline.c_str(), device.c_str(),
+                o.config.skip_adjacent ? "" : "; triangles sharing a vertex are pairs too (--skip-adjacent: not)");
   std::printf("  time      %.2f s: scene and frame %.2f s, pairs %.2f s, drawing %.2f s, PNG %.2f s\n",
               seconds_since(start), load_s, pairs_s, draw_s, write_s);
   return kExitOk;

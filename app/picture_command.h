@@ -18,6 +18,10 @@ struct PictureOptions {
   // An exact pipeline, run on the host in seconds for a million triangles: the pairs of
   // the float boxes, as the oracle has them (verify checks it).
   std::string pipeline = "sweep";
+  // --mark: pairs (the pipeline's pair set) or contacts (those of its pairs whose triangles
+  // lie within contact_distance and share no vertex, by the exact narrow phase).
+  std::string mark = "pairs";
+  float contact_distance = 0.0f;
 };
 
 CLI::App* add_picture_command(CLI::App& app, CommonOptions& o, PictureOptions& p);

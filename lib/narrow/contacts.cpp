@@ -29,6 +29,25 @@ uint64_t count_true_contacts(const std::vector<Tri>& faces, const std::vector<ve
   return contacts;
 }
 
+std::vector<PrimPair> contacts_apart_from_neighbours(const std::vector<Tri>& faces, const std::vector<vec3f>& vertices,
+                                                     const std::vector<PrimPair>& pairs, float distance) {
+  std::vector<uint8_t> touch(pairs.size(), 0);
+  const std::ptrdiff_t n = std::ptrdiff_t(pairs.size());
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const Tri s = faces[pairs[size_t(k)].a], t = faces[pairs[size_t(k)].b];
+    bool shared = false;
+    for (uint32_t u : {s.v0, s.v1, s.v2})
+      for (uint32_t v : {t.v0, t.v1, t.v2}) shared |= u == v;
+    touch[size_t(k)] = !shared && triangles_within(vertices[s.v0], vertices[s.v1], vertices[s.v2], vertices[t.v0],
+                                                   vertices[t.v1], vertices[t.v2], distance);
+  }
+  std::vector<PrimPair> contacts;
+  for (size_t k = 0; k < pairs.size(); ++k)
+    if (touch[k]) contacts.push_back(pairs[k]);
+  return contacts;
+}
+
 uint64_t count_interval_contacts(const std::vector<Tri>& faces, const std::vector<vec3f>& previous,
                                  const std::vector<vec3f>& current, const std::vector<PrimPair>& pairs,
                                  float distance, uint32_t substeps) {

@@ -34,6 +34,12 @@ uint64_t count_interval_contacts(const std::vector<Tri>& faces, const std::vecto
                                  const std::vector<vec3f>& current, const std::vector<PrimPair>& pairs,
                                  float distance, uint32_t substeps);
 
+// The pairs of `pairs` whose closed triangles lie within `distance` (0: share a point) and
+// that share no vertex: the contacts a picture marks (triangles sharing a vertex touch by
+// construction; marked, they would mark every triangle of a mesh).
+std::vector<PrimPair> contacts_apart_from_neighbours(const std::vector<Tri>& faces, const std::vector<vec3f>& vertices,
+                                                     const std::vector<PrimPair>& pairs, float distance);
+
 // True contacts / reported pairs; 1 when there are no pairs (nothing reported wrongly).
 inline double contact_precision(uint64_t contacts, uint64_t pairs) {
   return pairs ? double(contacts) / double(pairs) : 1.0;

@@ -21,6 +21,17 @@ pixels "funnel picture" "$tmp/funnel.png" 96
 if ((drawn > 1000 && contact > 0)); then echo "ok   pairs: $contact of $drawn drawn pixels in the contact colour"
 else fail "pairs: $contact of $drawn drawn pixels in the contact colour"; fi
 
+pairs_contact=$contact
+# --mark contacts: of the same pairs, those of triangles that touch and share no vertex
+# (the cloth on the ball and the funnel): some, and fewer than the pairs mark.
+check "funnel frame 10, contacts" 0 "marked +[1-9][0-9]* triangles \(red-orange\) in [1-9][0-9]* contacts within 0 \(sharing no vertex\) of [1-9][0-9]* pairs" -- \
+  "$cdbench" picture --scene funnel --frame 10 --mark contacts --size 96 --out "$tmp/contacts.png"
+pixels "contacts picture" "$tmp/contacts.png" 96
+if ((contact > 0 && contact < pairs_contact)); then echo "ok   contacts: $contact pixels in the contact colour, pairs $pairs_contact"
+else fail "contacts: $contact pixels in the contact colour, pairs $pairs_contact"; fi
+check "--mark neither pairs nor contacts" 2 "--mark" -- "$cdbench" picture --mark touching --out "$tmp/x.png"
+check "a negative contact distance" 2 "--contact-distance" -- "$cdbench" picture --mark contacts --contact-distance -1 --out "$tmp/x.png"
+
 # 20 small triangles far apart: no pairs, so no pixel in the contact colour.
 check "a frame without pairs" 0 "marked +0 triangles \(red-orange\) in 0 pairs" -- \
   "$cdbench" picture --scene random-100k --set triangles=20 --set size=0.03 --skip-adjacent --size 64 \
