@@ -20,4 +20,9 @@ struct OutputClaim {
 // Error when its directory cannot be created or is not writable. Creates the directory.
 OutputClaim check_output_path(const std::string& path, bool overwrite);
 
+// An output file a command simply replaces (picture --out): a usage error when `path` names
+// a directory (the message suggests `example` in it), Error when its directory cannot be
+// created or the file cannot be written. Creates the directory.
+void check_replaced_output(const std::string& path, const std::string& example);
+
 }  // namespace cdb

@@ -1,51 +1,24 @@
 #include "picture_command.h"
 
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include "cdbench/core/error.h"
+#include "cdbench/geometry/frame_source.h"
 #include "cdbench/narrow/contacts.h"
 #include "exit_codes.h"
 #include "number_checks.h"
 #include "harness/picture/frame_picture.h"
 #include "harness/picture/png_writer.h"
+#include "output_path.h"
 #include "path_checks.h"
 #include "query_pairs.h"
 
 namespace cdb {
 namespace {
-
-// The picture's path, checked before the scene loads: a directory is a usage error; a
-// place that cannot be written an I/O error, as for run --out. An existing file is
-// replaced: a picture is made again in seconds.
-void check_picture_path(const std::string& path) {
-  namespace fs = std::filesystem;
-  const fs::path file(path);
-  if (!file.has_filename() || fs::is_directory(file))
-    fail_usage("--out " + path + ": names a directory; give a file, e.g. " +
-               (file / "frame.png").lexically_normal().string());
-  std::error_code ec;
-  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  fs::create_directories(dir, ec);
-  if (ec) fail("--out " + path + ": cannot create directory " + dir.string() + ": " + ec.message());
-  // Opening is the one test that also holds for root and read-only mounts; appending
-  // leaves an existing file as it is, and a file made here is removed again.
-  const bool existed = fs::exists(file, ec);
-  const bool writable = bool(std::ofstream(file, std::ios::app));
-  const int error = errno;
-  if (writable && !existed) fs::remove(file, ec);
-  if (!writable)
-    fail("--out " + path + ": cannot write " + (existed ? "this file" : "in directory " + dir.string()) + ": " +
-         std::strerror(error));
-}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -105,7 +78,8 @@ int picture_command(const CommonOptions& o, const PictureOptions& p) {
   const std::string device = resolve_device(o.device);
   std::unique_ptr<Pipeline> pipeline = std::move(make_pipelines(o, {p.pipeline}, device).front());
   const PictureView view = parse_picture_view(p.view);
-  check_picture_path(p.out);
+  // Before the scene loads; an existing file is replaced: a picture is made again in seconds.
+  check_replaced_output(p.out, "frame.png");
 
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
@@ -127,9 +101,8 @@ int picture_command(const CommonOptions& o, const PictureOptions& p) {
   const std::vector<PrimPair> pairs = pipeline->sorted_pairs();
   std::vector<PrimPair> contacts;
   if (p.mark == "contacts") {
-    std::vector<vec3f> corners(positions.size());
-    for (size_t v = 0; v < positions.size(); ++v)
-      corners[v] = {float(positions[v].x), float(positions[v].y), float(positions[v].z)};
+    std::vector<vec3f> corners;
+    round_to_float(positions, corners);
     contacts = contacts_apart_from_neighbours(topo.faces, corners, pairs, p.contact_distance);
   }
   const std::vector<uint8_t> marked = faces_in_pairs(p.mark == "contacts" ? contacts : pairs, topo.faces.size());
