@@ -146,6 +146,16 @@ struct Samples {
   std::string note;
 };
 
+// One value per process (file), its frames' mean over its passes. Where the sides ran
+// different plans, a process's passes replay the one plan it chose, so they share its
+// effect: they are not independent samples of the build, its processes are.
+Samples process_samples_of(const RunGroup& g, Metric m) {
+  Samples s;
+  s.over = CiBasis::repeats;
+  for (const RunFile& f : g.files) s.values.push_back(metric_of(f.measured_ms, m));
+  return s;
+}
+
 Samples samples_of(const RunGroup& g, Metric m) {
   Samples s;
   const bool kept = std::all_of(g.files.begin(), g.files.end(), [](const RunFile& f) { return !f.pass_ms.empty(); });
@@ -155,21 +165,11 @@ Samples samples_of(const RunGroup& g, Metric m) {
       for (const auto& pass : f.pass_ms) s.values.push_back(metric_of(pass, m));
     return s;
   }
+  s = process_samples_of(g, m);
   s.over = g.files.size() > 1 ? CiBasis::repeats : CiBasis::frames;
-  for (const RunFile& f : g.files) s.values.push_back(metric_of(f.measured_ms, m));
   const auto means_only = [](const RunFile& f) { return f.pass_ms.empty() && f.passes > 1; };
   if (std::any_of(g.files.begin(), g.files.end(), means_only))
     s.note = "passes not kept (a file before schema 5 holds only their means)";
-  return s;
-}
-
-// One value per process (file), its frames' mean over its passes. Where the sides ran
-// different plans, a process's passes replay the one plan it chose, so they share its
-// effect: they are not independent samples of the build, its processes are.
-Samples process_samples_of(const RunGroup& g, Metric m) {
-  Samples s;
-  s.over = CiBasis::repeats;
-  for (const RunFile& f : g.files) s.values.push_back(metric_of(f.measured_ms, m));
   return s;
 }
 
@@ -373,9 +373,7 @@ std::string labels_of(const RunGroup& g) {
   for (const RunFile& f : g.files)
     if (!f.info.label.empty() && std::find(labels.begin(), labels.end(), f.info.label) == labels.end())
       labels.push_back(f.info.label);
-  std::string s;
-  for (const auto& l : labels) s += (s.empty() ? "" : ", ") + l;
-  return s;
+  return join(labels, ", ");
 }
 
 // The side's files for reading, each with its label: "a.h5 [before] b.h5".
@@ -574,7 +572,7 @@ void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metri
                 md_cell(join(flags, "; ")).c_str());
   }
   std::printf("\nVerdict: Mann-Whitney U over the passes' values (pooled over a side's files; one value per file "
-              "where a file keeps no passes), a difference at p < %.2f whose Hodges-Lehmann shift (the change) "
+              "where a file keeps no passes, or where the sides' plans differ), a difference at p < %.2f whose Hodges-Lehmann shift (the change) "
               "exceeds the threshold; inconclusive where conditions were poor or the samples too few. CI: Student "
               "t over the same values (passes, repeats), on the log scale, else over one pass's frames. A run of "
               "one side only is a row of its own (only in A, only in B), with no verdict.\n",

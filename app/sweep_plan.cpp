@@ -200,13 +200,13 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
 
   // Cartesian product, scenes outermost and repeats innermost, so the cells of one scene
   // run together and a listing reads like a table.
-  for (size_t si = 0; si < scenes.size(); ++si)
+  for (size_t si = 0; si < scenes.size(); ++si) {
+    const SceneEntry& s = scenes[si];
     for (const std::string& p : pipeline_list)
       for (const std::string& d : devices) {
         std::vector<size_t> pick(axes.size(), 0);
         for (;;) {
           for (unsigned r = 1; r <= repeat; ++r) {
-            const SceneEntry& s = scenes[si];
             SweepCell c;
             c.scene = s.spec;
             c.scene_index = si;
@@ -232,6 +232,7 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
           if (a == axes.size()) break;
         }
       }
+  }
 
   std::map<std::string, size_t> seen;
   for (size_t i = 0; i < plan.cells.size(); ++i) {
