@@ -88,7 +88,8 @@ void CudaExec::reserve_side() {
 void CudaExec::begin_side() {
   if (!side_stream_) fail("a side task before reserve_side");
   if (side_pending_) fail("a side task while another runs");
-  cuda_check(cudaEventRecord(side_fork_, stream_), "event record");
+  if (!side_fork_marked_) cuda_check(cudaEventRecord(side_fork_, stream_), "event record");
+  side_fork_marked_ = false;
   cuda_check(cudaStreamWaitEvent(side_stream_, side_fork_, 0), "side stream wait");
   cuda_check(cudaEventRecord(side_begin_, side_stream_), "event record");
   std::swap(stream_, side_stream_);
@@ -98,6 +99,12 @@ void CudaExec::end_side() {
   std::swap(stream_, side_stream_);
   cuda_check(cudaEventRecord(side_end_, side_stream_), "event record");
   side_pending_ = true;
+}
+
+void CudaExec::mark_side_fork() {
+  if (!side_stream_) fail("a side fork before reserve_side");
+  cuda_check(cudaEventRecord(side_fork_, stream_), "event record");
+  side_fork_marked_ = true;
 }
 
 bool CudaExec::side_done() const {

@@ -381,6 +381,11 @@ class CudaExec {
     }
     end_side();
   }
+  // Marks the point on the executor's stream after which the next side task starts: work
+  // queued after the mark and before on_side() runs beside the side task, not before it.
+  // A frame marks the fork where the side's input is ready and queues its own kernels
+  // first, so the side's host launches overlap the frame's device work (front_pipeline.h).
+  void mark_side_fork();
   bool side_done() const;
   double finish_side();
   // Waits for a side task that will not be adopted (a run that ended with it in flight) and
@@ -416,6 +421,7 @@ class CudaExec {
   cudaEvent_t side_fork_ = nullptr;       // the executor's stream's work before the side task
   cudaEvent_t side_begin_ = nullptr, side_end_ = nullptr;  // the side task's span
   bool side_pending_ = false;             // a side task was queued and not finished
+  bool side_fork_marked_ = false;         // mark_side_fork() recorded side_fork_ for the next task
 };
 
 // Phase timer from CUDA events on the executor's stream; a phase that runs several times

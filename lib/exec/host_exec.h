@@ -216,6 +216,7 @@ class HostExec {
     work();
     side_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
   }
+  void mark_side_fork() const {}
   bool side_done() const { return true; }
   void drop_side() {}
   double finish_side() {

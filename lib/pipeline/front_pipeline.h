@@ -26,7 +26,8 @@
 // tree stays exact however stale, front/front.h), and computes the faces' boxes into a
 // second tree; the rest of that tree's build, its self fronts' generate and their ordering
 // run on the executor's side stream (lowest priority: exec/cuda_exec.cuh), beside this
-// frame and the next ones, which preserve. The first frame to find the side's work done
+// frame and the next ones, which preserve. The side forks after the boxes but is queued
+// after the frame's front pass, so its host launches overlap the frame's device work. The first frame to find the side's work done
 // adopts it: the second tree and its fronts swap with the current ones, then it refits and
 // preserves them. The side's pairs are dropped (the frames' own preserves report each
 // frame's pairs), its fronts are checked against their buffers at the adoption (a front
@@ -71,6 +72,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     // A build ahead of the last run that was never adopted still writes the second tree and
     // fronts, which this run reserves again: waited for and dropped.
     exec_.drop_side();
+    ahead_due_ = false;
     this->set_mesh(topology);
     const ObjectSplit& split = mesh_.split();
     bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.tree.refit_top_leaves;
@@ -125,6 +127,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       }
       if (run.inspect) inspect_quality();
       timer_.stop_frame();
+      queue_ahead();
       if (adopt(run, pairs_.read_counters(exec_))) break;
       if (first) first_pass_ms = timer_.frame_ms() - timer_.phase_ms(Phase::upload);
       ++stats.timing.query_reruns;
@@ -343,6 +346,16 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // the generate and the fronts' ordering on the side stream.
   void build_ahead(const MeshView& mesh) {
     timed(Phase::build, [&] { build_boxes(exec_, ahead_bvh_, mesh, mesh_.deformable()); });
+    exec_.mark_side_fork();
+    ahead_due_ = true;
+  }
+
+  // The side's part of a build ahead, queued once the frame's own front pass is: its 30-odd
+  // launches (the build's sorts and scans, the generate, the ordering) queued first would
+  // hold the frame's launches back on the host while the frame's stream waits for them.
+  void queue_ahead() {
+    if (!ahead_due_) return;
+    ahead_due_ = false;
     exec_.on_side([&] {
       build_from_boxes(exec_, ahead_bvh_, config_.tree.morton_bits, mesh_.deformable());
       order_depth_first(exec_, ahead_bvh_);
@@ -546,6 +559,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   typename Exec::FrameGraph graph_;  // the steady frame's recording (--cuda-graph)
   // --rebuild-ahead: the tree built ahead, its self fronts and the counters of their generate.
   bool builds_ahead_ = false;
+  bool ahead_due_ = false;  // build_ahead() ran this frame; queue_ahead() queues the side's part
   Lbvh<Exec> ahead_bvh_;
   FrontQuery<Exec> ahead_front_;
   PairBuffer<Exec, FrontCounters> ahead_pairs_;
