@@ -273,6 +273,13 @@ check "JSON of other inputs names both hashes" 0 "^[0-9a-f]{16} 0123456789abcdef
   "$python" -c "import json, sys; r = json.load(open(sys.argv[1]))['rows'][0]; print(r['input_hash_a'], r['input_hash_b'])" "$tmp/json-other"
 check "JSON of repeats lists every file" 0 "^2 2$" -- \
   "$python" -c "import json, subprocess, sys; r = json.loads(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[2], '--json'], capture_output=True, text=True).stdout)['rows'][0]; print(len(r['files_a']), len(r['files_b']))" "$cdbench" "$tmp/labelled"
+# Labels and commits are lists too, a label with a space one item; the side a one-sided
+# row has no run of has empty lists.
+cp "$tmp/a.h5" "$tmp/labelled/spaced.h5"
+mkdir -p "$tmp/labelled-and-skip" && cp "$tmp/a.h5" "$tmp/skip.h5" "$tmp/labelled-and-skip/"
+"$python" -c "import h5py, sys; h5py.File(sys.argv[1], 'r+').attrs['label'] = 'after fix'" "$tmp/labelled/spaced.h5"
+check "JSON has the labels and commits as lists" 0 "^\['before', 'after', 'after fix'\] \['[0-9a-f]{12}(-dirty)?'\] \[\] \[\]$" -- \
+  "$python" -c "import json, subprocess, sys; rows = json.loads(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[3], '--json'], capture_output=True, text=True).stdout)['rows']; r = rows[0]; o = [x for x in rows if x['verdict'] == 'only in B'][0]; print(r['label_a'], r['commit_a'], o['label_a'], o['commit_a'])" "$cdbench" "$tmp/labelled" "$tmp/labelled-and-skip"
 
 # report: the commit column, the label, the same CSV columns for any set of files.
 check "report has the commit column" 0 "\| label \| commit \| input \| (warning \| )?status \|" -- "$cdbench" report "$tmp/a.h5" "$tmp/skip.h5"
