@@ -368,12 +368,12 @@ nlohmann::json files_of(const RunGroup& g) {
 
 // The side's --label values, each once, in file order: the files of one run may be named
 // apart (pooling ignores labels).
-std::string labels_of(const RunGroup& g) {
-  std::vector<std::string> labels;
+nlohmann::json labels_of(const RunGroup& g) {
+  nlohmann::json labels = nlohmann::json::array();
   for (const RunFile& f : g.files)
     if (!f.info.label.empty() && std::find(labels.begin(), labels.end(), f.info.label) == labels.end())
       labels.push_back(f.info.label);
-  return join(labels, ", ");
+  return labels;
 }
 
 // The side's files for reading, each with its label: "a.h5 [before] b.h5".
@@ -384,12 +384,14 @@ std::string labelled_files_of(const RunGroup& g) {
   return s;
 }
 
-std::string commits_of(const RunGroup& g) {
-  std::set<std::string> shas;
-  for (const RunFile& f : g.files) shas.insert(f.info.git_sha.empty() ? "unknown" : f.info.git_sha);
-  std::string s;
-  for (const auto& c : shas) s += (s.empty() ? "" : " ") + c;
-  return s;
+// The side's commits, each once, sorted; "unknown" for a file that recorded none.
+std::vector<std::string> commits_of(const RunGroup& g) {
+  const std::set<std::string> shas = [&g] {
+    std::set<std::string> s;
+    for (const RunFile& f : g.files) s.insert(f.info.git_sha.empty() ? "unknown" : f.info.git_sha);
+    return s;
+  }();
+  return {shas.begin(), shas.end()};
 }
 
 bool noisy(const RunGroup& g) {
@@ -453,7 +455,8 @@ std::string verdict_text(const Row& r) {
 nlohmann::json row_json(const Row& r, Metric m, NonFinite non_finite = NonFinite::null) {
   const ResultsOverview& run = (r.a ? r.a : r.b)->first();
   const auto hash = [](const RunGroup& g) { return g.first().input_hash; };
-  const auto files = [](const RunGroup* g) { return g ? files_of(*g) : nlohmann::json::array(); };
+  // A side's lists (labels, commits, files) as arrays, empty for the side of a one-sided row.
+  const auto list = [](const RunGroup* g, auto of) { return g ? nlohmann::json(of(*g)) : nlohmann::json::array(); };
   const auto json_number = [non_finite](double x) {
     if (std::isfinite(x)) return nlohmann::json(x);
     return non_finite == NonFinite::text && std::isinf(x) ? nlohmann::json(exact_number(x)) : nlohmann::json(nullptr);
@@ -468,8 +471,8 @@ nlohmann::json row_json(const Row& r, Metric m, NonFinite non_finite = NonFinite
   return {{"scene", run.scene_label},
           {"pipeline", run.pipeline},
           {"device", run.backend},
-          {"label_a", of_side(r.a, labels_of)},
-          {"label_b", of_side(r.b, labels_of)},
+          {"label_a", list(r.a, labels_of)},
+          {"label_b", list(r.b, labels_of)},
           {"metric", metric_name(m)},
           {"a_ms", side_number(r.a, r.ea.value)},
           {"a_ci_lo", side_number(r.a, r.ea.lo)},
@@ -493,20 +496,20 @@ nlohmann::json row_json(const Row& r, Metric m, NonFinite non_finite = NonFinite
           {"mismatch", join(r.mismatch, "; ")},
           {"noisy", noisy_text(r)},
           {"poor_conditions", poor_text(r)},
-          {"commit_a", of_side(r.a, commits_of)},
-          {"commit_b", of_side(r.b, commits_of)},
-          {"files_a", files(r.a)},
-          {"files_b", files(r.b)}};
+          {"commit_a", list(r.a, commits_of)},
+          {"commit_b", list(r.b, commits_of)},
+          {"files_a", list(r.a, files_of)},
+          {"files_b", list(r.b, files_of)}};
 }
 
-// A CSV cell: numbers at full precision, as report --csv writes them; a list (the files)
-// space-separated.
-std::string cell_text(const nlohmann::json& v) {
+// A CSV cell: numbers at full precision, as report --csv writes them; a list joined by
+// list_separator.
+std::string cell_text(const nlohmann::json& v, const char* list_separator) {
   if (v.is_null()) return "";
   if (v.is_string()) return v.get<std::string>();
   if (v.is_array()) {
     std::string joined;
-    for (const auto& e : v) joined += (joined.empty() ? "" : " ") + cell_text(e);
+    for (const auto& e : v) joined += (joined.empty() ? "" : list_separator) + cell_text(e, list_separator);
     return joined;
   }
   if (v.is_number_float()) return exact_number(v.get<double>());
@@ -537,7 +540,7 @@ std::pair<std::string, std::string> side_cells(const RunGroup* g, const Estimate
 
 // A side's files and commits under the table; "none" for the side of a one-sided row.
 std::string side_files(const RunGroup* g) {
-  return g ? labelled_files_of(*g) + " (commit " + commits_of(*g) + ")" : "none";
+  return g ? labelled_files_of(*g) + " (commit " + join(commits_of(*g), " ") + ")" : "none";
 }
 
 void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metric m) {
@@ -652,7 +655,10 @@ int compare_command(const CompareOptions& c) {
     for (const Row& r : rows) {
       const nlohmann::json j = row_json(r, m, NonFinite::text);
       std::vector<std::string> cells;
-      for (const auto& col : columns()) cells.push_back(csv_cell(cell_text(j[col])));
+      // Labels are free text, so they are joined as Markdown shows them; commits and files
+      // by spaces.
+      for (const auto& col : columns())
+        cells.push_back(csv_cell(cell_text(j[col], col.rfind("label_", 0) == 0 ? ", " : " ")));
       std::printf("%s\n", join(cells, ",").c_str());
     }
   } else {

@@ -385,16 +385,18 @@ int print_results_table(const std::vector<std::string>& args, ReportFormat forma
   numeric("triangles", [&read](const Row& row) { return read(row) ? std::to_string(row.r.triangles) : ""; });
   for (const auto& o : options)
     text("--" + o, [&read, o](const Row& row) { return read(row) ? option_text(row.r.options, o) : ""; });
-  numeric("frames", [&read](const Row& row) { return read(row) ? std::to_string(row.r.frames_written) : ""; });
+  // Frames run (rows written) and, below, frames measured (without the warm-up): two
+  // counts, two names.
+  numeric("frames_run", [&read](const Row& row) { return read(row) ? std::to_string(row.r.frames_written) : ""; });
   numeric("mean_ms", [&](const Row& row) { return shown(stats(row) ? row.r.mean_ms : none); });
   // The noise beside the time it qualifies: with one pass there is none to report.
-  numeric("noise_%", [&](const Row& row) {
+  numeric("noise_pct", [&](const Row& row) {
     return shown(stats(row) && row.r.repeats > 1 ? 100.0 * row.r.noise_median : none, "%.1f");
   });
   numeric("median_ms", [&](const Row& row) { return shown(stats(row) ? row.r.median_ms : none); });
   numeric("p95_ms", [&](const Row& row) { return shown(stats(row) ? row.r.p95_ms : none); });
   if (csv) {
-    numeric("measured_frames",
+    numeric("frames_measured",
             [&stats](const Row& row) { return stats(row) ? std::to_string(row.r.measured_frames) : ""; });
     numeric("min_ms", [&](const Row& row) { return shown(stats(row) ? row.r.min_ms : none); });
     numeric("first_frame_ms", [&](const Row& row) { return shown(row.r.has_summary ? row.r.first_ms : none); });

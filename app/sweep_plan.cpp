@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <string_view>
@@ -164,11 +165,12 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
     if (!j["warmup"].is_number_unsigned()) fail(at + ": /warmup: must be a whole number >= 0");
     plan.warmup = j["warmup"].get<unsigned>();
   }
-  unsigned repeat = 1;
+  // Read whole, so a repeat past 32 bits is counted as it is written, not wrapped.
+  uint64_t repeat = 1;
   if (j.contains("repeat")) {
-    if (!j["repeat"].is_number_unsigned() || j["repeat"].get<unsigned>() == 0)
+    if (!j["repeat"].is_number_unsigned() || j["repeat"].get<uint64_t>() == 0)
       fail(at + ": /repeat: must be a whole number >= 1");
-    repeat = j["repeat"].get<unsigned>();
+    repeat = j["repeat"].get<uint64_t>();
   }
 
   const std::filesystem::path base = std::filesystem::absolute(file).parent_path();
@@ -198,6 +200,27 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
       axes.push_back(option_axis(it.key(), *it, at + ": /options/" + it.key(), run_options));
   }
 
+  // The cells counted from the axes before any is made: a product of a few long lists
+  // reaches millions quickly, and making them would take minutes or all the memory before
+  // a word is said.
+  std::vector<std::pair<std::string, uint64_t>> factors = {
+      {"scenes", scenes.size()}, {"pipelines", pipeline_list.size()}, {"devices", devices.size()}};
+  for (const Axis& a : axes) factors.emplace_back("/options/" + a.option + " values", a.values.size());
+  factors.emplace_back("repeats", repeat);
+  uint64_t cells = 1;
+  bool over = false;
+  std::string product;
+  for (const auto& [what, n] : factors) {
+    // Every factor is at least 1; the product stops at the first that takes it past the
+    // limit, so it cannot overflow.
+    over = over || n > kMaxSweepCells / cells;
+    if (!over) cells *= n;
+    product += (product.empty() ? "" : " x ") + std::to_string(n) + " " + what;
+  }
+  if (over)
+    fail(at + ": " + product + " make more than " + std::to_string(kMaxSweepCells) +
+         " cells, the most a sweep may have; split it into several sweep files");
+
   // Cartesian product, scenes outermost and repeats innermost, so the cells of one scene
   // run together and a listing reads like a table.
   for (size_t si = 0; si < scenes.size(); ++si) {
@@ -206,7 +229,7 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
       for (const std::string& d : devices) {
         std::vector<size_t> pick(axes.size(), 0);
         for (;;) {
-          for (unsigned r = 1; r <= repeat; ++r) {
+          for (unsigned r = 1; r <= unsigned(repeat); ++r) {
             SweepCell c;
             c.scene = s.spec;
             c.scene_index = si;

@@ -2,6 +2,7 @@
 // `cdbench sweep`: a sweep file (docs/sweeps.md) expanded into cells, one `cdbench run`
 // each. Pure: reads the sweep file, touches nothing else, so --dry-run, --slurm and the
 // runner all see the same cells with the same names and command lines.
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -35,6 +36,10 @@ struct SweepPlan {
   unsigned warmup = 1;
   std::vector<SweepCell> cells;
 };
+
+// The most cells a sweep file may make (docs/usage.md): far more than a machine runs in a
+// day, few enough to list, check and write a Slurm array for at once.
+inline constexpr size_t kMaxSweepCells = 10000;
 
 // Throws cdb::Error naming the file and the JSON path of what is wrong, e.g.
 // "s.json: /pipelines/2: unknown pipeline 'x'".

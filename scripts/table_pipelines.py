@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Every pipeline and baseline per scene: ms/frame and speed-up (the paper's Figure 9).
 
-Mean, median and p95 come from /summary (measured frames: all but the first `warmup`);
+Mean, median and p95 come from /summary over the measured frames (all but the first `warmup`,
+the count in "frames measured"; `report` gives both, `frames_run` and `frames_measured`);
 "noise %" is the run's measurement noise: with `run --repeat K`, the median over the frames of
 the relative standard deviation of a frame's time over the K passes ("—" for one pass). The
 spread columns, the standard deviation of /frames/t_total_ms over the measured frames and
@@ -22,7 +23,7 @@ import numpy as np
 
 import cdb_results
 
-HEADER = ["pipeline", "frames", "mean ms", "noise %", "median ms", "p95 ms", "std ms", "p95 - median",
+HEADER = ["pipeline", "frames measured", "mean ms", "noise %", "median ms", "p95 ms", "std ms", "p95 - median",
           "speed-up vs {baseline}"]
 
 
@@ -62,7 +63,7 @@ def rows_of(runs, baseline):
         speedup = base_mean / mean if base_mean is not None and mean > 0 else None
         repeats = int(r.summary.get("repeats", 1)) if r.summary else 1
         noise = 100.0 * float(r.summary["noise_median"]) if repeats > 1 else None
-        rows.append({"label": r.label + suffix, "frames": str(len(t)), "mean": mean, "noise": noise,
+        rows.append({"label": r.label + suffix, "frames_measured": str(len(t)), "mean": mean, "noise": noise,
                      "median": median, "p95": p95, "std": std, "spread": p95 - median, "speedup": speedup,
                      "bold": mean == fastest})
     return rows, notes
@@ -71,7 +72,7 @@ def rows_of(runs, baseline):
 def cells(row):
     f = cdb_results.fmt
     noise = "—" if row["noise"] is None else f"{row['noise']:.1f}"
-    return [row["label"], row["frames"], f(row["mean"]), noise, f(row["median"]), f(row["p95"]), f(row["std"]),
+    return [row["label"], row["frames_measured"], f(row["mean"]), noise, f(row["median"]), f(row["p95"]), f(row["std"]),
             f(row["spread"]), "—" if row["speedup"] is None else f"{f(row['speedup'])}x"]
 
 

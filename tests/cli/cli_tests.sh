@@ -278,16 +278,16 @@ o = json.loads(h5py.File(sys.argv[1]).attrs['params_json'])['options']
 print(*(type(o[k]).__name__ for k in ('front-cycle', 'morton-bits', 'box-margin', 'frames', 'set')), o['set'])" "$out/funnel-res24.h5"
 check "report shows the scene label" 0 "\| funnel\[res=24\] \| c \| cpu: [^|]* \| [0-9]+ \|" -- \
   "$cdbench" report "$out/funnel.h5" "$out/funnel-res24.h5"
-check "report adds the options that differ" 0 "^\| file \| scene \| pipeline \| device \| triangles \| --box-margin \| --frames \| --front-cycle \| --save-pairs \| frames \|" -- \
+check "report adds the options that differ" 0 "^\| file \| scene \| pipeline \| device \| triangles \| --box-margin \| --frames \| --front-cycle \| --save-pairs \| frames_run \|" -- \
   "$cdbench" report "$out/funnel.h5" "$out/funnel-res24.h5"
 has "report's option values" "$tmp/out" "\| funnel\[res=24\] \| c \| [^|]* \| 3682 \| 0\.5 \| 0:3 \| 2 \| no \| 3 \|"
 has "report's default option values" "$tmp/out" "funnel\.h5 \| funnel \| c \| [^|]* \| 8674 \| 0 \|  \| auto \| yes \| 20 \|"
-check "report without differing options" 0 "^\| file \| scene \| pipeline \| device \| triangles \| frames \| mean_ms \|" -- \
+check "report without differing options" 0 "^\| file \| scene \| pipeline \| device \| triangles \| frames_run \| mean_ms \|" -- \
   "$cdbench" report "$out/funnel.h5"
 check "report shows check columns" 0 "\| recall_min \| precision_min \| contacts \| contact_precision \|" -- \
   "$cdbench" report "$tmp/contacts.h5" "$out/funnel.h5"
 has "report's check values" "$tmp/out" "contacts\.h5 \|.*\| 1\.000000 \| (0\.99[0-9]+|1\.000000) \| [0-9]+ \| 0\.[0-9]+ \|"
-check "report without checked files has no check columns" 0 "^\| file \| scene \| pipeline \| device \| triangles \| frames \| mean_ms \| noise_% \| median_ms \| p95_ms \|" -- \
+check "report without checked files has no check columns" 0 "^\| file \| scene \| pipeline \| device \| triangles \| frames_run \| mean_ms \| noise_pct \| median_ms \| p95_ms \|" -- \
   "$cdbench" report "$out/funnel.h5"
 # docs/results-format.md names exactly what a file holds.
 "$cdbench" run --device cpu --quiet --frames 0:3 --check every --save-pairs --out "$out/documented.h5" >/dev/null 2>&1

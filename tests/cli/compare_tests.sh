@@ -273,6 +273,13 @@ check "JSON of other inputs names both hashes" 0 "^[0-9a-f]{16} 0123456789abcdef
   "$python" -c "import json, sys; r = json.load(open(sys.argv[1]))['rows'][0]; print(r['input_hash_a'], r['input_hash_b'])" "$tmp/json-other"
 check "JSON of repeats lists every file" 0 "^2 2$" -- \
   "$python" -c "import json, subprocess, sys; r = json.loads(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[2], '--json'], capture_output=True, text=True).stdout)['rows'][0]; print(len(r['files_a']), len(r['files_b']))" "$cdbench" "$tmp/labelled"
+# Labels and commits are lists too, a label with a space one item; the side a one-sided
+# row has no run of has empty lists.
+cp "$tmp/a.h5" "$tmp/labelled/spaced.h5"
+mkdir -p "$tmp/labelled-and-skip" && cp "$tmp/a.h5" "$tmp/skip.h5" "$tmp/labelled-and-skip/"
+"$python" -c "import h5py, sys; h5py.File(sys.argv[1], 'r+').attrs['label'] = 'after fix'" "$tmp/labelled/spaced.h5"
+check "JSON has the labels and commits as lists" 0 "^\['before', 'after', 'after fix'\] \['[0-9a-f]{12}(-dirty)?'\] \[\] \[\]$" -- \
+  "$python" -c "import json, subprocess, sys; rows = json.loads(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[3], '--json'], capture_output=True, text=True).stdout)['rows']; r = rows[0]; o = [x for x in rows if x['verdict'] == 'only in B'][0]; print(r['label_a'], r['commit_a'], o['label_a'], o['commit_a'])" "$cdbench" "$tmp/labelled" "$tmp/labelled-and-skip"
 
 # report: the commit column, the label, the same CSV columns for any set of files.
 check "report has the commit column" 0 "\| label \| commit \| input \| (warning \| )?status \|" -- "$cdbench" report "$tmp/a.h5" "$tmp/skip.h5"
@@ -293,7 +300,7 @@ import h5py
 row = next(csv.DictReader(open(sys.argv[1])))
 s = h5py.File(sys.argv[2], "r")["summary"].attrs
 pairs = {"mean_ms": "t_total_ms_mean", "median_ms": "t_total_ms_median", "p95_ms": "t_total_ms_p95",
-         "min_ms": "t_total_ms_min", "first_frame_ms": "first_frame_ms", "measured_frames": "measured_frames"}
+         "min_ms": "t_total_ms_min", "first_frame_ms": "first_frame_ms", "frames_measured": "measured_frames"}
 bad = [k for k, a in pairs.items() if float(row[k]) != float(s[a])]
 print("differ: " + ", ".join(bad) if bad else "exact")
 PY
@@ -342,6 +349,30 @@ check "run --json parses" 0 '"label": "json-run"' -- "$python" -m json.tool "$tm
 has "run --json has the mean" "$tmp/out" '"mean_ms": [0-9.e-]+'
 has "run --json has the input hash" "$tmp/out" '"input_hash": "[0-9a-f]{16}"'
 has "run --json: the summary went to stderr" "$tmp/json.err" "^summary: 5 frames measured"
+has "run --json: one pass has no noise" "$tmp/json.out" '"noise_pct": null'
+# One unit for the noise (percent) and two names for the frames (run, measured) in run
+# --json, report --json and report --csv alike.
+"$cdbench" run "${scene[@]}" --repeat 3 --json --out "$tmp/units.h5" >"$tmp/units.json" 2>/dev/null
+"$cdbench" report --json "$tmp/units.h5" >"$tmp/units-report.json"
+"$cdbench" report --csv "$tmp/units.h5" >"$tmp/units.csv"
+check "run --json and report agree on noise_pct and the frames" 0 "^percent 6 run 5 measured$" -- "$python" - \
+  "$tmp/units.json" "$tmp/units-report.json" "$tmp/units.csv" "$tmp/units.h5" <<'PY'
+import csv, json, sys
+import h5py
+run = json.load(open(sys.argv[1]))["runs"][0]
+report = json.load(open(sys.argv[2]))["runs"][0]
+row = next(csv.DictReader(open(sys.argv[3])))
+fraction = float(h5py.File(sys.argv[4], "r")["summary"].attrs["noise_median"])
+bad = [k for k in ("noise", "frames", "measured_frames") if k in run or k in report or k in row]
+pct = {run["noise_pct"], report["noise_pct"], float(row["noise_pct"])}
+if len(pct) != 1 or abs(pct.pop() - 100 * fraction) > 1e-9 * max(1.0, 100 * fraction):
+    bad.append(f"noise_pct {run['noise_pct']}, {report['noise_pct']}, {row['noise_pct']} against 100 x {fraction}")
+counts = {(run["frames_run"], run["frames_measured"]), (report["frames_run"], report["frames_measured"]),
+          (int(row["frames_run"]), int(row["frames_measured"]))}
+if len(counts) != 1:
+    bad.append(f"frame counts differ: {counts}")
+print("differ: " + "; ".join(bad) if bad else f"percent {run['frames_run']} run {run['frames_measured']} measured")
+PY
 
 # Scripts: no schema warning on files of this build; the baseline matches the identity.
 check "read_results knows this schema" 0 "^label: before$" -- "$python" "$root/scripts/read_results.py" --summary "$tmp/a.h5"

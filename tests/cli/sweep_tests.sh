@@ -114,6 +114,31 @@ check "unknown key" 2 "bad5.json: /pipeline: unknown key" -- "$cdbench" sweep "$
 printf '{"scenes": ["funnel"], "pipelines": ["bvh"], "options": {"help": true}}' >"$tmp/bad6.json"
 check "help as a cell option refused" 2 "bad6.json: /options/help: prints run's help instead of running a cell" -- \
   "$cdbench" sweep "$tmp/bad6.json" --out "$tmp/x" --dry-run
+# Cells counted from the axes before any is made: 10^6 and 10^9 are refused at once (the
+# timeout only bounds a build that would expand them), 10,000 are accepted (refused later,
+# by the unwritable --out, so none runs).
+axis() {  # axis N: the JSON list 1..N
+  seq -s, 1 "$1" | sed 's/^/[/; s/$/]/'
+}
+printf '{"scenes": ["funnel"], "pipelines": ["bvh"], "devices": ["cpu"], "options": {"rebuild-every": %s, "refit-every": %s}}' \
+  "$(axis 1000)" "$(axis 1000)" >"$tmp/million.json"
+check "a million cells refused" 2 "million.json: 1 scenes x 1 pipelines x 1 devices x 1000 /options/rebuild-every values x 1000 /options/refit-every values x 1 repeats make more than 10000 cells" -- \
+  timeout 60 "$cdbench" sweep "$tmp/million.json" --out "$tmp/x" --dry-run
+printf '{"scenes": ["funnel"], "pipelines": ["bvh"], "devices": ["cpu"], "options": {"rebuild-every": %s, "refit-every": %s, "warmup-ms": %s}}' \
+  "$(axis 1000)" "$(axis 1000)" "$(axis 1000)" >"$tmp/billion.json"
+check "a billion cells refused" 2 "billion.json: .* make more than 10000 cells, the most a sweep may have" -- \
+  timeout 60 "$cdbench" sweep "$tmp/billion.json" --out "$tmp/x"
+printf '{"scenes": ["funnel"], "pipelines": ["bvh"], "devices": ["cpu"], "options": {"rebuild-every": %s}, "repeat": 4294967297}' \
+  "$(axis 2)" >"$tmp/repeats.json"
+check "a repeat past 32 bits counted whole" 2 "repeats.json: .* x 4294967297 repeats make more than 10000 cells" -- \
+  timeout 60 "$cdbench" sweep "$tmp/repeats.json" --out "$tmp/x" --dry-run
+printf '{"scenes": ["funnel"], "pipelines": ["bvh"], "devices": ["cpu"], "options": {"rebuild-every": %s, "refit-every": %s}}' \
+  "$(axis 100)" "$(axis 101)" >"$tmp/over.json"
+check "10,100 cells refused" 2 "over.json: .* make more than 10000 cells" -- "$cdbench" sweep "$tmp/over.json" --out "$tmp/x" --dry-run
+printf '{"scenes": ["funnel"], "pipelines": ["bvh"], "devices": ["cpu"], "options": {"rebuild-every": %s, "refit-every": %s}}' \
+  "$(axis 100)" "$(axis 100)" >"$tmp/limit.json"
+check "10,000 cells accepted" 2 "^cdbench: error: --out /proc/cdbench-sweep: cannot write in /proc" -- \
+  timeout 60 "$cdbench" sweep "$tmp/limit.json" --out /proc/cdbench-sweep --dry-run
 
 # A status file whose value has another type than the sweep writes: the file and key named.
 cp -r "$out" "$tmp/badstatus"
