@@ -9,12 +9,12 @@
 #include <cstdint>
 
 #include "cdbench/exec/balance.h"
+#include "cdbench/exec/gather.h"
 #include "cdbench/bvh/lbvh.h"
 #include "cdbench/bvh/node_ref.h"
 #include "cdbench/core/atomics.h"
 #include "cdbench/core/morton.h"
 #include "cdbench/geometry/face_subset.h"
-#include "cdbench/geometry/gather_boxes.h"
 #include "cdbench/geometry/mesh.h"
 
 namespace cdb {
@@ -182,8 +182,8 @@ void build_from_boxes(Exec& exec, Lbvh<Exec>& bvh, MortonBits bits, FaceSubset s
   exec.sort_pairs(bvh.morton.data(), bvh.morton_sorted.data(), bvh.prim_iota.data(),
                   bvh.leaf_prim.data(), n, static_cast<int>(bits), bvh.temp.data(),
                   bvh.temp.size());
-  exec.for_each_n(n, GatherBoxesFn{bvh.leaf_prim.data(), bvh.prim_lo.data(), bvh.prim_hi.data(),
-                                    bvh.leaf_lo.data(), bvh.leaf_hi.data()});
+  gather(exec, n, bvh.leaf_prim.data(), bvh.prim_lo.data(), bvh.prim_hi.data(), bvh.leaf_lo.data(),
+         bvh.leaf_hi.data());
   if (subset.faces) exec.for_each_n(n, SubsetLeafPrimFn{subset, bvh.leaf_prim.data()});
   if (n == 1) return;
   exec.fill(bvh.other_bound.data(), n - 1, kNoNode);

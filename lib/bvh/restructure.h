@@ -69,14 +69,12 @@ struct RestructureArrays {
 template <class Exec>
 struct RestructureScratch {
   explicit RestructureScratch(Exec& exec) {
-    MemoryResource& mr = exec.memory();
-    bind_arrays<uint32_t>(mr, "restructure.", {{&node, "candidate_node"}, {&first, "candidate_first"},
-                                               {&last, "candidate_last"}, {&escape, "candidate_escape"},
-                                               {&parent, "candidate_parent"}, {&size, "candidate_size"},
-                                               {&base, "candidate_base"}, {&leaf_tag, "leaf_tag"},
-                                               {&leaf_slot, "leaf_slot"}, {&old_leaf_sorted, "old_leaf_sorted"},
-                                               {&new_leaf, "new_leaf"}, {&moved_prim, "moved_prim"}});
-    keys_sorted.bind(mr, "restructure.keys_sorted");
+    bind_arrays(exec.memory(), "restructure.",
+                {{&node, "candidate_node"}, {&first, "candidate_first"}, {&last, "candidate_last"},
+                 {&escape, "candidate_escape"}, {&parent, "candidate_parent"}, {&size, "candidate_size"},
+                 {&base, "candidate_base"}, {&leaf_tag, "leaf_tag"}, {&leaf_slot, "leaf_slot"},
+                 {&keys_sorted, "keys_sorted"}, {&old_leaf_sorted, "old_leaf_sorted"}, {&new_leaf, "new_leaf"},
+                 {&moved_prim, "moved_prim"}});
   }
 
   // Candidates are disjoint subtrees of at least min_leaves leaves each.
