@@ -395,6 +395,33 @@ uint32_t run_grid_frame(Exec& exec, UniformGrid<Exec>& grid, uint32_t n, const P
   }
 }
 
+// A scene's faces and one frame's vertices in the executor's memory, with a pair buffer
+// and its counter: what each baseline check runs on.
+template <class Exec>
+struct DeviceScene {
+  DeviceScene(Exec& exec, const Topology& topo)
+      : vertices(exec.memory(), "test.vertices"),
+        faces(exec.memory(), "test.faces"),
+        pairs(exec.memory(), "test.pairs"),
+        count(exec.memory(), "test.count"),
+        n(uint32_t(topo.faces.size())) {
+    vertices.reserve(topo.num_vertices);
+    faces.reserve(n);
+    count.reserve(1);
+    exec.copy_from_host(faces.data(), topo.faces.data(), n);
+  }
+  // Frame `v` on the executor, as the mesh the baselines read.
+  MeshView upload(Exec& exec, const std::vector<vec3f>& v) {
+    exec.copy_from_host(vertices.data(), v.data(), v.size());
+    return {vertices.data(), faces.data(), n};
+  }
+  Array<vec3f> vertices;
+  Array<Tri> faces;
+  Array<PrimPair> pairs;
+  Array<unsigned long long> count;
+  uint32_t n;
+};
+
 // The grid's level and cell count of every box after one frame of `scene`.
 struct GridPlacement {
   std::vector<uint32_t> level, cells;
@@ -407,13 +434,8 @@ GridPlacement grid_placement(const SceneFrames& scene) {
   Exec exec;
   UniformGrid<Exec> grid(exec);
   grid.reserve(exec, n);
-  Array<vec3f> vertices(exec.memory(), "test.vertices");
-  Array<Tri> faces(exec.memory(), "test.faces");
-  vertices.reserve(topo.num_vertices);
-  faces.reserve(n);
-  exec.copy_from_host(faces.data(), topo.faces.data(), n);
-  exec.copy_from_host(vertices.data(), scene.frames[0].data(), topo.num_vertices);
-  face_boxes(exec, grid, MeshView{vertices.data(), faces.data(), n});
+  DeviceScene<Exec> d(exec, topo);
+  face_boxes(exec, grid, d.upload(exec, scene.frames[0]));
   grid_build(exec, grid, n);
   GridPlacement p{std::vector<uint32_t>(n), std::vector<uint32_t>(n)};
   exec.copy_to_host(p.level.data(), grid.level.data(), n);
@@ -451,19 +473,13 @@ BaselineReruns check_baselines(const SceneFrames& scene, bool tiny_grid_plan = f
   sweep.reserve(exec, n);
   hash.reserve(exec, n);
   grid.reserve(exec, n);
-  Array<vec3f> vertices(exec.memory(), "test.vertices");
-  Array<Tri> faces(exec.memory(), "test.faces");
-  Array<PrimPair> pairs(exec.memory(), "test.pairs");
-  Array<unsigned long long> count(exec.memory(), "test.count");
-  vertices.reserve(topo.num_vertices);
-  faces.reserve(n);
-  count.reserve(1);
-  exec.copy_from_host(faces.data(), topo.faces.data(), n);
+  DeviceScene<Exec> d(exec, topo);
+  Array<PrimPair>& pairs = d.pairs;
+  Array<unsigned long long>& count = d.count;
   BaselineReruns reruns;
   for (uint32_t f = 0; f < scene.frames.size(); ++f) {
     const std::vector<vec3f>& v = scene.frames[f];
-    exec.copy_from_host(vertices.data(), v.data(), v.size());
-    MeshView mesh{vertices.data(), faces.data(), n};
+    MeshView mesh = d.upload(exec, v);
     mesh.margin = margin;
     const std::vector<PrimPair> expected =
         margin == 0.0f ? sweep_oracle_pairs(topo, v) : margin_box_pairs(topo, v, margin);
@@ -524,23 +540,18 @@ void check_hash_second_pass(const SceneFrames& scene) {
   const uint32_t n = uint32_t(topo.faces.size());
   Exec exec;
   SpatialHash<Exec> hash(exec);
-  Array<vec3f> vertices(exec.memory(), "test.vertices");
-  Array<Tri> faces(exec.memory(), "test.faces");
-  Array<PrimPair> pairs(exec.memory(), "test.pairs");
-  Array<unsigned long long> count(exec.memory(), "test.count");
-  vertices.reserve(topo.num_vertices);
-  faces.reserve(n);
-  count.reserve(1);
-  exec.copy_from_host(faces.data(), topo.faces.data(), n);
+  DeviceScene<Exec> d(exec, topo);
+  Array<PrimPair>& pairs = d.pairs;
+  Array<unsigned long long>& count = d.count;
   size_t most_entries = 0;
   for (int pass = 0; pass < 2; ++pass) {
     hash.reserve(exec, n);
     for (uint32_t f = 0; f < scene.frames.size(); ++f) {
       const std::vector<vec3f>& v = scene.frames[f];
-      exec.copy_from_host(vertices.data(), v.data(), v.size());
+      const MeshView mesh = d.upload(exec, v);
       const std::vector<PrimPair> expected = sweep_oracle_pairs(topo, v);
       pairs.reserve(expected.size() + 1);
-      face_boxes(exec, hash, MeshView{vertices.data(), faces.data(), n});
+      face_boxes(exec, hash, mesh);
       hash_build(exec, hash, n);
       most_entries = std::max<size_t>(most_entries, hash.num_entries);
       exec.fill(count.data(), 1, 0ull);

@@ -462,10 +462,7 @@ inline void check_swept(const std::string& device, FrameSource& source) {
   const Topology& topo = source.topology();
   std::vector<vec3f> v, prev;
   for (const auto& name : pipeline_names()) {
-    PipelineConfig cfg;
-    cfg.device = device;
-    cfg.name = name;
-    cfg.capacity.pairs_per_triangle = 0.5;
+    PipelineConfig cfg = growing_config(device, name);
     cfg.boxes.swept = true;
     auto p = make_pipeline(cfg);
     // Twice: set_topology (what --repeat does) must forget the last pass's positions.
@@ -498,10 +495,7 @@ inline void check_lazy_refit(const std::string& device, FrameSource& source, uin
   const Topology& topo = source.topology();
   std::vector<vec3f> v, refitted;
   for (const auto& name : pipeline_names()) {
-    PipelineConfig cfg;
-    cfg.device = device;
-    cfg.name = name;
-    cfg.capacity.pairs_per_triangle = 0.5;
+    PipelineConfig cfg = growing_config(device, name);
     cfg.tree.refit_every = k;
     const bool lazy = keeps_stale_boxes(name);
     EXPECT_EQ(config_conservative(cfg), !lazy) << name;

@@ -190,10 +190,7 @@ inline void check_q16_pipelines(const std::string& device, const SceneFrames& s,
                                 float margin = 0.0f, bool swept = false) {
   const Topology& topo = s.topology;
   for (const auto& name : pipeline_names()) {
-    PipelineConfig cfg;
-    cfg.device = device;
-    cfg.name = name;
-    cfg.capacity.pairs_per_triangle = 0.5;
+    PipelineConfig cfg = growing_config(device, name);
     cfg.boxes.margin = margin;
     cfg.boxes.swept = swept;
     cfg.boxes.precision = BoxPrecision::q16;

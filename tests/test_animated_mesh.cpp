@@ -24,6 +24,7 @@
 #include "scenes/load/animated_mesh.h"
 #include "scenes/load/scene.h"
 #include "error_of.h"
+#include "param_name.h"
 
 namespace cdb::test {
 namespace {
@@ -359,10 +360,7 @@ ModelCase{"FBX/animation_with_skeleton.fbx", 0, 24},
                     ModelCase{"Collada/box_nested_animation.dae", 0, 12},
                     ModelCase{"Collada/anims_with_full_rotations_between_keys.DAE", 0, 5}),
     [](const testing::TestParamInfo<ModelCase>& i) {
-      std::string name = fs::path(i.param.file).stem().string();
-      for (char& ch : name)
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      return name;
+      return param_name(fs::path(i.param.file).stem().string());
     });
 
 TEST(AnimatedMesh, MorphCubeBlendsItsTargets) {

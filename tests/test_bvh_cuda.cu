@@ -22,14 +22,19 @@ std::string missing_gpu() {
   const CudaDeviceInfo info = cuda_device_info();
   return info.available ? "" : "no GPU here (" + info.reason + "); run on the device";
 }
-}  // namespace
 
-class CudaSoup : public testing::TestWithParam<SoupCase> {
+// The fixture of every suite here (Base: testing::Test or testing::TestWithParam<Case>):
+// without a GPU each test is skipped with the reason.
+template <class Base>
+class OnGpu : public Base {
  protected:
   void SetUp() override {
     if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
   }
 };
+}  // namespace
+
+class CudaSoup : public OnGpu<testing::TestWithParam<SoupCase>> {};
 
 TEST_P(CudaSoup, TreeValidAndPairsExact) { check_soup_case<CudaExec>(GetParam()); }
 
@@ -37,35 +42,20 @@ TEST_P(CudaSoup, RadixOrderGivesTheHistogramOrder) { check_radix_order_matches<C
 
 INSTANTIATE_TEST_SUITE_P(Soups, CudaSoup, testing::ValuesIn(soup_cases()), case_name);
 
-class CudaBaselines : public testing::TestWithParam<BaselineCase> {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaBaselines : public OnGpu<testing::TestWithParam<BaselineCase>> {};
 
 TEST_P(CudaBaselines, SweepHashAndGridExact) { check_baselines<CudaExec>(GetParam().make()); }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaBaselines, testing::ValuesIn(baseline_cases()),
                          baseline_case_name);
 
-class CudaExample : public testing::TestWithParam<BaselineCase> {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaExample : public OnGpu<testing::TestWithParam<BaselineCase>> {};
 
 TEST_P(CudaExample, ExactAgainstTheOracleEveryFrame) { check_example_pipeline("cuda", GetParam().make()); }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaExample, testing::ValuesIn(example_cases()), baseline_case_name);
 
-class CudaCells : public testing::Test {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaCells : public OnGpu<testing::Test> {};
 
 TEST_F(CudaCells, CoordinateMonotoneAtExtremes) { check_cell_coord_monotone_at_extremes<CudaExec>(); }
 
@@ -77,38 +67,42 @@ TEST_F(CudaCells, OnePointSceneIsOneCell) { check_one_point_scene_is_one_cell<Cu
 
 TEST_F(CudaCells, SceneStatsReduction) { check_scene_stats_reduction<CudaExec>(); }
 
-TEST(CudaExecScan, PairMatchesTheSerialScans) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+class CudaExecScan : public OnGpu<testing::Test> {};
+
+TEST_F(CudaExecScan, PairMatchesTheSerialScans) {
   check_exclusive_scan_pair<CudaExec>();
 }
 
-TEST(CudaExecTiles, EveryIndexOnceInItsTile) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+class CudaExecTiles : public OnGpu<testing::Test> {};
+
+TEST_F(CudaExecTiles, EveryIndexOnceInItsTile) {
   check_for_each_tile<CudaExec>();
 }
 
-TEST(CudaHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+class CudaHashBaseline : public OnGpu<testing::Test> {};
+
+TEST_F(CudaHashBaseline, FewLargeBoxesAreTestedDirectlyManyCoarsenTheGrid) {
   EXPECT_EQ(check_baselines<CudaExec>(soup_with_giants(3000, 10, false)).hash_regrids, 0u);
   EXPECT_GT(check_baselines<CudaExec>(soup_with_giants(3000, 100, false)).hash_regrids, 0u);
 }
 
-TEST(CudaCellBaselines, ExactAtFloatLimitAndPastItToInfinity) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+class CudaCellBaselines : public OnGpu<testing::Test> {};
+
+TEST_F(CudaCellBaselines, ExactAtFloatLimitAndPastItToInfinity) {
   check_baselines<CudaExec>(float_limit_boxes(300, 3));
   check_baselines<CudaExec>(float_limit_boxes(300, 3), false, 1e38f);
   check_baselines<CudaExec>(float_limit_boxes(300, 3), true, 1e37f);
 }
 
-TEST(CudaHashBaseline, SecondPassSortsTheEntriesTheFirstGrewTo) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaHashBaseline, SecondPassSortsTheEntriesTheFirstGrewTo) {
   check_hash_second_pass<CudaExec>(bimodal_soup(3000, 0.05f, 7));
 }
 
+class CudaGridBaseline : public OnGpu<testing::Test> {};
+
 // The grid plans its sort from the last frame: steady frames fit the plan; a plan far too
 // small (1024 entries, 1 key bit) makes each frame re-run once, exactly, never truncate.
-TEST(CudaGridBaseline, PlanFromTheLastFrameReRunsWhenShort) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaGridBaseline, PlanFromTheLastFrameReRunsWhenShort) {
   auto soup = [] {
     return frames_of(*make_generator("soup", {{"triangles", 20000}, {"frames", 4}, {"seed", 9}}));
   };
@@ -119,8 +113,7 @@ TEST(CudaGridBaseline, PlanFromTheLastFrameReRunsWhenShort) {
 
 // A scene-spanning triangle goes to a coarse level in a few cells, the small ones to the
 // finest levels; no box covers more than kGridMaxCellsPerBox cells, however wide.
-TEST(CudaGridBaseline, WideBoxesGoToCoarserLevelsInFewCells) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaGridBaseline, WideBoxesGoToCoarserLevelsInFewCells) {
   for (bool far : {false, true}) {
     const GridPlacement p = grid_placement<CudaExec>(soup_with_giants(3000, 1, far));
     const uint32_t small = *std::max_element(p.level.begin(), p.level.end() - 1);
@@ -135,57 +128,50 @@ TEST(CudaGridBaseline, WideBoxesGoToCoarserLevelsInFewCells) {
 
 // Through the pipeline: a frame whose entries outgrow the plan made from the last frame is
 // re-run (op regrid) and exact; the next frame plans from it and runs once.
-TEST(CudaGridBaseline, PipelineReRunsAFrameThatOutgrowsItsPlan) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaGridBaseline, PipelineReRunsAFrameThatOutgrowsItsPlan) {
   const std::vector<std::string> ops = grid_pipeline_ops("cuda", straddling_pairs(10));
   EXPECT_EQ(ops, (std::vector<std::string>{"grid", "regrid", "grid"}));
 }
 
-TEST(CudaPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+class CudaPipelines : public OnGpu<testing::Test> {};
+
+TEST_F(CudaPipelines, ExactOnClothAndFunnelWithGrowingPairBuffer) {
   auto wave = make_generator("cloth-wave", {{"res", 64}, {"frames", 8}});
   check_pipelines_on(config_for("cuda", 0.01), *wave);
   auto funnel = make_generator("funnel", {{"res", 48}, {"frames", 20}});
   check_pipelines_on(config_for("cuda", 8.0), *funnel);
 }
 
+class CudaKnobs : public OnGpu<testing::Test> {};
+
 // The speed/accuracy knobs (knob_cases.h): face_box's margin and swept boxes run in the
 // kernels exactly as the host reference computes them; lazy refits keep stale boxes.
-TEST(CudaKnobs, OutwardRoundingGivesTheHostsBits) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaKnobs, OutwardRoundingGivesTheHostsBits) {
   check_outward_rounding_on_executor<CudaExec>(2000000);
 }
 
-TEST(CudaKnobs, MarginGivesExactlyTheInflatedBoxPairs) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaKnobs, MarginGivesExactlyTheInflatedBoxPairs) {
   auto soup = fast_soup(5);
   check_margin("cuda", *soup, 0.25f * mean_box_extent(*soup));
   auto cloth = rolling_cloth(5);
   check_margin("cuda", *cloth, 0.5f * mean_box_extent(*cloth));
 }
 
-TEST(CudaKnobs, SweptGivesExactlyTheSweptBoxPairs) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaKnobs, SweptGivesExactlyTheSweptBoxPairs) {
   auto soup = fast_soup(5);
   check_swept("cuda", *soup);
   auto cloth = rolling_cloth(5);
   check_swept("cuda", *cloth);
 }
 
-TEST(CudaKnobs, LazyRefitKeepsTheLastRefitsBoxesAndMissesPairs) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaKnobs, LazyRefitKeepsTheLastRefitsBoxesAndMissesPairs) {
   auto soup = fast_soup(7);
   check_lazy_refit("cuda", *soup, 3);
 }
 
 // q16 boxes (precision_cases.h): the grid reduced in kernels equals the host's bit for bit,
 // and every pipeline's kernels snap exactly as the host face_box does.
-class CudaPrecision : public testing::TestWithParam<BaselineCase> {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaPrecision : public OnGpu<testing::TestWithParam<BaselineCase>> {};
 
 TEST_P(CudaPrecision, ExecutorGridEqualsTheHostGrid) {
   const SceneFrames s = GetParam().make();
@@ -201,20 +187,14 @@ TEST_P(CudaPrecision, EveryPipelineReportsExactlyTheQ16Overlaps) {
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaPrecision, testing::ValuesIn(precision_cases()), baseline_case_name);
 
 // Millimetre sheets far from the origin (offset_cases.h) through every pipeline's kernels.
-class CudaOffsets : public testing::TestWithParam<OffsetCase> {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaOffsets : public OnGpu<testing::TestWithParam<OffsetCase>> {};
 
 TEST_P(CudaOffsets, Fp64KeepsEveryPairOfTheDoubleGeometry) { check_fp64_offset("cuda", GetParam().offset); }
 TEST_P(CudaOffsets, Fp32KeepsEveryPairButBlursAndWarns) { check_fp32_offset("cuda", GetParam().offset); }
 
 INSTANTIATE_TEST_SUITE_P(Sheets, CudaOffsets, testing::ValuesIn(offset_cases()), offset_case_name);
 
-TEST(CudaKnobs, Q16AddsPairsAndCombinesWithMarginAndSweptBoxes) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaKnobs, Q16AddsPairsAndCombinesWithMarginAndSweptBoxes) {
   size_t coarse = 0, swept = 0;
   check_q16_pipelines("cuda", with_point_at(cube_lattice(3, 1e-3f), 1e6f), coarse);
   EXPECT_GT(coarse, 0u);
@@ -223,14 +203,12 @@ TEST(CudaKnobs, Q16AddsPairsAndCombinesWithMarginAndSweptBoxes) {
   EXPECT_GT(swept, 0u);
 }
 
-TEST(CudaPipelines, DeclaredQueriesReportOnlyWhatTheSceneAsks) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaPipelines, DeclaredQueriesReportOnlyWhatTheSceneAsks) {
   Scene s = open_scene("funnel-inter", default_scenes_dir(), {{"res", 48}, {"frames", 8}});
   check_declared_queries("cuda", *s.source);
 }
 
-TEST(CudaPipelines, SkipAdjacentMatchesTheFilteredOracle) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaPipelines, SkipAdjacentMatchesTheFilteredOracle) {
   auto wave = make_generator("cloth-wave", {{"res", 96}, {"frames", 8}});
   check_skip_adjacent("cuda", *wave);
   auto funnel = make_generator("funnel", {{"res", 48}, {"frames", 8}});
@@ -239,8 +217,7 @@ TEST(CudaPipelines, SkipAdjacentMatchesTheFilteredOracle) {
 
 // The radix baseline once failed here: its sort storage was re-sized for the initial
 // capacity while its keys kept the grown one.
-TEST(CudaPipelines, SecondPassAfterGrowthMatchesTheFirst) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaPipelines, SecondPassAfterGrowthMatchesTheFirst) {
   auto funnel = make_generator("funnel", {{"res", 40}, {"frames", 6}, {"segments", 16}, {"ball_level", 1}});
   check_second_pass_matches_first(config_for("cuda", 0.01, 0.05, 2), *funnel);
 }
@@ -248,16 +225,14 @@ TEST(CudaPipelines, SecondPassAfterGrowthMatchesTheFirst) {
 // Many rebuilds of a scene of many blocks: a missing fence in the bottom-up build shows up
 // as an occasional corrupt tree, so repeat. 2^16 + 1 triangles: one past a power of two,
 // so the last block and tile hold a single triangle. CudaLong repeats it at 1M.
-TEST(CudaPipelines, UniformSoupRepeatedBuildsAreExact) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaPipelines, UniformSoupRepeatedBuildsAreExact) {
   auto soup = make_generator("soup", {{"triangles", (1 << 16) + 1}, {"frames", 4}});
   check_pipelines_on(config_for("cuda", 8.0), *soup);
 }
 
 // --cuda-graph: steady frames are captured once after each front change and replayed
 // after; the replays report the same pairs as plain launches, and still time their phases.
-TEST(CudaPipelines, GraphReplaysGiveThePlainLaunchesPairs) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaPipelines, GraphReplaysGiveThePlainLaunchesPairs) {
   auto funnel = make_generator("funnel", {{"res", 40}, {"frames", 14}, {"segments", 16}, {"ball_level", 1}});
   const Topology& topo = funnel->topology();
   for (const std::string name : {"a", "b", "c", "unordered"}) {
@@ -298,51 +273,36 @@ TEST(CudaPipelines, GraphReplaysGiveThePlainLaunchesPairs) {
   }
 }
 
-TEST(CudaKnobs, DependentLaunchesAndUntimedPhasesKeepEveryPipelineExact) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaKnobs, DependentLaunchesAndUntimedPhasesKeepEveryPipelineExact) {
   for (bool graph : {false, true})
     for (bool dependent : {false, true}) check_launch_knobs("cuda", graph, dependent);
 }
 
-TEST(CudaKnobs, UpdateVariantsKeepEveryPipelineExact) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaKnobs, UpdateVariantsKeepEveryPipelineExact) {
   check_update_knobs("cuda");
 }
 
-TEST(CudaKnobs, PairBufferGrowsBetweenFrames) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaKnobs, PairBufferGrowsBetweenFrames) {
   check_pairs_grown_ahead("cuda");
 }
 
-TEST(CudaKnobs, ProbedUpdatesRunOnce) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaKnobs, ProbedUpdatesRunOnce) {
   check_update_probe("cuda");
 }
 
-TEST(CudaKnobs, ProbeCountsMatchTheHost) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaKnobs, ProbeCountsMatchTheHost) {
   check_probe_counts("cuda");
 }
 
 // Every front cycle (1, 2, 3, 5 and auto) on each front scene, against the scene's oracle
 // pairs computed once.
-class CudaFrontCycles : public testing::TestWithParam<std::string> {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaFrontCycles : public OnGpu<testing::TestWithParam<std::string>> {};
 
 TEST_P(CudaFrontCycles, AllPipelinesExactEveryFrame) { check_front_cycles("cuda", GetParam(), 96, 16); }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaFrontCycles, testing::ValuesIn(front_scene_names()), front_scene_name);
 
-class CudaExtremes : public testing::TestWithParam<BaselineCase> {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaExtremes : public OnGpu<testing::TestWithParam<BaselineCase>> {};
 
 TEST_P(CudaExtremes, EveryPipelineExactEveryFrame) {
   StoredFrames scene(GetParam().make());
@@ -351,23 +311,23 @@ TEST_P(CudaExtremes, EveryPipelineExactEveryFrame) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaExtremes, testing::ValuesIn(extreme_cases()), baseline_case_name);
 
-TEST(CudaRefit, TopInOneBlockSpillsPastSharedMemoryAndAgrees) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+class CudaRefit : public OnGpu<testing::Test> {};
+
+TEST_F(CudaRefit, TopInOneBlockSpillsPastSharedMemoryAndAgrees) {
   check_refit_top_spill<CudaExec>();
 }
 
-TEST(CudaRefit, TopInOneBlockOfALargeTreeAgrees) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaRefit, TopInOneBlockOfALargeTreeAgrees) {
   check_refit_top_large_tree<CudaExec>();
 }
 
-TEST(CudaRefit, ZeroesTheCountersItIsHandedOnItsWay) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaRefit, ZeroesTheCountersItIsHandedOnItsWay) {
   check_refit_counter_reset<CudaExec>();
 }
 
-TEST(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+class CudaRestructure : public OnGpu<testing::Test> {};
+
+TEST_F(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   for (uint32_t depth : {0u, 1u, 4u, 9u}) {
     auto wave = make_generator("cloth-wave", {{"res", 128}, {"frames", 4}});
     check_restructure_subtrees<CudaExec>(*wave, depth);
@@ -379,12 +339,7 @@ TEST(CudaRestructure, SubtreesAtEveryDepthKeepTheTreeValidAndExact) {
   check_restructure_subtrees<CudaExec>(*same, 3);
 }
 
-class CudaForcedDecisions : public testing::TestWithParam<std::string> {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaForcedDecisions : public OnGpu<testing::TestWithParam<std::string>> {};
 
 TEST_P(CudaForcedDecisions, EveryBranchOfFormula2IsExact) {
   const ExactFrames scene = exact_frames(*front_scene(GetParam(), 96, 16));
@@ -393,12 +348,7 @@ TEST_P(CudaForcedDecisions, EveryBranchOfFormula2IsExact) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaForcedDecisions, testing::ValuesIn(front_scene_names()), front_scene_name);
 
-class CudaRebuildAhead : public testing::TestWithParam<std::string> {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaRebuildAhead : public OnGpu<testing::TestWithParam<std::string>> {};
 
 TEST_P(CudaRebuildAhead, EveryFrameExactAndTheBuildsAdopted) {
   check_rebuild_ahead("cuda", rebuild_ahead_scene(GetParam(), 96, 16));
@@ -406,20 +356,14 @@ TEST_P(CudaRebuildAhead, EveryFrameExactAndTheBuildsAdopted) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaRebuildAhead, testing::ValuesIn(rebuild_ahead_scene_names()), front_scene_name);
 
-TEST(CudaPipelines, ReplayedPlansRunTheRecordedStepsExactly) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaPipelines, ReplayedPlansRunTheRecordedStepsExactly) {
   check_replayed_plans("cuda", exact_frames(*front_scene("funnel", 96, 16)));
 }
 
 // Deformable and rigid objects with declared queries (tests/inter_cases.h): every splitting
 // pipeline exact on every frame, the fronts each query keeps, T_R only refitted, and
 // pipeline c's forced decisions with cross fronts. Failures name scene, pipeline and frame.
-class CudaInter : public testing::TestWithParam<InterCase> {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaInter : public OnGpu<testing::TestWithParam<InterCase>> {};
 
 TEST_P(CudaInter, AllPipelinesExactEveryFrame) { check_inter_pipelines("cuda", GetParam()); }
 
@@ -427,12 +371,7 @@ TEST_P(CudaInter, FrontsFollowTheQueriesAndTheRigidTreeOnlyRefits) { check_inter
 
 INSTANTIATE_TEST_SUITE_P(Scenes, CudaInter, testing::ValuesIn(inter_cases(64, 16)), inter_case_name);
 
-class CudaInterDecisions : public testing::TestWithParam<InterCase> {
- protected:
-  void SetUp() override {
-    if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
-  }
-};
+class CudaInterDecisions : public OnGpu<testing::TestWithParam<InterCase>> {};
 
 TEST_P(CudaInterDecisions, EveryBranchOfFormula2IsExact) { check_inter_decisions("cuda", GetParam()); }
 
@@ -451,8 +390,9 @@ TEST(CudaInter, ShippedInterScenesExact) {
 // The long tests (ctest bvh_cuda_long, label gpu-long; the gpu label runs every other
 // test): scenes of millions of triangles, checked against references on the host.
 
-TEST(CudaLong, LargeUniformSoupRepeatedBuildsAreExact) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+class CudaLong : public OnGpu<testing::Test> {};
+
+TEST_F(CudaLong, LargeUniformSoupRepeatedBuildsAreExact) {
   // Many rebuilds of a 1M-triangle scene: a missing fence in the bottom-up build shows up
   // as an occasional corrupt tree, so repeat.
   auto soup = make_generator("soup", {{"triangles", 1000000}, {"frames", 4}});
@@ -465,8 +405,7 @@ TEST(CudaLong, LargeUniformSoupRepeatedBuildsAreExact) {
 // exact pair set is known: (2m, 2m + 1) for every m, (0, last) and (1, last). Three frames
 // (moving by 1e-3 each) take the front pipelines through generate, a captured and a
 // replayed preserve frame; baselines and bvh must agree on every frame.
-TEST(CudaLong, IndexWidthPastTwoToThe24Triangles) {
-  if (const auto why = missing_gpu(); !why.empty()) GTEST_SKIP() << why;
+TEST_F(CudaLong, IndexWidthPastTwoToThe24Triangles) {
   constexpr uint32_t kPairs = 1u << 23, kTriangles = 2 * kPairs + 1, kLast = kTriangles - 1;
   Topology topo;
   topo.faces.resize(kTriangles);

@@ -13,6 +13,7 @@
 #include "cdbench/narrow/predicates.h"
 #include "cdbench/narrow/triangle_intersect.h"
 #include "narrow_cases.h"
+#include "param_name.h"
 
 namespace cdb {
 namespace {
@@ -185,10 +186,7 @@ TEST_P(NarrowHand, KnownAnswerEverywhere) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, NarrowHand, testing::ValuesIn(hand_cases()),
                          [](const testing::TestParamInfo<HandCase>& info) {
-                           std::string n = info.param.name;
-                           for (char& ch : n)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return n;
+                           return param_name(info.param.name);
                          });
 
 // One float ulp decides: touching at exactly representable points, apart by the smallest step.

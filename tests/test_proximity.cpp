@@ -15,6 +15,7 @@
 #include "cdbench/narrow/contacts.h"
 #include "cdbench/narrow/proximity.h"
 #include "proximity_cases.h"
+#include "param_name.h"
 
 namespace cdb {
 namespace {
@@ -251,10 +252,7 @@ TEST_P(ProximityHand, OneUlpDecidesAtEveryPlacement) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, ProximityHand, testing::ValuesIn(distance_cases()),
                          [](const testing::TestParamInfo<DistanceCase>& info) {
-                           std::string n = info.param.name;
-                           for (char& ch : n)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return n;
+                           return param_name(info.param.name);
                          });
 
 // An irrational distance, sqrt(2), decided by the floats next to it on either side; the side

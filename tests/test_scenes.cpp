@@ -14,6 +14,7 @@
 #include "scenes/generators/generators.h"
 #include "scenes/load/frame_cache.h"
 #include "scenes/load/obj_sequence.h"
+#include "param_name.h"
 
 namespace cdb::test {
 namespace {
@@ -92,10 +93,7 @@ TEST_P(SceneSizes, DeclaredCountFixedTopologyFiniteAndReproducible) {
 
 INSTANTIATE_TEST_SUITE_P(Generators, SceneSizes, testing::ValuesIn(size_cases()),
                          [](const testing::TestParamInfo<SizeCase>& i) {
-                           std::string name = i.param.generator + "_" + std::to_string(i.index);
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
+                           return param_name(i.param.generator + "_" + std::to_string(i.index));
                          });
 
 // Large enough that the solver's loops run on several threads.
@@ -199,10 +197,7 @@ INSTANTIATE_TEST_SUITE_P(
                     ContactCase{"flag", {{"res", 24}, {"frames", 20}}},
                     ContactCase{"sphere", {{"res", 32}, {"frames", 40}}}),
     [](const testing::TestParamInfo<ContactCase>& i) {
-      std::string name = i.param.generator;
-      for (char& ch : name)
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      return name;
+      return param_name(i.param.generator);
     });
 
 TEST(Scenes, UnknownAndOutOfRangeParametersAreRejected) {

@@ -18,11 +18,8 @@ template <class Exec>
 struct CellBoxes : FaceBoxes {
   // Buffers are named "<prefix>.<array>" in the growth log.
   CellBoxes(Exec& exec, const std::string& prefix) : FaceBoxes(exec.memory(), prefix) {
-    MemoryResource& mr = exec.memory();
-    counts.bind(mr, prefix + ".counts");
-    offsets.bind(mr, prefix + ".offsets");
-    scene.bind(mr, prefix + ".scene");
-    temp.bind(mr, prefix + ".temp");
+    bind_arrays(exec.memory(), prefix + ".",
+                {{&counts, "counts"}, {&offsets, "offsets"}, {&scene, "scene"}, {&temp, "temp"}});
   }
 
   void reserve_boxes(uint32_t n) {

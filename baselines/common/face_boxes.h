@@ -13,8 +13,7 @@ namespace cdb {
 struct FaceBoxes {
   // Buffers are named "<prefix>.lo" and "<prefix>.hi" in the growth log.
   FaceBoxes(MemoryResource& mr, const std::string& prefix) {
-    lo.bind(mr, prefix + ".lo");
-    hi.bind(mr, prefix + ".hi");
+    bind_arrays(mr, prefix + ".", {{&lo, "lo"}, {&hi, "hi"}});
   }
 
   void reserve_faces(uint32_t n) {

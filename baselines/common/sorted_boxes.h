@@ -39,12 +39,8 @@ template <class Exec>
 struct SortedBoxes : FaceBoxes {
   // Buffers are named "<prefix>.<array>" in the growth log.
   SortedBoxes(Exec& exec, const std::string& prefix) : FaceBoxes(exec.memory(), prefix) {
-    MemoryResource& mr = exec.memory();
-    keys.bind(mr, prefix + ".keys");
-    sorted_keys.bind(mr, prefix + ".sorted_keys");
-    iota.bind(mr, prefix + ".iota");
-    order.bind(mr, prefix + ".order");
-    temp.bind(mr, prefix + ".temp");
+    bind_arrays(exec.memory(), prefix + ".",
+                {{&keys, "keys"}, {&sorted_keys, "sorted_keys"}, {&iota, "iota"}, {&order, "order"}, {&temp, "temp"}});
   }
 
   // Sized once from the triangle count; the temporary storage also holds `other_temp_bytes`

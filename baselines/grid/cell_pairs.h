@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "baselines/common/home_cell.h"
+#include "baselines/common/staged_pairs.h"
 #include "cdbench/core/aabb.h"
 #include "cdbench/core/pair_sink.h"
 #include "baselines/grid/grid_geometry.h"
@@ -20,7 +21,7 @@
 namespace cdb {
 
 // One thread per sorted entry: the later entries of its cell.
-struct SameLevelPairsFn {
+struct SameLevelPairsFn : StagedPairs {
   const uint64_t* keys;
   const uint32_t* boxes;
   const unsigned long long* total;
@@ -29,8 +30,6 @@ struct SameLevelPairsFn {
   const vec4f* lo;
   const vec4f* hi;
   const GridLayout* params;
-  PairSink sink;
-  using Stage = PairStage;
   CDB_HD void operator()(uint32_t k, Stage* stage = nullptr) const {
     const PairSink out = sink.staged(stage);
     const uint32_t entries = static_cast<uint32_t>(min_of(*total, (unsigned long long)planned));
@@ -44,14 +43,11 @@ struct SameLevelPairsFn {
         },
         out);
   }
-#if defined(__CUDACC__)
-  __device__ void flush(Stage& s) const { sink.flush(s); }
-#endif
 };
 
 // One thread per box: the boxes of every coarser, non-empty level in the cells its box
 // covers there. Scenes of one level return at once.
-struct CoarserLevelPairsFn {
+struct CoarserLevelPairsFn : StagedPairs {
   const uint64_t* keys;
   const uint32_t* boxes;
   const uint32_t* level_begin;  // kGridMaxLevels + 1 entries
@@ -59,8 +55,6 @@ struct CoarserLevelPairsFn {
   const vec4f* lo;
   const vec4f* hi;
   const GridLayout* params;
-  PairSink sink;
-  using Stage = PairStage;
   CDB_HD void operator()(uint32_t a, Stage* stage = nullptr) const {
     const PairSink out = sink.staged(stage);
     const GridLayout& p = *params;
@@ -80,9 +74,6 @@ struct CoarserLevelPairsFn {
       });
     }
   }
-#if defined(__CUDACC__)
-  __device__ void flush(Stage& s) const { sink.flush(s); }
-#endif
 };
 
 }  // namespace cdb

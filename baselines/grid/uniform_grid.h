@@ -45,16 +45,10 @@ struct UniformGrid : CellBoxes<Exec> {
   static constexpr size_t kMaxPlan = 0xffffffffull;
 
   explicit UniformGrid(Exec& exec) : CellBoxes<Exec>(exec, "grid") {
-    MemoryResource& mr = exec.memory();
-    level.bind(mr, "grid.level");
-    level_begin.bind(mr, "grid.level_begin");
-    trimmed.bind(mr, "grid.trimmed");
-    params.bind(mr, "grid.params");
-    totals.bind(mr, "grid.totals");
-    keys.bind(mr, "grid.keys");
-    sorted_keys.bind(mr, "grid.sorted_keys");
-    boxes.bind(mr, "grid.boxes");
-    sorted_boxes.bind(mr, "grid.sorted_boxes");
+    bind_arrays(exec.memory(), "grid.",
+                {{&level, "level"}, {&level_begin, "level_begin"}, {&trimmed, "trimmed"}, {&params, "params"},
+                 {&totals, "totals"}, {&keys, "keys"}, {&sorted_keys, "sorted_keys"}, {&boxes, "boxes"},
+                 {&sorted_boxes, "sorted_boxes"}});
   }
 
   void reserve(Exec& exec, uint32_t n) {
@@ -142,14 +136,13 @@ void grid_pairs(Exec& exec, const UniformGrid<Exec>& g, uint32_t n, const PairSi
   if (n == 0) return;
   const uint32_t planned = static_cast<uint32_t>(g.built_entries);
   exec.for_each_staged(planned,
-                  SameLevelPairsFn{g.sorted_keys.data(), g.sorted_boxes.data(), &g.totals.data()->entries,
-                                   planned, g.level.data(), g.lo.data(), g.hi.data(),
-                                   g.params.data(), sink},
+                  SameLevelPairsFn{{sink}, g.sorted_keys.data(), g.sorted_boxes.data(), &g.totals.data()->entries,
+                                   planned, g.level.data(), g.lo.data(), g.hi.data(), g.params.data()},
                   Balance::uneven);
   exec.for_each_staged(n,
-                  CoarserLevelPairsFn{g.sorted_keys.data(), g.sorted_boxes.data(),
+                  CoarserLevelPairsFn{{sink}, g.sorted_keys.data(), g.sorted_boxes.data(),
                                       g.level_begin.data(), g.level.data(), g.lo.data(),
-                                      g.hi.data(), g.params.data(), sink},
+                                      g.hi.data(), g.params.data()},
                   Balance::uneven);
 }
 

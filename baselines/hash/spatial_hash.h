@@ -25,11 +25,13 @@
 #include "baselines/common/cell_coord.h"
 #include "baselines/common/cell_range.h"
 #include "baselines/common/home_cell.h"
+#include "baselines/common/staged_pairs.h"
 #include "cdbench/core/aabb.h"
 #include "cdbench/core/atomics.h"
 #include "cdbench/core/error.h"
 #include "cdbench/core/pair_sink.h"
 #include "cdbench/exec/balance.h"
+#include "cdbench/exec/gather.h"
 #include "cdbench/exec/memory.h"
 #include "cdbench/geometry/mesh.h"
 
@@ -136,22 +138,9 @@ struct FillCellsFn {
   }
 };
 
-struct GatherEntriesFn {
-  const uint32_t* sorted_ids;
-  const uint32_t* entry_box;
-  const uint64_t* entry_cell;
-  uint32_t* sorted_box;
-  uint64_t* sorted_cell;
-  CDB_HD void operator()(uint32_t k) const {
-    const uint32_t e = sorted_ids[k];
-    sorted_box[k] = entry_box[e];
-    sorted_cell[k] = entry_cell[e];
-  }
-};
-
 // One thread per sorted entry: the later entries of its bucket that lie in the same real
 // cell; a pair is reported only in its home cell.
-struct PairsInCellsFn {
+struct PairsInCellsFn : StagedPairs {
   uint32_t entries;
   const uint64_t* buckets;
   const uint32_t* box;
@@ -159,8 +148,6 @@ struct PairsInCellsFn {
   const vec4f* lo;
   const vec4f* hi;
   const CellLattice<float>* lattice;
-  PairSink sink;
-  using Stage = PairStage;
   CDB_HD void operator()(uint32_t k, Stage* stage = nullptr) const {
     const PairSink out = sink.staged(stage);
     const uint64_t bucket = buckets[k], c = cell[k];
@@ -170,21 +157,16 @@ struct PairsInCellsFn {
         [&](uint32_t t) { return cell[t] == c; },
         [&](const vec4f& alo, const vec4f& blo) { return pack_cell(home_cell(g, alo, blo)) == c; }, out);
   }
-#if defined(__CUDACC__)
-  __device__ void flush(Stage& s) const { sink.flush(s); }
-#endif
 };
 
 // One thread per box: against every large box. A pair of two large boxes is reported by
 // the thread of the larger index only.
-struct LargePairsFn {
+struct LargePairsFn : StagedPairs {
   const vec4f* lo;
   const vec4f* hi;
   const uint32_t* counts;
   const uint32_t* large;
   const uint32_t* large_count;
-  PairSink sink;
-  using Stage = PairStage;
   CDB_HD void operator()(uint32_t j, Stage* stage = nullptr) const {
     const PairSink out = sink.staged(stage);
     const uint32_t count = *large_count;
@@ -196,9 +178,6 @@ struct LargePairsFn {
       if (overlaps(jlo, jhi, lo[a], hi[a])) out.emit(a, j);
     }
   }
-#if defined(__CUDACC__)
-  __device__ void flush(Stage& s) const { sink.flush(s); }
-#endif
 };
 
 // Workspace of the hash: per-box arrays sized from the triangle count, per-entry arrays
@@ -206,19 +185,11 @@ struct LargePairsFn {
 template <class Exec>
 struct SpatialHash : CellBoxes<Exec> {
   explicit SpatialHash(Exec& exec) : CellBoxes<Exec>(exec, "hash") {
-    MemoryResource& mr = exec.memory();
-    large.bind(mr, "hash.large");
-    large_count.bind(mr, "hash.large_count");
-    lattice.bind(mr, "hash.lattice");
-    totals.bind(mr, "hash.totals");
-    keys.bind(mr, "hash.keys");
-    sorted_keys.bind(mr, "hash.sorted_keys");
-    entry_ids.bind(mr, "hash.entry_ids");
-    sorted_ids.bind(mr, "hash.sorted_ids");
-    entry_box.bind(mr, "hash.entry_box");
-    sorted_box.bind(mr, "hash.sorted_box");
-    entry_cell.bind(mr, "hash.entry_cell");
-    sorted_cell.bind(mr, "hash.sorted_cell");
+    bind_arrays(exec.memory(), "hash.",
+                {{&large, "large"}, {&large_count, "large_count"}, {&lattice, "lattice"}, {&totals, "totals"},
+                 {&keys, "keys"}, {&sorted_keys, "sorted_keys"}, {&entry_ids, "entry_ids"},
+                 {&sorted_ids, "sorted_ids"}, {&entry_box, "entry_box"}, {&sorted_box, "sorted_box"},
+                 {&entry_cell, "entry_cell"}, {&sorted_cell, "sorted_cell"}});
   }
 
   void reserve(Exec& exec, uint32_t n) {
@@ -288,22 +259,20 @@ uint32_t hash_build(Exec& exec, SpatialHash<Exec>& h, uint32_t n) {
                                  h.entry_box.data(), h.entry_cell.data()});
   exec.sort_pairs(h.keys.data(), h.sorted_keys.data(), h.entry_ids.data(), h.sorted_ids.data(),
                   entries, static_cast<int>(bits), h.temp.data(), h.temp.size());
-  exec.for_each_n(entries, GatherEntriesFn{h.sorted_ids.data(), h.entry_box.data(),
-                                           h.entry_cell.data(), h.sorted_box.data(),
-                                           h.sorted_cell.data()});
+  gather(exec, entries, h.sorted_ids.data(), h.entry_box.data(), h.entry_cell.data(), h.sorted_box.data(),
+         h.sorted_cell.data());
   return regrids;
 }
 
 template <class Exec>
 void hash_pairs(Exec& exec, const SpatialHash<Exec>& h, uint32_t n, const PairSink& sink) {
   exec.for_each_staged(h.num_entries,
-                  PairsInCellsFn{h.num_entries, h.sorted_keys.data(), h.sorted_box.data(),
-                                 h.sorted_cell.data(), h.lo.data(), h.hi.data(), h.lattice.data(),
-                                 sink},
+                  PairsInCellsFn{{sink}, h.num_entries, h.sorted_keys.data(), h.sorted_box.data(),
+                                 h.sorted_cell.data(), h.lo.data(), h.hi.data(), h.lattice.data()},
                   Balance::uneven);
   if (h.num_large > 0)
-    exec.for_each_staged(n, LargePairsFn{h.lo.data(), h.hi.data(), h.counts.data(), h.large.data(),
-                                    h.large_count.data(), sink});
+    exec.for_each_staged(n, LargePairsFn{{sink}, h.lo.data(), h.hi.data(), h.counts.data(), h.large.data(),
+                                    h.large_count.data()});
 }
 
 }  // namespace cdb

@@ -12,11 +12,12 @@
 #include <cstdint>
 
 #include "baselines/common/sorted_boxes.h"
+#include "baselines/common/staged_pairs.h"
 #include "cdbench/core/aabb.h"
 #include "cdbench/core/pair_sink.h"
 #include "cdbench/exec/balance.h"
+#include "cdbench/exec/gather.h"
 #include "cdbench/exec/memory.h"
-#include "cdbench/geometry/gather_boxes.h"
 #include "cdbench/geometry/mesh.h"
 
 namespace cdb {
@@ -91,14 +92,12 @@ struct PickedAxis {
   CDB_HD float operator()(const vec4f& v) const { return axis_of(v, *axis); }
 };
 
-struct SweepFn {
+struct SweepFn : StagedPairs {
   uint32_t n;
   const uint32_t* axis;
   const uint32_t* order;
   const vec4f* lo;  // sorted
   const vec4f* hi;  // sorted
-  PairSink sink;
-  using Stage = PairStage;
   CDB_HD void operator()(uint32_t s, Stage* stage = nullptr) const {
     const PairSink out = sink.staged(stage);
     const uint32_t ax = *axis;
@@ -110,9 +109,6 @@ struct SweepFn {
       if (overlaps(alo, ahi, blo, hi[t])) out.emit(order[s], order[t]);
     }
   }
-#if defined(__CUDACC__)
-  __device__ void flush(Stage& s) const { sink.flush(s); }
-#endif
 };
 
 // Workspace of the sweep, sized once from the triangle count; a larger scene later is a
@@ -120,11 +116,8 @@ struct SweepFn {
 template <class Exec>
 struct SweepAndPrune : SortedBoxes<Exec> {
   explicit SweepAndPrune(Exec& exec) : SortedBoxes<Exec>(exec, "sweep") {
-    MemoryResource& mr = exec.memory();
-    sorted_lo.bind(mr, "sweep.sorted_lo");
-    sorted_hi.bind(mr, "sweep.sorted_hi");
-    moments.bind(mr, "sweep.moments");
-    axis.bind(mr, "sweep.axis");
+    bind_arrays(exec.memory(), "sweep.",
+                {{&sorted_lo, "sorted_lo"}, {&sorted_hi, "sorted_hi"}, {&moments, "moments"}, {&axis, "axis"}});
   }
 
   void reserve(Exec& exec, uint32_t n) {
@@ -152,14 +145,13 @@ void sweep_sort(Exec& exec, SweepAndPrune<Exec>& s, uint32_t n) {
               s.moments.data(), s.temp.data(), s.temp.size());
   exec.for_each_n(1, PickAxisFn{s.moments.data(), n, s.axis.data()});
   sort_boxes(exec, s, n, PickedAxis{s.axis.data()});
-  exec.for_each_n(n, GatherBoxesFn{s.order.data(), s.lo.data(), s.hi.data(),
-                                    s.sorted_lo.data(), s.sorted_hi.data()});
+  gather(exec, n, s.order.data(), s.lo.data(), s.hi.data(), s.sorted_lo.data(), s.sorted_hi.data());
 }
 
 template <class Exec>
 void sweep_pairs(Exec& exec, const SweepAndPrune<Exec>& s, uint32_t n, const PairSink& sink) {
-  exec.for_each_staged(n, SweepFn{n, s.axis.data(), s.order.data(), s.sorted_lo.data(),
-                             s.sorted_hi.data(), sink},
+  exec.for_each_staged(n, SweepFn{{sink}, n, s.axis.data(), s.order.data(), s.sorted_lo.data(),
+                             s.sorted_hi.data()},
                   Balance::uneven);
 }
 

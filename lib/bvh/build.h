@@ -9,12 +9,12 @@
 #include <cstdint>
 
 #include "cdbench/exec/balance.h"
+#include "cdbench/exec/gather.h"
 #include "cdbench/bvh/lbvh.h"
 #include "cdbench/bvh/node_ref.h"
 #include "cdbench/core/atomics.h"
 #include "cdbench/core/morton.h"
 #include "cdbench/geometry/face_subset.h"
-#include "cdbench/geometry/gather_boxes.h"
 #include "cdbench/geometry/mesh.h"
 
 namespace cdb {
@@ -82,28 +82,18 @@ CDB_HD_INLINE uint64_t split_delta(const uint64_t* keys, uint32_t i) {
   return x != 0 ? (x | (uint64_t(1) << 63)) : uint64_t(i ^ (i + 1));
 }
 
-// The arrays Apetrei's climb reads and writes, in build numbering (internal node k = split
-// between sorted leaves k and k+1).
+// What Apetrei's climb reads and writes: the sorted leaves' keys and boxes, their parents,
+// and the build-numbered tree (internal node k = split between sorted leaves k and k+1).
 struct ApetreiTree {
   const uint64_t* keys;
-  const vec4f* leaf_lo;
-  const vec4f* leaf_hi;
-  vec4f* node_lo;
-  vec4f* node_hi;
-  uint32_t* left;
-  uint32_t* right;
-  uint32_t* leaf_parent;
-  uint32_t* node_parent;
-  uint32_t* first;
-  uint32_t* last;
-  uint32_t* other_bound;
-  uint32_t* count_log;
+  TreeArrays leaves;
+  BuildArrays build;
 
   CDB_HD_INLINE void set_parent(uint32_t child, uint32_t parent) const {
     if (is_leaf(child))
-      leaf_parent[ref_index(child)] = parent;
+      leaves.leaf_parent[ref_index(child)] = parent;
     else
-      node_parent[child] = parent;
+      build.parent[child] = parent;
   }
 };
 
@@ -113,42 +103,43 @@ struct ApetreiTree {
 CDB_HD_INLINE void apetrei_climb(const ApetreiTree& a, uint32_t i, uint32_t s, uint32_t t) {
   uint32_t l = i, r = i;
   uint32_t current = leaf_ref(i);
-  vec4f lo = a.leaf_lo[i], hi = a.leaf_hi[i];
+  const BuildArrays& b = a.build;
+  vec4f lo = a.leaves.leaf_lo[i], hi = a.leaves.leaf_hi[i];
   for (;;) {
     const bool parent_is_right_split =
         l == s || (r != t && split_delta(a.keys, r) < split_delta(a.keys, l - 1));
     uint32_t parent, sibling;
     if (parent_is_right_split) {
       parent = r;  // current is the left child of internal node r
-      a.left[parent] = current;
+      b.left[parent] = current;
       a.set_parent(current, parent);
-      const uint32_t other = atomic_exchange_acq_rel(&a.other_bound[parent], l);
+      const uint32_t other = atomic_exchange_acq_rel(&b.other_bound[parent], l);
       if (other == kNoNode) return;
       r = other;
-      sibling = load_coherent(&a.right[parent]);
+      sibling = load_coherent(&b.right[parent]);
     } else {
       parent = l - 1;  // current is the right child of internal node l-1
-      a.right[parent] = current;
+      b.right[parent] = current;
       a.set_parent(current, parent);
-      const uint32_t other = atomic_exchange_acq_rel(&a.other_bound[parent], r);
+      const uint32_t other = atomic_exchange_acq_rel(&b.other_bound[parent], r);
       if (other == kNoNode) return;
       l = other;
-      sibling = load_coherent(&a.left[parent]);
+      sibling = load_coherent(&b.left[parent]);
     }
-    const vec4f slo = is_leaf(sibling) ? a.leaf_lo[ref_index(sibling)]
-                                       : load_coherent(&a.node_lo[sibling]);
-    const vec4f shi = is_leaf(sibling) ? a.leaf_hi[ref_index(sibling)]
-                                       : load_coherent(&a.node_hi[sibling]);
+    const vec4f slo = is_leaf(sibling) ? a.leaves.leaf_lo[ref_index(sibling)]
+                                       : load_coherent(&b.lo[sibling]);
+    const vec4f shi = is_leaf(sibling) ? a.leaves.leaf_hi[ref_index(sibling)]
+                                       : load_coherent(&b.hi[sibling]);
     lo = min_xyz(lo, slo, 0);
     hi = max_xyz(hi, shi, 0);
-    a.node_lo[parent] = lo;
-    a.node_hi[parent] = hi;
-    a.first[parent] = l;
-    a.last[parent] = r;
-    atomic_add_relaxed(&a.count_log[l], 1u);
+    b.lo[parent] = lo;
+    b.hi[parent] = hi;
+    b.first[parent] = l;
+    b.last[parent] = r;
+    atomic_add_relaxed(&b.count_log[l], 1u);
     current = parent;
     if (l == s && r == t) {
-      a.node_parent[parent] = kNoNode;
+      b.parent[parent] = kNoNode;
       return;
     }
   }
@@ -163,9 +154,7 @@ struct ApetreiBuildFn {
 // The build scratch of an Lbvh as Apetrei's climb sees it, with `keys` sorted by leaf.
 template <class Exec>
 ApetreiTree apetrei_tree(Lbvh<Exec>& bvh, const uint64_t* keys) {
-  return {keys, bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.build_lo.data(), bvh.build_hi.data(),
-          bvh.build_left.data(), bvh.build_right.data(), bvh.leaf_parent.data(), bvh.build_parent.data(),
-          bvh.build_first.data(), bvh.build_last.data(), bvh.other_bound.data(), bvh.count_log.data()};
+  return {keys, bvh.tree(), bvh.build()};
 }
 
 // The first step of a build: the boxes of a subset's faces, in subset order, into the
@@ -193,8 +182,8 @@ void build_from_boxes(Exec& exec, Lbvh<Exec>& bvh, MortonBits bits, FaceSubset s
   exec.sort_pairs(bvh.morton.data(), bvh.morton_sorted.data(), bvh.prim_iota.data(),
                   bvh.leaf_prim.data(), n, static_cast<int>(bits), bvh.temp.data(),
                   bvh.temp.size());
-  exec.for_each_n(n, GatherBoxesFn{bvh.leaf_prim.data(), bvh.prim_lo.data(), bvh.prim_hi.data(),
-                                    bvh.leaf_lo.data(), bvh.leaf_hi.data()});
+  gather(exec, n, bvh.leaf_prim.data(), bvh.prim_lo.data(), bvh.prim_hi.data(), bvh.leaf_lo.data(),
+         bvh.leaf_hi.data());
   if (subset.faces) exec.for_each_n(n, SubsetLeafPrimFn{subset, bvh.leaf_prim.data()});
   if (n == 1) return;
   exec.fill(bvh.other_bound.data(), n - 1, kNoNode);

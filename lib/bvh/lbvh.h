@@ -7,6 +7,7 @@
 
 #include "cdbench/bvh/bvh_view.h"
 #include "cdbench/bvh/refit_tiles.h"
+#include "cdbench/bvh/tree_arrays.h"
 #include "cdbench/core/aabb.h"
 #include "cdbench/core/morton.h"
 #include "cdbench/exec/memory.h"
@@ -69,6 +70,26 @@ struct Lbvh {
   BvhView view() const {
     return {num_leaves,        leaf_lo.data(),    leaf_hi.data(),   node_lo.data(),
             node_hi.data(),    node_right.data(), node_first.data(), node_last.data()};
+  }
+
+  TreeArrays tree() {
+    return {leaf_lo.data(),     leaf_hi.data(),    leaf_prim.data(),   leaf_parent.data(), leaf_escape.data(),
+            node_lo.data(),     node_hi.data(),    node_left.data(),   node_right.data(),  node_parent.data(),
+            node_escape.data(), node_first.data(), node_last.data()};
+  }
+  BuildArrays build() {
+    return {build_lo.data(),    build_hi.data(),    build_left.data(), build_right.data(),
+            build_parent.data(), build_first.data(), build_last.data(), other_bound.data(),
+            count_log.data(),   offset_log.data(),  new_index.data()};
+  }
+  // span_flag is null where the top is not indexed (refit_top_fits()).
+  RefitIndexArrays refit_index() {
+    return {tile_start.data(), tile_scan.data(),  tile_first.data(),
+            tile_count.data(), refit_top_fits() ? span_flag.data() : nullptr,
+            span_scan.data(),  span_count.data(), span_node.data(),
+            span_parent.data(), span_child.data(), span_depth.data(),
+            span_lo.data(),    span_hi.data(),    level_node.data(),
+            level_code.data(), level_link.data()};
   }
 
   uint32_t num_leaves = 0;

@@ -19,87 +19,59 @@ namespace cdb {
 // range ends at leaf t escape to `last_escape` (what followed the subtree before), the
 // subtree root keeps the parent it had (`root_parent`), and indices start at its root's.
 struct DepthFirstLayout {
-  const uint32_t* count_log;
-  const uint32_t* offset_log;
-  const uint32_t* build_parent;
-  uint32_t* new_index;
-  const vec4f* build_lo;
-  const vec4f* build_hi;
-  const uint32_t* build_left;
-  const uint32_t* build_right;
-  const uint32_t* build_first;
-  const uint32_t* build_last;
-  vec4f* node_lo;
-  vec4f* node_hi;
-  uint32_t* node_left;
-  uint32_t* node_right;
-  uint32_t* node_parent;
-  uint32_t* node_escape;
-  uint32_t* node_first;
-  uint32_t* node_last;
-  uint32_t* leaf_parent;
-  uint32_t* leaf_escape;
-  const uint32_t* leaf_prim;
-  vec4f* leaf_lo;
-  vec4f* leaf_hi;
+  BuildArrays build;
+  TreeArrays tree;
 
   CDB_HD_INLINE uint32_t remap(uint32_t ref) const {
-    return (ref == kNoNode || is_leaf(ref)) ? ref : new_index[ref];
+    return (ref == kNoNode || is_leaf(ref)) ? ref : build.new_index[ref];
   }
   // Walks segment l's chain bottom-up: the lowest node whose leftmost leaf is l is internal
   // node l (leaf l is its left child), and each next one is the parent. `base` is the
   // index of the segment's first node.
   CDB_HD_INLINE void number_chain(uint32_t l, uint32_t base) const {
-    const uint32_t c = count_log[l];
+    const uint32_t c = build.count_log[l];
     uint32_t node = l;
     const uint32_t bottom = base + c - 1;
     for (uint32_t s = 0; s < c; ++s) {
-      new_index[node] = bottom - s;
-      node = build_parent[node];
+      build.new_index[node] = bottom - s;
+      node = build.parent[node];
     }
   }
   CDB_HD_INLINE void place_node(uint32_t k, uint32_t t, uint32_t last_escape,
                                 uint32_t root_parent) const {
-    const uint32_t p = new_index[k];
-    const uint32_t left = remap(build_left[k]);
-    node_left[p] = left;
-    node_right[p] = remap(build_right[k]);
-    const uint32_t parent = build_parent[k];
-    node_parent[p] = parent == kNoNode ? root_parent : new_index[parent];
-    const uint32_t r = build_last[k];
-    node_first[p] = build_first[k];
-    node_last[p] = r;
+    const uint32_t p = build.new_index[k];
+    const uint32_t left = remap(build.left[k]);
+    tree.node_left[p] = left;
+    tree.node_right[p] = remap(build.right[k]);
+    const uint32_t parent = build.parent[k];
+    tree.node_parent[p] = parent == kNoNode ? root_parent : build.new_index[parent];
+    const uint32_t r = build.last[k];
+    tree.node_first[p] = build.first[k];
+    tree.node_last[p] = r;
     // Escape (Fig. 2.2): the node after subtree [l, r] in depth-first order is the right
     // child of internal node r; past the last leaf it is whatever followed the whole range.
-    const uint32_t escape = r == t ? last_escape : remap(build_right[r]);
-    node_escape[p] = escape;
-    const vec4f lo = build_lo[k], hi = build_hi[k];
-    node_lo[p] = {lo.x, lo.y, lo.z, link_lane(left)};
-    node_hi[p] = {hi.x, hi.y, hi.z, link_lane(escape)};
+    const uint32_t escape = r == t ? last_escape : remap(build.right[r]);
+    tree.node_escape[p] = escape;
+    const vec4f lo = build.lo[k], hi = build.hi[k];
+    tree.node_lo[p] = {lo.x, lo.y, lo.z, link_lane(left)};
+    tree.node_hi[p] = {hi.x, hi.y, hi.z, link_lane(escape)};
   }
   CDB_HD_INLINE void link_leaf(uint32_t i, uint32_t t, uint32_t last_escape) const {
-    const uint32_t escape = i == t ? last_escape : remap(build_right[i]);
-    leaf_escape[i] = escape;
-    leaf_parent[i] = new_index[leaf_parent[i]];
-    set_leaf_lanes(leaf_lo, leaf_hi, i, escape, leaf_prim[i]);
+    const uint32_t escape = i == t ? last_escape : remap(build.right[i]);
+    tree.leaf_escape[i] = escape;
+    tree.leaf_parent[i] = build.new_index[tree.leaf_parent[i]];
+    set_leaf_lanes(tree.leaf_lo, tree.leaf_hi, i, escape, tree.leaf_prim[i]);
   }
 };
 
 template <class Exec>
 DepthFirstLayout depth_first_layout(Lbvh<Exec>& bvh) {
-  return {bvh.count_log.data(),    bvh.offset_log.data(),  bvh.build_parent.data(),
-          bvh.new_index.data(),    bvh.build_lo.data(),    bvh.build_hi.data(),
-          bvh.build_left.data(),   bvh.build_right.data(), bvh.build_first.data(),
-          bvh.build_last.data(),   bvh.node_lo.data(),     bvh.node_hi.data(),
-          bvh.node_left.data(),    bvh.node_right.data(),  bvh.node_parent.data(),
-          bvh.node_escape.data(),  bvh.node_first.data(),  bvh.node_last.data(),
-          bvh.leaf_parent.data(),  bvh.leaf_escape.data(), bvh.leaf_prim.data(),
-          bvh.leaf_lo.data(),      bvh.leaf_hi.data()};
+  return {bvh.build(), bvh.tree()};
 }
 
 struct NumberChainFn {
   DepthFirstLayout layout;
-  CDB_HD void operator()(uint32_t l) const { layout.number_chain(l, layout.offset_log[l]); }
+  CDB_HD void operator()(uint32_t l) const { layout.number_chain(l, layout.build.offset_log[l]); }
 };
 
 struct ScatterNodesFn {
@@ -115,23 +87,18 @@ struct LinkLeavesFn {
 };
 
 struct SingleLeafFn {
-  uint32_t* leaf_parent;
-  uint32_t* leaf_escape;
-  const uint32_t* leaf_prim;
-  vec4f* leaf_lo;
-  vec4f* leaf_hi;
+  TreeArrays tree;
   CDB_HD void operator()(uint32_t) const {
-    leaf_parent[0] = kNoNode;
-    leaf_escape[0] = kNoNode;
-    set_leaf_lanes(leaf_lo, leaf_hi, 0, kNoNode, leaf_prim[0]);
+    tree.leaf_parent[0] = kNoNode;
+    tree.leaf_escape[0] = kNoNode;
+    set_leaf_lanes(tree.leaf_lo, tree.leaf_hi, 0, kNoNode, tree.leaf_prim[0]);
   }
 };
 
 // A one-leaf tree: no internal node, nothing after the leaf (both orders).
 template <class Exec>
 void order_single_leaf(Exec& exec, Lbvh<Exec>& bvh) {
-  exec.for_each_n(1, SingleLeafFn{bvh.leaf_parent.data(), bvh.leaf_escape.data(), bvh.leaf_prim.data(),
-                                  bvh.leaf_lo.data(), bvh.leaf_hi.data()});
+  exec.for_each_n(1, SingleLeafFn{bvh.tree()});
   index_refit(exec, bvh);
 }
 

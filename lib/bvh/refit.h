@@ -40,19 +40,7 @@ struct RefitFn {
   };
 
   MeshView mesh;
-  const uint32_t* leaf_prim;
-  const uint32_t* leaf_parent;
-  const uint32_t* node_left;
-  const uint32_t* node_right;
-  const uint32_t* node_parent;
-  const uint32_t* node_first;
-  const uint32_t* node_last;
-  const uint32_t* node_escape;
-  const uint32_t* leaf_escape;
-  vec4f* leaf_lo;
-  vec4f* leaf_hi;
-  vec4f* node_lo;
-  vec4f* node_hi;
+  TreeArrays tree;
   uint32_t* flag;
   bool stop_at_spanning;  // the spanning top is refitted by RefitTopFn (refit_top.h)
   CounterReset reset;     // zeroed by the first tile's first lanes
@@ -66,7 +54,8 @@ struct RefitFn {
   };
   CDB_HD Links links(uint32_t k) const {
     if (k == kNoNode) return {kNoNode, kNoNode, kNoNode, 0, 0, kNoNode};
-    return {node_left[k], node_right[k], node_parent[k], node_first[k], node_last[k], node_escape[k]};
+    return {tree.node_left[k], tree.node_right[k], tree.node_parent[k], tree.node_first[k], tree.node_last[k],
+            tree.node_escape[k]};
   }
 
   // Each level's links are loaded together, one level ahead: the loads of the parent's
@@ -75,12 +64,12 @@ struct RefitFn {
   CDB_HD void operator()(uint32_t i, uint32_t tile_first, uint32_t tile_last, Shared& s) const {
     if (i < reset.count) reset.counters[i] = 0;
     vec4f lo, hi;
-    const uint32_t prim = leaf_prim[i], escape = leaf_escape[i];
+    const uint32_t prim = tree.leaf_prim[i], escape = tree.leaf_escape[i];
     face_box(mesh, prim, lo, hi);
-    leaf_lo[i] = {lo.x, lo.y, lo.z, link_lane(escape)};
-    leaf_hi[i] = {hi.x, hi.y, hi.z, link_lane(prim)};
+    tree.leaf_lo[i] = {lo.x, lo.y, lo.z, link_lane(escape)};
+    tree.leaf_hi[i] = {hi.x, hi.y, hi.z, link_lane(prim)};
     uint32_t child = leaf_ref(i), first = i, last = i;  // the subtree climbed so far
-    uint32_t p = leaf_parent[i];
+    uint32_t p = tree.leaf_parent[i];
     Links at = links(p);
     while (p != kNoNode) {
       const bool from_left = at.left == child;
@@ -100,13 +89,13 @@ struct RefitFn {
         shi = {handover_load(&other[3]), handover_load(&other[4]), handover_load(&other[5]), 0};
       } else {
         if (stop_at_spanning) return;
-        if (!span_handover(flag, p, from_left ? at.right : at.left, leaf_lo, leaf_hi, node_lo, node_hi, slo, shi))
+        if (!span_handover(flag, p, from_left ? at.right : at.left, tree, slo, shi))
           return;
       }
       lo = min_xyz(lo, slo, link_lane(at.left));
       hi = max_xyz(hi, shi, link_lane(at.escape));
-      node_lo[p] = lo;
-      node_hi[p] = hi;
+      tree.node_lo[p] = lo;
+      tree.node_hi[p] = hi;
       child = p;
       first = p_first;
       last = p_last;
@@ -125,25 +114,14 @@ bool refit(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, CounterReset reset
   if (n == 0) return false;
   const bool top_in_block = bvh.refit_top_fits();
   const Tiles tiles{bvh.tile_first.data(), bvh.tile_count.data(), bvh.refit_tile_blocks()};
+  const TreeArrays tree = bvh.tree();
+  const RefitIndexArrays index = bvh.refit_index();
   if (bvh.refit_levels)
-    exec.for_each_tile_in_phases(
-        tiles, RefitLevelsFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.leaf_escape.data(),
-                             bvh.node_left.data(), bvh.node_right.data(), bvh.node_parent.data(),
-                             bvh.node_escape.data(), bvh.level_node.data(), bvh.level_code.data(), bvh.level_link.data(),
-                             bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_lo.data(), bvh.node_hi.data(),
-                             bvh.refit_flag.data(), top_in_block, reset});
+    exec.for_each_tile_in_phases(tiles, RefitLevelsFn{mesh, tree, index, bvh.refit_flag.data(), top_in_block, reset});
   else
-    exec.for_each_tile(tiles,
-                     RefitFn{mesh, bvh.leaf_prim.data(), bvh.leaf_parent.data(), bvh.node_left.data(),
-                                bvh.node_right.data(), bvh.node_parent.data(), bvh.node_first.data(),
-                                bvh.node_last.data(), bvh.node_escape.data(), bvh.leaf_escape.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
-                                bvh.node_lo.data(), bvh.node_hi.data(), bvh.refit_flag.data(), top_in_block, reset});
+    exec.for_each_tile(tiles, RefitFn{mesh, tree, bvh.refit_flag.data(), top_in_block, reset});
   if (top_in_block)
-    exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots),
-                                 bvh.span_count.data(), bvh.span_node.data(), bvh.span_parent.data(),
-                                 bvh.span_child.data(), bvh.span_depth.data(), bvh.span_lo.data(), bvh.span_hi.data(),
-                                 bvh.leaf_lo.data(), bvh.leaf_hi.data(), bvh.node_left.data(), bvh.node_escape.data(),
-                                 bvh.node_lo.data(), bvh.node_hi.data()});
+    exec.in_one_block(RefitTopFn{std::min(bvh.refit_top_shared_slots, RefitTopFn::kSharedSlots), index, tree});
   return reset.count > 0;
 }
 

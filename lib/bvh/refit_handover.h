@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "cdbench/bvh/node_ref.h"
+#include "cdbench/bvh/tree_arrays.h"
 #include "cdbench/core/atomics.h"
 #include "cdbench/core/vec.h"
 
@@ -18,12 +19,11 @@ struct CounterReset {
 
 // The device-scope hand-over at spanning node p: false for the first of its two arrivals
 // (parity of refit_flag, bvh/refit.h); the second gets the sibling's box.
-CDB_HD_INLINE bool span_handover(uint32_t* flag, uint32_t p, uint32_t sibling, const vec4f* leaf_lo,
-                                 const vec4f* leaf_hi, const vec4f* node_lo, const vec4f* node_hi, vec4f& slo,
+CDB_HD_INLINE bool span_handover(uint32_t* flag, uint32_t p, uint32_t sibling, const TreeArrays& tree, vec4f& slo,
                                  vec4f& shi) {
   if ((atomic_add_acq_rel(&flag[p], 1u) & 1u) == 0) return false;
-  slo = is_leaf(sibling) ? load_coherent(&leaf_lo[ref_index(sibling)]) : load_coherent(&node_lo[sibling]);
-  shi = is_leaf(sibling) ? load_coherent(&leaf_hi[ref_index(sibling)]) : load_coherent(&node_hi[sibling]);
+  slo = is_leaf(sibling) ? load_coherent(&tree.leaf_lo[ref_index(sibling)]) : load_coherent(&tree.node_lo[sibling]);
+  shi = is_leaf(sibling) ? load_coherent(&tree.leaf_hi[ref_index(sibling)]) : load_coherent(&tree.node_hi[sibling]);
   return true;
 }
 

@@ -34,19 +34,16 @@ namespace cdb {
 // node, with leaves before it, lies inside the treelet. The first leaf always starts one.
 // So every mark is written once, and no fill comes first.
 struct RefitMarksFn {
-  const uint32_t* node_first;
-  const uint32_t* node_last;
-  const uint32_t* node_right;
+  TreeArrays tree;
+  RefitIndexArrays index;  // writes tile_start and, unless null, span_flag
   uint32_t last_leaf;
-  uint32_t* tile_start;  // per leaf: 1 where a treelet starts
-  uint32_t* span_flag;   // per internal node: 1 where it spans; null when the top is not indexed
   CDB_HD void operator()(uint32_t k) const {
-    const uint32_t first = node_first[k], last = node_last[k];
+    const uint32_t first = tree.node_first[k], last = tree.node_last[k];
     const bool spans = spans_tiles(first, last);
-    if (span_flag) span_flag[k] = spans ? 1u : 0u;
-    const uint32_t r = node_right[k];
-    tile_start[is_leaf(r) ? ref_index(r) : node_first[r]] = spans ? 1u : 0u;
-    if (first == 0 && last == last_leaf) tile_start[0] = 1u;
+    if (index.span_flag) index.span_flag[k] = spans ? 1u : 0u;
+    const uint32_t r = tree.node_right[k];
+    index.tile_start[is_leaf(r) ? ref_index(r) : tree.node_first[r]] = spans ? 1u : 0u;
+    if (first == 0 && last == last_leaf) index.tile_start[0] = 1u;
   }
 };
 
@@ -54,61 +51,44 @@ struct RefitMarksFn {
 // the top is indexed, of slots, with the deepest slot's depth zeroed for RefitTablesFn to
 // raise.
 struct RefitCountsFn {
-  const uint32_t* tile_start;
-  const uint32_t* tile_scan;
+  RefitIndexArrays index;  // span_flag null: the top is not indexed
   uint32_t n;
-  uint32_t* tile_first;
-  uint32_t* tile_count;
-  const uint32_t* span_flag;  // null when the top is not indexed
-  const uint32_t* span_scan;
-  uint32_t* span_count;  // [0]: slots, [1]: the deepest slot's depth
   CDB_HD void operator()(uint32_t) const {
-    const uint32_t tiles = tile_scan[n - 1] + tile_start[n - 1];
-    tile_count[0] = tiles;
-    tile_first[tiles] = n;
-    if (!span_flag) return;
-    span_count[0] = span_scan[n - 2] + span_flag[n - 2];
-    span_count[1] = 0;
+    const uint32_t tiles = index.tile_scan[n - 1] + index.tile_start[n - 1];
+    index.tile_count[0] = tiles;
+    index.tile_first[tiles] = n;
+    if (!index.span_flag) return;
+    index.span_count[0] = index.span_scan[n - 2] + index.span_flag[n - 2];
+    index.span_count[1] = 0;
   }
 };
 
 // Over leaves l, and internal node l where the top is indexed: each treelet's first leaf,
 // each spanning node's slot.
 struct RefitTablesFn {
-  const uint32_t* tile_start;
-  const uint32_t* tile_scan;
-  uint32_t* tile_first;
+  TreeArrays tree;
+  RefitIndexArrays index;  // writes tile_first and the slots; raises span_count[1], zeroed by
+                           // RefitCountsFn, to the deepest slot's depth
   uint32_t internal;  // internal nodes, 0 when the top is not indexed
-  const uint32_t* node_first;
-  const uint32_t* node_last;
-  const uint32_t* node_left;
-  const uint32_t* node_right;
-  const uint32_t* node_parent;
-  const uint32_t* span_scan;  // the slot of spanning node k
-  uint32_t* span_node;        // per slot: its node
-  uint32_t* span_parent;      // per slot: parent slot | side << 31 (1: right child), kNoNode at the root
-  uint32_t* span_child;       // per slot, left and right: the child if it does not span, else kNoNode
-  uint32_t* span_depth;       // per slot: its node's depth, the root's 0
-  uint32_t* max_depth;        // zeroed by RefitCountsFn
   CDB_HD void operator()(uint32_t l) const {
-    if (tile_start[l]) tile_first[tile_scan[l]] = l;
+    if (index.tile_start[l]) index.tile_first[index.tile_scan[l]] = l;
     if (l >= internal) return;
     const uint32_t k = l;
-    if (!spans_tiles(node_first[k], node_last[k])) return;
-    const uint32_t s = span_scan[k];
-    span_node[s] = k;
-    const uint32_t p = node_parent[k];
+    if (!spans_tiles(tree.node_first[k], tree.node_last[k])) return;
+    const uint32_t s = index.span_scan[k];
+    index.span_node[s] = k;
+    const uint32_t p = tree.node_parent[k];
     // Every ancestor of a spanning node spans: its depth in the tree is its depth in the top,
     // a few levels over treelets.
     uint32_t depth = 0;
-    for (uint32_t a = p; a != kNoNode; a = node_parent[a]) ++depth;
-    span_depth[s] = depth;
-    atomic_max_relaxed(max_depth, depth);
-    span_parent[s] = p == kNoNode ? kNoNode : span_scan[p] | (node_left[p] == k ? 0u : kLeafBit);
-    const uint32_t child[2] = {node_left[k], node_right[k]};
+    for (uint32_t a = p; a != kNoNode; a = tree.node_parent[a]) ++depth;
+    index.span_depth[s] = depth;
+    atomic_max_relaxed(index.span_count + 1, depth);
+    index.span_parent[s] = p == kNoNode ? kNoNode : index.span_scan[p] | (tree.node_left[p] == k ? 0u : kLeafBit);
+    const uint32_t child[2] = {tree.node_left[k], tree.node_right[k]};
     for (int side = 0; side < 2; ++side) {
       const uint32_t c = child[side];
-      span_child[2 * s + side] = !is_leaf(c) && spans_tiles(node_first[c], node_last[c]) ? kNoNode : c;
+      index.span_child[2 * s + side] = !is_leaf(c) && spans_tiles(tree.node_first[c], tree.node_last[c]) ? kNoNode : c;
     }
   }
 };
@@ -118,29 +98,20 @@ void index_refit(Exec& exec, Lbvh<Exec>& bvh) {
   const uint32_t n = bvh.num_leaves;
   if (n == 0) return;
   const bool top = bvh.refit_top_fits();
-  uint32_t* span_flag = top ? bvh.span_flag.data() : nullptr;
+  const TreeArrays tree = bvh.tree();
+  const RefitIndexArrays index = bvh.refit_index();
   if (n == 1)
     exec.fill(bvh.tile_start.data(), 1, 1u);
   else
-    exec.for_each_n(n - 1, RefitMarksFn{bvh.node_first.data(), bvh.node_last.data(), bvh.node_right.data(), n - 1,
-                                        bvh.tile_start.data(), span_flag});
+    exec.for_each_n(n - 1, RefitMarksFn{tree, index, n - 1});
   if (top)
     exec.exclusive_scan_pair(bvh.tile_start.data(), bvh.tile_scan.data(), n, bvh.span_flag.data(),
                              bvh.span_scan.data(), n - 1, bvh.temp.data(), bvh.temp.size());
   else
     exec.exclusive_scan(bvh.tile_start.data(), bvh.tile_scan.data(), n, bvh.temp.data(), bvh.temp.size());
-  exec.for_each_n(1, RefitCountsFn{bvh.tile_start.data(), bvh.tile_scan.data(), n, bvh.tile_first.data(),
-                                   bvh.tile_count.data(), span_flag, bvh.span_scan.data(), bvh.span_count.data()});
-  exec.for_each_n(n, RefitTablesFn{bvh.tile_start.data(), bvh.tile_scan.data(), bvh.tile_first.data(),
-                                   top ? n - 1 : 0, bvh.node_first.data(), bvh.node_last.data(), bvh.node_left.data(),
-                                   bvh.node_right.data(), bvh.node_parent.data(), bvh.span_scan.data(),
-                                   bvh.span_node.data(), bvh.span_parent.data(), bvh.span_child.data(),
-                                   bvh.span_depth.data(), bvh.span_count.data() + 1});
-  if (bvh.refit_levels && n > 1)
-    exec.for_each_n(n - 1, RefitLevelsIndexFn{bvh.node_left.data(), bvh.node_right.data(), bvh.node_parent.data(),
-                                              bvh.node_escape.data(), bvh.node_first.data(), bvh.node_last.data(),
-                                              bvh.tile_start.data(), bvh.tile_scan.data(), bvh.tile_first.data(),
-                                              bvh.level_node.data(), bvh.level_code.data(), bvh.level_link.data()});
+  exec.for_each_n(1, RefitCountsFn{index, n});
+  exec.for_each_n(n, RefitTablesFn{tree, index, top ? n - 1 : 0});
+  if (bvh.refit_levels && n > 1) exec.for_each_n(n - 1, RefitLevelsIndexFn{tree, index});
 }
 
 }  // namespace cdb

@@ -39,9 +39,9 @@ CDB_HD_INLINE uint32_t level_child(uint32_t code, int side) {
 }
 
 // The split of internal node k: the last leaf of its left child.
-CDB_HD_INLINE uint32_t node_split(const uint32_t* node_left, const uint32_t* node_last, uint32_t k) {
-  const uint32_t left = node_left[k];
-  return is_leaf(left) ? ref_index(left) : node_last[left];
+CDB_HD_INLINE uint32_t node_split(const TreeArrays& tree, uint32_t k) {
+  const uint32_t left = tree.node_left[k];
+  return is_leaf(left) ? ref_index(left) : tree.node_last[left];
 }
 
 // Over internal nodes k, after RefitTablesFn: for each node inside a treelet, at its split,
@@ -49,34 +49,25 @@ CDB_HD_INLINE uint32_t node_split(const uint32_t* node_left, const uint32_t* nod
 // The splits of a treelet of L leaves are its first L - 1 leaves, one node each; the last
 // leaf of a treelet is the split of a spanning node (or of none) and keeps no entry.
 struct RefitLevelsIndexFn {
-  const uint32_t* node_left;
-  const uint32_t* node_right;
-  const uint32_t* node_parent;
-  const uint32_t* node_escape;
-  const uint32_t* node_first;
-  const uint32_t* node_last;
-  const uint32_t* tile_start;
-  const uint32_t* tile_scan;
-  const uint32_t* tile_first;
-  uint32_t* level_node;  // per split: the node
-  uint32_t* level_code;  // per split: depth | left place << 10 | right place << 20
-  uint32_t* level_link;  // per split: the node's left link and escape (node_ref.h), its box's lanes
+  TreeArrays tree;
+  RefitIndexArrays index;  // writes level_node, level_code and level_link (bvh/tree_arrays.h)
   CDB_HD uint32_t place(uint32_t child, uint32_t first) const {
-    return is_leaf(child) ? (ref_index(child) - first) | kLevelLeaf : node_split(node_left, node_last, child) - first;
+    return is_leaf(child) ? (ref_index(child) - first) | kLevelLeaf : node_split(tree, child) - first;
   }
   CDB_HD void operator()(uint32_t k) const {
-    const uint32_t lo = node_first[k];
-    if (spans_tiles(lo, node_last[k])) return;
+    const uint32_t lo = tree.node_first[k];
+    if (spans_tiles(lo, tree.node_last[k])) return;
     uint32_t depth = 0;
-    for (uint32_t a = node_parent[k]; a != kNoNode && !spans_tiles(node_first[a], node_last[a]); a = node_parent[a])
+    for (uint32_t a = tree.node_parent[k]; a != kNoNode && !spans_tiles(tree.node_first[a], tree.node_last[a]);
+         a = tree.node_parent[a])
       ++depth;
-    const uint32_t first = tile_first[tile_scan[lo] + tile_start[lo] - 1];
-    const uint32_t split = node_split(node_left, node_last, k);
-    level_node[split] = k;
-    level_link[2 * size_t(split)] = node_left[k];
-    level_link[2 * size_t(split) + 1] = node_escape[k];
-    level_code[split] = depth | place(node_left[k], first) << kLevelSlotBits |
-                        place(node_right[k], first) << (2 * kLevelSlotBits);
+    const uint32_t first = index.tile_first[index.tile_scan[lo] + index.tile_start[lo] - 1];
+    const uint32_t split = node_split(tree, k);
+    index.level_node[split] = k;
+    index.level_link[2 * size_t(split)] = tree.node_left[k];
+    index.level_link[2 * size_t(split) + 1] = tree.node_escape[k];
+    index.level_code[split] = depth | place(tree.node_left[k], first) << kLevelSlotBits |
+                              place(tree.node_right[k], first) << (2 * kLevelSlotBits);
   }
 };
 
@@ -95,20 +86,8 @@ struct RefitLevelsFn {
   };
 
   MeshView mesh;
-  const uint32_t* leaf_prim;
-  const uint32_t* leaf_parent;
-  const uint32_t* leaf_escape;
-  const uint32_t* node_left;
-  const uint32_t* node_right;
-  const uint32_t* node_parent;
-  const uint32_t* node_escape;
-  const uint32_t* level_node;
-  const uint32_t* level_code;
-  const uint32_t* level_link;
-  vec4f* leaf_lo;
-  vec4f* leaf_hi;
-  vec4f* node_lo;
-  vec4f* node_hi;
+  TreeArrays tree;
+  RefitIndexArrays index;  // its level tables
   uint32_t* flag;
   bool stop_at_spanning;  // the spanning top is refitted by RefitTopFn (refit_top.h)
   CounterReset reset;     // zeroed by the first tile's first lanes
@@ -124,20 +103,20 @@ struct RefitLevelsFn {
       if (i < reset.count) reset.counters[i] = 0;
       if (i > last) return;
       vec4f lo, hi;
-      const uint32_t prim = leaf_prim[i];
+      const uint32_t prim = tree.leaf_prim[i];
       face_box(mesh, prim, lo, hi);
-      leaf_lo[i] = {lo.x, lo.y, lo.z, link_lane(leaf_escape[i])};
-      leaf_hi[i] = {hi.x, hi.y, hi.z, link_lane(prim)};
+      tree.leaf_lo[i] = {lo.x, lo.y, lo.z, link_lane(tree.leaf_escape[i])};
+      tree.leaf_hi[i] = {hi.x, hi.y, hi.z, link_lane(prim)};
       put(s.leaf[lane], lo, hi);
       if (i < last) {
-        const uint32_t k = level_node[i], code = level_code[i];
+        const uint32_t k = index.level_node[i], code = index.level_code[i];
         s.code[lane] = code;
         s.node_id[lane] = k;
-        s.left_lane[lane] = link_lane(level_link[2 * size_t(i)]);
-        s.escape_lane[lane] = link_lane(level_link[2 * size_t(i) + 1]);
+        s.left_lane[lane] = link_lane(index.level_link[2 * size_t(i)]);
+        s.escape_lane[lane] = link_lane(index.level_link[2 * size_t(i) + 1]);
         atomic_max_relaxed(&s.phases, level_depth(code) + 2);
       } else if (first == last && !stop_at_spanning) {
-        climb(leaf_ref(i), leaf_parent[i], lo, hi);
+        climb(leaf_ref(i), tree.leaf_parent[i], lo, hi);
       }
       return;
     }
@@ -151,9 +130,9 @@ struct RefitLevelsFn {
     hi = max_xyz(hi, ohi, s.escape_lane[lane]);
     put(s.node[lane], lo, hi);
     const uint32_t k = s.node_id[lane];
-    node_lo[k] = lo;
-    node_hi[k] = hi;
-    if (depth == 0 && !stop_at_spanning) climb(k, node_parent[k], lo, hi);
+    tree.node_lo[k] = lo;
+    tree.node_hi[k] = hi;
+    if (depth == 0 && !stop_at_spanning) climb(k, tree.node_parent[k], lo, hi);
   }
 
   CDB_HD_INLINE static void put(float (&b)[6], const vec4f& lo, const vec4f& hi) {
@@ -169,14 +148,14 @@ struct RefitLevelsFn {
   // the second arrival at each merges and goes on.
   CDB_HD void climb(uint32_t child, uint32_t p, vec4f lo, vec4f hi) const {
     while (p != kNoNode) {
-      const uint32_t left = node_left[p], right = node_right[p], up = node_parent[p], escape = node_escape[p];
+      const uint32_t left = tree.node_left[p], right = tree.node_right[p], up = tree.node_parent[p],
+                     escape = tree.node_escape[p];
       vec4f slo, shi;
-      if (!span_handover(flag, p, left == child ? right : left, leaf_lo, leaf_hi, node_lo, node_hi, slo, shi))
-        return;
+      if (!span_handover(flag, p, left == child ? right : left, tree, slo, shi)) return;
       lo = min_xyz(lo, slo, link_lane(left));
       hi = max_xyz(hi, shi, link_lane(escape));
-      node_lo[p] = lo;
-      node_hi[p] = hi;
+      tree.node_lo[p] = lo;
+      tree.node_hi[p] = hi;
       child = p;
       p = up;
     }

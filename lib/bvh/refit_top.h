@@ -24,6 +24,7 @@
 
 #include "cdbench/bvh/lbvh.h"
 #include "cdbench/bvh/node_ref.h"
+#include "cdbench/bvh/tree_arrays.h"
 
 namespace cdb {
 
@@ -48,45 +49,34 @@ struct RefitTopFn {
 
   static_assert(sizeof(Shared) <= 227 * 1024, "more shared memory than a Hopper block can take");
 
-  uint32_t shared_slots;     // slots below this are in shared memory (at most kSharedSlots)
-  const uint32_t* span_count;  // [0]: slots, [1]: the deepest slot's depth
-  const uint32_t* span_node;
-  const uint32_t* span_parent;
-  const uint32_t* span_child;
-  const uint32_t* span_depth;
-  vec4f* span_lo;  // boxes of the slots past shared_slots, [2 * slot + side]
-  vec4f* span_hi;
-  const vec4f* leaf_lo;
-  const vec4f* leaf_hi;
-  const uint32_t* node_left;
-  const uint32_t* node_escape;
-  vec4f* node_lo;
-  vec4f* node_hi;
+  uint32_t shared_slots;  // slots below this are in shared memory (at most kSharedSlots)
+  RefitIndexArrays index;  // the slots; span_lo and span_hi hold those past shared_slots
+  TreeArrays tree;
 
-  CDB_HD uint32_t phases() const { return span_count[1] + 3; }
+  CDB_HD uint32_t phases() const { return index.span_count[1] + 3; }
 
   CDB_HD void phase(uint32_t p, uint32_t t, uint32_t threads, Shared& sh) const {
     if (p == 0) {
-      const uint32_t count = span_count[0];
+      const uint32_t count = index.span_count[0];
       const uint32_t in_shared = count < shared_slots ? count : shared_slots;
-      if (t == 0) sh.count = count, sh.deepest = span_count[1];
+      if (t == 0) sh.count = count, sh.deepest = index.span_count[1];
       // Loads only, independent of each other, so many are in flight at once.
       for (uint32_t s = t; s < in_shared; s += threads) {
-        const uint32_t k = span_node[s];
-        sh.parent[s] = span_parent[s];
-        sh.depth[s] = span_depth[s];
+        const uint32_t k = index.span_node[s];
+        sh.parent[s] = index.span_parent[s];
+        sh.depth[s] = index.span_depth[s];
         sh.node[s] = k;
-        sh.left_lane[s] = link_lane(node_left[k]);
-        sh.escape_lane[s] = link_lane(node_escape[k]);
+        sh.left_lane[s] = link_lane(tree.node_left[k]);
+        sh.escape_lane[s] = link_lane(tree.node_escape[k]);
       }
 #if defined(__CUDA_ARCH__)
 #pragma unroll 4
 #endif
       for (uint32_t e = t; e < 2 * count; e += threads) {
-        const uint32_t c = span_child[e];
+        const uint32_t c = index.span_child[e];
         if (c == kNoNode) continue;
-        const vec4f lo = is_leaf(c) ? leaf_lo[ref_index(c)] : node_lo[c];
-        const vec4f hi = is_leaf(c) ? leaf_hi[ref_index(c)] : node_hi[c];
+        const vec4f lo = is_leaf(c) ? tree.leaf_lo[ref_index(c)] : tree.node_lo[c];
+        const vec4f hi = is_leaf(c) ? tree.leaf_hi[ref_index(c)] : tree.node_hi[c];
         put(e / 2, e % 2, lo, hi, sh);
       }
       return;
@@ -99,23 +89,23 @@ struct RefitTopFn {
         const bool local = s < shared_slots;
         vec4f lo, hi;
         get(s, 0, lo, hi, sh);
-        const uint32_t k = local ? sh.node[s] : span_node[s];
-        node_lo[k] = {lo.x, lo.y, lo.z, local ? sh.left_lane[s] : link_lane(node_left[k])};
-        node_hi[k] = {hi.x, hi.y, hi.z, local ? sh.escape_lane[s] : link_lane(node_escape[k])};
+        const uint32_t k = local ? sh.node[s] : index.span_node[s];
+        tree.node_lo[k] = {lo.x, lo.y, lo.z, local ? sh.left_lane[s] : link_lane(tree.node_left[k])};
+        tree.node_hi[k] = {hi.x, hi.y, hi.z, local ? sh.escape_lane[s] : link_lane(tree.node_escape[k])};
       }
       return;
     }
     const uint32_t depth = sh.deepest - (p - 1);
     for (uint32_t s = t; s < count; s += threads) {
       const bool local = s < shared_slots;
-      if ((local ? sh.depth[s] : span_depth[s]) != depth) continue;
+      if ((local ? sh.depth[s] : index.span_depth[s]) != depth) continue;
       vec4f lo, hi, olo, ohi;
       get(s, 0, lo, hi, sh);
       get(s, 1, olo, ohi, sh);
       lo = min_xyz(lo, olo, 0);
       hi = max_xyz(hi, ohi, 0);
       put(s, 0, lo, hi, sh);
-      const uint32_t up = local ? sh.parent[s] : span_parent[s];
+      const uint32_t up = local ? sh.parent[s] : index.span_parent[s];
       if (up != kNoNode) put(ref_index(up), is_leaf(up) ? 1u : 0u, lo, hi, sh);
     }
   }
@@ -126,8 +116,8 @@ struct RefitTopFn {
       sh.lo[s][side] = lo;
       sh.hi[s][side] = hi;
     } else {
-      span_lo[2 * size_t(s) + side] = lo;
-      span_hi[2 * size_t(s) + side] = hi;
+      index.span_lo[2 * size_t(s) + side] = lo;
+      index.span_hi[2 * size_t(s) + side] = hi;
     }
   }
   CDB_HD void get(uint32_t s, uint32_t side, vec4f& lo, vec4f& hi, const Shared& sh) const {
@@ -135,8 +125,8 @@ struct RefitTopFn {
       lo = sh.lo[s][side];
       hi = sh.hi[s][side];
     } else {
-      lo = span_lo[2 * size_t(s) + side];
-      hi = span_hi[2 * size_t(s) + side];
+      lo = index.span_lo[2 * size_t(s) + side];
+      hi = index.span_hi[2 * size_t(s) + side];
     }
   }
 };

@@ -42,6 +42,24 @@ struct CandidateView {
   CDB_HD_INLINE uint32_t slot_of_leaf(uint32_t l) const { return leaf_slot[l + 1]; }
 };
 
+// The candidates and the restructure's scratch as its kernels see them
+// (RestructureScratch::arrays). Entry m of the key sort belongs to candidate
+// candidate_of(m); its leaf was old_leaf_sorted[m] and becomes new_leaf[m].
+struct RestructureArrays {
+  uint32_t *node, *first, *last, *escape, *parent, *size, *base, *leaf_tag, *leaf_slot;
+  uint64_t* keys_sorted;
+  uint32_t *old_leaf_sorted, *new_leaf, *moved_prim;
+  // Borrowed from the tree's build scratch: the key sort's input keys and leaf numbers, the
+  // moved leaves' boxes, and the keys by new leaf position for the climb.
+  uint64_t* keys;
+  uint32_t* old_leaf;
+  vec4f *moved_lo, *moved_hi;
+  uint64_t* keys_by_leaf;
+
+  CDB_HD_INLINE CandidateView candidates() const { return {node, first, last, escape, leaf_slot}; }
+  CDB_HD_INLINE uint32_t candidate_of(uint32_t m) const { return uint32_t(keys_sorted[m] >> kRestructureCodeBits); }
+};
+
 // Candidate list and restructure scratch, sized once per topology. The scratch a
 // restructure shares with nothing else is here; the rest it takes from the tree's build
 // scratch, which no restructure frame builds with (a restructure replaces a rebuild): the
@@ -51,14 +69,12 @@ struct CandidateView {
 template <class Exec>
 struct RestructureScratch {
   explicit RestructureScratch(Exec& exec) {
-    MemoryResource& mr = exec.memory();
-    bind_arrays<uint32_t>(mr, "restructure.", {{&node, "candidate_node"}, {&first, "candidate_first"},
-                                               {&last, "candidate_last"}, {&escape, "candidate_escape"},
-                                               {&parent, "candidate_parent"}, {&size, "candidate_size"},
-                                               {&base, "candidate_base"}, {&leaf_tag, "leaf_tag"},
-                                               {&leaf_slot, "leaf_slot"}, {&old_leaf_sorted, "old_leaf_sorted"},
-                                               {&new_leaf, "new_leaf"}, {&moved_prim, "moved_prim"}});
-    keys_sorted.bind(mr, "restructure.keys_sorted");
+    bind_arrays(exec.memory(), "restructure.",
+                {{&node, "candidate_node"}, {&first, "candidate_first"}, {&last, "candidate_last"},
+                 {&escape, "candidate_escape"}, {&parent, "candidate_parent"}, {&size, "candidate_size"},
+                 {&base, "candidate_base"}, {&leaf_tag, "leaf_tag"}, {&leaf_slot, "leaf_slot"},
+                 {&keys_sorted, "keys_sorted"}, {&old_leaf_sorted, "old_leaf_sorted"}, {&new_leaf, "new_leaf"},
+                 {&moved_prim, "moved_prim"}});
   }
 
   // Candidates are disjoint subtrees of at least min_leaves leaves each.
@@ -75,6 +91,15 @@ struct RestructureScratch {
     return {node.data(), first.data(), last.data(), escape.data(), leaf_slot.data()};
   }
 
+  // The kernels' view: this scratch and what it borrows from `bvh`'s build scratch.
+  RestructureArrays arrays(Lbvh<Exec>& bvh) {
+    return {node.data(),         first.data(),           last.data(),          escape.data(),
+            parent.data(),       size.data(),            base.data(),          leaf_tag.data(),
+            leaf_slot.data(),    keys_sorted.data(),     old_leaf_sorted.data(), new_leaf.data(),
+            moved_prim.data(),   bvh.morton_sorted.data(), bvh.prim_iota.data(), bvh.prim_lo.data(),
+            bvh.prim_hi.data(),  bvh.morton.data()};
+  }
+
   uint32_t max_candidates = 0;
   Array<uint32_t> node, first, last, escape, parent, size, base;
   Array<uint32_t> leaf_tag, leaf_slot;
@@ -86,102 +111,69 @@ struct RestructureScratch {
 // step at its range ends so that a scan tags every leaf with its candidate (ranges are
 // disjoint, so at most one step is open at any leaf).
 struct DescribeCandidateFn {
-  const uint32_t* node_first;
-  const uint32_t* node_last;
-  const uint32_t* node_escape;
-  const uint32_t* node_parent;
-  const uint32_t* cand_node;
-  uint32_t* first;
-  uint32_t* last;
-  uint32_t* escape;
-  uint32_t* parent;
-  uint32_t* size;
-  uint32_t* leaf_tag;
+  TreeArrays tree;
+  RestructureArrays rs;
   CDB_HD void operator()(uint32_t k) const {
-    const uint32_t r = cand_node[k], s = node_first[r], t = node_last[r];
-    first[k] = s;
-    last[k] = t;
-    escape[k] = node_escape[r];
-    parent[k] = node_parent[r];
-    size[k] = t - s + 1;
-    atomic_add_relaxed(&leaf_tag[s], k + 1);
-    atomic_add_relaxed(&leaf_tag[t + 1], 0u - (k + 1));
+    const uint32_t r = rs.node[k], s = tree.node_first[r], t = tree.node_last[r];
+    rs.first[k] = s;
+    rs.last[k] = t;
+    rs.escape[k] = tree.node_escape[r];
+    rs.parent[k] = tree.node_parent[r];
+    rs.size[k] = t - s + 1;
+    atomic_add_relaxed(&rs.leaf_tag[s], k + 1);
+    atomic_add_relaxed(&rs.leaf_tag[t + 1], 0u - (k + 1));
   }
 };
 
 // Key of every candidate leaf: slot above a 30-bit Morton code of its centroid in the
 // candidate root's (refitted) box; value: the leaf's current position.
 struct RestructureKeyFn {
-  CandidateView cand;
-  const uint32_t* base;
-  const vec4f* leaf_lo;
-  const vec4f* leaf_hi;
-  const vec4f* node_lo;
-  const vec4f* node_hi;
-  uint64_t* keys;
-  uint32_t* old_leaf;
+  TreeArrays tree;
+  RestructureArrays rs;
   CDB_HD void operator()(uint32_t l) const {
-    const uint32_t tag = cand.slot_of_leaf(l);
+    const uint32_t tag = rs.candidates().slot_of_leaf(l);
     if (tag == 0) return;
-    const uint32_t k = tag - 1, r = cand.node[k];
-    const vec4f u = unit_centroid(leaf_lo[l], leaf_hi[l], node_lo[r], node_hi[r]);
-    const uint32_t m = base[k] + (l - cand.first[k]);
-    keys[m] = (uint64_t(k) << kRestructureCodeBits) | morton_code(u, MortonBits::b30);
-    old_leaf[m] = l;
+    const uint32_t k = tag - 1, r = rs.node[k];
+    const vec4f u = unit_centroid(tree.leaf_lo[l], tree.leaf_hi[l], tree.node_lo[r], tree.node_hi[r]);
+    const uint32_t m = rs.base[k] + (l - rs.first[k]);
+    rs.keys[m] = (uint64_t(k) << kRestructureCodeBits) | morton_code(u, MortonBits::b30);
+    rs.old_leaf[m] = l;
   }
 };
 
 // Sorted entry m goes to leaf position first + (m - base) of its candidate. Moving goes
 // through scratch (leaves are permuted in place).
 struct GatherMovedLeavesFn {
-  CandidateView cand;
-  const uint32_t* base;
-  const uint64_t* keys_sorted;
-  const uint32_t* old_leaf_sorted;
-  const uint32_t* leaf_prim;
-  const vec4f* leaf_lo;
-  const vec4f* leaf_hi;
-  uint32_t* new_leaf;
-  uint32_t* moved_prim;
-  vec4f* moved_lo;
-  vec4f* moved_hi;
+  TreeArrays tree;
+  RestructureArrays rs;
   CDB_HD void operator()(uint32_t m) const {
-    const uint32_t k = uint32_t(keys_sorted[m] >> kRestructureCodeBits);
-    new_leaf[m] = cand.first[k] + (m - base[k]);
-    const uint32_t old = old_leaf_sorted[m];
-    moved_prim[m] = leaf_prim[old];
-    moved_lo[m] = leaf_lo[old];
-    moved_hi[m] = leaf_hi[old];
+    const uint32_t k = rs.candidate_of(m);
+    rs.new_leaf[m] = rs.first[k] + (m - rs.base[k]);
+    const uint32_t old = rs.old_leaf_sorted[m];
+    rs.moved_prim[m] = tree.leaf_prim[old];
+    rs.moved_lo[m] = tree.leaf_lo[old];
+    rs.moved_hi[m] = tree.leaf_hi[old];
   }
 };
 
 struct PlaceMovedLeavesFn {
-  const uint64_t* keys_sorted;
-  const uint32_t* new_leaf;
-  const uint32_t* moved_prim;
-  const vec4f* moved_lo;
-  const vec4f* moved_hi;
-  uint32_t* leaf_prim;
-  vec4f* leaf_lo;
-  vec4f* leaf_hi;
-  uint64_t* keys_by_leaf;
+  TreeArrays tree;
+  RestructureArrays rs;
   CDB_HD void operator()(uint32_t m) const {
-    const uint32_t p = new_leaf[m];
-    leaf_prim[p] = moved_prim[m];
-    leaf_lo[p] = moved_lo[m];
-    leaf_hi[p] = moved_hi[m];
-    keys_by_leaf[p] = keys_sorted[m];
+    const uint32_t p = rs.new_leaf[m];
+    tree.leaf_prim[p] = rs.moved_prim[m];
+    tree.leaf_lo[p] = rs.moved_lo[m];
+    tree.leaf_hi[p] = rs.moved_hi[m];
+    rs.keys_by_leaf[p] = rs.keys_sorted[m];
   }
 };
 
 struct SubtreeClimbFn {
   ApetreiTree tree;
-  CandidateView cand;
-  const uint64_t* keys_sorted;
-  const uint32_t* new_leaf;
+  RestructureArrays rs;
   CDB_HD void operator()(uint32_t m) const {
-    const uint32_t k = uint32_t(keys_sorted[m] >> kRestructureCodeBits);
-    apetrei_climb(tree, new_leaf[m], cand.first[k], cand.last[k]);
+    const uint32_t k = rs.candidate_of(m);
+    apetrei_climb(tree, rs.new_leaf[m], rs.first[k], rs.last[k]);
   }
 };
 
@@ -189,28 +181,24 @@ struct SubtreeClimbFn {
 // subtree begins at r + (offset_log[l] - offset_log[s]).
 struct SubtreeLayoutFn {
   DepthFirstLayout layout;
-  CandidateView cand;
-  const uint64_t* keys_sorted;
-  const uint32_t* new_leaf;
+  RestructureArrays rs;
   CDB_HD void operator()(uint32_t m) const {
-    const uint32_t k = uint32_t(keys_sorted[m] >> kRestructureCodeBits);
-    const uint32_t l = new_leaf[m];
-    layout.number_chain(l, cand.node[k] + (layout.offset_log[l] - layout.offset_log[cand.first[k]]));
+    const uint32_t k = rs.candidate_of(m);
+    const uint32_t l = rs.new_leaf[m];
+    const uint32_t* offset_log = layout.build.offset_log;
+    layout.number_chain(l, rs.node[k] + (offset_log[l] - offset_log[rs.first[k]]));
   }
 };
 
 struct SubtreePlaceFn {
   DepthFirstLayout layout;
-  CandidateView cand;
-  const uint32_t* cand_parent;
-  const uint64_t* keys_sorted;
-  const uint32_t* new_leaf;
+  RestructureArrays rs;
   CDB_HD void operator()(uint32_t m) const {
-    const uint32_t k = uint32_t(keys_sorted[m] >> kRestructureCodeBits);
-    const uint32_t l = new_leaf[m], t = cand.last[k];
+    const uint32_t k = rs.candidate_of(m);
+    const uint32_t l = rs.new_leaf[m], t = rs.last[k];
     // Internal node l (split after leaf l) exists for every leaf of the range but the last.
-    if (l != t) layout.place_node(l, t, cand.escape[k], cand_parent[k]);
-    layout.link_leaf(l, t, cand.escape[k]);
+    if (l != t) layout.place_node(l, t, rs.escape[k], rs.parent[k]);
+    layout.link_leaf(l, t, rs.escape[k]);
   }
 };
 
@@ -223,11 +211,7 @@ void describe_candidates(Exec& exec, Lbvh<Exec>& bvh, RestructureScratch<Exec>& 
   if (count == 0 || n < 2) return;
   exec.fill(rs.leaf_tag.data(), size_t(n) + 1, 0u);
   exec.fill(rs.size.data() + count, 1, 0u);
-  exec.for_each_n(count, DescribeCandidateFn{bvh.node_first.data(), bvh.node_last.data(),
-                                             bvh.node_escape.data(), bvh.node_parent.data(),
-                                             rs.node.data(), rs.first.data(), rs.last.data(),
-                                             rs.escape.data(), rs.parent.data(), rs.size.data(),
-                                             rs.leaf_tag.data()});
+  exec.for_each_n(count, DescribeCandidateFn{bvh.tree(), rs.arrays(bvh)});
   exec.exclusive_scan(rs.leaf_tag.data(), rs.leaf_slot.data(), size_t(n) + 1, bvh.temp.data(),
                       bvh.temp.size());
   exec.exclusive_scan(rs.size.data(), rs.base.data(), size_t(count) + 1, bvh.temp.data(),
@@ -243,39 +227,26 @@ void restructure_subtrees(Exec& exec, Lbvh<Exec>& bvh, RestructureScratch<Exec>&
                           uint32_t count, uint32_t leaves) {
   const uint32_t n = bvh.num_leaves;
   if (count == 0 || n < 2) return;
-  const CandidateView cand = rs.view();
-  exec.for_each_n(n, RestructureKeyFn{cand, rs.base.data(), bvh.leaf_lo.data(), bvh.leaf_hi.data(),
-                                      bvh.node_lo.data(), bvh.node_hi.data(), bvh.morton_sorted.data(),
-                                      bvh.prim_iota.data()});
+  const TreeArrays tree = bvh.tree();
+  const RestructureArrays arrays = rs.arrays(bvh);
+  exec.for_each_n(n, RestructureKeyFn{tree, arrays});
   int slot_bits = 1;
   while ((uint64_t(1) << slot_bits) < count) ++slot_bits;
   exec.sort_pairs(bvh.morton_sorted.data(), rs.keys_sorted.data(), bvh.prim_iota.data(),
                   rs.old_leaf_sorted.data(), leaves, kRestructureCodeBits + slot_bits,
                   bvh.temp.data(), bvh.temp.size());
-  exec.for_each_n(leaves, GatherMovedLeavesFn{cand, rs.base.data(), rs.keys_sorted.data(),
-                                              rs.old_leaf_sorted.data(), bvh.leaf_prim.data(),
-                                              bvh.leaf_lo.data(), bvh.leaf_hi.data(),
-                                              rs.new_leaf.data(), rs.moved_prim.data(),
-                                              bvh.prim_lo.data(), bvh.prim_hi.data()});
-  exec.for_each_n(leaves, PlaceMovedLeavesFn{rs.keys_sorted.data(), rs.new_leaf.data(),
-                                             rs.moved_prim.data(), bvh.prim_lo.data(),
-                                             bvh.prim_hi.data(), bvh.leaf_prim.data(),
-                                             bvh.leaf_lo.data(), bvh.leaf_hi.data(),
-                                             bvh.morton.data()});
+  exec.for_each_n(leaves, GatherMovedLeavesFn{tree, arrays});
+  exec.for_each_n(leaves, PlaceMovedLeavesFn{tree, arrays});
   // Splits outside the candidates are never touched by the climb; clearing all is cheaper
   // than scattering the clears.
   exec.fill(bvh.other_bound.data(), n - 1, kNoNode);
   exec.fill(bvh.count_log.data(), size_t(n) + 1, 0u);
-  exec.for_each_n(leaves, SubtreeClimbFn{apetrei_tree(bvh, bvh.morton.data()), cand,
-                                         rs.keys_sorted.data(), rs.new_leaf.data()},
-                  Balance::uneven);
+  exec.for_each_n(leaves, SubtreeClimbFn{apetrei_tree(bvh, bvh.morton.data()), arrays}, Balance::uneven);
   exec.exclusive_scan(bvh.count_log.data(), bvh.offset_log.data(), size_t(n) + 1, bvh.temp.data(),
                       bvh.temp.size());
   const DepthFirstLayout layout = depth_first_layout(bvh);
-  exec.for_each_n(leaves, SubtreeLayoutFn{layout, cand, rs.keys_sorted.data(), rs.new_leaf.data()},
-                  Balance::uneven);
-  exec.for_each_n(leaves, SubtreePlaceFn{layout, cand, rs.parent.data(), rs.keys_sorted.data(),
-                                         rs.new_leaf.data()});
+  exec.for_each_n(leaves, SubtreeLayoutFn{layout, arrays}, Balance::uneven);
+  exec.for_each_n(leaves, SubtreePlaceFn{layout, arrays});
   // Node ranges inside the candidates changed: so may which of them span refit tiles.
   index_refit(exec, bvh);
 }

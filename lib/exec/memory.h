@@ -148,11 +148,22 @@ class Array {
   size_t capacity_ = 0;
 };
 
-// Binds each (array, name) of `arrays` to `mr`, named prefix + name.
-template <class T>
-void bind_arrays(MemoryResource& mr, const std::string& prefix,
-                 std::initializer_list<std::pair<Array<T>*, const char*>> arrays) {
-  for (const auto& [array, name] : arrays) array->bind(mr, prefix + name);
+// An array of any element type with its name, for bind_arrays.
+struct NamedArray {
+  template <class T>
+  NamedArray(Array<T>* a, const char* n)
+      : array(a), name(n), bind([](void* p, MemoryResource& mr, const std::string& full) {
+          static_cast<Array<T>*>(p)->bind(mr, full);
+        }) {}
+  void* array;
+  const char* name;
+  void (*bind)(void*, MemoryResource&, const std::string&);
+};
+
+// Binds each (array, name) of `arrays` to `mr`, named prefix + name: one list a workspace,
+// in place of a bind line an array.
+inline void bind_arrays(MemoryResource& mr, const std::string& prefix, std::initializer_list<NamedArray> arrays) {
+  for (const NamedArray& a : arrays) a.bind(a.array, mr, prefix + a.name);
 }
 
 }  // namespace cdb

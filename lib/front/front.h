@@ -87,10 +87,9 @@ struct FrontArrays {
   // `name` tells the fronts of one query apart in the growth log ("front", "inter_front").
   void bind(MemoryResource& mr, int kind, const std::string& name = "front") {
     const std::string k = name + (kind == kInternalFront ? "_internal." : "_external.");
-    bind_arrays<uint32_t>(mr, k, {{&prim, "prim"}, {&node, "node"}, {&raw_prim, "raw_prim"}, {&raw_node, "raw_node"},
-                                  {&order_counts, "order_counts"}, {&offset_log, "offset_log"},
-                                  {&tail_counts, "tail_counts"}, {&tail_offset_log, "tail_offset_log"}});
-    raw_mark.bind(mr, k + "raw_mark");
+    bind_arrays(mr, k, {{&prim, "prim"}, {&node, "node"}, {&raw_prim, "raw_prim"}, {&raw_node, "raw_node"},
+                        {&raw_mark, "raw_mark"}, {&order_counts, "order_counts"}, {&offset_log, "offset_log"},
+                        {&tail_counts, "tail_counts"}, {&tail_offset_log, "tail_offset_log"}});
   }
   // Capacity for front nodes (all five arrays) and segment count (BVH nodes); `tails`: the
   // counters of the tails that updates in place append (--update-in-place only).

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "cdbench/exec/balance.h"
+#include "cdbench/exec/gather.h"
 #include "cdbench/exec/memory.h"
 #include "cdbench/front/front.h"
 
@@ -22,27 +23,12 @@ struct RadixKeyFn {
   }
 };
 
-struct GatherFrontFn {
-  const uint32_t* perm;
-  const uint32_t* prim;
-  const uint32_t* node;
-  uint32_t* out_prim;
-  uint32_t* out_node;
-  CDB_HD void operator()(uint32_t e) const {
-    out_prim[e] = prim[perm[e]];
-    out_node[e] = node[perm[e]];
-  }
-};
-
 // Scratch of the radix path, sized for a front capacity.
 template <class Exec>
 struct RadixScratch {
   void bind(MemoryResource& mr) {
-    keys.bind(mr, "radix.keys");
-    keys_sorted.bind(mr, "radix.keys_sorted");
-    iota.bind(mr, "radix.iota");
-    perm.bind(mr, "radix.perm");
-    temp.bind(mr, "radix.temp");
+    bind_arrays(mr, "radix.",
+                {{&keys, "keys"}, {&keys_sorted, "keys_sorted"}, {&iota, "iota"}, {&perm, "perm"}, {&temp, "temp"}});
   }
   void reserve(Exec& exec, size_t capacity) {
     keys.reserve(capacity);
@@ -69,7 +55,7 @@ void radix_order_front(Exec& exec, RadixScratch<Exec>& r, size_t n, int key_bits
   exec.for_each_n(n, RadixKeyFn{node, mark, r.keys.data(), r.iota.data()});
   exec.sort_pairs(r.keys.data(), r.keys_sorted.data(), r.iota.data(), r.perm.data(), n, key_bits,
                   r.temp.data(), r.temp.size());
-  exec.for_each_n(n, GatherFrontFn{r.perm.data(), prim, node, out_prim, out_node});
+  gather(exec, n, r.perm.data(), prim, node, out_prim, out_node);
 }
 
 }  // namespace cdb
