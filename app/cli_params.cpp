@@ -38,4 +38,11 @@ nlohmann::json options_json(const CLI::App& command) {
   return j;
 }
 
+std::vector<std::string> given_flags(const CLI::App& command) {
+  std::vector<std::string> flags;
+  for (const CLI::Option* opt : command.get_options())
+    if (opt->count() > 0 && !opt->get_lnames().empty()) flags.push_back("--" + opt->get_lnames()[0]);
+  return flags;
+}
+
 }  // namespace cdb

@@ -147,6 +147,8 @@ int run_cli(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
   try {
+    if (*run) o.given = given_flags(*run);
+    if (*verify) o.given = given_flags(*verify);
     if (*run) return run_command(o, r, options_json(*run));
     if (*verify) return verify_command(o, v);
     if (*scenes.list) return scenes_list(s);

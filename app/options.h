@@ -27,6 +27,9 @@ struct CommonOptions {
   // The pipeline options are bound straight into it; its name and device are set per
   // pipeline by make_config.
   PipelineConfig config;
+  // The flags given (cli_params.h given_flags): those a pipeline ignores are said
+  // (option_scope.h).
+  std::vector<std::string> given;
 };
 
 // The headings of `run --help` and `verify --help`. CLI11 lists them in the order their

@@ -34,6 +34,7 @@
 #include "progress.h"
 #include "report.h"
 #include "run_loop.h"
+#include "option_scope.h"
 #include "registry/pipeline_kinds.h"
 
 namespace cdb {
@@ -407,6 +408,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   give_plans(pipelines, plans, names);
   const std::vector<OutputClaim> existing = check_results_paths(r, names);
   print_environment(device);
+  for (const std::string& line : ignored_option_warnings(o.given, names)) std::printf("warning: %s\n", line.c_str());
   const HostLoad load_before = sample_host_load(r.loop.load_window_ms);
   const std::string busy = host_load_warning(load_before, "before the run");
   if (!busy.empty()) std::printf("warning: %s\n", busy.c_str());

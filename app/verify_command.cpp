@@ -17,6 +17,7 @@
 #include "cdbench/geometry/position_rounding.h"
 #include "harness/pairs/pairs_file.h"
 #include "report.h"
+#include "option_scope.h"
 #include "registry/pipeline_kinds.h"
 
 namespace cdb {
@@ -172,6 +173,8 @@ int verify_command(const CommonOptions& o, const VerifyOptions& v) {
   pipelines = verified.names;
   std::vector<std::unique_ptr<Pipeline>> runs = make_pipelines(o, pipelines, device);
   print_environment(device);
+  for (const std::string& line : ignored_option_warnings(o.given, pipelines))
+    std::printf("warning: %s\n", line.c_str());
   Scene scene = load_scene(o);
   const Topology& topo = scene.source->topology();
   const FrameRange range = parse_frame_range(o.frames, scene.source->num_frames());

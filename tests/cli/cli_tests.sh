@@ -22,6 +22,14 @@ check "verify with sweep oracle" 0 "sort-and-sweep" -- "$cdbench" verify --devic
 check "unknown pipeline" 2 "unknown pipeline 'nope'" -- "$cdbench" run --device cpu --pipeline nope
 check "front cycle auto" 0 "summary: 2 frames measured" -- "$cdbench" run --device cpu --quiet --frames 0:3 --front-cycle auto
 check "front cycle K" 0 "summary: 2 frames measured" -- "$cdbench" run --device cpu --quiet --frames 0:3 --front-cycle 3
+check "options a pipeline ignores are said" 0 "^warning: --front-cycle, --restructure-quality do not apply to grid \\(front pipelines only; restructuring pipelines only: c\\): ignored there" -- \
+  "$cdbench" run --device cpu --quiet --frames 0:2 --pipeline grid --front-cycle 4 --restructure-quality 9
+check "a restructure option given to b is said" 0 "^warning: --restructure-quality does not apply to b " -- \
+  "$cdbench" run --device cpu --quiet --frames 0:2 --pipeline b,c --restructure-quality 9
+if grep -q "does not apply to c" "$tmp/out"; then fail "a restructure option given to c was called ignored"; else echo "ok   c takes the restructure option"; fi
+check "verify says which pipelines ignore an option" 0 "^warning: --refit-every does not apply to grid \\(BVH pipelines only" -- \
+  "$cdbench" verify --device cpu --frames 0:2 --pipelines bvh,grid --refit-every 1
+if grep -q "apply to bvh" "$tmp/out"; then fail "--refit-every given to bvh was called ignored"; else echo "ok   bvh takes --refit-every"; fi
 check "front cycle neither auto nor K" 2 "auto, a positive whole number of frames or a plan file, not '0'" -- "$cdbench" run --device cpu --frames 0:3 --front-cycle 0
 check "unknown scene" 2 "unknown scene 'nowhere'" -- "$cdbench" run --device cpu --scene nowhere
 check "frame range past the end" 2 "only 20 frames" -- "$cdbench" run --device cpu --frames 0:99
