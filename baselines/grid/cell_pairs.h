@@ -16,30 +16,26 @@
 #include "baselines/common/staged_pairs.h"
 #include "cdbench/core/aabb.h"
 #include "cdbench/core/pair_sink.h"
+#include "baselines/grid/grid_arrays.h"
 #include "baselines/grid/grid_geometry.h"
 
 namespace cdb {
 
 // One thread per sorted entry: the later entries of its cell.
 struct SameLevelPairsFn : StagedPairs {
-  const uint64_t* keys;
-  const uint32_t* boxes;
-  const unsigned long long* total;
-  uint32_t planned;
-  const uint32_t* level;
-  const vec4f* lo;
-  const vec4f* hi;
-  const GridLayout* params;
+  GridArrays g;
   CDB_HD void operator()(uint32_t k, Stage* stage = nullptr) const {
     const PairSink out = sink.staged(stage);
-    const uint32_t entries = static_cast<uint32_t>(min_of(*total, (unsigned long long)planned));
+    const uint32_t entries = g.entries();
     if (k >= entries) return;
+    const uint64_t* keys = g.sorted_keys;
+    const uint32_t* boxes = g.sorted_boxes;
     const uint64_t key = keys[k];
-    const uint32_t l = level[boxes[k]];
+    const uint32_t l = g.level[boxes[k]];
     emit_later_in_cell(
-        k, entries, boxes, lo, hi, [&](uint32_t t) { return keys[t] == key; }, [](uint32_t) { return true; },
+        k, entries, boxes, g.lo, g.hi, [&](uint32_t t) { return keys[t] == key; }, [](uint32_t) { return true; },
         [&](const vec4f& alo, const vec4f& blo) {
-          return grid_key(*params, l, home_cell(level_lattice(*params, l), alo, blo)) == key;
+          return grid_key(*g.params, l, home_cell(level_lattice(*g.params, l), alo, blo)) == key;
         },
         out);
   }
@@ -48,26 +44,22 @@ struct SameLevelPairsFn : StagedPairs {
 // One thread per box: the boxes of every coarser, non-empty level in the cells its box
 // covers there. Scenes of one level return at once.
 struct CoarserLevelPairsFn : StagedPairs {
-  const uint64_t* keys;
-  const uint32_t* boxes;
-  const uint32_t* level_begin;  // kGridMaxLevels + 1 entries
-  const uint32_t* level;
-  const vec4f* lo;
-  const vec4f* hi;
-  const GridLayout* params;
+  GridArrays g;
   CDB_HD void operator()(uint32_t a, Stage* stage = nullptr) const {
     const PairSink out = sink.staged(stage);
-    const GridLayout& p = *params;
-    const vec4f alo = lo[a], ahi = hi[a];
-    for (uint32_t l = level[a] + 1; l < p.levels; ++l) {
-      const uint32_t begin = level_begin[l], end = level_begin[l + 1];
+    const GridLayout& p = *g.params;
+    const uint64_t* keys = g.sorted_keys;
+    const uint32_t* boxes = g.sorted_boxes;
+    const vec4f alo = g.lo[a], ahi = g.hi[a];
+    for (uint32_t l = g.level[a] + 1; l < p.levels; ++l) {
+      const uint32_t begin = g.level_begin[l], end = g.level_begin[l + 1];
       if (begin == end) continue;
       const CellLattice<float> lattice = level_lattice(p, l);
       for_each_cell(cell_range(lattice, alo, ahi), [&](CellCoords cell) {
         const uint64_t key = grid_key(p, l, cell);
         for (uint32_t t = lower_bound_key(keys, begin, end, key); t < end && keys[t] == key; ++t) {
           const uint32_t b = boxes[t];
-          const vec4f blo = lo[b], bhi = hi[b];
+          const vec4f blo = g.lo[b], bhi = g.hi[b];
           if (overlaps(alo, ahi, blo, bhi) && grid_key(p, l, home_cell(lattice, alo, blo)) == key) out.emit(a, b);
         }
         return true;

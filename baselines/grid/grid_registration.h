@@ -8,6 +8,7 @@
 // key above every real key, so after the sort the real entries come first.
 #include <cstdint>
 
+#include "baselines/grid/grid_arrays.h"
 #include "baselines/grid/grid_geometry.h"
 
 namespace cdb {
@@ -15,20 +16,16 @@ namespace cdb {
 // Per box: its level (the finest that keeps it within kGridMaxCellsPerBox cells) and how
 // many cells it covers there.
 struct GridCountFn {
-  const vec4f* lo;
-  const vec4f* hi;
-  const GridLayout* params;
-  uint32_t* counts;
-  uint32_t* level;
+  GridArrays g;  // writes counts and level
   CDB_HD void operator()(uint32_t i) const {
-    const GridLayout& p = *params;
-    const vec4f a = lo[i], b = hi[i];
+    const GridLayout& p = *g.params;
+    const vec4f a = g.lo[i], b = g.hi[i];
     uint32_t l = level_of_width(p, box_width(a, b));
     uint64_t cells = grid_range(p, l, a, b).cells();
     while (cells > kGridMaxCellsPerBox && l + 1 < p.levels)
       cells = grid_range(p, ++l, a, b).cells();
-    counts[i] = static_cast<uint32_t>(cells);
-    level[i] = l;
+    g.counts[i] = static_cast<uint32_t>(cells);
+    g.level[i] = l;
   }
 };
 
@@ -45,22 +42,15 @@ struct SumOp {
 };
 
 struct GridFillFn {
-  const vec4f* lo;
-  const vec4f* hi;
-  const GridLayout* params;
-  const uint32_t* level;
-  const uint32_t* offsets;
-  uint32_t planned;  // entries the arrays hold this frame
-  uint64_t* keys;
-  uint32_t* boxes;
+  GridArrays g;  // writes keys and boxes, at most planned of them
   CDB_HD void operator()(uint32_t i) const {
-    const GridLayout& p = *params;
-    const uint32_t l = level[i];
-    uint32_t e = offsets[i];
-    for_each_cell(grid_range(p, l, lo[i], hi[i]), [&](CellCoords cell) {
-      if (e >= planned) return false;
-      keys[e] = grid_key(p, l, cell);
-      boxes[e++] = i;
+    const GridLayout& p = *g.params;
+    const uint32_t l = g.level[i];
+    uint32_t e = g.offsets[i];
+    for_each_cell(grid_range(p, l, g.lo[i], g.hi[i]), [&](CellCoords cell) {
+      if (e >= g.planned) return false;
+      g.keys[e] = grid_key(p, l, cell);
+      g.boxes[e++] = i;
       return true;
     });
   }
@@ -69,32 +59,26 @@ struct GridFillFn {
 // The planned entries past the real total get the padding key (2^key_bits - 1, above
 // every real key when the key bits suffice; when they do not, the frame is re-run).
 struct GridPadFn {
-  const unsigned long long* total;
+  GridArrays g;
   uint64_t pad_key;
-  uint64_t* keys;
-  uint32_t* boxes;
   CDB_HD void operator()(uint32_t e) const {
-    if (e < *total) return;
-    keys[e] = pad_key;
-    boxes[e] = 0;
+    if (e < *g.total) return;
+    g.keys[e] = pad_key;
+    g.boxes[e] = 0;
   }
 };
 
 // First sorted entry of each level (levels past the last, and the end, get the entry
 // count): one thread per level, a binary search for the level's first key.
 struct LevelBeginFn {
-  const uint64_t* sorted_keys;
-  const unsigned long long* total;
-  uint32_t planned;
-  const GridLayout* params;
-  uint32_t* begin;
+  GridArrays g;  // writes level_begin
   CDB_HD void operator()(uint32_t l) const {
-    const uint32_t entries = static_cast<uint32_t>(min_of(*total, (unsigned long long)planned));
-    if (l >= params->levels) {
-      begin[l] = entries;
+    const uint32_t entries = g.entries();
+    if (l >= g.params->levels) {
+      g.level_begin[l] = entries;
       return;
     }
-    begin[l] = lower_bound_key(sorted_keys, 0, entries, params->level[l].base);
+    g.level_begin[l] = lower_bound_key(g.sorted_keys, 0, entries, g.params->level[l].base);
   }
 };
 

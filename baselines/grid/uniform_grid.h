@@ -85,6 +85,14 @@ struct UniformGrid : CellBoxes<Exec> {
     return entries <= built_entries && bits <= uint64_t(built_key_bits);
   }
 
+  // The kernels' view, for a build or its pair tests with `planned` entries.
+  GridArrays arrays(uint32_t planned) {
+    return {this->lo.data(),     this->hi.data(),     params.data(), this->counts.data(),
+            this->offsets.data(), level.data(),        level_begin.data(), keys.data(),
+            sorted_keys.data(),  boxes.data(),        sorted_boxes.data(), &totals.data()->entries,
+            planned};
+  }
+
   Array<uint32_t> level, level_begin;
   Array<TrimmedWidths> trimmed;
   Array<GridLayout> params;
@@ -116,34 +124,26 @@ void grid_build(Exec& exec, UniformGrid<Exec>& g, uint32_t n) {
               TrimmedWidths{0.0, 0ull}, g.trimmed.data(), g.temp.data(), g.temp.size());
   unsigned long long* entries = &g.totals.data()->entries;
   exec.for_each_n(1, GridLayoutFn{g.scene.data(), g.trimmed.data(), g.params.data(), &g.totals.data()->key_bits});
-  exec.for_each_n(n, GridCountFn{g.lo.data(), g.hi.data(), g.params.data(), g.counts.data(),
-                                 g.level.data()});
+  const GridArrays arrays = g.arrays(planned);
+  exec.for_each_n(n, GridCountFn{arrays});
   exec.reduce(n, EntryTotalFn{g.counts.data()}, SumOp{}, 0ull, entries, g.temp.data(), g.temp.size());
   exec.exclusive_scan(g.counts.data(), g.offsets.data(), n, g.temp.data(), g.temp.size());
-  exec.for_each_n(n, GridFillFn{g.lo.data(), g.hi.data(), g.params.data(), g.level.data(),
-                                g.offsets.data(), planned, g.keys.data(), g.boxes.data()});
+  exec.for_each_n(n, GridFillFn{arrays});
   const int bits = g.built_key_bits;
   const uint64_t pad_key = bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
-  exec.for_each_n(planned, GridPadFn{entries, pad_key, g.keys.data(), g.boxes.data()});
+  exec.for_each_n(planned, GridPadFn{arrays, pad_key});
   exec.sort_pairs(g.keys.data(), g.sorted_keys.data(), g.boxes.data(), g.sorted_boxes.data(),
                   planned, bits, g.temp.data(), g.temp.size());
-  exec.for_each_n(kGridMaxLevels + 1, LevelBeginFn{g.sorted_keys.data(), entries, planned,
-                                                   g.params.data(), g.level_begin.data()});
+  exec.for_each_n(kGridMaxLevels + 1, LevelBeginFn{arrays});
 }
 
 template <class Exec>
-void grid_pairs(Exec& exec, const UniformGrid<Exec>& g, uint32_t n, const PairSink& sink) {
+void grid_pairs(Exec& exec, UniformGrid<Exec>& g, uint32_t n, const PairSink& sink) {
   if (n == 0) return;
   const uint32_t planned = static_cast<uint32_t>(g.built_entries);
-  exec.for_each_staged(planned,
-                  SameLevelPairsFn{{sink}, g.sorted_keys.data(), g.sorted_boxes.data(), &g.totals.data()->entries,
-                                   planned, g.level.data(), g.lo.data(), g.hi.data(), g.params.data()},
-                  Balance::uneven);
-  exec.for_each_staged(n,
-                  CoarserLevelPairsFn{{sink}, g.sorted_keys.data(), g.sorted_boxes.data(),
-                                      g.level_begin.data(), g.level.data(), g.lo.data(),
-                                      g.hi.data(), g.params.data()},
-                  Balance::uneven);
+  const GridArrays arrays = g.arrays(planned);
+  exec.for_each_staged(planned, SameLevelPairsFn{{sink}, arrays}, Balance::uneven);
+  exec.for_each_staged(n, CoarserLevelPairsFn{{sink}, arrays}, Balance::uneven);
 }
 
 }  // namespace cdb

@@ -74,21 +74,30 @@ CDB_HD_INLINE uint64_t cell_bucket(uint64_t cell, uint32_t bits) {
   return h >> (64 - bits);
 }
 
+// The hash's arrays as its kernels see them (SpatialHash::arrays): one plain view, passed
+// by value, instead of each kernel naming the pointers it reads one by one.
+struct HashArrays {
+  const vec4f *lo, *hi;               // the face boxes
+  const CellLattice<float>* lattice;  // the cell size of the grid tried
+  // Per box: its cell entries (0 for a large box), the offset of its first; the large boxes
+  // and their count.
+  uint32_t *counts, *offsets, *large, *large_count;
+  // The entries: bucket keys and ids as registered and sorted, each one's box and real cell.
+  uint64_t *keys, *sorted_keys;
+  uint32_t *entry_ids, *sorted_ids, *entry_box, *sorted_box;
+  uint64_t *entry_cell, *sorted_cell;
+};
+
 // Per box: how many cells it covers, or 0 and a place in the large list.
 struct CountCellsFn {
-  const vec4f* lo;
-  const vec4f* hi;
-  const CellLattice<float>* lattice;
-  uint32_t* counts;
-  uint32_t* large;
-  uint32_t* large_count;
+  HashArrays h;  // writes counts, large and large_count
   CDB_HD void operator()(uint32_t i) const {
-    const uint64_t cells = cell_range(*lattice, lo[i], hi[i]).cells();
+    const uint64_t cells = cell_range(*h.lattice, h.lo[i], h.hi[i]).cells();
     if (cells > kMaxCellsPerBox) {
-      counts[i] = 0;
-      large[atomic_add_relaxed(large_count, 1u)] = i;
+      h.counts[i] = 0;
+      h.large[atomic_add_relaxed(h.large_count, 1u)] = i;
     } else {
-      counts[i] = static_cast<uint32_t>(cells);
+      h.counts[i] = static_cast<uint32_t>(cells);
     }
   }
 };
@@ -114,25 +123,17 @@ struct EntryTotalsFn {
 };
 
 struct FillCellsFn {
-  const vec4f* lo;
-  const vec4f* hi;
-  const CellLattice<float>* lattice;
-  const uint32_t* counts;
-  const uint32_t* offsets;
+  HashArrays h;  // writes keys, entry_ids, entry_box and entry_cell
   uint32_t bucket_bits;
-  uint64_t* keys;
-  uint32_t* entry_ids;
-  uint32_t* entry_box;
-  uint64_t* entry_cell;
   CDB_HD void operator()(uint32_t i) const {
-    if (counts[i] == 0) return;
-    uint32_t e = offsets[i];
-    for_each_cell(cell_range(*lattice, lo[i], hi[i]), [&](CellCoords c) {
+    if (h.counts[i] == 0) return;
+    uint32_t e = h.offsets[i];
+    for_each_cell(cell_range(*h.lattice, h.lo[i], h.hi[i]), [&](CellCoords c) {
       const uint64_t cell = pack_cell(c);
-      keys[e] = cell_bucket(cell, bucket_bits);
-      entry_ids[e] = e;
-      entry_box[e] = i;
-      entry_cell[e++] = cell;
+      h.keys[e] = cell_bucket(cell, bucket_bits);
+      h.entry_ids[e] = e;
+      h.entry_box[e] = i;
+      h.entry_cell[e++] = cell;
       return true;
     });
   }
@@ -141,19 +142,16 @@ struct FillCellsFn {
 // One thread per sorted entry: the later entries of its bucket that lie in the same real
 // cell; a pair is reported only in its home cell.
 struct PairsInCellsFn : StagedPairs {
+  HashArrays h;
   uint32_t entries;
-  const uint64_t* buckets;
-  const uint32_t* box;
-  const uint64_t* cell;
-  const vec4f* lo;
-  const vec4f* hi;
-  const CellLattice<float>* lattice;
   CDB_HD void operator()(uint32_t k, Stage* stage = nullptr) const {
     const PairSink out = sink.staged(stage);
+    const uint64_t* buckets = h.sorted_keys;
+    const uint64_t* cell = h.sorted_cell;
     const uint64_t bucket = buckets[k], c = cell[k];
-    const CellLattice<float> g = *lattice;
+    const CellLattice<float> g = *h.lattice;
     emit_later_in_cell(
-        k, entries, box, lo, hi, [&](uint32_t t) { return buckets[t] == bucket; },
+        k, entries, h.sorted_box, h.lo, h.hi, [&](uint32_t t) { return buckets[t] == bucket; },
         [&](uint32_t t) { return cell[t] == c; },
         [&](const vec4f& alo, const vec4f& blo) { return pack_cell(home_cell(g, alo, blo)) == c; }, out);
   }
@@ -162,20 +160,16 @@ struct PairsInCellsFn : StagedPairs {
 // One thread per box: against every large box. A pair of two large boxes is reported by
 // the thread of the larger index only.
 struct LargePairsFn : StagedPairs {
-  const vec4f* lo;
-  const vec4f* hi;
-  const uint32_t* counts;
-  const uint32_t* large;
-  const uint32_t* large_count;
+  HashArrays h;
   CDB_HD void operator()(uint32_t j, Stage* stage = nullptr) const {
     const PairSink out = sink.staged(stage);
-    const uint32_t count = *large_count;
-    const bool j_large = counts[j] == 0;
-    const vec4f jlo = lo[j], jhi = hi[j];
+    const uint32_t count = *h.large_count;
+    const bool j_large = h.counts[j] == 0;
+    const vec4f jlo = h.lo[j], jhi = h.hi[j];
     for (uint32_t q = 0; q < count; ++q) {
-      const uint32_t a = large[q];
+      const uint32_t a = h.large[q];
       if (a == j || (j_large && j < a)) continue;
-      if (overlaps(jlo, jhi, lo[a], hi[a])) out.emit(a, j);
+      if (overlaps(jlo, jhi, h.lo[a], h.hi[a])) out.emit(a, j);
     }
   }
 };
@@ -209,6 +203,12 @@ struct SpatialHash : CellBoxes<Exec> {
     this->temp.reserve(t);
   }
 
+  HashArrays arrays() {
+    return {this->lo.data(),   this->hi.data(),     lattice.data(),    this->counts.data(), this->offsets.data(),
+            large.data(),      large_count.data(),  keys.data(),       sorted_keys.data(),  entry_ids.data(),
+            sorted_ids.data(), entry_box.data(),    sorted_box.data(), entry_cell.data(),   sorted_cell.data()};
+  }
+
   Array<uint32_t> large, large_count;
   Array<CellLattice<float>> lattice;
   Array<EntryTotals> totals;
@@ -232,8 +232,7 @@ uint32_t hash_build(Exec& exec, SpatialHash<Exec>& h, uint32_t n) {
   for (;;) {
     exec.for_each_n(1, HashLatticeFn{h.scene.data(), n, scale, h.lattice.data()});
     exec.fill(h.large_count.data(), 1, 0u);
-    exec.for_each_n(n, CountCellsFn{h.lo.data(), h.hi.data(), h.lattice.data(), h.counts.data(),
-                                    h.large.data(), h.large_count.data()});
+    exec.for_each_n(n, CountCellsFn{h.arrays()});
     exec.reduce(n, EntryTotalsFn{h.counts.data()}, EntryTotalsOp{}, EntryTotals{},
                 h.totals.data(), h.temp.data(), h.temp.size());
     exec.copy_to_host(&totals, h.totals.data(), 1);
@@ -254,9 +253,8 @@ uint32_t hash_build(Exec& exec, SpatialHash<Exec>& h, uint32_t n) {
   exec.exclusive_scan(h.counts.data(), h.offsets.data(), n, h.temp.data(), h.temp.size());
   uint32_t bits = 1;
   while (bits < 32 && (uint64_t(1) << bits) < 2 * uint64_t(entries)) ++bits;
-  exec.for_each_n(n, FillCellsFn{h.lo.data(), h.hi.data(), h.lattice.data(), h.counts.data(),
-                                 h.offsets.data(), bits, h.keys.data(), h.entry_ids.data(),
-                                 h.entry_box.data(), h.entry_cell.data()});
+  // After reserve_entries, which may have moved the entry arrays.
+  exec.for_each_n(n, FillCellsFn{h.arrays(), bits});
   exec.sort_pairs(h.keys.data(), h.sorted_keys.data(), h.entry_ids.data(), h.sorted_ids.data(),
                   entries, static_cast<int>(bits), h.temp.data(), h.temp.size());
   gather(exec, entries, h.sorted_ids.data(), h.entry_box.data(), h.entry_cell.data(), h.sorted_box.data(),
@@ -265,14 +263,12 @@ uint32_t hash_build(Exec& exec, SpatialHash<Exec>& h, uint32_t n) {
 }
 
 template <class Exec>
-void hash_pairs(Exec& exec, const SpatialHash<Exec>& h, uint32_t n, const PairSink& sink) {
+void hash_pairs(Exec& exec, SpatialHash<Exec>& h, uint32_t n, const PairSink& sink) {
   exec.for_each_staged(h.num_entries,
-                  PairsInCellsFn{{sink}, h.num_entries, h.sorted_keys.data(), h.sorted_box.data(),
-                                 h.sorted_cell.data(), h.lo.data(), h.hi.data(), h.lattice.data()},
+                  PairsInCellsFn{{sink}, h.arrays(), h.num_entries},
                   Balance::uneven);
   if (h.num_large > 0)
-    exec.for_each_staged(n, LargePairsFn{{sink}, h.lo.data(), h.hi.data(), h.counts.data(), h.large.data(),
-                                    h.large_count.data()});
+    exec.for_each_staged(n, LargePairsFn{{sink}, h.arrays()});
 }
 
 }  // namespace cdb
