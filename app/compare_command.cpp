@@ -576,7 +576,8 @@ void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metri
   }
   std::printf("\nVerdict: Mann-Whitney U over the passes' values (pooled over a side's files; one value per file "
               "where a file keeps no passes, or where the sides' plans differ), a difference at p < %.2f whose Hodges-Lehmann shift (the change) "
-              "exceeds the threshold; inconclusive where conditions were poor or the samples too few. CI: Student "
+              "exceeds the threshold; inconclusive where a time is not finite, conditions were poor or the samples "
+              "too few. CI: Student "
               "t over the same values (passes, repeats), on the log scale, else over one pass's frames. A run of "
               "one side only is a row of its own (only in A, only in B), with no verdict.\n",
               kSignificance);

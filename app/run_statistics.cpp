@@ -238,6 +238,19 @@ double hodges_lehmann_shift(const std::vector<double>& a, const std::vector<doub
 Decision decide(const std::vector<double>& a, const std::vector<double>& b, double threshold_pct,
                 const std::string& poor) {
   Decision d;
+  // A NaN or infinite time (a damaged or hand-made file) orders as nothing and shifts by
+  // nothing, which would read as `unchanged`: such samples decide nothing.
+  const auto not_finite = [](const std::vector<double>& v) {
+    return size_t(std::count_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }));
+  };
+  if (const size_t na = not_finite(a), nb = not_finite(b); na || nb) {
+    d.verdict = Verdict::inconclusive;
+    d.p = std::nan("");
+    d.why = "times that are not finite (NaN or infinite): " + std::to_string(na) + " of " +
+            std::to_string(a.size()) + " samples of A, " + std::to_string(nb) + " of " + std::to_string(b.size()) +
+            " of B; the files' /frames/t_total_ms hold them";
+    return d;
+  }
   const double base = median_of(a);
   d.shift_pct = base != 0 ? 100.0 * hodges_lehmann_shift(a, b) / base : std::nan("");
   d.p = std::nan("");

@@ -88,7 +88,8 @@ struct Decision {
   std::string why;                    // inconclusive: why the data cannot decide
 };
 
-// B's samples against A's (one metric value per pass, or per run): inconclusive when `poor`
+// B's samples against A's (one metric value per pass, or per run): inconclusive when a
+// sample is not finite (NaN or infinite; no shift then), when `poor`
 // (the conditions recorded as poor, its reasons) is not empty or the samples are too few for
 // the test to reach kSignificance; else regression or improvement when the test rejects
 // equality at kSignificance and the shift exceeds threshold_pct percent; within-noise when

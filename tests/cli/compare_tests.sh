@@ -217,6 +217,18 @@ check "a noisy run is flagged" 0 "\| poor conditions \(B: noise warning\) \|$" -
 check "report marks the noisy run" 0 "noisy\.h5 \|.*\| noisy \| complete \|$" -- "$cdbench" report "$tmp/base.h5" "$tmp/noisy.h5"
 check "other input frames refused" 2 "input_hash: [0-9a-f]{16} in A, 0123456789abcdef in B" -- \
   "$cdbench" compare "$tmp/base.h5" "$tmp/otherinput.h5"
+# Times that are NaN (a damaged or hand-made file) decide nothing: inconclusive, not
+# unchanged (the timeout bounds a build whose test loops on them).
+$python - "$tmp/base.h5" "$tmp/nan.h5" <<'PY'
+import shutil, sys
+import h5py
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    f["frames/t_total_ms"][...] = float("nan")
+    f["passes/t_total_ms"][...] = float("nan")
+PY
+check "NaN times are inconclusive" 0 "\| inconclusive \| same \(6 frames\) \| .*times that are not finite \(NaN or infinite\): 0 of [0-9]+ samples of A, ([0-9]+) of \1 of B" -- \
+  timeout 60 "$cdbench" compare "$tmp/base.h5" "$tmp/nan.h5"
 check "median metric" 0 "^median per-frame ms" -- "$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --metric median
 check "unknown metric is a usage error" 2 "--metric" -- "$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --metric max
 
