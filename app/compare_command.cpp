@@ -198,8 +198,11 @@ std::vector<std::string> differences(const RunGroup& a, const RunGroup& b) {
     if (a.identity[i].second != b.identity[i].second)
       d.push_back(a.identity[i].first + ": '" + a.identity[i].second + "' in A, '" + b.identity[i].second + "' in B");
   const std::string &ha = a.first().input_hash, &hb = b.first().input_hash;
+  // Other frames under one scene name is worth saying; under other names it follows.
+  const bool same_scene = a.first().scene_label == b.first().scene_label;
   if (!ha.empty() && !hb.empty() && ha != hb)
-    d.push_back("input_hash: " + ha + " in A, " + hb + " in B (same scene name, other frames)");
+    d.push_back("input_hash: " + ha + " in A, " + hb + " in B (" +
+                (same_scene ? "same scene name, other frames" : "the scenes differ") + ")");
   return d;
 }
 

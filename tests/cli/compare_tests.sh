@@ -229,6 +229,11 @@ with h5py.File(sys.argv[2], "r+") as f:
 PY
 check "NaN times are inconclusive" 0 "\| inconclusive \| same \(6 frames\) \| .*times that are not finite \(NaN or infinite\): 0 of [0-9]+ samples of A, ([0-9]+) of \1 of B" -- \
   timeout 60 "$cdbench" compare "$tmp/base.h5" "$tmp/nan.h5"
+# Runs of other scenes: their hashes differ because the scenes do, not "same scene name".
+"$cdbench" run --device cpu --scene cloth-wave --set res=8 --frames 0:6 --quiet --out "$tmp/wave.h5" >/dev/null 2>&1 || fail "run cloth-wave"
+check "other scenes: the hashes differ as the scenes do" 0 "input_hash: [0-9a-f]{16} in A, [0-9a-f]{16} in B \(the scenes differ\)" -- \
+  "$cdbench" compare "$tmp/a.h5" "$tmp/wave.h5" --allow-mismatch
+grep -q "same scene name" "$tmp/out" && fail "other scenes called the same scene name" || echo "ok   other scenes not called one name"
 check "median metric" 0 "^median per-frame ms" -- "$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --metric median
 check "unknown metric is a usage error" 2 "--metric" -- "$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --metric max
 
