@@ -93,8 +93,9 @@ Estimate estimate_over_runs(const std::vector<double>& run_values) {
   e.basis = CiBasis::repeats;
   e.n = run_values.size();
   e.value = mean_of(run_values);
+  // Unbounded below a time is bounded by zero.
   if (e.n < 2) {
-    e.lo = -kInf;
+    e.lo = 0;
     e.hi = kInf;
     return e;
   }
@@ -120,7 +121,7 @@ Estimate estimate_over_frames(const std::vector<double>& frame_ms, Metric m) {
   const double spread = kZ95 * std::sqrt(n * p * (1 - p));
   // 1-based ranks of the interval's ends; outside 1..n the samples do not bound it.
   const double lo_rank = std::floor(n * p - spread), hi_rank = std::ceil(n * p + spread) + 1;
-  e.lo = lo_rank >= 1 ? v[size_t(lo_rank) - 1] : -kInf;
+  e.lo = lo_rank >= 1 ? v[size_t(lo_rank) - 1] : 0.0;
   e.hi = hi_rank <= n ? v[size_t(hi_rank) - 1] : kInf;
   return e;
 }
@@ -137,7 +138,7 @@ Estimate estimate_over_passes(const std::vector<double>& frame_ms, const std::ve
     total += frame_ms[f];
   }
   if (passes < 2 || total <= 0) {
-    e.lo = -kInf;
+    e.lo = 0;
     e.hi = kInf;
     return e;
   }

@@ -30,8 +30,8 @@ const char* ci_basis_name(CiBasis b);
 
 struct Estimate {
   double value = 0;
-  // The 95% interval; -inf / +inf where the samples cannot bound it (one sample, or too
-  // few frames for a p95's order statistics).
+  // The 95% interval, of a time, so never below zero: 0 / +inf where the samples cannot
+  // bound it (one sample, or too few frames for a p95's order statistics).
   double lo = 0, hi = 0;
   size_t n = 0;  // runs, passes or frames the interval is over
   CiBasis basis = CiBasis::frames;

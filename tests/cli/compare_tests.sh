@@ -277,6 +277,9 @@ bad += [] if float(row["p_value"]) == 2 / 252 else ["p_value is not 2 / C(10, 5)
 bad += [] if abs(float(row["change_pct"]) - 50) < 1e-9 else ["change_pct is not 50%"]
 print("differ: " + ", ".join(bad) if bad else f"exact: {len(numbers)} numbers")
 PY
+# 5 frames' median: ranks below the first frame bound it only by zero, as no time is negative.
+check "an interval unbounded below starts at 0" 0 "^funnel\[res=16\],c,cpu,before,before,median,[0-9.e-]+,0,(inf|[0-9.e-]+),5,frames," -- \
+  "$cdbench" compare "$tmp/a.h5" "$tmp/a-copy.h5" --metric median --csv
 check "an unbounded interval end is inf in CSV" 0 "^funnel\[res=16\],c,cpu,before,before,p95,[0-9.e-]+,[0-9.e-]+,inf,5,frames," -- \
   "$cdbench" compare "$tmp/a.h5" "$tmp/a-copy.h5" --metric p95 --csv
 has "CSV row of the mismatch" "$tmp/csv3" ",6,0,([0-9a-f]{16}),\1,\"pipeline: 'c' in A, 'brute' in B\","
