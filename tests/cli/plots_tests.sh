@@ -154,6 +154,9 @@ done
 mkdir -p "$tmp/bad"
 cp "$res/funnel-bvh.h5" "$tmp/bad/"
 printf 'not hdf5\n' >"$tmp/bad/notes.h5"
+check "Fig. 6 table without a radix run says so" 0 "^No complete \`radix-order\` run: the table sets the radix sort against the histogram sort" -- \
+  "$python" "$root/scripts/table_sort.py" "$res/funnel-static.h5"
+grep -q "| — |" "$tmp/out" && fail "Fig. 6 table of dashes printed" || echo "ok   no table of dashes"
 for s in table_sort.py table_memory.py; do
   check "$s names a non-results file" 1 "$tmp/bad/notes.h5: not a cdbench results file" -- "$python" "$root/scripts/$s" "$tmp/bad"
 done
