@@ -198,8 +198,11 @@ std::vector<std::string> differences(const RunGroup& a, const RunGroup& b) {
     if (a.identity[i].second != b.identity[i].second)
       d.push_back(a.identity[i].first + ": '" + a.identity[i].second + "' in A, '" + b.identity[i].second + "' in B");
   const std::string &ha = a.first().input_hash, &hb = b.first().input_hash;
+  // Other frames under one scene name is worth saying; under other names it follows.
+  const bool same_scene = a.first().scene_label == b.first().scene_label;
   if (!ha.empty() && !hb.empty() && ha != hb)
-    d.push_back("input_hash: " + ha + " in A, " + hb + " in B (same scene name, other frames)");
+    d.push_back("input_hash: " + ha + " in A, " + hb + " in B (" +
+                (same_scene ? "same scene name, other frames" : "the scenes differ") + ")");
   return d;
 }
 
@@ -576,7 +579,8 @@ void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metri
   }
   std::printf("\nVerdict: Mann-Whitney U over the passes' values (pooled over a side's files; one value per file "
               "where a file keeps no passes, or where the sides' plans differ), a difference at p < %.2f whose Hodges-Lehmann shift (the change) "
-              "exceeds the threshold; inconclusive where conditions were poor or the samples too few. CI: Student "
+              "exceeds the threshold; inconclusive where a time is not finite, conditions were poor or the samples "
+              "too few. CI: Student "
               "t over the same values (passes, repeats), on the log scale, else over one pass's frames. A run of "
               "one side only is a row of its own (only in A, only in B), with no verdict.\n",
               kSignificance);

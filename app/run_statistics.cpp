@@ -93,8 +93,9 @@ Estimate estimate_over_runs(const std::vector<double>& run_values) {
   e.basis = CiBasis::repeats;
   e.n = run_values.size();
   e.value = mean_of(run_values);
+  // Unbounded below a time is bounded by zero.
   if (e.n < 2) {
-    e.lo = -kInf;
+    e.lo = 0;
     e.hi = kInf;
     return e;
   }
@@ -120,7 +121,7 @@ Estimate estimate_over_frames(const std::vector<double>& frame_ms, Metric m) {
   const double spread = kZ95 * std::sqrt(n * p * (1 - p));
   // 1-based ranks of the interval's ends; outside 1..n the samples do not bound it.
   const double lo_rank = std::floor(n * p - spread), hi_rank = std::ceil(n * p + spread) + 1;
-  e.lo = lo_rank >= 1 ? v[size_t(lo_rank) - 1] : -kInf;
+  e.lo = lo_rank >= 1 ? v[size_t(lo_rank) - 1] : 0.0;
   e.hi = hi_rank <= n ? v[size_t(hi_rank) - 1] : kInf;
   return e;
 }
@@ -137,7 +138,7 @@ Estimate estimate_over_passes(const std::vector<double>& frame_ms, const std::ve
     total += frame_ms[f];
   }
   if (passes < 2 || total <= 0) {
-    e.lo = -kInf;
+    e.lo = 0;
     e.hi = kInf;
     return e;
   }
@@ -238,6 +239,19 @@ double hodges_lehmann_shift(const std::vector<double>& a, const std::vector<doub
 Decision decide(const std::vector<double>& a, const std::vector<double>& b, double threshold_pct,
                 const std::string& poor) {
   Decision d;
+  // A NaN or infinite time (a damaged or hand-made file) orders as nothing and shifts by
+  // nothing, which would read as `unchanged`: such samples decide nothing.
+  const auto not_finite = [](const std::vector<double>& v) {
+    return size_t(std::count_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }));
+  };
+  if (const size_t na = not_finite(a), nb = not_finite(b); na || nb) {
+    d.verdict = Verdict::inconclusive;
+    d.p = std::nan("");
+    d.why = "times that are not finite (NaN or infinite): " + std::to_string(na) + " of " +
+            std::to_string(a.size()) + " samples of A, " + std::to_string(nb) + " of " + std::to_string(b.size()) +
+            " of B; the files' /frames/t_total_ms hold them";
+    return d;
+  }
   const double base = median_of(a);
   d.shift_pct = base != 0 ? 100.0 * hodges_lehmann_shift(a, b) / base : std::nan("");
   d.p = std::nan("");

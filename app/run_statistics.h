@@ -30,8 +30,8 @@ const char* ci_basis_name(CiBasis b);
 
 struct Estimate {
   double value = 0;
-  // The 95% interval; -inf / +inf where the samples cannot bound it (one sample, or too
-  // few frames for a p95's order statistics).
+  // The 95% interval, of a time, so never below zero: 0 / +inf where the samples cannot
+  // bound it (one sample, or too few frames for a p95's order statistics).
   double lo = 0, hi = 0;
   size_t n = 0;  // runs, passes or frames the interval is over
   CiBasis basis = CiBasis::frames;
@@ -88,7 +88,8 @@ struct Decision {
   std::string why;                    // inconclusive: why the data cannot decide
 };
 
-// B's samples against A's (one metric value per pass, or per run): inconclusive when `poor`
+// B's samples against A's (one metric value per pass, or per run): inconclusive when a
+// sample is not finite (NaN or infinite; no shift then), when `poor`
 // (the conditions recorded as poor, its reasons) is not empty or the samples are too few for
 // the test to reach kSignificance; else regression or improvement when the test rejects
 // equality at kSignificance and the shift exceeds threshold_pct percent; within-noise when

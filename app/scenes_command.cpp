@@ -51,6 +51,13 @@ ScenesCommand add_scenes_command(CLI::App& app, ScenesOptions& s) {
 
 int scenes_list(const ScenesOptions& opts) {
   const auto dir = scenes_dir(opts.scenes_dir);
+  // A directory that is not there lists nothing, which reads as "no scenes": a mistake in
+  // the call, named with where the directory came from.
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    fail_usage((opts.scenes_dir.empty() ? "CDBENCH_SCENES=" : "--scenes-dir ") + dir.string() + ": " +
+               (std::filesystem::exists(dir, ec) ? "not a directory" : "no such directory") +
+               "; name the directory that holds the scene descriptors (*.json)");
   // A scene whose data is not installed (e.g. assimp-testmodels) is listed with the reason,
   // and the others still are.
   for (const auto& name : list_scenes(dir)) {

@@ -94,7 +94,8 @@ strategies=unordered,static,b,periodic,restructure,c,reference
   while IFS= read -r scene; do
     [[ -n $scene ]] || continue
     png="curves-$(printf '%s' "$scene" | tr -c 'A-Za-z0-9._-' '_').png"
-    drawn=$(py plot_curves.py "${main[@]}" --scene "$scene" --pipelines "$strategies" --out "$outdir/$png")
+    # The strategies with the baselines beside them (plot_curves.py's default).
+    drawn=$(py plot_curves.py "${main[@]}" --scene "$scene" --out "$outdir/$png")
     echo "- $scene: [$png]($png): ${drawn#*": $scene, "}"
     echo
     echo "  ![$scene curves]($png)"

@@ -3,7 +3,10 @@
 
 Top panel: t_total_ms per frame; bottom panel: q_root (Formula 1 at the root). Frames where
 pipeline c decided to restructure or rebuild (/frames/decision) are circled. Only measured
-frames are drawn (the first `warmup` rows, which build, would flatten the curves).
+frames are drawn (the first `warmup` rows, which build, would flatten the curves). The
+baselines are drawn by default beside the strategies, the yardstick of the curves. Each run
+has its own line style and marker (named in the line printed), so curves that coincide, as
+b's Q under c's, both stay visible.
 
   scripts/plot_curves.py results/ --scene funnel --out funnel-curves.png
 """
@@ -21,14 +24,26 @@ import numpy as np  # noqa: E402
 import cdb_results  # noqa: E402
 
 STRATEGIES = ["unordered", "static", "b", "periodic", "restructure", "c", "reference"]
+BASELINES = ["bvh", "sweep", "hash", "grid", "brute"]
 MARKED = ("restructure", "rebuild")
+# Line styles and markers cycle at different lengths, so the first 28 runs each get their own
+# pair; a marker every few frames tells lines apart where they lie on each other.
+LINE_STYLES = [("-", "solid"), ("--", "dashed"), ("-.", "dash-dot"), (":", "dotted")]
+MARKERS = [("o", "circles"), ("s", "squares"), ("^", "triangles"), ("D", "diamonds"), ("v", "down triangles"),
+           ("x", "crosses"), ("P", "pluses")]
+
+
+def style_of(k):
+    """Run k's (linestyle, marker) and their names."""
+    (ls, ls_name), (marker, marker_name) = LINE_STYLES[k % len(LINE_STYLES)], MARKERS[k % len(MARKERS)]
+    return ls, marker, f"{ls_name}, {marker_name}"
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("paths", nargs="+", help="results files or directories of *.h5")
     parser.add_argument("--scene", help="scene to plot (needed when the files hold several)")
-    parser.add_argument("--pipelines", default=",".join(STRATEGIES),
+    parser.add_argument("--pipelines", default=",".join(STRATEGIES + BASELINES),
                         help="pipelines to draw, in this order, when present (default: %(default)s)")
     parser.add_argument("--out", required=True, help="PNG to write")
     args = parser.parse_args()
@@ -51,14 +66,19 @@ def main():
 
         fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(9, 6.5))
         marked = 0
-        for r in runs:
+        styles = []
+        for k, r in enumerate(runs):
             frames = r.column("frame")
             total = r.column("t_total_ms")
-            (line,) = top.plot(frames, total, label=r.label, linewidth=1.2)
+            ls, marker, style = style_of(k)
+            styles.append(style)
+            drawn = {"linestyle": ls, "marker": marker, "markersize": 4, "markevery": max(1, len(frames) // 12),
+                     "linewidth": 1.2, "markerfacecolor": "none"}
+            (line,) = top.plot(frames, total, label=r.label, **drawn)
             q = r.column("q_root")
             has_q = (q > 0).any()
             if has_q:
-                bottom.plot(frames, q, label=r.label, linewidth=1.2, color=line.get_color())
+                bottom.plot(frames, q, label=r.label, color=line.get_color(), **drawn)
             if "decision" in r.frames:
                 decided = np.array([d in MARKED for d in r.column("decision")], dtype=bool)
                 if decided.any():
@@ -90,7 +110,7 @@ def main():
         fig.tight_layout()
         # No Software entry: the PNG stays byte-identical across matplotlib versions.
         fig.savefig(args.out, dpi=110, metadata={"Software": None})
-        print(f"wrote {args.out}: {args.scene}, " + ", ".join(r.label for r in runs)
+        print(f"wrote {args.out}: {args.scene}, " + ", ".join(f"{r.label} ({s})" for r, s in zip(runs, styles))
               + f"; {marked} restructure/rebuild decisions marked")
         return 0
 

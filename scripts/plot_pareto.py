@@ -109,6 +109,10 @@ def main():
                     drawstyle="steps-post")
             ax.scatter([p.ms for p in front], [key(p) for p in front], s=140, facecolors="none",
                        edgecolors="black", linewidths=1.2, zorder=3)
+            # A front point says its margin: the knob a reader picks the point by.
+            for p in front:
+                ax.annotate(f"margin {p.margin:g}", (p.ms, key(p)), textcoords="offset points", xytext=(6, 6),
+                            fontsize=7, zorder=4)
             ax.set_xscale("log")
             ax.set_xlabel("mean ms / frame")
             ax.set_ylabel(ylabel)
@@ -145,8 +149,12 @@ def main():
                      "—" if math.isnan(p.contact_precision) else f"{p.contact_precision:.6f}",
                      ", ".join(p.front) or "—"] for p in points]
             print("\n".join(cdb_results.markdown_table(header, rows)))
-        print(f"wrote {args.out}: {args.scene}, {len(points)} runs; Pareto front: "
-              + "; ".join(f"{name} {len([p for p in points if name in p.front])}" for _, _, name in panels),
+        def front_text(name):
+            on = [p for p in points if name in p.front]
+            return f"{name} {len(on)} (margins {', '.join(f'{p.margin:g}' for p in on)})"
+
+        print(f"wrote {args.out}: {args.scene}, {len(points)} runs; Pareto front, its points labelled with their "
+              "margin: " + "; ".join(front_text(name) for _, _, name in panels),
               file=sys.stderr if args.table else sys.stdout)
         return 0
 

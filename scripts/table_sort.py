@@ -48,7 +48,7 @@ def main():
     def body():
         complete, incomplete = cdb_results.load(args.paths)
         histogram_names = args.histogram.split(",")
-        rows = []
+        rows, without_radix = [], []
         for (scene, device), runs in cdb_results.by_scene(complete).items():
             hist = next((r for name in histogram_names for r in runs if r.pipeline == name), None)
             radix = next((r for r in runs if r.pipeline == args.radix), None)
@@ -56,6 +56,8 @@ def main():
                 continue
             ht = sort_times(hist) if hist else np.array([])
             rt = sort_times(radix) if radix else np.array([])
+            if radix is None:
+                without_radix.append(cdb_results.scene_heading(scene, device, complete))
             ratio = float(rt.mean() / ht.mean()) if len(ht) and len(rt) else None
             front = front_range(hist or radix)
             rows.append([cdb_results.scene_heading(scene, device, complete), front,
@@ -70,6 +72,13 @@ def main():
              "radix sort (ms)", "radix / histogram (mean)", "frames (hist / radix)"], rows)
         if not rows:
             lines = ["No complete run of a histogram or radix front pipeline."]
+        elif len(without_radix) == len(rows):
+            # Every radix column would be a dash: say what is missing instead.
+            lines = [f"No complete `{args.radix}` run: the table sets the radix sort against the histogram "
+                     f"sort, so each scene needs a run of both (`cdbench run --pipeline {args.radix} ...`); "
+                     f"histogram runs found for: {', '.join(without_radix)}."]
+        elif without_radix:
+            lines += ["", f"No `{args.radix}` run of: {', '.join(without_radix)} (its radix columns are `—`)."]
         return cdb_results.print_report(lines, incomplete)
 
     return cdb_results.run_main(body)

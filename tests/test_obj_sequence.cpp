@@ -105,6 +105,40 @@ TEST(MeshSequence, ChangedCountsFoundWhenOpened) {
   EXPECT_NE(error.find("f2.obj: frame 2 has 5 vertices, frame 0 has 4"), std::string::npos) << error;
 }
 
+TEST(MeshSequence, FramesReplacedAfterOpeningNamed) {
+  // Every frame matched frame 0 when the directory was opened; a file rewritten since is
+  // said to have changed, not compared with itself as "frame 0 has 3, frame 0 has 2".
+  FrameDir dir;
+  dir.write("f0.obj", "0");
+  dir.write("f1.obj", "1");
+  const auto seq = open_mesh_sequence(dir.path());
+  std::vector<vec3d> positions;
+  dir.write("f0.obj", "0", true);
+  std::string error;
+  try {
+    seq->positions(0, positions);
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find((dir.path() / "f0.obj").string() +
+                       ": frame 0 changed after the scene was opened: it has 3 triangles and 4 vertices, the "
+                       "scene 2 and 4 when the scene was opened"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(error.find("frame 0 has"), std::string::npos) << error;
+  // Same counts, other faces.
+  std::ofstream(dir.path() / "f1.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 2 3 4\n";
+  error.clear();
+  try {
+    seq->positions(1, positions);
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("f1.obj: frame 1 changed after the scene was opened: it has other faces than it had when"),
+            std::string::npos)
+      << error;
+}
+
 TEST(MeshSequence, ByteOrderMarkBeforeTheFirstVertex) {
   FrameDir dir;
   dir.write("f0.obj", "0");

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -59,10 +60,16 @@ TEST(Estimate, WideSpreadStaysPositive) {
   EXPECT_GT(estimate_over_frames({0.5, 0.6, 9.0}, Metric::mean).lo, 0);
 }
 
-TEST(Estimate, OneRunIsUnbounded) {
+TEST(Estimate, OneRunIsUnboundedAboveZero) {
+  // A time is never negative: what the samples cannot bound below is bounded by zero.
   const Estimate e = estimate_over_runs({5});
-  EXPECT_TRUE(std::isinf(e.lo) && e.lo < 0);
+  EXPECT_EQ(e.lo, 0);
   EXPECT_TRUE(std::isinf(e.hi) && e.hi > 0);
+  const Estimate one_pass = estimate_over_passes({2, 2}, {0.1, 0.1}, 1, Metric::mean);
+  EXPECT_EQ(one_pass.lo, 0);
+  EXPECT_TRUE(std::isinf(one_pass.hi));
+  // Ranks below the first frame: the median of 3 frames is not bounded below by them.
+  EXPECT_EQ(estimate_over_frames({1, 2, 3}, Metric::median).lo, 0);
 }
 
 TEST(Estimate, MedianOverFramesByOrderStatistics) {
@@ -189,6 +196,21 @@ TEST(Decide, TooFewSamplesOrPoorConditionsAreInconclusive) {
   EXPECT_EQ(busy.verdict, Verdict::inconclusive) << "never REGRESSION on a busy host";
   EXPECT_EQ(busy.why, "poor conditions (A: host busy before the run (90%))");
   EXPECT_NEAR(busy.shift_pct, 100, 5) << "the shift is still measured";
+}
+
+TEST(Decide, TimesThatAreNotFiniteAreInconclusive) {
+  Samples s;
+  const std::vector<double> a = s.draw(8, 1.0, 0.01);
+  std::vector<double> b = a;
+  b[3] = std::nan("");
+  const Decision nan = decide(a, b, 5.0, "");
+  EXPECT_EQ(nan.verdict, Verdict::inconclusive) << "not unchanged: a NaN is no time";
+  EXPECT_NE(nan.why.find("0 of 8 samples of A, 1 of 8 of B"), std::string::npos) << nan.why;
+  EXPECT_TRUE(std::isnan(nan.shift_pct));
+  const std::vector<double> all_nan(8, std::nan(""));
+  EXPECT_EQ(decide(all_nan, all_nan, 5.0, "").verdict, Verdict::inconclusive);
+  b[3] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(decide(b, a, 5.0, "").verdict, Verdict::inconclusive);
 }
 
 TEST(Verdict, ChangeInPercent) { EXPECT_NEAR(change_pct(10, 12), 20, 1e-12); }

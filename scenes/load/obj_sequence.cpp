@@ -69,6 +69,7 @@ class MeshSequence final : public FrameSource {
     // one is timed rather than after the frames before it ran (the files are read again
     // as the frames are asked for: keeping them all would cost frames x vertices x 24 bytes).
     for (uint32_t k = 1; k < files_.size(); ++k) this->positions(k, positions);
+    opened_ = true;
   }
   const Topology& topology() const override { return topology_; }
   uint32_t num_frames() const override { return uint32_t(files_.size()); }
@@ -76,6 +77,20 @@ class MeshSequence final : public FrameSource {
     Topology t;
     read_mesh_file(files_.at(k), t, out, k);
     const std::string where = files_[k].string();
+    // Every frame matched frame 0 when the scene was opened, so a frame that does not now
+    // was rewritten since (frame 0 itself too): said so, not as frame 0 against frame 0.
+    if (opened_) {
+      const bool same_counts = t.faces.size() == topology_.faces.size() && t.num_vertices == topology_.num_vertices;
+      const std::string now =
+          same_counts ? "other faces than it had"
+                      : std::to_string(t.faces.size()) + " triangles and " + std::to_string(t.num_vertices) +
+                            " vertices, the scene " + std::to_string(topology_.faces.size()) + " and " +
+                            std::to_string(topology_.num_vertices);
+      if (!same_counts || std::memcmp(t.faces.data(), topology_.faces.data(), t.faces.size() * sizeof(Tri)) != 0)
+        fail(where + ": frame " + std::to_string(k) + " changed after the scene was opened: it has " + now +
+             " when the scene was opened; the frame files were replaced while they were read: write them before "
+             "the run starts");
+    }
     if (t.faces.size() != topology_.faces.size())
       fail(where + ": frame " + std::to_string(k) + " has " + std::to_string(t.faces.size()) +
            " triangles, frame 0 has " + std::to_string(topology_.faces.size()) +
@@ -106,6 +121,7 @@ class MeshSequence final : public FrameSource {
   std::filesystem::path dir_;
   std::vector<std::filesystem::path> files_;
   Topology topology_;
+  bool opened_ = false;  // every frame checked against frame 0
 };
 
 }  // namespace

@@ -175,6 +175,12 @@ check "scenes generate --overwrite replaces them" 0 "wrote 3 frames of cloth-wav
 mkdir -p "$tmp/own-scenes"
 printf '{"generator": "funnel", "params": {"res": 4, "frames": 2}}' >"$tmp/own-scenes/tiny.json"
 check "scenes info takes --scenes-dir after the scene" 0 "^scene +tiny" -- "$cdbench" scenes info tiny --scenes-dir "$tmp/own-scenes"
+check "scenes list of a missing --scenes-dir refused" 2 "^cdbench: error: --scenes-dir $tmp/nonexistent: no such directory" -- \
+  "$cdbench" scenes list --scenes-dir "$tmp/nonexistent"
+check "scenes list of a missing CDBENCH_SCENES refused" 2 "^cdbench: error: CDBENCH_SCENES=$tmp/nonexistent: no such directory" -- \
+  env CDBENCH_SCENES="$tmp/nonexistent" "$cdbench" scenes list
+check "scenes list of a file refused" 2 "^cdbench: error: --scenes-dir $tmp/badq.json: not a directory" -- \
+  "$cdbench" scenes list --scenes-dir "$tmp/badq.json"
 check "scenes list takes --scenes-dir" 0 "^tiny +[0-9]+ triangles" -- "$cdbench" scenes list --scenes-dir "$tmp/own-scenes"
 check "scenes generate takes --scenes-dir" 0 "wrote 2 frames of tiny" -- \
   "$cdbench" scenes generate tiny --scenes-dir "$tmp/own-scenes" --out "$tmp/gen-tiny"

@@ -217,6 +217,23 @@ check "a noisy run is flagged" 0 "\| poor conditions \(B: noise warning\) \|$" -
 check "report marks the noisy run" 0 "noisy\.h5 \|.*\| noisy \| complete \|$" -- "$cdbench" report "$tmp/base.h5" "$tmp/noisy.h5"
 check "other input frames refused" 2 "input_hash: [0-9a-f]{16} in A, 0123456789abcdef in B" -- \
   "$cdbench" compare "$tmp/base.h5" "$tmp/otherinput.h5"
+# Times that are NaN (a damaged or hand-made file) decide nothing: inconclusive, not
+# unchanged (the timeout bounds a build whose test loops on them).
+$python - "$tmp/base.h5" "$tmp/nan.h5" <<'PY'
+import shutil, sys
+import h5py
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    f["frames/t_total_ms"][...] = float("nan")
+    f["passes/t_total_ms"][...] = float("nan")
+PY
+check "NaN times are inconclusive" 0 "\| inconclusive \| same \(6 frames\) \| .*times that are not finite \(NaN or infinite\): 0 of [0-9]+ samples of A, ([0-9]+) of \1 of B" -- \
+  timeout 60 "$cdbench" compare "$tmp/base.h5" "$tmp/nan.h5"
+# Runs of other scenes: their hashes differ because the scenes do, not "same scene name".
+"$cdbench" run --device cpu --scene cloth-wave --set res=8 --frames 0:6 --quiet --out "$tmp/wave.h5" >/dev/null 2>&1 || fail "run cloth-wave"
+check "other scenes: the hashes differ as the scenes do" 0 "input_hash: [0-9a-f]{16} in A, [0-9a-f]{16} in B \(the scenes differ\)" -- \
+  "$cdbench" compare "$tmp/a.h5" "$tmp/wave.h5" --allow-mismatch
+grep -q "same scene name" "$tmp/out" && fail "other scenes called the same scene name" || echo "ok   other scenes not called one name"
 check "median metric" 0 "^median per-frame ms" -- "$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --metric median
 check "unknown metric is a usage error" 2 "--metric" -- "$cdbench" compare "$tmp/a.h5" "$tmp/b.h5" --metric max
 
@@ -260,6 +277,9 @@ bad += [] if float(row["p_value"]) == 2 / 252 else ["p_value is not 2 / C(10, 5)
 bad += [] if abs(float(row["change_pct"]) - 50) < 1e-9 else ["change_pct is not 50%"]
 print("differ: " + ", ".join(bad) if bad else f"exact: {len(numbers)} numbers")
 PY
+# 5 frames' median: ranks below the first frame bound it only by zero, as no time is negative.
+check "an interval unbounded below starts at 0" 0 "^funnel\[res=16\],c,cpu,before,before,median,[0-9.e-]+,0,(inf|[0-9.e-]+),5,frames," -- \
+  "$cdbench" compare "$tmp/a.h5" "$tmp/a-copy.h5" --metric median --csv
 check "an unbounded interval end is inf in CSV" 0 "^funnel\[res=16\],c,cpu,before,before,p95,[0-9.e-]+,[0-9.e-]+,inf,5,frames," -- \
   "$cdbench" compare "$tmp/a.h5" "$tmp/a-copy.h5" --metric p95 --csv
 has "CSV row of the mismatch" "$tmp/csv3" ",6,0,([0-9a-f]{16}),\1,\"pipeline: 'c' in A, 'brute' in B\","

@@ -62,6 +62,8 @@ check "unknown box kind refused" 2 "--boxes" -- "$cdbench" run --device cpu --sc
 check "plot_pareto draws the runs" 0 "^\| pipeline \| box margin" -- \
   "$python" "$root/scripts/plot_pareto.py" "$res" --scene soup-fast --out "$tmp/pareto.png" --table
 cp "$tmp/out" "$tmp/table.md"
+has "Pareto points are labelled with their margin" "$tmp/table.md" \
+  "^wrote .*Pareto front, its points labelled with their margin: [a-z ]+ [1-9][0-9]* \(margins [0-9.e+-]+(, [0-9.e+-]+)*\); "
 if [[ "$(head -c 8 "$tmp/pareto.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" == 89504e470d0a1a0a ]]; then
   echo "ok   pareto.png is a PNG"
 else

@@ -118,6 +118,13 @@ check "schema 1 labels from recorded --set" 0 "\| cloth-wave\[frames=10,res=32\]
 
 check "LaTeX table" 0 '^\\textbf\{[a-z-]+\} & 5 & \\textbf\{[0-9.]+\}' -- "$python" "$root/scripts/table_pipelines.py" --latex "$res"
 check "other baseline" 0 "speed-up vs static" -- "$python" "$root/scripts/table_pipelines.py" --baseline static "$res"
+# The baselines are drawn by default, each run in its own line style and marker, so equal
+# curves (b's Q under c's) stay visible.
+check "curves draw the baselines by default" 0 "^wrote .*: funnel, .*\bbvh \(" -- \
+  "$python" "$root/scripts/plot_curves.py" "$res" --scene funnel --out "$tmp/default-curves.png"
+cp "$tmp/out" "$tmp/curves.out"
+check "each curve has its own style" 0 "^distinct [3-9]$" -- "$python" -c \
+  "import re, sys; s = re.findall(r'[a-z-]+ \\(([^)]*)\\)', open(sys.argv[1]).read()); print('distinct', len(set(s))) if len(s) == len(set(s)) else print('repeated', s)" "$tmp/curves.out"
 check "curves need a scene when there are several" 1 "--scene needed" -- \
   "$python" "$root/scripts/plot_curves.py" "$res" --out "$tmp/x.png"
 check "curves name the runs of a scene's other settings" 1 "runs of 'funnel', 'funnel\\[res=24\\]' are there: pass one to --scene" -- \
@@ -147,6 +154,9 @@ done
 mkdir -p "$tmp/bad"
 cp "$res/funnel-bvh.h5" "$tmp/bad/"
 printf 'not hdf5\n' >"$tmp/bad/notes.h5"
+check "Fig. 6 table without a radix run says so" 0 "^No complete \`radix-order\` run: the table sets the radix sort against the histogram sort" -- \
+  "$python" "$root/scripts/table_sort.py" "$res/funnel-static.h5"
+grep -q "| — |" "$tmp/out" && fail "Fig. 6 table of dashes printed" || echo "ok   no table of dashes"
 for s in table_sort.py table_memory.py; do
   check "$s names a non-results file" 1 "$tmp/bad/notes.h5: not a cdbench results file" -- "$python" "$root/scripts/$s" "$tmp/bad"
 done
