@@ -3,7 +3,8 @@
 # every subcommand `cdbench --help` lists, nested ones too) named in it; every --option it
 # names is one of cdbench's, and one of the command it attributes it to; its exit-code
 # tables against app/exit_codes.h and the exit codes the help texts mention; the order of
-# the help's headings. Reads only: the binary is asked for --help and nothing runs.
+# the help's headings; README's plot paragraph against its sample output. Reads only:
+# the binary is asked for --help and nothing runs.
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
