@@ -138,6 +138,7 @@ int sweep_command(const SweepOptions& w, const CLI::App& run) {
       fail_usage(e.what());
     }
   }();
+  if (const std::string merged = merged_cells_line(plan); !merged.empty()) std::printf("%s\n", merged.c_str());
   std::error_code ec;
   if (std::filesystem::exists(w.out_dir, ec) && !std::filesystem::is_directory(w.out_dir, ec))
     fail_usage("--out " + w.out_dir + ": not a directory; name a directory for the cells' results, logs and status");

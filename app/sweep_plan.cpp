@@ -7,6 +7,7 @@
 #include <map>
 #include <string_view>
 
+#include "option_scope.h"
 #include "cdbench/core/error.h"
 #include "scenes/load/descriptor_object.h"
 
@@ -107,6 +108,13 @@ SceneEntry scene_entry(const json& j, const std::string& at, const std::filesyst
     e.spec = p.string();
   }
   return e;
+}
+
+// Two cells that would run the same command: the same scene, overrides, frames,
+// pipeline, device, options and repeat.
+bool same_run(const SweepCell& a, const SweepCell& b) {
+  return a.scene == b.scene && a.set == b.set && a.frames == b.frames && a.pipeline == b.pipeline &&
+         a.device == b.device && a.options == b.options && a.repeat == b.repeat;
 }
 
 struct Axis {
@@ -222,10 +230,17 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
          " cells, the most a sweep may have; split it into several sweep files");
 
   // Cartesian product, scenes outermost and repeats innermost, so the cells of one scene
-  // run together and a listing reads like a table.
+  // run together and a listing reads like a table. An axis whose option a pipeline ignores
+  // (--front-cycle on bvh) is left out of that pipeline's cells, name and command line, so
+  // its values make one cell there, run once, instead of identical runs under several names.
+  std::map<std::string, size_t> made;  // cell name -> index, to merge the cells made equal
   for (size_t si = 0; si < scenes.size(); ++si) {
     const SceneEntry& s = scenes[si];
-    for (const std::string& p : pipeline_list)
+    for (const std::string& p : pipeline_list) {
+      const PipelineKind* kind = find_pipeline_kind(p);
+      std::vector<bool> applies(axes.size(), true);
+      for (size_t a = 0; a < axes.size(); ++a)
+        applies[a] = !kind || scope_covers(option_scope("--" + axes[a].option), *kind);
       for (const std::string& d : devices) {
         std::vector<size_t> pick(axes.size(), 0);
         for (;;) {
@@ -239,7 +254,12 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
             c.pipeline = p;
             c.device = d;
             c.name = s.label + "_" + p + "_" + d;
+            bool left_out = false;
             for (size_t a = 0; a < axes.size(); ++a) {
+              if (!applies[a]) {
+                left_out = true;
+                continue;
+              }
               const json& v = axes[a].values[pick[a]];
               c.options.emplace_back(axes[a].option, v);
               c.name += "_" + axes[a].option + "=" + safe_name(value_text(v));
@@ -248,6 +268,13 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
               c.repeat = r;
               c.name += "_r" + std::to_string(r);
             }
+            // Only a cell that lost an axis merges: any other name clash is two scenes
+            // with one label, refused below.
+            if (const auto it = made.find(c.name); left_out && it != made.end() && same_run(plan.cells[it->second], c)) {
+              ++plan.merged_cells;
+              continue;
+            }
+            made.emplace(c.name, plan.cells.size());
             plan.cells.push_back(std::move(c));
           }
           size_t a = 0;
@@ -255,6 +282,12 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
           if (a == axes.size()) break;
         }
       }
+      for (size_t a = 0; a < axes.size(); ++a)
+        if (!applies[a] && axes[a].values.size() > 1) {
+          std::vector<std::string>& ignoring = plan.ignored_axes["--" + axes[a].option];
+          if (std::find(ignoring.begin(), ignoring.end(), p) == ignoring.end()) ignoring.push_back(p);
+        }
+    }
   }
 
   std::map<std::string, size_t> seen;
@@ -265,6 +298,19 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
            plan.cells[i].name + "'; give the scenes distinct \"label\"s");
   }
   return plan;
+}
+
+std::string merged_cells_line(const SweepPlan& plan) {
+  if (plan.merged_cells == 0) return "";
+  std::string why;
+  for (const auto& [flag, pipelines] : plan.ignored_axes) {
+    std::string names;
+    for (const std::string& p : pipelines) names += (names.empty() ? "" : ", ") + p;
+    why += (why.empty() ? "" : "; ") + flag + " does not apply to " + names + " (" + scope_words(option_scope(flag)) + ")";
+  }
+  return "sweep " + plan.file + ": " + std::to_string(plan.merged_cells) + (plan.merged_cells == 1 ? " cell merged into another because its pipeline ignores the option: "
+                                 : " cells merged into others because their pipeline ignores the option: ") +
+         why;
 }
 
 std::filesystem::path cell_results_file(const std::filesystem::path& out_dir, const SweepCell& cell) {

@@ -4,6 +4,7 @@
 // runner all see the same cells with the same names and command lines.
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,7 +36,16 @@ struct SweepPlan {
   std::string file;  // as given, for messages
   unsigned warmup = 1;
   std::vector<SweepCell> cells;
+  // Cells left out because they equal one kept: they differed only in an axis their
+  // pipeline ignores (docs/sweeps.md). Each such axis ("--front-cycle") with the pipelines
+  // that ignore it, in sweep-file order.
+  size_t merged_cells = 0;
+  std::map<std::string, std::vector<std::string>> ignored_axes;
 };
+
+// "sweep s.json: 2 cells merged into others: --front-cycle does not apply to bvh", or ""
+// when no cell was merged.
+std::string merged_cells_line(const SweepPlan& plan);
 
 // The most cells a sweep file may make (docs/usage.md): far more than a machine runs in a
 // day, few enough to list, check and write a Slurm array for at once.

@@ -255,6 +255,28 @@ TEST(BoxStream, RawFrameErrorsNameTheFileFrameAndBox) {
                        "no box frames (.boxes, .boxes64, .npy) in this directory"));
 }
 
+TEST(BoxStream, FramesReplacedAfterOpeningNamed) {
+  // Every frame had frame 0's count when the stream was opened; a file rewritten since is
+  // said to have changed, not compared with itself as "frame 0 has 1 boxes, frame 0 has 2".
+  Scratch s;
+  const fs::path d = s.sub("replaced");
+  write_bytes(d / "f0.boxes", le_bytes(two_boxes(0), false));
+  write_bytes(d / "f1.boxes", le_bytes(two_boxes(1), false));
+  const auto stream = open_box_stream(d);
+  write_bytes(d / "f0.boxes", le_bytes(two_boxes(0), false).substr(0, 24));
+  std::string error = error_of([&] { positions_of(*stream, 0); });
+  EXPECT_TRUE(contains(error, (d / "f0.boxes").string() +
+                                  ": frame 0 changed after the scene was opened: it has 1 boxes, the scene 2 when it "
+                                  "was opened"))
+      << error;
+  EXPECT_FALSE(contains(error, "frame 0 has")) << error;
+  write_bytes(d / "f1.boxes", le_bytes(two_boxes(1), false) + le_bytes(two_boxes(1), false));
+  error = error_of([&] { positions_of(*stream, 1); });
+  EXPECT_TRUE(contains(error, (d / "f1.boxes").string() +
+                                  ": frame 1 changed after the scene was opened: it has 4 boxes, the scene 2"))
+      << error;
+}
+
 TEST(BoxStream, NpyErrorsNameTheFileAndWhatIsWrong) {
   Scratch s;
   const std::string f4 = le_bytes(two_boxes(0), false);

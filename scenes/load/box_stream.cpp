@@ -116,6 +116,7 @@ class BoxStream final : public FrameSource {
     // one is timed (as io/obj_sequence.h does).
     std::vector<vec3d> positions;
     for (uint32_t k = 1; k < files_.size(); ++k) this->positions(k, positions);
+    opened_ = true;
   }
   const Topology& topology() const override { return topology_; }
   uint32_t num_frames() const override { return uint32_t(files_.size()); }
@@ -123,6 +124,14 @@ class BoxStream final : public FrameSource {
     std::vector<double> boxes;
     read_box_frame(files_.at(k), k, boxes);
     const size_t n = boxes.size() / 6;
+    // Every frame had frame 0's box count when the scene was opened, so a frame that has
+    // not now was replaced since (frame 0 itself too): said so, with the file, rather than
+    // as a count against frame 0's.
+    if (opened_ && n != topology_.box_faces)
+      fail(files_[k].string() + ": frame " + std::to_string(k) + " changed after the scene was opened: it has " +
+           std::to_string(n) + " boxes, the scene " + std::to_string(topology_.box_faces) +
+           " when it was opened; the box frame files were replaced while they were read: write them before the "
+           "run starts");
     if (n != topology_.box_faces)
       fail(files_[k].string() + ": frame " + std::to_string(k) + " has " + std::to_string(n) + " boxes, frame 0 has " +
            std::to_string(topology_.box_faces) + " (the box count must stay fixed)");
@@ -143,6 +152,7 @@ class BoxStream final : public FrameSource {
   std::filesystem::path dir_;
   std::vector<std::filesystem::path> files_;
   Topology topology_;
+  bool opened_ = false;  // every frame checked against frame 0
 };
 
 }  // namespace

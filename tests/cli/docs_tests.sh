@@ -3,7 +3,8 @@
 # every subcommand `cdbench --help` lists, nested ones too) named in it; every --option it
 # names is one of cdbench's, and one of the command it attributes it to; its exit-code
 # tables against app/exit_codes.h and the exit codes the help texts mention; the order of
-# the help's headings. Reads only: the binary is asked for --help and nothing runs.
+# the help's headings; README's plot paragraph against its sample output. Reads only:
+# the binary is asked for --help and nothing runs.
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
@@ -270,4 +271,15 @@ rc=$?
 cat "$tmp/docs.out"
 failures=$(grep -c '^FAIL' "$tmp/docs.out")
 [[ $rc -ne 0 && $failures -eq 0 ]] && fail "the docs checks stopped (rc=$rc)"
+# README's sample output and its CPU plot come from one machine and commit (issue 56: a
+# sample of 4.8 ms a frame next to a plot of 30-50 ms from another machine): the plot's
+# paragraph names the commit the sample's first line prints, and the machine.
+readme=$root/README.md
+sample_commit=$(sed -n '/^## Sample output/,/^## /p' "$readme" | grep -oE '^cdbench [0-9.]+ +commit [0-9a-f]{7}' | grep -oE '[0-9a-f]{7}$')
+plot_text=$(sed -n '/^## A plot/,/^!\[/p' "$readme" | tr '\n' ' ')
+if [[ -n $sample_commit && $plot_text == *"$sample_commit"* && $plot_text =~ (Intel|AMD|Xeon|EPYC|Ryzen|Core|ARM|Neoverse) ]]; then
+  echo "ok   README's plot names the machine and the commit of its sample output ($sample_commit)"
+else
+  fail "README's plot paragraph does not name the machine and the sample output's commit '${sample_commit:-none}'"
+fi
 finish docs

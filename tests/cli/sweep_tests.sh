@@ -101,6 +101,13 @@ printf '{"scenes": ["funnel"], "pipelines": ["a"], "devices": ["cpu"], "options"
 check "option axes multiply" 0 "8 cells" -- "$cdbench" sweep "$tmp/axes.json" --out "$tmp/axes" --dry-run
 check "axis values name the cell" 0 "funnel_a_cpu_front-cycle=8_skip-adjacent=true_r2  to run" -- "$cdbench" sweep "$tmp/axes.json" --out "$tmp/axes" --dry-run
 check "axis values reach the run line" 0 "--front-cycle 8 --skip-adjacent --out" -- "$cdbench" sweep "$tmp/axes.json" --out "$tmp/axes" --dry-run
+# An axis a pipeline ignores makes one cell there, not one per value: bvh has no fronts.
+printf '{"scenes": ["funnel"], "pipelines": ["bvh", "c"], "devices": ["cpu"], "options": {"front-cycle": [1, 4], "skip-adjacent": [false, true]}}' >"$tmp/ignored.json"
+check "cells its pipeline ignores an axis of are merged" 0 "ignored.json: 6 cells, 0 complete, 6 to run" -- "$cdbench" sweep "$tmp/ignored.json" --out "$tmp/ignored" --dry-run
+count "bvh runs once per value it acts on" 2 "^ +[0-9]+  funnel_bvh_cpu_skip-adjacent=(false|true)  to run$"
+count "c runs every value" 4 "^ +[0-9]+  funnel_c_cpu_front-cycle=[14]_skip-adjacent=(false|true)  to run$"
+count "the ignored option is not on bvh's run line" 0 "--pipeline bvh .*--front-cycle"
+has "the merge is said once" "$tmp/out" "^sweep .*ignored.json: 2 cells merged into others because their pipeline ignores the option: --front-cycle does not apply to bvh \(front pipelines only\)$"
 printf '{"scenes": ["funnel"], "pipelines": ["bvh", "nope"]}' >"$tmp/bad1.json"
 check "unknown pipeline names file and field" 2 "bad1.json: /pipelines/1: unknown pipeline 'nope'" -- "$cdbench" sweep "$tmp/bad1.json" --out "$tmp/x"
 printf '{"scenes": ["funnel"], "pipelines": ["bvh"], "options": {"colour": 1}}' >"$tmp/bad2.json"
