@@ -38,7 +38,7 @@ struct MeasuringOptions {
   // --warmup-ms: the frames run untimed from the first, in order and again from the first
   // after the last, for at least this long before the measured passes, then the pipeline
   // starts afresh (0: none). A first load of each frame between timed frames otherwise
-  // slows them on the GPU (docs/usage.md "Warm-up").
+  // slows them on the GPU (docs/design.md "Measurement method").
   double warmup_ms = 1000.0;
   // The frames are kept in memory after their first load (several pipelines or passes): the
   // warm-up then ends at the end of a pass, so every frame was loaded before the timing.
