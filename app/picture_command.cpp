@@ -15,7 +15,7 @@
 #include "harness/picture/png_writer.h"
 #include "output_path.h"
 #include "path_checks.h"
-#include "query_pairs.h"
+#include "harness/measure/query_pairs.h"
 
 namespace cdb {
 namespace {

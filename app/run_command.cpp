@@ -27,7 +27,7 @@
 #include "harness/results/gpu_attributes.h"
 #include "harness/results/results_file.h"
 #include "scenes/load/scene_label.h"
-#include "noise_check.h"
+#include "harness/measure/noise_check.h"
 #include "output_path.h"
 #include "harness/results/config_json.h"
 #include "cdbench/pipeline/device_probe.h"
@@ -174,16 +174,16 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.omp_threads = uint64_t(omp_threads());
   run.driver_version = info.driver_version;
   run.runtime_version = info.runtime_version;
-  run.warmup = r.loop.warmup;
+  run.warmup = r.loop.measuring.warmup;
   run.frame_first = range.first;
   run.frame_last = range.last;
   run.triangles = scene.source->topology().faces.size();
   run.vertices = scene.source->topology().num_vertices;
-  run.cold = r.loop.cold;
+  run.cold = r.loop.measuring.cold;
   run.precision = box_precision_name(config.boxes.precision);
   run.contact_distance = double(float(r.contact_distance));
   run.contact_substeps = r.contact_substeps;
-  run.repeat_plan = repeat_plan_name(r.loop.repeat_plan);
+  run.repeat_plan = repeat_plan_name(r.loop.measuring.repeat_plan);
   run.phase_timing = config.launch.phase_timing;
   run.params_json = nlohmann::json{{"command", "run"},
                                    {"options", cli_options},
@@ -195,10 +195,10 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
                                      {"frame_first", range.first},
                                      {"frame_last", range.last},
                                      {"warmup", run.warmup},
-                                     {"warmup_ms", r.loop.warmup_ms},
-                                     {"repeat", r.loop.repeat},
-                                     {"repeat_plan", repeat_plan_name(r.loop.repeat_plan)},
-                                     {"max_noise", r.loop.max_noise_pct},
+                                     {"warmup_ms", r.loop.measuring.warmup_ms},
+                                     {"repeat", r.loop.measuring.repeat},
+                                     {"repeat_plan", repeat_plan_name(r.loop.measuring.repeat_plan)},
+                                     {"max_noise", r.loop.measuring.max_noise_pct},
                                      {"cold", run.cold},
                                      {"contact_distance", run.contact_distance},
                                      {"contact_substeps", run.contact_substeps}}}}
@@ -322,10 +322,10 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
                   "motion, both frames included) to count the contacts discrete boxes miss; a lower bound")
       ->group(kAccuracyGroup)
       ->capture_default_str();
-  run->add_option("--warmup", r.loop.warmup, "frames left out of the summary statistics")
+  run->add_option("--warmup", r.loop.measuring.warmup, "frames left out of the summary statistics")
       ->group(kMeasurementGroup)
       ->capture_default_str();
-  run->add_option("--warmup-ms", r.loop.warmup_ms,
+  run->add_option("--warmup-ms", r.loop.measuring.warmup_ms,
                   "before the measured passes, frames run untimed from the first (again from the first after "
                   "the last) for at least this long, then the pipeline starts afresh; a process's first pass "
                   "otherwise runs slower (0: none; the default is CDBENCH_WARMUP_MS where set, as the tests set it)")
@@ -333,28 +333,28 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
       ->envname("CDBENCH_WARMUP_MS")
       ->check(finite_at_least(0))
       ->capture_default_str();
-  run->add_option("--repeat", r.loop.repeat,
+  run->add_option("--repeat", r.loop.measuring.repeat,
                   "passes over the frames, each from a fresh state; times are the per-frame mean, "
                   "with the relative standard deviation reported as noise; Ctrl-C keeps the finished passes")
       ->group(kMeasurementGroup)
       ->check(whole_in(1, UINT32_MAX))
       ->capture_default_str();
   add_choice<RepeatPlan>(
-      run, "--repeat-plan", r.loop.repeat_plan,
+      run, "--repeat-plan", r.loop.measuring.repeat_plan,
       "front pipelines under --repeat: replay: the first pass plans (as --front-cycle says) and every later pass "
       "replays its recorded plan, so each frame's mean is over the same operations; free: every pass plans for "
       "itself, and frames whose passes ran different operations are marked (op shows them joined by |) and counted",
       {"replay", "free"}, [](const std::string& w) { return w == "free" ? RepeatPlan::free : RepeatPlan::replay; },
-      repeat_plan_name(r.loop.repeat_plan))
+      repeat_plan_name(r.loop.measuring.repeat_plan))
       ->group(kMeasurementGroup);
-  run->add_option("--max-noise", r.loop.max_noise_pct,
+  run->add_option("--max-noise", r.loop.measuring.max_noise_pct,
                   "stop repeating once the passes' mean frame times agree within this many percent (0: all passes)")
       ->group(kMeasurementGroup)
       ->check(finite_at_least(0))
       ->capture_default_str();
-  run->add_flag("--cold", r.loop.cold, "flush the device's last-level cache before every frame (outside its timing)")
+  run->add_flag("--cold", r.loop.measuring.cold, "flush the device's last-level cache before every frame (outside its timing)")
       ->group(kMeasurementGroup);
-  run->add_option("--load-window-ms", r.loop.load_window_ms,
+  run->add_option("--load-window-ms", r.loop.measuring.load_window_ms,
                   "the span over which the host's load is sampled, before the run and after each pipeline's "
                   "measured frames, to flag a run on a busy host (0: not sampled, recorded as absent; the default "
                   "is CDBENCH_LOAD_WINDOW_MS where set, as the tests set it)")
@@ -372,7 +372,7 @@ CLI::App* add_run_command(CLI::App& app, CommonOptions& o, RunOptions& r) {
                 "new file is NAME.incomplete beside it)")
       ->group(kOutputGroup)
       ->needs(out_option);
-  run->add_flag("--save-pairs", r.loop.save_pairs, "also store each frame's sorted pairs in the results file")
+  run->add_flag("--save-pairs", r.loop.measuring.save_pairs, "also store each frame's sorted pairs in the results file")
       ->group(kOutputGroup)
       ->needs(out_option);
   run->add_option("--label", r.label,
@@ -409,7 +409,7 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   const std::vector<OutputClaim> existing = check_results_paths(r, names);
   print_environment(device);
   for (const std::string& line : ignored_option_warnings(o.given, names)) std::printf("warning: %s\n", line.c_str());
-  const HostLoad load_before = sample_host_load(r.loop.load_window_ms);
+  const HostLoad load_before = sample_host_load(r.loop.measuring.load_window_ms);
   const std::string busy = host_load_warning(load_before, "before the run");
   if (!busy.empty()) std::printf("warning: %s\n", busy.c_str());
   // A stopped run's partial file, which its message pointed to, is where this run stages
@@ -445,16 +445,16 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
   const std::string spacing_warning =
       range.last > range.first ? float_spacing_warning(*scene.source, range.first, fp64) : "";
   if (!spacing_warning.empty()) std::printf("warning: %s\n", spacing_warning.c_str());
-  const std::string short_warning = warmup_warning(range, r.loop.warmup, o.frames);
+  const std::string short_warning = warmup_warning(range, r.loop.measuring.warmup, o.frames);
   if (!short_warning.empty()) std::printf("warning: %s\n", short_warning.c_str());
   // Measured once, before any frame: the yardstick of the bandwidth floor; and the cache
   // flush of --cold, allocated here rather than in the frame loop.
   const std::unique_ptr<DeviceProbe> probe = make_device_probe(device);
-  if (r.loop.cold) probe->reserve_cache_flush();
+  if (r.loop.measuring.cold) probe->reserve_cache_flush();
   const double copy_gbps = probe->copy_bandwidth_gbps();
   std::printf("copy bandwidth: %.0f GB/s (%s, measured; read + written)\n", copy_gbps, device.c_str());
   std::unique_ptr<FrameSource> cached;
-  if (names.size() > 1 || r.loop.repeat > 1) cached = std::make_unique<CachedFrames>(*scene.source);
+  if (names.size() > 1 || r.loop.measuring.repeat > 1) cached = std::make_unique<CachedFrames>(*scene.source);
   // Above the cache: each frame is hashed once, as it is first loaded.
   const HashedFrames frames(cached ? *cached : *scene.source);
   interrupts.defer();
@@ -486,24 +486,24 @@ int run_command(const CommonOptions& o, const RunOptions& r, const nlohmann::jso
       out.emplace(one.out, info, existing[p].existed ? ResultsFile::Placement::staged : ResultsFile::Placement::in_place);
     }
     RunLoopOptions loop = r.loop;
-    loop.frames_kept = cached != nullptr;
-    loop.plan_source = plans[p] ? plans[p]->source : "";
+    loop.measuring.frames_kept = cached != nullptr;
+    loop.measuring.plan_source = plans[p] ? plans[p]->source : "";
     loop.frame_lines = !r.quiet;
     loop.list_growth = !r.quiet;
     loop.progress = Progress::mode_for(r.quiet);
-    loop.check_every = check_interval(r.check);
-    loop.probe = probe.get();
+    loop.measuring.check_every = check_interval(r.check);
+    loop.measuring.probe = probe.get();
     loop.copy_gbps = copy_gbps;
-    loop.host_before = load_before;
-    loop.oracle = [&topo, &config](const std::vector<vec3d>& v) {
+    loop.measuring.host_before = load_before;
+    loop.measuring.oracle = [&topo, &config](const std::vector<vec3d>& v) {
       return sweep_oracle_pairs(topo, v, config.skip_adjacent);
     };
-    loop.faces = &topo.faces;
-    loop.contact = contact;
+    loop.measuring.faces = &topo.faces;
+    loop.measuring.contact = contact;
     if (!config_conservative(config))
       loop.accuracy_warning = "--refit-every " + std::to_string(config.tree.refit_every) +
                               " keeps stale boxes between refits: NOT conservative, pairs can be missed";
-    loop.input_hash = [&frames, range] {
+    loop.measuring.input_hash = [&frames, range] {
       const std::optional<uint64_t> h = frames.input_hash(range.first, range.last);
       return h ? hash_hex(*h) : std::string();
     };

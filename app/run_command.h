@@ -23,7 +23,8 @@ struct RunOptions {
   std::string check = "off";
   double contact_distance = 0.0;                     // as given; used as a float
   uint32_t contact_substeps = ContactCheck{}.substeps;
-  // --warmup, --save-pairs, --repeat, --max-noise and --cold, as the frame loop takes them.
+  // --warmup, --save-pairs, --repeat, --max-noise and --cold in loop.measuring, as the
+  // measuring loop takes them; the console's options beside them.
   RunLoopOptions loop;
 };
 

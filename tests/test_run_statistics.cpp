@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cdbench/core/error.h"
-#include "noise_check.h"
+#include "harness/measure/noise_check.h"
 #include "run_statistics.h"
 
 namespace cdb {

@@ -83,7 +83,7 @@ struct RunInfo {
 struct RunFindings {
   // The input's content hash (core/content_hash.h, 16 hex digits); "" when not known.
   std::string input_hash;
-  // The noise warning the run printed (app/noise_check.h); "" when none.
+  // The noise warning the run printed (harness/measure/noise_check.h); "" when none.
   std::string noise_warning;
   // The share of the host's CPU time in use by other work right after the measured frames
   // (NaN: not measured) and its busy warning then ("" when none).

@@ -1,4 +1,4 @@
-#include "query_pairs.h"
+#include "harness/measure/query_pairs.h"
 
 #include "cdbench/geometry/objects.h"
 

@@ -1,4 +1,4 @@
-#include "noise_check.h"
+#include "harness/measure/noise_check.h"
 
 #include <algorithm>
 #include <chrono>

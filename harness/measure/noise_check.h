@@ -1,5 +1,5 @@
 #pragma once
-// The noise warning of `cdbench run` (docs/usage.md, "Noise"): printed after the summary,
+// The noise warning of `cdbench run` (docs/usage.md "Measurement"): printed after the summary,
 // stored in the results file (noise_warning), and flagged by `cdbench compare`.
 #include <string>
 #include <vector>
