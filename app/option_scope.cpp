@@ -1,8 +1,5 @@
 #include "option_scope.h"
 
-#include <algorithm>
-#include <utility>
-
 namespace cdb {
 namespace {
 

@@ -110,13 +110,6 @@ SceneEntry scene_entry(const json& j, const std::string& at, const std::filesyst
   return e;
 }
 
-// Two cells that would run the same command: the same scene, overrides, frames,
-// pipeline, device, options and repeat.
-bool same_run(const SweepCell& a, const SweepCell& b) {
-  return a.scene == b.scene && a.set == b.set && a.frames == b.frames && a.pipeline == b.pipeline &&
-         a.device == b.device && a.options == b.options && a.repeat == b.repeat;
-}
-
 struct Axis {
   std::string option;
   std::vector<json> values;
@@ -232,15 +225,18 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
   // Cartesian product, scenes outermost and repeats innermost, so the cells of one scene
   // run together and a listing reads like a table. An axis whose option a pipeline ignores
   // (--front-cycle on bvh) is left out of that pipeline's cells, name and command line, so
-  // its values make one cell there, run once, instead of identical runs under several names.
-  std::map<std::string, size_t> made;  // cell name -> index, to merge the cells made equal
+  // its values make one cell there, run once, instead of identical runs under several names:
+  // the odometer below does not step such an axis.
   for (size_t si = 0; si < scenes.size(); ++si) {
     const SceneEntry& s = scenes[si];
     for (const std::string& p : pipeline_list) {
       const PipelineKind* kind = find_pipeline_kind(p);
       std::vector<bool> applies(axes.size(), true);
-      for (size_t a = 0; a < axes.size(); ++a)
+      size_t ignored_values = 1;  // the cells of this pipeline each cell made stands for
+      for (size_t a = 0; a < axes.size(); ++a) {
         applies[a] = !kind || scope_covers(option_scope("--" + axes[a].option), *kind);
+        if (!applies[a]) ignored_values *= axes[a].values.size();
+      }
       for (const std::string& d : devices) {
         std::vector<size_t> pick(axes.size(), 0);
         for (;;) {
@@ -254,12 +250,8 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
             c.pipeline = p;
             c.device = d;
             c.name = s.label + "_" + p + "_" + d;
-            bool left_out = false;
             for (size_t a = 0; a < axes.size(); ++a) {
-              if (!applies[a]) {
-                left_out = true;
-                continue;
-              }
+              if (!applies[a]) continue;
               const json& v = axes[a].values[pick[a]];
               c.options.emplace_back(axes[a].option, v);
               c.name += "_" + axes[a].option + "=" + safe_name(value_text(v));
@@ -268,17 +260,11 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
               c.repeat = r;
               c.name += "_r" + std::to_string(r);
             }
-            // Only a cell that lost an axis merges: any other name clash is two scenes
-            // with one label, refused below.
-            if (const auto it = made.find(c.name); left_out && it != made.end() && same_run(plan.cells[it->second], c)) {
-              ++plan.merged_cells;
-              continue;
-            }
-            made.emplace(c.name, plan.cells.size());
             plan.cells.push_back(std::move(c));
+            plan.merged_cells += ignored_values - 1;
           }
           size_t a = 0;
-          while (a < axes.size() && ++pick[a] == axes[a].values.size()) pick[a++] = 0;
+          while (a < axes.size() && (!applies[a] || ++pick[a] == axes[a].values.size())) pick[a++] = 0;
           if (a == axes.size()) break;
         }
       }
