@@ -27,13 +27,14 @@
 // second tree; the rest of that tree's build, its self fronts' generate and their ordering
 // run on the executor's side stream (lowest priority: exec/cuda_exec.cuh), beside this
 // frame and the next ones, which preserve. The side forks after the boxes but is queued
-// after the frame's front pass, so its host launches overlap the frame's device work. The first frame to find the side's work done
-// adopts it: the second tree and its fronts swap with the current ones, then it refits and
-// preserves them. The side's pairs are dropped (the frames' own preserves report each
-// frame's pairs), its fronts are checked against their buffers at the adoption (a front
-// that outgrew them is generated again there, in the frame). It needs what a plain build
-// frame would not read back: the histogram sort or no ordering, no rigid objects (T_R's
-// refit would race the cross fronts' generate), and --refit-every 1.
+// after the frame's front pass, so its host launches overlap the frame's device work. The
+// first frame to find the side's work done adopts it: the second tree and its fronts swap
+// with the current ones, then it refits and preserves them. The side's pairs are dropped
+// (the frames' own preserves report each frame's pairs), its fronts are checked against
+// their buffers at the adoption (a front that outgrew them is generated again there, in
+// the frame). It needs what a plain build frame would not read back: the histogram sort or
+// no ordering, no rigid objects (T_R's refit would race the cross fronts' generate), and
+// --refit-every 1.
 #include <algorithm>
 #include <array>
 #include <cstdint>
