@@ -403,6 +403,31 @@ has "read_results shows the input hash" "$tmp/out" "^input_hash: [0-9a-f]{16}$"
 check "the scripts' identity agrees with compare's" 0 "^warm-up: --warmup-ms: 0(\.0)? vs 1(\.0)?; label: none$" -- \
   "$python" -c "import sys; sys.path.insert(0, sys.argv[1]); import cdb_results as c; a, cold, b = (c.Run(p) for p in sys.argv[2:]); print('warm-up: ' + '; '.join(c.identity_differences(a, cold)) + '; label: ' + ('; '.join(c.identity_differences(a, b)) or 'none'))" \
   "$root/scripts" "$tmp/a.h5" "$tmp/cold-start.h5" "$tmp/b.h5"
+# The scripts take the identity options a file records (params_json's identity_options),
+# not a copy of their own: with --warmup-ms struck from both files' lists, the two warm-ups
+# are one identity; a file without the list (written before it) falls back to the list of
+# those builds, --warmup-ms in it.
+check "the scripts read a file's own identity options" 0 "^own list: none; without: --warmup-ms: 0(\.0)? vs 1(\.0)?$" -- \
+  "$python" - "$root/scripts" "$tmp/a.h5" "$tmp/cold-start.h5" "$tmp/ids" <<'PY'
+import json, os, shutil, sys
+import h5py
+sys.path.insert(0, sys.argv[1])
+import cdb_results as c
+os.makedirs(sys.argv[4], exist_ok=True)
+def edited(path, name, edit):
+    out = os.path.join(sys.argv[4], name)
+    shutil.copy(path, out)
+    with h5py.File(out, "r+") as f:
+        params = json.loads(c.text(f.attrs["params_json"]))
+        edit(params)
+        f.attrs["params_json"] = json.dumps(params)
+    return c.Run(out)
+strike = lambda p: p["identity_options"].remove("warmup-ms")
+drop = lambda p: p.pop("identity_options")
+own = c.identity_differences(edited(sys.argv[2], "a.h5", strike), edited(sys.argv[3], "cold.h5", strike))
+without = c.identity_differences(edited(sys.argv[2], "a-old.h5", drop), edited(sys.argv[3], "cold-old.h5", drop))
+print("own list: " + ("; ".join(own) or "none") + "; without: " + ("; ".join(without) or "none"))
+PY
 mkdir -p "$tmp/tp"
 run "$tmp/tp/grid-skip.h5" --pipeline grid --skip-adjacent
 run "$tmp/tp/c.h5" --pipeline c
