@@ -51,7 +51,6 @@ std::span<const OptionRow> option_table() {
       {"dependent-launch", every, setting},
       {"repeat-plan", every, setting},
       {"load-window-ms", every, setting},
-      {"overwrite", every, setting},
 
       // Not compared. The scene, pipeline, device, frames and warm-up are in the identity as
       // the file resolved them (scene_label, backend, frame_first/frame_last, warmup).
@@ -65,6 +64,7 @@ std::span<const OptionRow> option_table() {
       {"repeat", every, not_compared},
       {"max-noise", every, not_compared},
       {"out", every, not_compared, per_cell},
+      {"overwrite", every, not_compared},
       {"save-pairs", every, not_compared, per_cell},
       {"label", every, not_compared},
       {"json", every, not_compared},

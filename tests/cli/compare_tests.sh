@@ -293,6 +293,14 @@ check "JSON of other inputs names both hashes" 0 "^[0-9a-f]{16} 0123456789abcdef
   "$python" -c "import json, sys; r = json.load(open(sys.argv[1]))['rows'][0]; print(r['input_hash_a'], r['input_hash_b'])" "$tmp/json-other"
 check "JSON of repeats lists every file" 0 "^2 2$" -- \
   "$python" -c "import json, subprocess, sys; r = json.loads(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[2], '--json'], capture_output=True, text=True).stdout)['rows'][0]; print(len(r['files_a']), len(r['files_b']))" "$cdbench" "$tmp/labelled"
+# --overwrite says where the output may go, as --out does: a run written over an earlier
+# file is a repeat of one written afresh, not another configuration.
+mkdir -p "$tmp/rewritten"
+run "$tmp/rewritten/fresh.h5"
+cp "$tmp/rewritten/fresh.h5" "$tmp/rewritten/again.h5"
+run "$tmp/rewritten/again.h5" --overwrite
+check "a run written with --overwrite is a repeat" 0 "^1 row of 2 and 2 files$" -- \
+  "$python" -c "import json, subprocess, sys; rows = json.loads(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[2], '--json'], capture_output=True, text=True).stdout)['rows']; print(len(rows), 'row of', len(rows[0]['files_a']), 'and', len(rows[0]['files_b']), 'files')" "$cdbench" "$tmp/rewritten"
 # Labels and commits are lists too, a label with a space one item; the side a one-sided
 # row has no run of has empty lists.
 cp "$tmp/a.h5" "$tmp/labelled/spaced.h5"
