@@ -24,7 +24,8 @@ std::span<const OptionRow> option_table() {
       {"phase-timing", every, identity},
       {"warmup-ms", every, identity},
 
-      // Settings: the pipeline, its tree, fronts and restructuring, the launches, the plans.
+      // Settings: the pipeline, its tree, fronts and restructuring, the launches, the plans,
+      // the span over which the host's load is sampled (outside the measured frames).
       {"rebuild-every", hierarchy, setting},
       {"morton-bits", hierarchy, setting},
       {"refit-levels", hierarchy, setting},
