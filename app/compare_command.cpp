@@ -18,28 +18,11 @@
 #include "exit_codes.h"
 #include "cdbench/pipeline/plan_record.h"
 #include "harness/results/results_reader.h"
+#include "option_table.h"
 #include "run_statistics.h"
 
 namespace cdb {
 namespace {
-
-// Options that change the pair set (what counts as a pair: --skip-adjacent; the boxes:
-// --box-*, --boxes, --refit-every) or how time is measured (--check's work between frames,
-// --cold, --phase-timing, --warmup-ms). The frame range and warm-up are compared as the file
-// resolved them; declared queries belong to the scene (its label and content hash).
-constexpr const char* kIdentityOptions[] = {"skip-adjacent",    "box-precision", "box-margin",   "boxes",
-                                            "refit-every",      "check",         "contact-distance",
-                                            "contact-substeps", "cold",          "phase-timing", "warmup-ms"};
-
-// Options that neither tell runs apart nor are the subject of a comparison: where the
-// output went, how it was printed, how many passes were averaged (repeats combine), and
-// what the identity already holds in resolved form.
-bool ignored_option(const std::string& name) {
-  for (const char* n : {"out", "label", "json", "quiet", "save-pairs", "repeat", "max-noise", "scenes-dir",
-                        "device", "frames", "pipeline", "scene", "set", "warmup"})
-    if (name == n) return true;
-  return false;
-}
 
 std::string option_value(const nlohmann::json& options, const std::string& name) {
   if (!options.contains(name)) return "(not recorded)";
@@ -76,7 +59,10 @@ std::vector<std::pair<std::string, std::string>> identity_of(const ResultsOvervi
       {"device_name", r.device_name},
       {"frames", std::to_string(r.frame_first) + ":" + std::to_string(r.frame_last)},
       {"warmup", std::to_string(r.warmup)}};
-  for (const char* o : kIdentityOptions) id.emplace_back(std::string("--") + o, option_value(r.options, o));
+  // The options of the pair set and the timing (option_table.cpp). The frame range and
+  // warm-up are compared as the file resolved them; declared queries belong to the scene
+  // (its label and content hash).
+  for (const std::string& o : identity_options()) id.emplace_back("--" + o, option_value(r.options, o));
   return id;
 }
 
@@ -85,7 +71,7 @@ std::string config_of(const ResultsOverview& r) {
   for (const auto& [field, value] : identity_of(r)) key += field + "=" + value + "\n";
   key += "hash=" + r.input_hash + "\n";
   for (auto it = r.options.begin(); it != r.options.end(); ++it)
-    if (!ignored_option(it.key())) key += "--" + it.key() + "=" + option_value(r.options, it.key()) + "\n";
+    if (!ignored_by_compare(it.key())) key += "--" + it.key() + "=" + option_value(r.options, it.key()) + "\n";
   return key;
 }
 

@@ -35,6 +35,7 @@
 #include "report.h"
 #include "run_loop.h"
 #include "option_scope.h"
+#include "option_table.h"
 #include "registry/pipeline_kinds.h"
 
 namespace cdb {
@@ -185,8 +186,11 @@ RunInfo run_info(const CommonOptions& o, const RunOptions& r, const Scene& scene
   run.contact_substeps = r.contact_substeps;
   run.repeat_plan = repeat_plan_name(r.loop.measuring.repeat_plan);
   run.phase_timing = config.launch.phase_timing;
+  // identity_options: the options compare matches runs on, as this build has them, so the
+  // scripts match runs as compare does without a copy of the list (docs/results-format.md).
   run.params_json = nlohmann::json{{"command", "run"},
                                    {"options", cli_options},
+                                   {"identity_options", identity_options()},
                                    {"pipeline_config", to_json(config)},
                                    {"resolved",
                                     {{"device", config.device},

@@ -16,10 +16,6 @@ namespace {
 
 using nlohmann::json;
 
-// Options the sweep sets itself, per cell: an axis over them would be ambiguous.
-const std::vector<std::string> kReserved = {"scene", "pipeline", "device", "frames", "warmup",
-                                            "out", "quiet", "set", "save-pairs"};
-
 // Characters kept in cell names; anything else becomes '-', so a name is a file name and a
 // shell word everywhere.
 std::string safe_name(const std::string& s) {
@@ -119,7 +115,9 @@ Axis option_axis(const std::string& key, const json& j, const std::string& at,
                  const std::vector<RunOptionInfo>& run_options) {
   const auto known = std::find_if(run_options.begin(), run_options.end(),
                                   [&](const RunOptionInfo& o) { return o.name == key; });
-  if (std::find(kReserved.begin(), kReserved.end(), key) != kReserved.end())
+  // The sweep sets these itself, per cell (option_table.cpp): an axis over one would be
+  // ambiguous.
+  if (sweep_sets(key))
     fail(at + ": set by the sweep itself (use scenes, pipelines, devices, frames, warmup)");
   if (known == run_options.end()) fail(at + ": not an option of cdbench run");
   // --help makes run print its help and measure nothing.
@@ -289,11 +287,8 @@ SweepPlan load_sweep(const std::filesystem::path& file, const std::vector<RunOpt
 std::string merged_cells_line(const SweepPlan& plan) {
   if (plan.merged_cells == 0) return "";
   std::string why;
-  for (const auto& [flag, pipelines] : plan.ignored_axes) {
-    std::string names;
-    for (const std::string& p : pipelines) names += (names.empty() ? "" : ", ") + p;
-    why += (why.empty() ? "" : "; ") + flag + " does not apply to " + names + " (" + scope_words(option_scope(flag)) + ")";
-  }
+  for (const auto& [flag, pipelines] : plan.ignored_axes)
+    why += (why.empty() ? "" : "; ") + not_applying_text({flag}, pipelines);
   return "sweep " + plan.file + ": " + std::to_string(plan.merged_cells) + (plan.merged_cells == 1 ? " cell merged into another because its pipeline ignores the option: "
                                  : " cells merged into others because their pipeline ignores the option: ") +
          why;

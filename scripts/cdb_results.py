@@ -24,9 +24,11 @@ import numpy as np
 # Scenes with declared queries: /frames/pairs_self, /frames/pairs_inter, /summary pairs_self_mean,
 # pairs_inter_mean (optional: other scenes and older files lack them).
 SUPPORTED_SCHEMA = 5
-# What `cdbench compare` matches runs on besides the pipeline (app/compare_command.cpp,
-# kIdentityOptions, in its order): the options that change the pair set or how time is
-# measured. Not the run's --label, a display name.
+# What `cdbench compare` matches runs on besides the pipeline, the scene, device, frames and
+# warm-up: the options that change the pair set or how time is measured (not the run's
+# --label, a display name). A file records them as params_json's identity_options
+# (app/option_table.cpp, its identity rows) and Run reads that; this list is only for files
+# written before they recorded it, and stays as those builds had it.
 IDENTITY_OPTIONS = ["skip-adjacent", "box-precision", "box-margin", "boxes", "refit-every", "check",
                     "contact-distance", "contact-substeps", "cold", "phase-timing", "warmup-ms"]
 # Root attributes every file has from its creation (schema 1 on); a file without them is not ours.
@@ -166,14 +168,19 @@ class Run:
         except ValueError:
             params = {}
         self.options = params.get("options", {}) if isinstance(params, dict) else {}
+        recorded = params.get("identity_options") if isinstance(params, dict) else None
+        self.identity_options = (recorded if isinstance(recorded, list) and all(isinstance(o, str) for o in recorded)
+                                 else IDENTITY_OPTIONS)
 
-    def identity(self):
+    def identity(self, options=None):
         """[(field, value)] compare matches runs on, the pipeline left out; the input's content
-        hash is apart (identity_differences), as older files lack it."""
+        hash is apart (identity_differences), as older files lack it. `options`: the identity
+        options to take (identity_options_of a set of runs, so runs whose files name other
+        lists line up field by field); the file's own by default."""
         fields = [("scene", self.scene), ("device", self.attrs.get("backend", "")), ("device_name", self.device),
                   ("frames", f"{self.attrs['frame_first']}:{self.attrs['frame_last']}"),
                   ("warmup", str(self.attrs.get("warmup", "")))]
-        for o in IDENTITY_OPTIONS:
+        for o in self.identity_options if options is None else options:
             v = self.options.get(o)
             fields.append((f"--{o}", "(not recorded)" if v is None else v if isinstance(v, str) else json.dumps(v)))
         return fields
@@ -228,9 +235,19 @@ class Run:
         return int(self.frames["device_peak_bytes"].max()) if self.rows else 0
 
 
+def identity_options_of(runs):
+    """Every identity option any of the runs' files names, each once, in the order met."""
+    names = []
+    for r in runs:
+        names += [o for o in r.identity_options if o not in names]
+    return names
+
+
 def identity_differences(a, b):
     """The identity fields of runs a and b that differ, as 'field: A vs B' (no pipeline)."""
-    diffs = [f"{fa}: {va} vs {vb}" for (fa, va), (_, vb) in zip(a.identity(), b.identity()) if va != vb]
+    options = identity_options_of([a, b])
+    diffs = [f"{fa}: {va} vs {vb}" for (fa, va), (_, vb) in zip(a.identity(options), b.identity(options))
+             if va != vb]
     if a.input_hash and b.input_hash and a.input_hash != b.input_hash:
         diffs.append(f"input_hash: {a.input_hash} vs {b.input_hash}")
     return diffs

@@ -30,9 +30,10 @@ HEADER = ["pipeline", "frames measured", "mean ms", "noise %", "median ms", "p95
 def identity_suffix(run, runs):
     """The identity options that set this run apart within its table, e.g. ' [--skip-adjacent true]';
     '' when every run of the table shares them."""
+    options = cdb_results.identity_options_of(runs)
     parts = []
-    for k, (field, value) in enumerate(run.identity()):
-        if len({r.identity()[k][1] for r in runs}) > 1:
+    for k, (field, value) in enumerate(run.identity(options)):
+        if len({r.identity(options)[k][1] for r in runs}) > 1:
             parts.append(f"{field} {value}")
     return f" [{', '.join(parts)}]" if parts else ""
 

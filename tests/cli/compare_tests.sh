@@ -293,6 +293,14 @@ check "JSON of other inputs names both hashes" 0 "^[0-9a-f]{16} 0123456789abcdef
   "$python" -c "import json, sys; r = json.load(open(sys.argv[1]))['rows'][0]; print(r['input_hash_a'], r['input_hash_b'])" "$tmp/json-other"
 check "JSON of repeats lists every file" 0 "^2 2$" -- \
   "$python" -c "import json, subprocess, sys; r = json.loads(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[2], '--json'], capture_output=True, text=True).stdout)['rows'][0]; print(len(r['files_a']), len(r['files_b']))" "$cdbench" "$tmp/labelled"
+# --overwrite says where the output may go, as --out does: a run written over an earlier
+# file is a repeat of one written afresh, not another configuration.
+mkdir -p "$tmp/rewritten"
+run "$tmp/rewritten/fresh.h5"
+cp "$tmp/rewritten/fresh.h5" "$tmp/rewritten/again.h5"
+run "$tmp/rewritten/again.h5" --overwrite
+check "a run written with --overwrite is a repeat" 0 "^1 row of 2 and 2 files$" -- \
+  "$python" -c "import json, subprocess, sys; rows = json.loads(subprocess.run([sys.argv[1], 'compare', sys.argv[2], sys.argv[2], '--json'], capture_output=True, text=True).stdout)['rows']; print(len(rows), 'row of', len(rows[0]['files_a']), 'and', len(rows[0]['files_b']), 'files')" "$cdbench" "$tmp/rewritten"
 # Labels and commits are lists too, a label with a space one item; the side a one-sided
 # row has no run of has empty lists.
 cp "$tmp/a.h5" "$tmp/labelled/spaced.h5"
@@ -403,6 +411,31 @@ has "read_results shows the input hash" "$tmp/out" "^input_hash: [0-9a-f]{16}$"
 check "the scripts' identity agrees with compare's" 0 "^warm-up: --warmup-ms: 0(\.0)? vs 1(\.0)?; label: none$" -- \
   "$python" -c "import sys; sys.path.insert(0, sys.argv[1]); import cdb_results as c; a, cold, b = (c.Run(p) for p in sys.argv[2:]); print('warm-up: ' + '; '.join(c.identity_differences(a, cold)) + '; label: ' + ('; '.join(c.identity_differences(a, b)) or 'none'))" \
   "$root/scripts" "$tmp/a.h5" "$tmp/cold-start.h5" "$tmp/b.h5"
+# The scripts take the identity options a file records (params_json's identity_options),
+# not a copy of their own: with --warmup-ms struck from both files' lists, the two warm-ups
+# are one identity; a file without the list (written before it) falls back to the list of
+# those builds, --warmup-ms in it.
+check "the scripts read a file's own identity options" 0 "^own list: none; without: --warmup-ms: 0(\.0)? vs 1(\.0)?$" -- \
+  "$python" - "$root/scripts" "$tmp/a.h5" "$tmp/cold-start.h5" "$tmp/ids" <<'PY'
+import json, os, shutil, sys
+import h5py
+sys.path.insert(0, sys.argv[1])
+import cdb_results as c
+os.makedirs(sys.argv[4], exist_ok=True)
+def edited(path, name, edit):
+    out = os.path.join(sys.argv[4], name)
+    shutil.copy(path, out)
+    with h5py.File(out, "r+") as f:
+        params = json.loads(c.text(f.attrs["params_json"]))
+        edit(params)
+        f.attrs["params_json"] = json.dumps(params)
+    return c.Run(out)
+strike = lambda p: p["identity_options"].remove("warmup-ms")
+drop = lambda p: p.pop("identity_options")
+own = c.identity_differences(edited(sys.argv[2], "a.h5", strike), edited(sys.argv[3], "cold.h5", strike))
+without = c.identity_differences(edited(sys.argv[2], "a-old.h5", drop), edited(sys.argv[3], "cold-old.h5", drop))
+print("own list: " + ("; ".join(own) or "none") + "; without: " + ("; ".join(without) or "none"))
+PY
 mkdir -p "$tmp/tp"
 run "$tmp/tp/grid-skip.h5" --pipeline grid --skip-adjacent
 run "$tmp/tp/c.h5" --pipeline c
