@@ -185,11 +185,11 @@ class FramePlanner {
     const double ms = p.rebuild && !o.ran_once && o.first_pass_ms >= 0.0 ? o.first_pass_ms
                       : p.adopt                                          ? o.ms + std::max(o.ahead_ms, 0.0)
                                                                          : o.ms;
-    const FrameKind kind = built                        ? FrameKind::built
-                           : steady                     ? FrameKind::steady
-                           : self == FrontOp::update    ? FrameKind::updated
-                           : self == FrontOp::generate  ? FrameKind::generated
-                                                        : FrameKind::other;
+    const FrameKind kind = built                       ? FrameKind::built
+                           : steady                    ? FrameKind::steady
+                           : self == FrontOp::update   ? FrameKind::updated
+                           : self == FrontOp::generate ? FrameKind::generated
+                                                       : FrameKind::other;
     maintenance_.observe({.kind = kind, .ms = ms, .front_nodes = o.front_nodes, .once = clean});
     tree_.observe(o.front_nodes, o.pairs, p.probe ? o.update_yield : 0);
     if (built) tree_.built();

@@ -341,8 +341,8 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
            !queries_[size_t(Query::inter)].active() && !queries_[size_t(Query::rigid_self)].active();
   }
 
-  // The second tree and its self fronts (always active: built ahead only for self fronts),
-  // sized as the current ones; its pairs are counted, not kept.
+  // The second tree and its self fronts, sized as the current ones and active (a build runs
+  // ahead only where T_D's self fronts do: can_build_ahead); its pairs are counted, not kept.
   void reserve_ahead(const FrontSizing& sizing) {
     ahead_bvh_.refit_top_max_leaves = bvh_.refit_top_max_leaves;
     ahead_bvh_.refit_levels = bvh_.refit_levels;
