@@ -43,7 +43,7 @@ std::string schedule(FramePlanner& planner, int frames, Cost cost) {
   for (int f = 0; f < frames; ++f) {
     const FramePlan p = planner.plan(1000, 100);
     s += letter(p);
-    planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
+    planner.finish(p, {.ms = cost(f, p), .front_nodes = 100, .q_root = 1.0});
   }
   return s;
 }
@@ -72,7 +72,7 @@ TEST(FramePlan, BalanceOnlyBeforeUpdatesOfPipelinesThatBalance) {
   for (int f = 0; f < 6; ++f) {
     const FramePlan p = planner.plan(100, 100);
     EXPECT_EQ(p.balance, p.op(Query::self) == FrontOp::update) << "frame " << f;
-    planner.finish(p, {1.0, true, 100, 1.0, {}});
+    planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 1.0});
   }
 }
 
@@ -94,7 +94,7 @@ TEST(FramePlan, RebuildAndStaleFrames) {
   for (int f = 0; f < 5; ++f) {
     const FramePlan p = stale.plan(100, 100);
     stale_frames.push_back(p.stale);
-    stale.finish(p, {1.0, true, 100, 1.0, {}});
+    stale.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 1.0});
   }
   EXPECT_EQ(stale_frames, (std::vector<bool>{false, true, false, true, false}));
 }
@@ -167,16 +167,18 @@ TEST(FramePlan, AdaptiveDoesNotFeedOnDearLateUpdates) {
 // that ran once has.
 TEST(FramePlan, UpdatesThatRanTwiceDoNotSetThePrice) {
   FrontMaintenance m(FrontMaintenance::kAuto);
-  m.observe(true, false, false, true, 1.0, 10);
-  m.observe(false, true, false, false, 9.0, 10);  // ran twice, the only price so far
+  m.observe({.kind = FrameKind::steady, .ms = 1.0, .front_nodes = 10});
+  // Ran twice, the only price so far.
+  m.observe({.kind = FrameKind::updated, .ms = 9.0, .front_nodes = 10, .once = false});
   EXPECT_DOUBLE_EQ(m.price_ms(10), 8.0);
   m.produced();
-  m.observe(true, false, false, true, 1.0, 10);
-  m.observe(false, true, false, true, 3.0, 10);  // ran once: replaces the twice-run price
+  m.observe({.kind = FrameKind::steady, .ms = 1.0, .front_nodes = 10});
+  m.observe({.kind = FrameKind::updated, .ms = 3.0, .front_nodes = 10});  // ran once: replaces the twice-run price
   EXPECT_DOUBLE_EQ(m.price_ms(10), 2.0);
   m.produced();
-  m.observe(true, false, false, true, 1.0, 10);
-  m.observe(false, true, false, false, 1.5, 10);  // ran twice: ignored, however cheap
+  m.observe({.kind = FrameKind::steady, .ms = 1.0, .front_nodes = 10});
+  // Ran twice: ignored, however cheap.
+  m.observe({.kind = FrameKind::updated, .ms = 1.5, .front_nodes = 10, .once = false});
   EXPECT_DOUBLE_EQ(m.price_ms(10), 2.0);
 }
 
@@ -184,16 +186,16 @@ TEST(FramePlan, UpdatesThatRanTwiceDoNotSetThePrice) {
 TEST(FramePlan, ThePriceScalesWithTheFront) {
   FrontMaintenance m(FrontMaintenance::kAuto);
   EXPECT_FALSE(m.priced());
-  m.observe(false, false, true, true, 17.0, 100);  // the build frame: a guess until measured
-  m.observe(true, false, false, true, 1.0, 100);
+  m.observe({.kind = FrameKind::built, .ms = 17.0, .front_nodes = 100});  // the build frame: a guess until measured
+  m.observe({.kind = FrameKind::steady, .ms = 1.0, .front_nodes = 100});
   EXPECT_DOUBLE_EQ(m.price_ms(100), 16.0 / kBuildPerUpdate);
   m.produced();
-  m.observe(true, false, false, true, 1.0, 100);
-  m.observe(false, true, false, true, 3.0, 100);  // 2 ms over a steady frame for 100 nodes
+  m.observe({.kind = FrameKind::steady, .ms = 1.0, .front_nodes = 100});
+  m.observe({.kind = FrameKind::updated, .ms = 3.0, .front_nodes = 100});  // 2 ms over a steady frame for 100 nodes
   EXPECT_DOUBLE_EQ(m.price_ms(300), 6.0);
   m.produced();
-  m.observe(true, false, false, true, 1.0, 100);
-  m.observe(false, true, false, true, 6.0, 100);  // a dearer (staler) update leaves the price
+  m.observe({.kind = FrameKind::steady, .ms = 1.0, .front_nodes = 100});
+  m.observe({.kind = FrameKind::updated, .ms = 6.0, .front_nodes = 100});  // a dearer (staler) update leaves the price
   EXPECT_DOUBLE_EQ(m.price_ms(100), 2.0);
 }
 
@@ -212,7 +214,7 @@ TEST(FramePlan, ABuildFrameThatRanAgainIsPricedByItsFirstPass) {
     planner.finish(build, o);
     const FramePlan steady = planner.plan(1000, 100);
     ASSERT_TRUE(steady.steady());
-    planner.finish(steady, {1.0, true, 100, 1.0, {}});
+    planner.finish(steady, {.ms = 1.0, .front_nodes = 100, .q_root = 1.0});
     EXPECT_DOUBLE_EQ(planner.maintenance().price_ms(100), (ran_once ? 16.0 : 8.0) / kBuildPerUpdate)
         << "ran once: " << ran_once;
   }
@@ -287,16 +289,17 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
     FramePlanner planner(c, config);
     FramePlan p = planner.plan(1000, 100);  // frame 0 builds: Q(root) becomes the reference
     EXPECT_FALSE(p.inspect);
-    planner.finish(p, {5.0, true, 100, 2.0, {}});
+    planner.finish(p, {.ms = 5.0, .front_nodes = 100, .q_root = 2.0});
     EXPECT_DOUBLE_EQ(planner.q_ref(), 2.0);
     p = planner.plan(1000, 100);  // frame 1 preserves
     EXPECT_FALSE(p.inspect);
-    planner.finish(p, {1.0, true, 100, 2.0, {3, 99}});  // found nothing: not inspected
+    // Found nothing: not inspected.
+    planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 2.0, .found = {3, 99}});
     p = planner.plan(1000, 100);  // frame 2 updates and inspects
     ASSERT_EQ(p.op(Query::self), FrontOp::update);
     EXPECT_TRUE(p.inspect);
     EXPECT_EQ(p.decision, Formula2::none);
-    planner.finish(p, {2.0, true, 100, 2.5, {4, k.leaves_in_candidates}});
+    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, k.leaves_in_candidates}});
     p = planner.plan(1000, 100);
     EXPECT_EQ(p.decision, k.decision);
     EXPECT_EQ(letter(p), k.op);
@@ -305,7 +308,7 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
       EXPECT_EQ(p.restructuring.count, 4u);
       EXPECT_EQ(p.restructuring.leaves, k.leaves_in_candidates);
     }
-    planner.finish(p, {2.0, true, 100, 2.0, {}});
+    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.0});
     EXPECT_EQ(planner.plan(1000, 100).decision, Formula2::none);  // each inspection decides once
   }
 }
@@ -331,7 +334,7 @@ std::string schedule_probes(FramePlanner& planner, int frames, Cost cost) {
     const FramePlan p = planner.plan(1000, 100);
     EXPECT_TRUE(!p.probe || (p.op(Query::self) == FrontOp::preserve && !p.rebuild)) << "frame " << f;
     s += p.probe ? 'P' : letter(p);
-    planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
+    planner.finish(p, {.ms = cost(f, p), .front_nodes = 100, .q_root = 1.0});
   }
   return s;
 }
@@ -354,7 +357,7 @@ TEST(FramePlan, UpdatesInPlaceUntilTheOrderDecays) {
     FramePlanner planner(c, cfg);
     const FramePlan built = planner.plan(100, 100);
     ASSERT_TRUE(built.rebuild);
-    planner.finish(built, {3.0, true, 100, 1.0, {}});
+    planner.finish(built, {.ms = 3.0, .front_nodes = 100, .q_root = 1.0});
     for (double disorder : {0.0, 0.3, 0.49, 0.5, 2.0}) {
       const FramePlan p = planner.plan(100, 100, disorder);
       const std::string where = std::string(in_place ? "in place" : "whole") + ", disorder " + std::to_string(disorder);
@@ -395,7 +398,8 @@ TEST(FramePlan, AdaptiveMaintenanceRunsWhicheverMeasuredCheaper) {
       } else if (!p.rebuild) {
         ms = 1.0 + 0.5 * since++;
       }
-      planner.finish(p, {ms, true, 100, 1.0, {}, false, p.rebuild ? bound : -1.0});
+      planner.finish(p,
+                     {.ms = ms, .front_nodes = 100, .q_root = 1.0, .generate_per_node_ms = p.rebuild ? bound : -1.0});
     }
     ASSERT_GE(maintenances.size(), 5u) << extra;
     const std::string expected = !regenerate || bound < 0.0 || bound >= 0.02 ? "uuuuu"
@@ -445,7 +449,7 @@ TEST(FramePlan, AdaptiveProbesTheFrameBeforeAnUpdate) {
       if (p.updates()) {
         EXPECT_GE(rent, price - 1e-9) << "a = " << a << ", frame " << f;
       }
-      planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
+      planner.finish(p, {.ms = cost(f, p), .front_nodes = 100, .q_root = 1.0});
     }
     ASSERT_NE(s.find('u'), std::string::npos) << s;
     for (size_t k = s.find('u'); k != std::string::npos; k = s.find('u', k + 1))
@@ -464,7 +468,8 @@ TEST(FramePlan, AdaptiveUpdateDueUnprobedWaitsForItsProbe) {
   for (int f = 0; f < 14; ++f) {
     const FramePlan p = planner.plan(1000, 100);
     s += p.probe ? 'P' : letter(p);
-    planner.finish(p, {p.rebuild ? 10.0 : !p.steady() ? 3.0 : f >= 10 ? 4.0 : 1.0, true, 100, 1.0, {}});
+    const double ms = p.rebuild ? 10.0 : !p.steady() ? 3.0 : f >= 10 ? 4.0 : 1.0;
+    planner.finish(p, {.ms = ms, .front_nodes = 100, .q_root = 1.0});
   }
   EXPECT_EQ(s, "bppppppppppPup") << "(ms: build 10, steady 1 then 4 from frame 10)";
 }
@@ -613,7 +618,7 @@ RecordedPlan record(FramePlanner& planner, int frames, Cost cost) {
   for (int f = 0; f < frames; ++f) {
     const FramePlan p = planner.plan(1000, 100);
     plan.frames.push_back({uint32_t(f), planner.step(p), 0});
-    planner.finish(p, {cost(f, p), true, 100, 1.0, {}});
+    planner.finish(p, {.ms = cost(f, p), .front_nodes = 100, .q_root = 1.0});
   }
   return plan;
 }
@@ -668,11 +673,11 @@ TEST(FramePlan, ReplayedRestructuresUseTheirOwnInspection) {
     planner.reset({true, false, false});
     FramePlan p = planner.plan(1000, 100);
     EXPECT_TRUE(p.rebuild);
-    planner.finish(p, {5.0, true, 100, 2.0, {}});
+    planner.finish(p, {.ms = 5.0, .front_nodes = 100, .q_root = 2.0});
     p = planner.plan(1000, 100);
     EXPECT_TRUE(p.inspect);
     EXPECT_TRUE(p.balance);  // as the strategy does before every update
-    planner.finish(p, {2.0, true, 100, 2.5, {found, 300}});
+    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {found, 300}});
     if (found == 0) {
       EXPECT_EQ(error_of([&] { planner.plan(1000, 100); }),
                 "c.txt line 4 (frame 2): restructure, but this run's inspection of the frame before found no "
@@ -707,7 +712,7 @@ std::vector<bool> replayed_probes(const std::string& text, bool update_probe = t
   for (size_t f = 0; f < plan.frames.size(); ++f) {
     const FramePlan p = planner.plan(1000, 100);
     probes.push_back(p.probe);
-    planner.finish(p, {1.0, true, 100, 1.0, {}});
+    planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 1.0});
   }
   return probes;
 }
@@ -747,19 +752,19 @@ TEST(FramePlan, RestructuresOnlyWhereTheLastOnePaid) {
     config.restructure.priced = k.priced;
     FramePlanner planner(c, config);
     FramePlan p = planner.plan(1000, 100);  // 0: build
-    planner.finish(p, {5.0, true, 100, 2.0, {}});
+    planner.finish(p, {.ms = 5.0, .front_nodes = 100, .q_root = 2.0});
     p = planner.plan(1000, 100);  // 1: preserve, 1 ms from 100 front nodes
-    planner.finish(p, {1.0, true, 100, 2.0, {}});
+    planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 2.0});
     p = planner.plan(1000, 100);  // 2: update, inspection finds 200 leaves
     ASSERT_EQ(letter(p), 'u');
-    planner.finish(p, {2.0, true, 100, 2.5, {4, 200}});
+    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, 200}});
     p = planner.plan(1000, k.fronts_before);  // 3: the run's first restructure runs, to measure
     ASSERT_EQ(letter(p), 'r');
     EXPECT_FALSE(planner.restructure_price().measured());
-    planner.finish(p, {k.restructure_ms, true, k.fronts_before, 2.0, {}});
+    planner.finish(p, {.ms = k.restructure_ms, .front_nodes = k.fronts_before, .q_root = 2.0});
     p = planner.plan(1000, k.fronts_after);  // 4: update, the inspection finds 200 leaves again
     ASSERT_EQ(letter(p), 'u');
-    planner.finish(p, {2.0, true, k.fronts_after, 2.5, {4, 200}});
+    planner.finish(p, {.ms = 2.0, .front_nodes = k.fronts_after, .q_root = 2.5, .found = {4, 200}});
     EXPECT_TRUE(planner.restructure_price().measured());  // measured whether or not it decides
     p = planner.plan(1000, 100);  // 5: Formula 2 says restructure; the price decides
     EXPECT_EQ(letter(p), k.second) << k.restructure_ms;

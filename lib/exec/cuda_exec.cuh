@@ -242,15 +242,7 @@ class CudaExec {
   // Occupancy::bounded: under F's __launch_bounds__, where F asks for some (exec/tuning.h).
   template <class F>
   void for_each_n(size_t n, const F& f, Balance = Balance::even, Occupancy occupancy = Occupancy::plain) const {
-    if (n == 0) return;
-    constexpr uint32_t threads = kForEachThreads;
-    const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
-    if constexpr (min_blocks_per_sm<F>() > 0)
-      if (occupancy == Occupancy::bounded) {
-        launch(for_each_bounded_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
-        return;
-      }
-    launch(for_each_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
+    launch_per_index<PlainIndexKernels>(n, f, occupancy);
   }
 
   // F's phases in one block (see in_one_block_kernel): work too small and too serial for the
@@ -267,15 +259,7 @@ class CudaExec {
   // written out at the block's end (core/append_stage.h): f(i, stage), then f.flush(stage).
   template <class F>
   void for_each_staged(size_t n, const F& f, Balance = Balance::even, Occupancy occupancy = Occupancy::plain) const {
-    if (n == 0) return;
-    constexpr uint32_t threads = kStagedThreads;
-    const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
-    if constexpr (min_blocks_per_sm<F>() > 0)
-      if (occupancy == Occupancy::bounded) {
-        launch(for_each_staged_bounded_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
-        return;
-      }
-    launch(for_each_staged_kernel<F>, blocks, threads, 0, static_cast<uint32_t>(n), f);
+    launch_per_index<StagedIndexKernels>(n, f, occupancy);
   }
 
   // Indices in tiles (exec/tiles.h) whose indices share an F::Shared: threads of one block
@@ -401,6 +385,39 @@ class CudaExec {
   void launch(void (*kernel)(Params...), uint32_t blocks, uint32_t threads, size_t shared_bytes,
               const Args&... args) const {
     launch_kernel(stream_, options_.dependent_launch, kernel, blocks, threads, shared_bytes, args...);
+  }
+
+  // The kernels of for_each_n and for_each_staged, one thread per index: their block size,
+  // the plain kernel and the one under F's __launch_bounds__. Named through templates so
+  // that a bounded kernel is instantiated only for a functor that asks for a bound.
+  struct PlainIndexKernels {
+    static constexpr uint32_t threads = kForEachThreads;
+    template <class F>
+    static auto plain() { return for_each_kernel<F>; }
+    template <class F>
+    static auto bounded() { return for_each_bounded_kernel<F>; }
+  };
+  struct StagedIndexKernels {
+    static constexpr uint32_t threads = kStagedThreads;
+    template <class F>
+    static auto plain() { return for_each_staged_kernel<F>; }
+    template <class F>
+    static auto bounded() { return for_each_staged_bounded_kernel<F>; }
+  };
+
+  // One thread per index of n, in blocks of Kernels::threads: the bounded kernel where
+  // `occupancy` asks for it and F has a bound (exec/tuning.h), else the plain one.
+  template <class Kernels, class F>
+  void launch_per_index(size_t n, const F& f, Occupancy occupancy) const {
+    if (n == 0) return;
+    constexpr uint32_t threads = Kernels::threads;
+    const uint32_t blocks = static_cast<uint32_t>((n + threads - 1) / threads);
+    if constexpr (min_blocks_per_sm<F>() > 0)
+      if (occupancy == Occupancy::bounded) {
+        launch(Kernels::template bounded<F>(), blocks, threads, 0, static_cast<uint32_t>(n), f);
+        return;
+      }
+    launch(Kernels::template plain<F>(), blocks, threads, 0, static_cast<uint32_t>(n), f);
   }
   void copy_to_host_bytes(void* dst, const void* src, size_t bytes) const;
   void copy_from_host_bytes(void* dst, const void* src, size_t bytes) const;

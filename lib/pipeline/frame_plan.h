@@ -165,7 +165,7 @@ class FramePlanner {
     bool ran_once = true;     // no buffer grew, so its operations ran once
     uint64_t front_nodes = 0; // the fronts it started from, all queries, all kinds
     double q_root = 0.0;      // internal over external self-front nodes after it
-    Candidates found;         // what its inspection found (capped at the candidates' buffer)
+    Candidates found = {};    // what its inspection found (capped at the candidates' buffer)
     bool recorded = false;    // it recorded its frame graph (a one-off cost)
     double generate_per_node_ms = -1.0;  // a build frame: its generate and ordering per front node made
     uint64_t pairs = 0;       // the pairs it reported
@@ -185,8 +185,12 @@ class FramePlanner {
     const double ms = p.rebuild && !o.ran_once && o.first_pass_ms >= 0.0 ? o.first_pass_ms
                       : p.adopt                                          ? o.ms + std::max(o.ahead_ms, 0.0)
                                                                          : o.ms;
-    maintenance_.observe(steady, !built && self == FrontOp::update, built, clean, ms, o.front_nodes,
-                         !built && self == FrontOp::generate);
+    const FrameKind kind = built                       ? FrameKind::built
+                           : steady                    ? FrameKind::steady
+                           : self == FrontOp::update   ? FrameKind::updated
+                           : self == FrontOp::generate ? FrameKind::generated
+                                                       : FrameKind::other;
+    maintenance_.observe({.kind = kind, .ms = ms, .front_nodes = o.front_nodes, .once = clean});
     tree_.observe(o.front_nodes, o.pairs, p.probe ? o.update_yield : 0);
     if (built) tree_.built();
     if (!built && p.changes_fronts()) tree_.maintained();

@@ -49,6 +49,24 @@
 
 namespace cdb {
 
+// What a frame of a front pipeline ran, as FrontMaintenance prices it.
+enum class FrameKind {
+  steady,     // refit + preserve
+  updated,    // the fronts updated (and nothing heavier ran with it)
+  generated,  // the fronts generated on a refitted tree (a maintenance)
+  built,      // the tree built and the fronts generated
+  other,      // anything else (a restructure, a preserve on stale boxes): not priced
+};
+
+// A frame's measured cost (FrontMaintenance::observe).
+struct FrameCost {
+  FrameKind kind = FrameKind::other;
+  double ms = 0.0;
+  uint64_t front_nodes = 0;  // the fronts it started from
+  // It ran its operations once (no buffer grew) and recorded no frame graph.
+  bool once = true;
+};
+
 class FrontMaintenance {
  public:
   static constexpr uint32_t kAuto = 0;
@@ -117,18 +135,14 @@ class FrontMaintenance {
     return steady_ > 0 ? std::max(0.0, build_ms_ - steady_min_) / kBuildPerUpdate : 0.0;
   }
 
-  // A frame's measured cost: `steady` for refit + preserve frames, `updated` for frames
-  // whose fronts were updated (and nothing heavier ran with it), `generated` for frames that
-  // generated them on a refitted tree (a maintenance), `built` for frames that built the
-  // tree and generated the fronts; `once` when it ran its operations once (no buffer grew)
-  // and recorded no frame graph; `front_nodes`: the fronts it started from. A steady frame
-  // that grew a buffer or recorded its graph paid a one-off cost, not rent for stale fronts:
-  // it is left out (counted, such frames brought updates frames early:
-  // docs/front-maintenance.md).
-  void observe(bool steady, bool updated, bool built, bool once, double ms, uint64_t front_nodes,
-               bool generated = false) {
-    if (built) build_ms_ = ms;
-    if (steady) {
+  // A frame's measured cost. A steady frame that grew a buffer or recorded its graph paid a
+  // one-off cost, not rent for stale fronts: it is left out (counted, such frames brought
+  // updates frames early: docs/front-maintenance.md).
+  void observe(const FrameCost& frame) {
+    const double ms = frame.ms;
+    const bool once = frame.once;
+    if (frame.kind == FrameKind::built) build_ms_ = ms;
+    if (frame.kind == FrameKind::steady) {
       if (!once) return;
       steady_sum_ += ms;
       steady_before_ = steady_last_;
@@ -137,9 +151,10 @@ class FrontMaintenance {
       ++steady_;
       return;
     }
-    if (!(updated || generated) || steady_ == 0) return;
+    const bool generated = frame.kind == FrameKind::generated;
+    if (!(frame.kind == FrameKind::updated || generated) || steady_ == 0) return;
     // Over the cheapest steady frame before it: the cost of a steady frame on fresh fronts.
-    const double per_node = std::max(0.0, ms - steady_min_) / double(std::max<uint64_t>(front_nodes, 1));
+    const double per_node = std::max(0.0, ms - steady_min_) / double(std::max<uint64_t>(frame.front_nodes, 1));
     if (generated) {
       if (once) generate_last_ = per_node;
       return;

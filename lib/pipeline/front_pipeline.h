@@ -80,20 +80,20 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     bvh_.refit_levels = rigid_bvh_.refit_levels = switched_on(config_.tree.refit_levels, Exec::is_device);
     bvh_.reserve(exec_, mesh_.deformable().count);
     rigid_bvh_.reserve(exec_, mesh_.rigid().count);
-    const double per = config_.capacity.front_per_triangle;
-    const bool in_place = config_.fronts.update_in_place, probed = config_.fronts.update_probe;
-    query(Query::self).plan(bvh_, bvh_, split.deformable_self, per, in_place, probed);
-    query(Query::inter).plan(bvh_, rigid_bvh_, split.cross, per, in_place, probed);
-    query(Query::rigid_self).plan(rigid_bvh_, rigid_bvh_, split.rigid_self, per, in_place, probed);
+    const FrontSizing sizing{.per_triangle = config_.capacity.front_per_triangle,
+                             .in_place = config_.fronts.update_in_place,
+                             .probed = config_.fronts.update_probe};
+    query(Query::self).plan(bvh_, bvh_, split.deformable_self, sizing);
+    query(Query::inter).plan(bvh_, rigid_bvh_, split.cross, sizing);
+    query(Query::rigid_self).plan(rigid_bvh_, rigid_bvh_, split.rigid_self, sizing);
     size_t capacity = 0;
     for (const auto& fq : queries_) capacity = std::max(capacity, fq.capacity());
     if (strategy().radix_sort) radix_.reserve(exec_, capacity);
     if (strategy().restructure) restructure_.reserve(bvh_.num_leaves, config_.restructure.min_leaves);
     builds_ahead_ = can_build_ahead();
-    if (builds_ahead_) reserve_ahead(per, in_place, probed);
+    if (builds_ahead_) reserve_ahead(sizing);
     planner_.reset(running_queries(), exec_.resident_threads(), builds_ahead_);
-    stage_preserve_ = warp_preserve_ = true;
-    bound_preserve_ = Occupancy::plain;
+    preserve_launch_ = {};
     exec_.sync();
   }
 
@@ -137,9 +137,17 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     describe(plan, stats);
     stats.timing.ahead_ms = std::max(ahead_ms, 0.0);
     const double generate_per_node = time_generate ? price_generate(stats) : -1.0;
-    planner_.finish(plan, {stats.timing.total_ms, stats.timing.query_reruns == 0, fronts, stats.quality.q_root, found(plan),
-                           stats.timing.graph == "captured", generate_per_node, stats.pairs, stats.fronts.update_yield,
-                           first_pass_ms, ahead_ms});
+    planner_.finish(plan, {.ms = stats.timing.total_ms,
+                           .ran_once = stats.timing.query_reruns == 0,
+                           .front_nodes = fronts,
+                           .q_root = stats.quality.q_root,
+                           .found = found(plan),
+                           .recorded = stats.timing.graph == "captured",
+                           .generate_per_node_ms = generate_per_node,
+                           .pairs = stats.pairs,
+                           .update_yield = stats.fronts.update_yield,
+                           .first_pass_ms = first_pass_ms,
+                           .ahead_ms = ahead_ms});
     if (plan.probe) stats.fronts.rebuild_growth = planner_.probed_growth();
     choose_preserve_launch(stats.pairs);
     return stats;
@@ -296,8 +304,10 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       launch();
       return FrameGraphRun::plain;
     }
-    const uint64_t choices = uint64_t(plan.stale) | uint64_t(stage_preserve_) << 1 | uint64_t(warp_preserve_) << 2 |
-                             uint64_t(bound_preserve_ == Occupancy::bounded) << 3;
+    const PreserveLaunch& preserve = preserve_launch_;
+    const uint64_t choices = uint64_t(plan.stale) | uint64_t(preserve.staged) << 1 |
+                             uint64_t(preserve.share_in_warp) << 2 |
+                             uint64_t(preserve.occupancy == Occupancy::bounded) << 3;
     const FrameGraphKey key{launch_revision(), uint64_t(reinterpret_cast<uintptr_t>(mesh.vertices)),
                             uint64_t(reinterpret_cast<uintptr_t>(mesh.prev_vertices)), choices};
     return graph_.run(exec_, timer_, key, launch);
@@ -331,13 +341,13 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
            !queries_[size_t(Query::inter)].active() && !queries_[size_t(Query::rigid_self)].active();
   }
 
-  // The second tree and its self fronts, sized as the current ones; its pairs are counted,
-  // not kept.
-  void reserve_ahead(double front_per_triangle, bool in_place, bool probed) {
+  // The second tree and its self fronts, sized as the current ones and active (a build runs
+  // ahead only where T_D's self fronts do: can_build_ahead); its pairs are counted, not kept.
+  void reserve_ahead(const FrontSizing& sizing) {
     ahead_bvh_.refit_top_max_leaves = bvh_.refit_top_max_leaves;
     ahead_bvh_.refit_levels = bvh_.refit_levels;
     ahead_bvh_.reserve(exec_, bvh_.num_leaves);
-    ahead_front_.plan(ahead_bvh_, ahead_bvh_, true, front_per_triangle, in_place, probed);
+    ahead_front_.plan(ahead_bvh_, ahead_bvh_, true, sizing);
     ahead_pairs_.reserve(0);
     exec_.reserve_side();
   }
@@ -366,8 +376,9 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
 
   void generate_ahead() {
     ahead_pairs_.reset_counters(exec_);
-    ahead_front_.generate(exec_, ahead_pairs_, histogram_sorted(),
-                          shares_in_warp(config_.fronts.update_warp, ahead_front_.query_leaves()));
+    ahead_front_.generate(exec_, ahead_pairs_,
+                          {.histogram = histogram_sorted(),
+                           .share_in_warp = shares_in_warp(config_.fronts.update_warp, ahead_front_.query_leaves())});
     if (!sorts(FrontOp::generate)) return;
     FrameFit fit;
     ahead_front_.add_to_fit(fit, ahead_pairs_, false);
@@ -440,22 +451,26 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     FrontQuery<Exec>& fq = query(q);
     const FrontOp op = plan.op(q);
     const bool histogram = histogram_sorted();
+    // Generates share a leaf's traversal out in warps, the other operations a front node's.
+    const bool warp_leaves = shares_in_warp(config_.fronts.update_warp, fq.query_leaves());
+    const bool warp_fronts = shares_in_warp(config_.fronts.update_warp, fq.total());
     timed(phase_of(op), [&] {
       switch (op) {
         case FrontOp::preserve:
-          fq.preserve(exec_, pairs_, stage_preserve_, warp_preserve_, bound_preserve_, plan.probe);
+          fq.preserve(exec_, pairs_, preserve_launch_, plan.probe);
           break;
         case FrontOp::generate:
-          fq.generate(exec_, pairs_, histogram, shares_in_warp(config_.fronts.update_warp, fq.query_leaves()));
+          fq.generate(exec_, pairs_, {.histogram = histogram, .share_in_warp = warp_leaves});
           break;
         case FrontOp::update:
           if (plan.in_place)
-            fq.patch(exec_, pairs_, shares_in_warp(config_.fronts.update_warp, fq.total()), counts_in_place(), histogram);
+            fq.patch(exec_, pairs_,
+                     {.share_in_warp = warp_fronts, .counted = counts_in_place(), .sort_tail = histogram});
           else
-            fq.update(exec_, pairs_, counts(op), shares_in_warp(config_.fronts.update_warp, fq.total()));
+            fq.update(exec_, pairs_, {.histogram = counts(op), .share_in_warp = warp_fronts});
           break;
         case FrontOp::restructure:
-          fq.restructure(exec_, pairs_, histogram, restructure_.view(), shares_in_warp(config_.fronts.update_warp, fq.total()));
+          fq.restructure(exec_, pairs_, {.histogram = histogram, .share_in_warp = warp_fronts}, restructure_.view());
           break;
       }
     });
@@ -525,11 +540,11 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // --preserve-bound says. The choices are part of the steady frame's key.
   void choose_preserve_launch(uint64_t pairs) {
     const uint64_t fronts = front_nodes();
-    stage_preserve_ = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts;
-    warp_preserve_ = shares_in_warp(config_.fronts.preserve_warp, fronts);
     const bool bounded =
         switched_on(config_.fronts.preserve_bound, fronts >= kPreserveBoundedWaves * exec_.resident_threads());
-    bound_preserve_ = bounded ? Occupancy::bounded : Occupancy::plain;
+    preserve_launch_ = {.staged = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts,
+                        .share_in_warp = shares_in_warp(config_.fronts.preserve_warp, fronts),
+                        .occupancy = bounded ? Occupancy::bounded : Occupancy::plain};
   }
 
   // After a probing frame's read-back, outside its timing: the preserving queries' buffers
@@ -564,9 +579,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   Lbvh<Exec> ahead_bvh_;
   FrontQuery<Exec> ahead_front_;
   PairBuffer<Exec, FrontCounters> ahead_pairs_;
-  bool stage_preserve_ = true;  // preserve's pairs staged per block (choose_preserve_launch)
-  bool warp_preserve_ = true;   // preserve's traversals shared within warps (choose_preserve_launch)
-  Occupancy bound_preserve_ = Occupancy::plain;  // preserve under its register bound (choose_preserve_launch)
+  PreserveLaunch preserve_launch_;  // choose_preserve_launch's, from the frame before
 };
 
 }  // namespace cdb

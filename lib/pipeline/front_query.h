@@ -23,6 +23,42 @@
 
 namespace cdb {
 
+// How a query's fronts are sized, the same for every query of a run (FrontQuery::plan).
+struct FrontSizing {
+  double per_triangle = 0.0;  // the first capacity, in front nodes per query leaf
+  // Updates may run in place (--update-in-place), which needs the tails' counters and more
+  // room (FrontQuery::update_bound).
+  bool in_place = false;
+  // Updates are sized by probes before they run (--update-probe): an adopted front then
+  // keeps no spare (FrontQuery::adopt).
+  bool probed = false;
+};
+
+// How a generate, update or restructure produces its fronts.
+struct ProduceMode {
+  bool histogram = false;      // count the produced nodes per tree node (the histogram sort's counts)
+  bool share_in_warp = false;  // the traversals shared out in warps (CUDA)
+};
+
+// How a preserve is launched (FrontPipeline::choose_preserve_launch); each choice is part of
+// a recorded steady frame's key.
+struct PreserveLaunch {
+  bool staged = true;         // pairs staged per block, else appended directly (core/append_stage.h)
+  bool share_in_warp = true;  // the traversals shared out in warps (CUDA)
+  Occupancy occupancy = Occupancy::plain;  // under PreserveFrontFn's register bound or not (exec/tuning.h)
+};
+
+// How an update in place runs (FrontQuery::patch).
+struct PatchMode {
+  bool share_in_warp = false;  // the sprouts shared out in warps (CUDA)
+  // The front's count log (from the sort that produced it) is kept up to date, and
+  // offsets() then gives its offset log.
+  bool counted = false;
+  // The appended nodes go to the raw arrays, counted per tree node, for sort_tails();
+  // otherwise they are appended to the front's end as produced.
+  bool sort_tail = false;
+};
+
 template <class Exec>
 class FrontQuery {
  public:
@@ -34,22 +70,20 @@ class FrontQuery {
   }
 
   // Query leaves come from `leaves`, front nodes from `tree` (the same tree: self fronts).
-  // Both trees must be reserved for their leaf counts already. `in_place`: updates may run
-  // in place (--update-in-place), which needs the tails' counters and more room (below).
-  // `probed`: updates are sized by probes before they run (--update-probe).
-  void plan(Lbvh<Exec>& leaves, Lbvh<Exec>& tree, bool active, double front_per_triangle, bool in_place,
-            bool probed) {
+  // Both trees must be reserved for their leaf counts already. `active`: the scene asks for
+  // the query (else it has no fronts and does no work).
+  void plan(Lbvh<Exec>& leaves, Lbvh<Exec>& tree, bool active, const FrontSizing& sizing) {
     leaves_ = &leaves;
     tree_ = &tree;
     active_ = active;
-    in_place_ = in_place;
-    probed_ = probed;
+    in_place_ = sizing.in_place;
+    probed_ = sizing.probed;
     for (auto& f : front_) f.size = 0;
     ++revision_;
     dropped_[0] = dropped_[1] = appended_[0] = appended_[1] = 0;
     if (!active_) return;
-    const size_t cap = std::max<size_t>(1024, size_t(front_per_triangle * leaves.num_leaves));
-    for (int k = 0; k < 2; ++k) front_[k].reserve(cap, std::max<size_t>(segments(k), 1), in_place);
+    const size_t cap = std::max<size_t>(1024, size_t(sizing.per_triangle * leaves.num_leaves));
+    for (int k = 0; k < 2; ++k) front_[k].reserve(cap, std::max<size_t>(segments(k), 1), sizing.in_place);
   }
 
   bool active() const { return active_; }
@@ -92,27 +126,25 @@ class FrontQuery {
     return bits;
   }
 
-  // (1) Generate over all query leaves. `histogram`: count the produced nodes per tree node.
-  // `share_in_warp`: the traversals shared out in warps (CUDA).
-  void generate(Exec& exec, Pairs& pairs, bool histogram, bool share_in_warp) {
+  // (1) Generate over all query leaves.
+  void generate(Exec& exec, Pairs& pairs, const ProduceMode& mode) {
     if (!active_) return;
-    const FrontSink sink = produce_sink(exec, pairs, histogram);
-    const uint32_t shift = spread_shift(exec, leaves_->num_leaves, share_in_warp, kSpreadWavesGenerate);
-    exec.for_each_staged(size_t(leaves_->num_leaves) << shift, GenerateFrontFn{view(), pairs.sink(), sink, share_in_warp, shift},
-                         Balance::uneven);
+    const FrontSink sink = produce_sink(exec, pairs, mode.histogram);
+    const uint32_t shift = spread_shift(exec, leaves_->num_leaves, mode.share_in_warp, kSpreadWavesGenerate);
+    exec.for_each_staged(size_t(leaves_->num_leaves) << shift,
+                         GenerateFrontFn{view(), pairs.sink(), sink, mode.share_in_warp, shift}, Balance::uneven);
   }
 
-  // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch;
-  // pairs staged per block or appended directly (`staged`, core/append_stage.h). `probe`:
-  // also count what an update of the fronts yields at most, for update_bound.
-  // `occupancy`: launched under PreserveFrontFn's register bound or not (exec/tuning.h).
-  void preserve(Exec& exec, Pairs& pairs, bool staged, bool share_in_warp, Occupancy occupancy, bool probe) {
+  // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch.
+  // `probe`: also count what an update of the fronts yields at most, for update_bound.
+  void preserve(Exec& exec, Pairs& pairs, const PreserveLaunch& launch, bool probe) {
     if (!active_) return;
     if (probe)
-      preserve_with(exec, PreserveFrontFn<true>{{}, pairs.sink(), {}, {}, share_in_warp, &counters(pairs)->yield[0][0]},
-                    staged, occupancy);
+      preserve_with(
+          exec, PreserveFrontFn<true>{{}, pairs.sink(), {}, {}, launch.share_in_warp, &counters(pairs)->yield[0][0]},
+          launch);
     else
-      preserve_with(exec, PreserveFrontFn<false>{{}, pairs.sink(), {}, {}, share_in_warp}, staged, occupancy);
+      preserve_with(exec, PreserveFrontFn<false>{{}, pairs.sink(), {}, {}, launch.share_in_warp}, launch);
   }
 
   // The room an update of the current fronts needs at most, per kind, after a probing
@@ -146,15 +178,14 @@ class FrontQuery {
     return grew;
   }
 
-  // (3) Update: sprout and prune (Alg. 1). Both kinds in one launch. `histogram`: count the
-  // produced nodes per tree node; `share_in_warp`: sprouts shared out in warps (CUDA).
-  void update(Exec& exec, Pairs& pairs, bool histogram, bool share_in_warp) {
+  // (3) Update: sprout and prune (Alg. 1). Both kinds in one launch.
+  void update(Exec& exec, Pairs& pairs, const ProduceMode& mode) {
     if (!active_) return;
-    const FrontSink sink = produce_sink(exec, pairs, histogram);
+    const FrontSink sink = produce_sink(exec, pairs, mode.histogram);
     auto pass = [&](const FrontArrays<Exec>& f) {
-      return UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data(), share_in_warp};
+      return UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data(), mode.share_in_warp};
     };
-    const uint32_t shift = spread_shift(exec, total(), share_in_warp, kSpreadWavesUpdate);
+    const uint32_t shift = spread_shift(exec, total(), mode.share_in_warp, kSpreadWavesUpdate);
     exec.for_each_staged(total() << shift,
                          BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift},
                          Balance::uneven);
@@ -162,19 +193,16 @@ class FrontQuery {
 
   // (3) Update in place (PatchFrontFn): both kinds in one launch. The current front
   // changes as it runs: unlike the other operations it cannot be run again from it. After
-  // the read-back, adopt_patch says whether it fit. `counted`: the front's count log (from
-  // the sort that produced it) is kept up to date, and offsets() then gives its offset log.
-  // `sort_tail`: the appended nodes go to the raw arrays, counted per tree node, and
-  // sort_tails() orders them onto the front's end by histogram sort (the appended nodes are
-  // the sprouts of the frame's contacts, the ones the next preserves descend from);
-  // otherwise they are appended to the front's end as produced.
-  void patch(Exec& exec, Pairs& pairs, bool share_in_warp, bool counted, bool sort_tail) {
+  // the read-back, adopt_patch says whether it fit. With `mode.sort_tail`, sort_tails()
+  // orders the appended nodes onto the front's end by histogram sort (the appended nodes are
+  // the sprouts of the frame's contacts, the ones the next preserves descend from).
+  void patch(Exec& exec, Pairs& pairs, const PatchMode& mode) {
     if (!active_) return;
-    if (sort_tail && !front_[0].has_tails()) fail("an update in place ran on fronts planned without it");
+    if (mode.sort_tail && !front_[0].has_tails()) fail("an update in place ran on fronts planned without it");
     FrontSink append{};
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
-      if (sort_tail) {
+      if (mode.sort_tail) {
         exec.fill(f.tail_counts.data(), f.tail_counts.size(), 0u);
         append.prim[k] = f.raw_prim.data();
         append.node[k] = f.raw_node.data();
@@ -190,12 +218,12 @@ class FrontQuery {
     append.count = counters(pairs)->produced;
     unsigned long long* dropped = &counters(pairs)->dropped[0][0];
     auto pass = [&](FrontArrays<Exec>& f) {
-      PatchFrontFn fn{view(), pairs.sink(), append, f.prim.data(), f.node.data(), dropped, share_in_warp};
-      fn.count_internal = counted ? front_[kInternalFront].count_log() : nullptr;
-      fn.count_external = counted ? front_[kExternalFront].count_log() : nullptr;
+      PatchFrontFn fn{view(), pairs.sink(), append, f.prim.data(), f.node.data(), dropped, mode.share_in_warp};
+      fn.count_internal = mode.counted ? front_[kInternalFront].count_log() : nullptr;
+      fn.count_external = mode.counted ? front_[kExternalFront].count_log() : nullptr;
       return fn;
     };
-    const uint32_t shift = spread_shift(exec, total(), share_in_warp, kSpreadWavesUpdate);
+    const uint32_t shift = spread_shift(exec, total(), mode.share_in_warp, kSpreadWavesUpdate);
     exec.for_each_staged(total() << shift,
                          BothFrontsFn<PatchFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift},
                          Balance::uneven);
@@ -250,14 +278,14 @@ class FrontQuery {
   }
 
   // (5), second half: the front pass over the classified self fronts, both kinds in one
-  // launch; `share_in_warp`: the traversals shared out in warps (CUDA).
-  void restructure(Exec& exec, Pairs& pairs, bool histogram, CandidateView cand, bool share_in_warp) {
+  // launch.
+  void restructure(Exec& exec, Pairs& pairs, const ProduceMode& mode, CandidateView cand) {
     if (!active_) return;
-    const FrontSink sink = produce_sink(exec, pairs, histogram);
+    const FrontSink sink = produce_sink(exec, pairs, mode.histogram);
     auto pass = [&](const FrontArrays<Exec>& f) {
-      return RestructureFrontFn{view(), pairs.sink(), sink, cand, f.prim.data(), f.node.data(), share_in_warp};
+      return RestructureFrontFn{view(), pairs.sink(), sink, cand, f.prim.data(), f.node.data(), mode.share_in_warp};
     };
-    const uint32_t shift = spread_shift(exec, total(), share_in_warp, kSpreadWavesUpdate);
+    const uint32_t shift = spread_shift(exec, total(), mode.share_in_warp, kSpreadWavesUpdate);
     exec.for_each_n(total() << shift,
                     BothFrontsFn<RestructureFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift},
                     Balance::uneven);
@@ -426,7 +454,7 @@ class FrontQuery {
 
   // The passes of a preserve functor over both kinds of front in one launch.
   template <class Fn>
-  void preserve_with(Exec& exec, Fn fn, bool staged, Occupancy occupancy) {
+  void preserve_with(Exec& exec, Fn fn, const PreserveLaunch& launch) {
     fn.view = view();
     auto pass = [&](const FrontArrays<Exec>& f) {
       Fn p = fn;
@@ -436,10 +464,10 @@ class FrontQuery {
     };
     const uint32_t shift = spread_shift(exec, total(), fn.share_in_warp, kSpreadWavesPreserve);
     const BothFrontsFn<Fn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift};
-    if (staged)
-      exec.for_each_staged(total() << shift, both, Balance::uneven, occupancy);
+    if (launch.staged)
+      exec.for_each_staged(total() << shift, both, Balance::uneven, launch.occupancy);
     else
-      exec.for_each_n(total() << shift, both, Balance::uneven, occupancy);
+      exec.for_each_n(total() << shift, both, Balance::uneven, launch.occupancy);
   }
 
   // The arrays of a kind hold `need` nodes, or all grow to `want`, the current front copied
