@@ -18,6 +18,7 @@
 #include "exit_codes.h"
 #include "cdbench/pipeline/plan_record.h"
 #include "harness/results/results_reader.h"
+#include "join_words.h"
 #include "option_table.h"
 #include "run_statistics.h"
 
@@ -170,12 +171,6 @@ Estimate estimate(const RunGroup& g, const Samples& s, Metric m) {
   return estimate_over_frames(f.measured_ms, m);
 }
 
-std::string join(const std::vector<std::string>& v, const char* sep) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
-  return s;
-}
-
 // Identity fields that differ, as "field: A value vs B value"; the content hash only where
 // both files recorded one.
 std::vector<std::string> differences(const RunGroup& a, const RunGroup& b) {
@@ -282,7 +277,7 @@ std::string only_note(const RunGroup& g, bool in_a, const std::vector<RunGroup>&
   const std::vector<std::string> d = in_a ? differences(g, *other) : differences(*other, g);
   const std::string name = std::string(in_a ? "B" : "A") + " " + other->files.front().info.path;
   if (d.empty()) return "nearest " + name + " pairs with another run of this identity (other tuning options)";
-  return "nearest " + name + ": " + join(d, "; ");
+  return "nearest " + name + ": " + join_words(d, "; ");
 }
 
 // Pairs the runs of A and B symmetrically: two runs pair when each is the other's partner.
@@ -319,7 +314,7 @@ std::vector<Row> match(const std::vector<RunGroup>& as, const std::vector<RunGro
     const RunGroup& a = as.front();
     const RunGroup& b = *nearest(a, bs, {});
     fail_usage("runs do not match: A " + a.files.front().info.path + ", nearest B " + b.files.front().info.path +
-               ":\n  " + join(differences(a, b), "\n  ") + "\n(--allow-mismatch compares them anyway, flagged)");
+               ":\n  " + join_words(differences(a, b), "\n  ") + "\n(--allow-mismatch compares them anyway, flagged)");
   }
   for (const RunGroup& a : as)
     if (!paired.count(&a)) {
@@ -482,7 +477,7 @@ nlohmann::json row_json(const Row& r, Metric m, NonFinite non_finite = NonFinite
           {"pair_differ", pairs(r.pair_differ)},
           {"input_hash_a", of_side(r.a, hash)},
           {"input_hash_b", of_side(r.b, hash)},
-          {"mismatch", join(r.mismatch, "; ")},
+          {"mismatch", join_words(r.mismatch, "; ")},
           {"noisy", noisy_text(r)},
           {"poor_conditions", poor_text(r)},
           {"commit_a", list(r.a, commits_of)},
@@ -529,7 +524,7 @@ std::pair<std::string, std::string> side_cells(const RunGroup* g, const Estimate
 
 // A side's files and commits under the table; "none" for the side of a one-sided row.
 std::string side_files(const RunGroup* g) {
-  return g ? labelled_files_of(*g) + " (commit " + join(commits_of(*g), " ") + ")" : "none";
+  return g ? labelled_files_of(*g) + " (commit " + join_words(commits_of(*g), " ") + ")" : "none";
 }
 
 void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metric m) {
@@ -541,7 +536,7 @@ void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metri
     const ResultsOverview& run = (r.a ? r.a : r.b)->first();
     std::vector<std::string> flags;
     if (!r.only.empty()) flags.push_back(r.only);
-    if (!r.mismatch.empty()) flags.push_back("**MISMATCH: " + join(r.mismatch, "; ") + "**");
+    if (!r.mismatch.empty()) flags.push_back("**MISMATCH: " + join_words(r.mismatch, "; ") + "**");
     if (!poor_text(r).empty()) flags.push_back("poor conditions (" + poor_text(r) + ")");
     else if (!noisy_text(r).empty()) flags.push_back("noisy run (" + noisy_text(r) + ")");
     if (r.a && r.b && (r.a->first().input_hash.empty() || r.b->first().input_hash.empty()))
@@ -561,7 +556,7 @@ void print_markdown(const std::vector<Row>& rows, const CompareOptions& c, Metri
                 md_cell(run.pipeline).c_str(), md_cell(run.backend).c_str(), a_value.c_str(), a_interval.c_str(),
                 b_value.c_str(), b_interval.c_str(), fixed(r.change, "%+.1f").c_str(),
                 std::isnan(r.change) ? "" : "%", verdict_text(r).c_str(), pairs.c_str(),
-                md_cell(join(flags, "; ")).c_str());
+                md_cell(join_words(flags, "; ")).c_str());
   }
   std::printf("\nVerdict: Mann-Whitney U over the passes' values (pooled over a side's files; one value per file "
               "where a file keeps no passes, or where the sides' plans differ), a difference at p < %.2f whose Hodges-Lehmann shift (the change) "
@@ -641,7 +636,7 @@ int compare_command(const CompareOptions& c) {
   } else if (c.csv) {
     std::vector<std::string> header;
     for (const auto& col : columns()) header.push_back(csv_cell(col));
-    std::printf("%s\n", join(header, ",").c_str());
+    std::printf("%s\n", join_words(header, ",").c_str());
     for (const Row& r : rows) {
       const nlohmann::json j = row_json(r, m, NonFinite::text);
       std::vector<std::string> cells;
@@ -649,7 +644,7 @@ int compare_command(const CompareOptions& c) {
       // by spaces.
       for (const auto& col : columns())
         cells.push_back(csv_cell(cell_text(j[col], col.rfind("label_", 0) == 0 ? ", " : " ")));
-      std::printf("%s\n", join(cells, ",").c_str());
+      std::printf("%s\n", join_words(cells, ",").c_str());
     }
   } else {
     print_markdown(rows, c, m);
@@ -657,7 +652,7 @@ int compare_command(const CompareOptions& c) {
   for (const Row& r : rows)
     if (!r.mismatch.empty())
       std::fprintf(stderr, "cdbench: compare: MISMATCHED runs compared (--allow-mismatch): %s\n",
-                   join(r.mismatch, "; ").c_str());
+                   join_words(r.mismatch, "; ").c_str());
   if (regressed && c.fail_on_regression) {
     std::fflush(stdout);
     std::fprintf(stderr,

@@ -1,15 +1,8 @@
 #include "option_scope.h"
 
+#include "join_words.h"
+
 namespace cdb {
-namespace {
-
-std::string comma_list(const std::vector<std::string>& words) {
-  std::string list;
-  for (const std::string& w : words) list += (list.empty() ? "" : ", ") + w;
-  return list;
-}
-
-}  // namespace
 
 bool scope_covers(OptionScope scope, const PipelineKind& kind) {
   const FrontStrategy* front = std::get_if<FrontStrategy>(&kind.builds);
@@ -38,7 +31,7 @@ std::string not_applying_text(const std::vector<std::string>& flags, const std::
     const std::string words = scope_words(option_scope(flag));
     if (scopes.find(words) == std::string::npos) scopes += (scopes.empty() ? "" : "; ") + words;
   }
-  return comma_list(flags) + (flags.size() > 1 ? " do" : " does") + " not apply to " + comma_list(pipelines) +
+  return join_words(flags, ", ") + (flags.size() > 1 ? " do" : " does") + " not apply to " + join_words(pipelines, ", ") +
          " (" + scopes + ")";
 }
 

@@ -1,4 +1,5 @@
 #include "options.h"
+#include "join_words.h"
 #include "path_checks.h"
 #include "number_checks.h"
 
@@ -249,11 +250,7 @@ void add_restructure(CLI::App* cmd, CommonOptions& o) {
       ->group(kPipelineGroup);
 }
 
-std::string pipeline_list() {
-  std::string list;
-  for (const auto& n : pipeline_names()) list += (list.empty() ? "" : ", ") + n;
-  return list;
-}
+std::string pipeline_list() { return join_words(pipeline_names(), ", "); }
 
 std::string pipeline_table() {
   std::string table = "Pipelines:\n";
