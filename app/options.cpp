@@ -180,8 +180,17 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       "front pipelines: a rebuild after the first frame runs on a second, low-priority GPU stream (the new tree, "
       "its fronts' generate and ordering) while the frames preserve the current fronts, and the first frame that "
       "finds it done adopts it; off: the rebuilding frame builds and generates in the frame; auto: on with "
-      "--device cuda, off on the cpu. Not with rigid objects, the radix orderings or --refit-every above 1",
+      "--device cuda, off on the cpu. Not on scenes split into two trees (--split-objects), the radix orderings or "
+      "--refit-every above 1",
       {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.tree.rebuild_ahead))
+      ->group(kTuningGroup);
+  add_choice<SplitRule>(
+      cmd, "--split-objects", c.tree.split,
+      "front pipelines and bvh on scenes with declared queries: queries: a second tree takes the rigid objects and "
+      "each deformable object that only inter queries with self-queried deformable objects name (an avatar under "
+      "its cloth: its pairs come from one cross traversal, without a self front of its own), refitted and rebuilt "
+      "with the first; rigid: it takes the rigid objects only",
+      {"queries", "rigid"}, parse_split_rule, split_rule_name(c.tree.split))
       ->group(kTuningGroup);
   cmd->add_option("--rebuild-growth", c.tree.rebuild_growth,
                   "front pipelines with --rebuild-degraded: a maintenance rebuilds where an update would make "

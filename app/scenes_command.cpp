@@ -242,8 +242,10 @@ int scenes_info(const ScenesOptions& opts) {
   std::printf("triangles   %zu\nvertices    %u\nframes      %u\n", topo.faces.size(), topo.num_vertices,
               s.source->num_frames());
   // What --set can change, so a user need not read the generator's source.
+  int key_width = 14;
+  for (const GeneratorParameter& p : s.parameters) key_width = std::max(key_width, int(p.key.size()));
   for (const GeneratorParameter& p : s.parameters)
-    std::printf("parameter   %-14s %-8s %s%s%s\n", p.key.c_str(), p.kind.c_str(), p.value.c_str(),
+    std::printf("parameter   %-*s %-8s %s%s%s\n", key_width, p.key.c_str(), p.kind.c_str(), p.value.c_str(),
                 p.value == p.fallback ? "" : (" (default " + p.fallback + ")").c_str(),
                 p.range.empty() ? "" : ("  range " + p.range).c_str());
   if (topo.box_faces)

@@ -8,6 +8,7 @@
 // pairs on every frame; failures name the scene (SCOPED_TRACE), pipeline and frame.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <utility>
@@ -23,6 +24,9 @@ struct InterCase {
   std::string name;
   std::function<SceneFrames()> make;
   bool deformable_self, cross, rigid_self;  // what the split must find
+  // Deformable objects the split puts in T_R (SplitRule::queries: only inters with T_D's
+  // self-queried deformable objects name them).
+  std::vector<std::string> deformable_in_rigid_tree = {};
 };
 
 inline void PrintTo(const InterCase& c, std::ostream* os) { *os << c.name; }
@@ -44,6 +48,12 @@ inline SceneFrames with_queries(SceneFrames s, const std::vector<std::string>& s
   for (const auto& n : self) q.self.push_back(object_named(s.topology, n));
   for (const auto& [a, b] : inter) q.inter.push_back({object_named(s.topology, a), object_named(s.topology, b)});
   s.topology.queries = q;
+  return s;
+}
+
+// Every object deformable: rigid bodies that the scene calls deforming (as an avatar is).
+inline SceneFrames all_deformable(SceneFrames s) {
+  for (SceneObject& o : s.topology.objects) o.rigid = false;
   return s;
 }
 
@@ -146,6 +156,18 @@ inline std::vector<InterCase> inter_cases(uint32_t res, uint32_t frames) {
       {"jumps_inter_only", jumps(false, {}, {{"soup", "tri"}, {"soup", "box"}, {"far", "tri"}}), false, true,
        false},
       {"jumps_single_rigid_triangle", jumps(true, {"soup"}, {{"soup", "tri"}, {"far", "tri"}}), true, true, false},
+      // The funnel and the ball as deforming colliders: T_R takes them, rebuilt with T_D.
+      {"funnel_deforming_colliders",
+       [=] { return all_deformable(funnel({"cloth"}, {{"cloth", "funnel"}, {"cloth", "ball"}})()); }, true, true,
+       false, {"funnel", "ball"}},
+      // The ball deforming, the funnel rigid: T_R holds both kinds.
+      {"funnel_deforming_ball",
+       [=] {
+         SceneFrames s = funnel({"cloth"}, {{"cloth", "ball"}, {"cloth", "funnel"}})();
+         s.topology.objects[object_named(s.topology, "ball")].rigid = false;
+         return s;
+       },
+       true, true, false, {"ball"}},
   };
 }
 
@@ -197,8 +219,14 @@ void check_grouped_build(FrameSource& source) {
   }
 }
 
+// Whether the case's split puts object `o` in T_R.
+inline bool in_rigid_tree(const InterCase& c, const SceneObject& o) {
+  return o.rigid || std::find(c.deformable_in_rigid_tree.begin(), c.deformable_in_rigid_tree.end(), o.name) !=
+                        c.deformable_in_rigid_tree.end();
+}
+
 // The split the pipelines take from the scene: traversals as the case expects, every face
-// in exactly one tree by its object's kind.
+// in exactly one tree by its object's kind and queries.
 inline void check_split(const InterCase& c) {
   const SceneFrames s = c.make();
   const ObjectSplit split = split_objects(s.topology);
@@ -211,7 +239,8 @@ inline void check_split(const InterCase& c) {
   for (uint32_t f : split.rigid_faces) seen.at(f) += 2;
   for (const SceneObject& o : s.topology.objects)
     for (uint32_t f = o.first_face; f < o.first_face + o.num_faces; ++f)
-      ASSERT_EQ(seen[f], o.rigid ? 2 : 1) << "face " << f << " of " << o.name;
+      ASSERT_EQ(seen[f], in_rigid_tree(c, o) ? 2 : 1) << "face " << f << " of " << o.name;
+  EXPECT_EQ(split.rigid_tree_deforms, !c.deformable_in_rigid_tree.empty());
 }
 
 // The pipelines that split a scene: `bvh` and every front pipeline.
@@ -243,13 +272,13 @@ inline void check_inter_pipelines(const std::string& device, const InterCase& c)
 // The fronts a split scene keeps, per front pipeline and frame: self fronts of T_D only
 // when a D-D query is declared, cross fronts (at least one node per deformable leaf) only
 // for a D-R query, T_R self fronts only for an R-R query. T_R is built on the first frame
-// and then only refitted: once T_D refits too, no frame spends time building.
+// and then only refitted (or rebuilt with T_D): once T_D refits too, no frame spends time
+// building.
 inline void check_inter_fronts(const std::string& device, const InterCase& c) {
   SCOPED_TRACE("scene " + c.name);
   const ExactFrames scene = exact_frames(StoredFrames(c.make()));
   const Topology& topo = scene.topology;
-  uint32_t deformable = 0;
-  for (const SceneObject& o : topo.objects) deformable += o.rigid ? 0 : o.num_faces;
+  const uint32_t deformable = uint32_t(split_objects(topo).deformable_faces.size());
   for (const std::string name : {"a", "b", "c", "unordered", "static", "periodic", "restructure",
                                  "radix-order", "reference", "bvh"}) {
     SCOPED_TRACE("pipeline " + name);

@@ -166,7 +166,7 @@ void check_executor_grid(const SceneFrames& s, bool swept) {
   cfg.boxes.precision = BoxPrecision::q16;
   cfg.boxes.swept = swept;
   mesh.set_box_knobs(cfg);
-  mesh.set_topology(exec, s.topology);
+  mesh.set_topology(exec, s.topology, SplitRule::queries);
   for (size_t f = 0; f < s.frames.size(); ++f) {
     mesh.upload(exec, s.frames[f]);
     mesh.update_grid(exec);

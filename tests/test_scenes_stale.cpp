@@ -84,7 +84,8 @@ TEST(StaleScenes, DefaultSizesAreTheComparisons) {
                 {"cloth-wave-522k", 2 * 511 * 511, 20, "522,242 triangles"},
                 {"cloth-wave-1m", 2 * 707 * 707, 5, "999,698 triangles"},
                 {"crumple", 2 * 255 * 255, 40, "130,050 triangles"},
-                {"garment", 2 * 300 * 240 + kBodyTriangles, 21, "149,126"}};
+                {"garment", 2 * 300 * 240 + kBodyTriangles, 21, "149,126"},
+                {"garment-avatar", 2 * 300 * 240 + 16 * kBodyTriangles, 21, "226,016"}};
   for (const auto& c : scenes) {
     SCOPED_TRACE(c.name);
     const Scene s = open(c.name);
@@ -261,6 +262,44 @@ TEST(StaleScenes, GarmentFramesAreEveryStrideThSimulatedFrame) {
   EXPECT_GT(coarse_motion, 0.4);
 }
 
+double area(const Tri& t, const std::vector<vec3f>& v) {
+  const vec3f a = v[t.v0], b = v[t.v1], c = v[t.v2];
+  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, wx = c.x - a.x, wy = c.y - a.y, wz = c.z - a.z;
+  return 0.5 * std::hypot(uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx);
+}
+
+// The garment with its avatar is the garment's skirt, moving bit for bit as the garment's,
+// on the same body surface in 4^levels as many triangles (each vertex of the finer body the
+// coarse one's or a midpoint of two earlier ones), with the skirt's self and skirt-body
+// queries declared.
+TEST(StaleScenes, GarmentAvatarIsTheGarmentOnAFinerBodyOfTheSameSurface) {
+  const Scene g = open("garment", kSmallGarment);
+  const Scene a = open("garment-avatar", with(kSmallGarment, {{"body_subdivisions", 2}}));
+  const Topology& tg = g.source->topology();
+  const Topology& ta = a.source->topology();
+  ASSERT_EQ(ta.objects.size(), 2u);
+  EXPECT_EQ(ta.objects[0].name, "cloth");
+  EXPECT_EQ(ta.objects[1].name, "body");
+  EXPECT_TRUE(ta.queries.declared);
+  const uint32_t cloth = ta.objects[0].num_faces;
+  ASSERT_EQ(cloth, tg.objects[0].num_faces);
+  EXPECT_EQ(ta.objects[1].num_faces, 16 * kBodyTriangles);
+  const auto coarse = frames_of(*g.source).frames;
+  const auto fine = frames_of(*a.source).frames;
+  ASSERT_EQ(coarse.size(), fine.size());
+  for (size_t k = 0; k < fine.size(); ++k) {
+    SCOPED_TRACE(k);
+    // Every garment vertex (the skirt's, then the coarse body's) comes first, the same bits.
+    EXPECT_EQ(std::memcmp(coarse[k].data(), fine[k].data(), tg.num_vertices * sizeof(vec3f)), 0);
+    double coarse_area = 0, fine_area = 0;
+    for (uint32_t f = cloth; f < tg.faces.size(); ++f) coarse_area += area(tg.faces[f], coarse[k]);
+    for (uint32_t f = cloth; f < ta.faces.size(); ++f) fine_area += area(ta.faces[f], fine[k]);
+    EXPECT_NEAR(fine_area, coarse_area, 1e-5 * coarse_area);
+  }
+  EXPECT_NE(error_of([] { open("garment-avatar", {{"body_subdivisions", 4}}); }).find("out of range"),
+            std::string::npos);
+}
+
 // The total turn of the sheet's middle row, from its first edge to its last: the wave's
 // small slopes and the roll's turns.
 double roll_turn(const std::vector<vec3d>& v, uint32_t res) {
@@ -335,6 +374,10 @@ void expect_all_pipelines_exact(const std::string& name, const json& params) {
 TEST(StaleScenesExact, Spheres) { expect_all_pipelines_exact("spheres", with(kSmallSpheres, {{"frames", 6}})); }
 TEST(StaleScenesExact, Crumple) { expect_all_pipelines_exact("crumple", {{"res", 24}, {"frames", 6}}); }
 TEST(StaleScenesExact, Garment) { expect_all_pipelines_exact("garment", kSmallGarment); }
+TEST(StaleScenesExact, GarmentAvatarQueries) {
+  Scene s = open("garment-avatar", with(kSmallGarment, {{"body_subdivisions", 1}}));
+  check_declared_queries("cpu", *s.source);
+}
 TEST(StaleScenesExact, ClothWave) { expect_all_pipelines_exact("cloth-wave-522k", {{"res", 24}, {"frames", 4}}); }
 
 }  // namespace

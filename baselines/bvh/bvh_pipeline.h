@@ -29,7 +29,8 @@ class BvhPipeline final : public QueryPipeline<Exec, Timer> {
     const uint64_t frame = this->frame();
     const bool rebuild = rebuild_due(frame, this->config_.tree.rebuild_every);
     if (!rebuild && !refit_due(frame, this->config_.tree.refit_every)) return "stale";
-    update_hierarchy(this->exec_, this->timer_, rigid_bvh_, mesh, this->mesh_.rigid(), frame == 0,
+    update_hierarchy(this->exec_, this->timer_, rigid_bvh_, mesh, this->mesh_.rigid(),
+                     frame == 0 || (rebuild && this->mesh_.split().rigid_tree_deforms),
                      this->config_.tree.morton_bits, false, this->mesh_.face_object());
     return update_hierarchy(this->exec_, this->timer_, bvh_, mesh, this->mesh_.deformable(), rebuild,
                             this->config_.tree.morton_bits);
@@ -44,7 +45,7 @@ class BvhPipeline final : public QueryPipeline<Exec, Timer> {
   }
 
   Lbvh<Exec> bvh_;        // T_D: the deformable faces, or every face of an unsplit scene
-  Lbvh<Exec> rigid_bvh_;  // T_R: the rigid faces (empty unless a query needs them)
+  Lbvh<Exec> rigid_bvh_;  // T_R: the rigid faces and the split's deformable ones (empty unless needed)
 };
 
 }  // namespace cdb

@@ -37,7 +37,7 @@ class DeviceMesh {
     grid_.bind(exec.memory(), "mesh.box_grid");
     grid_temp_.bind(exec.memory(), "mesh.bounds_temp");
   }
-  void set_topology(Exec& exec, const Topology& topology) {
+  void set_topology(Exec& exec, const Topology& topology, SplitRule split_rule) {
     if (topology.faces.size() > kMaxLeaves) fail("scene has more triangles than 2^31-1");
     num_vertices_ = topology.num_vertices;
     num_faces_ = static_cast<uint32_t>(topology.faces.size());
@@ -62,7 +62,7 @@ class DeviceMesh {
       upload_table(face_object_, t.face_object);
       upload_table(partners_, t.partners);
     }
-    split_ = split_objects(topology);
+    split_ = split_objects(topology, split_rule);
     upload_table(deformable_faces_, split_.deformable_faces);
     upload_table(rigid_faces_, split_.rigid_faces);
   }

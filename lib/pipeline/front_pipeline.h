@@ -14,9 +14,11 @@
 // until their order has decayed by --compact-share; a re-run after an overflow preserves
 // such fronts, or generates one whose appends did not fit.
 //
-// A scene with declared queries and rigid objects is split (geometry/object_split.h): T_D
-// over the deformable faces follows this state machine; T_R over the rigid faces is built
-// on the first frame and only refitted after (rigid motion keeps a tree's quality). Up to
+// A scene with declared queries and objects for a second tree is split
+// (geometry/object_split.h): T_D follows this state machine; T_R over the rigid faces (and
+// deformable ones only an inter with T_D names) is built on the first frame and only
+// refitted after (rigid motion keeps a tree's quality), or rebuilt with T_D where it holds
+// deformable faces. Up to
 // three front queries run each frame, each only when a declared query needs it: the self
 // fronts of T_D, the cross fronts of T_D's leaves against T_R, and the self fronts of T_R.
 // Unsplit, T_D holds every face and only its self fronts run.
@@ -33,7 +35,7 @@
 // (the frames' own preserves report each frame's pairs), its fronts are checked against
 // their buffers at the adoption (a front that outgrew them is generated again there, in
 // the frame). It needs what a plain build frame would not read back: the histogram sort or
-// no ordering, no rigid objects (T_R's refit would race the cross fronts' generate), and
+// no ordering, no second tree (T_R's refit would race the cross fronts' generate), and
 // --refit-every 1.
 #include <algorithm>
 #include <array>
@@ -206,12 +208,14 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     return op + "+" + (plan.patches(Query::self) ? "update-in-place" : front_op_name(plan.op(Query::self)));
   }
 
-  // Refit or rebuild T_D; T_R is built on the first frame and refitted after.
+  // Refit or rebuild T_D; T_R is built on the first frame and refitted after, or rebuilt
+  // with T_D where it holds deformable objects (every front is generated then).
   std::string update_trees(const MeshView& mesh, bool rebuild) {
     const std::string op = update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild,
                                             config_.tree.morton_bits, strategy().radix_sort);
-    update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(), planner_.frame() == 0,
-                     config_.tree.morton_bits, strategy().radix_sort, mesh_.face_object());
+    update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(),
+                     planner_.frame() == 0 || (rebuild && mesh_.split().rigid_tree_deforms), config_.tree.morton_bits,
+                     strategy().radix_sort, mesh_.face_object());
     return op;
   }
 
@@ -566,8 +570,8 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   }
 
   FramePlanner planner_;
-  Lbvh<Exec> bvh_;        // T_D: the deformable faces, or every face of an unsplit scene
-  Lbvh<Exec> rigid_bvh_;  // T_R: the rigid faces (empty unless a query needs them)
+  Lbvh<Exec> bvh_;        // T_D: the faces the split gives it, or every face of an unsplit scene
+  Lbvh<Exec> rigid_bvh_;  // T_R: the rigid faces and the split's deformable ones (empty unless needed)
   RadixScratch<Exec> radix_;
   RestructureScratch<Exec> restructure_;
   // By Query: T_D's leaves against T_D, T_D's leaves against T_R, T_R's against T_R.

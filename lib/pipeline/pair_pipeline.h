@@ -41,7 +41,7 @@ class PairPipeline : public Pipeline {
   // buffer sized per triangle. Returns the face count.
   uint32_t set_mesh(const Topology& topology) {
     restart_rounding();
-    mesh_.set_topology(exec_, topology);
+    mesh_.set_topology(exec_, topology, config_.tree.split);
     pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);
     pairs_.filter_queries(mesh_.face_object(), mesh_.partners());
     pairs_.reserve(size_t(config_.capacity.pairs_per_triangle * mesh_.num_faces()));

@@ -15,6 +15,7 @@
 #include "cdbench/exec/memory.h"
 #include "cdbench/geometry/margin_range.h"
 #include "cdbench/geometry/mesh.h"
+#include "cdbench/geometry/object_split.h"
 #include "cdbench/geometry/position_rounding.h"
 #include "cdbench/pipeline/plan_step.h"
 
@@ -92,6 +93,11 @@ struct TreeConfig {
   // --rebuild-degraded: the growth of the fronts (an update's count over a rebuild's) past
   // which a maintenance rebuilds (pipeline/tree_maintenance.h).
   double rebuild_growth = kRebuildGrowth;
+  // Scenes with declared queries: which objects the second tree T_R takes
+  // (geometry/object_split.h). queries: the rigid objects and the deformable ones only an
+  // inter with the first tree names (an avatar), whose own self front would find nothing
+  // the queries keep; rigid: the rigid objects only.
+  SplitRule split = SplitRule::queries;
 };
 
 // Front maintenance of the front pipelines (pipeline/front_maintenance.h, frame_plan.h).

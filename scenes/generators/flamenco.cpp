@@ -17,6 +17,7 @@
 #include "cdbench/core/error.h"
 #include "scenes/generators/paper_scenes.h"
 #include "scenes/generators/rng.h"
+#include "scenes/generators/subdivision.h"
 
 namespace cdb::scene {
 namespace {
@@ -108,6 +109,7 @@ std::unique_ptr<FrameSource> make_flamenco(Params& p, const SceneInputs& inputs)
   const double flare = p.number("flare", 0.55);
   const std::string body_file = p.text("body", "/usr/share/assimp/models/X/BCN_Epileptic.X");
   const uint32_t stride = p.count32("stride", 1, 1, 1000);
+  const uint32_t body_levels = p.count32("body_subdivisions", 0, 0, 3);
   p.finish();
   if (c.res < 4) fail("generator 'flamenco', parameter 'res': must be at least 4 (vertices around a layer)");
   if (!(flare >= 0 && flare <= 4)) fail("generator 'flamenco', parameter 'flare': must be between 0 and 4");
@@ -217,10 +219,19 @@ std::unique_ptr<FrameSource> make_flamenco(Params& p, const SceneInputs& inputs)
     track->at(t, x, &v);
     col.meshes.push_back({std::make_shared<const MeshSurface>(faces, std::move(x), std::move(v), depth + thickness), depth});
   };
-  s.deforming.push_back({"body", body_faces, body.topology.num_vertices,
-                         [track, stride](uint32_t k, std::vector<dvec3>& out) { out = track->sample(k * stride); }});
-  const size_t tris = s.cloth_faces.size() + body_faces.size();
-  s.description = "flamenco: " + body_file + " (" + std::to_string(body_faces.size()) + " triangles) dancing in a " +
+  // The body the broad phase sees may be finer than the one the cloth collides with
+  // (`body_subdivisions`): the same surface, so the cloth moves the same, in 4^levels as many
+  // triangles, as an avatar's collision mesh is often finer than its skinned model.
+  auto finer = std::make_shared<const Subdivision>(subdivide(body_faces, body.topology.num_vertices, body_levels));
+  s.deforming.push_back({"body", finer->faces, finer->vertices(),
+                         [track, stride, finer](uint32_t k, std::vector<dvec3>& out) {
+                           out = track->sample(k * stride);
+                           finer->apply(out);
+                         }});
+  const size_t tris = s.cloth_faces.size() + finer->faces.size();
+  s.description = "flamenco: " + body_file + " (" + std::to_string(finer->faces.size()) + " triangles" +
+                  (body_levels > 0 ? ", subdivided " + std::to_string(body_levels) + " times" : std::string()) +
+                  ") dancing in a " +
                   std::to_string(layers) + "-layer skirt of " + std::to_string(around) + " x " + std::to_string(rows) +
                   " per layer (" + std::to_string(s.cloth_faces.size()) + " cloth triangles; " + std::to_string(tris) +
                   " triangles, " + std::to_string(s.frames) + " frames" +
