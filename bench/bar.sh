@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Runs on the GPU machine from a device bundle: the bar's scenes (the cross-system
 # comparison's analogues, bench/bar_report.py's PEER_MS: cloth-wave, spheres,
-# cloth-wave-522k, cloth-wave-1m, crumple, garment) and the paper's six benchmarks (flag,
-# funnel-large, cloth-ball, flamenco, n-body, dragon) with the
-# funnel, each generated once as OBJ frames so that every binary runs the very same frames.
+# cloth-wave-522k, cloth-wave-1m, crumple, garment; garment-avatar, the garment with its
+# avatar, with its declared queries) and the paper's six benchmarks (flag, funnel-large,
+# cloth-ball, flamenco, n-body, dragon) with the funnel, each generated once as OBJ frames so
+# that every binary runs the very same frames.
 # Per scene, in one process each: the new binary's c, b, a, grid and hash, then each base
 # binary's c and b (BASE_BIN="NAME=PATH ..."), `--repeat 3 --phase-timing off`, the default
 # warm-up; the order of new and base alternates from scene to scene. BAR_10M=1 adds the 10M
@@ -13,7 +14,7 @@
 # bench/bar_report.py makes the tables.
 #
 #   CDBENCH      the new binary (default: the bundle's bin/cdbench)
-#   BAR_SCENES   scenes to run (default: the thirteen above)
+#   BAR_SCENES   scenes to run (default: the fourteen above)
 #   BAR_CAP      seconds after which no further scene starts (default 540)
 #   SCENE_DATA   directory holding BCN_Epileptic.X and cgal-data.tar.gz, for machines
 #                without assimp-testmodels and libcgal-demo (flamenco, garment, dragon)
@@ -26,14 +27,14 @@ frames=${FRAMES_DIR:-/tmp/bar-frames}
 cap=${BAR_CAP:-540}
 mkdir -p "$out/new" "$frames"
 start=$(date +%s)
-scenes=${BAR_SCENES:-cloth-wave spheres cloth-wave-522k cloth-wave-1m crumple garment flag funnel-large cloth-ball flamenco n-body dragon funnel}
+scenes=${BAR_SCENES:-cloth-wave spheres cloth-wave-522k cloth-wave-1m crumple garment garment-avatar flag funnel-large cloth-ball flamenco n-body dragon funnel}
 
 generate_args() {
   local data=${SCENE_DATA:-}
   [[ -n "$data" ]] || return 0
   case $1 in
     dragon) echo "--set scan=$data/cgal-data.tar.gz" ;;
-    flamenco | garment) echo "--set body=$data/BCN_Epileptic.X" ;;
+    flamenco | garment | garment-avatar) echo "--set body=$data/BCN_Epileptic.X" ;;
   esac
 }
 
@@ -61,6 +62,21 @@ each_binary() {
   done
 }
 
+# What `run --scene` is given for scene $1: its frames, or for garment-avatar a descriptor
+# over them that restores its two objects and declared queries (OBJ frames keep neither;
+# scenes/garment-avatar.json: 300 x 241 skirt vertices make 144,000 cloth triangles, then
+# the body's 16 x 5,126).
+scene_of() {
+  case $1 in
+    garment-avatar)
+      printf '%s\n' '{"frames": "garment-avatar", "objects": [{"name": "cloth", "faces": [0, 144000]},' \
+        '{"name": "body", "faces": [144000, 82016]}], "queries": {"self": ["cloth"], "inter": [["cloth", "body"]]}}' \
+        > "$frames/garment-avatar.json"
+      echo "$frames/garment-avatar.json" ;;
+    *) echo "$frames/$1" ;;
+  esac
+}
+
 {
   nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem,temperature.gpu --format=csv
   "$bin" --version | head -3
@@ -70,7 +86,7 @@ each_binary() {
     # shellcheck disable=SC2046
     [[ -d "$frames/$s" ]] || "$bin" scenes generate "$s" $(generate_args "$s") --out "$frames/$s" > /dev/null ||
       { echo "generate $s failed"; continue; }
-    each_binary $i "$frames/$s" "$s"
+    each_binary $i "$(scene_of "$s")" "$s"
     i=$((i + 1))
     tar -C "$out" -cJf "$archive" .
   done

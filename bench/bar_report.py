@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """The tables of bench/bar.sh: per scene the new binary's c (mean, median, p95, and the
-median over its passes of each pass's p95 over its median), b, a, grid and hash, each base
+median over its passes of each pass's p95 and of its slowest frame over its median, the front
+nodes a pair), b, a, grid and hash, each base
 binary's c and b with base over new, and the targets: c at a third of the strongest peer's
 mean (the bar's scenes), the best of a/b/c against the best of grid and hash, c against b.
 
@@ -59,6 +60,21 @@ def single_pass_tail(run):
     return float(np.median(np.percentile(times, 95, axis=0) / np.median(times, axis=0)))
 
 
+def single_pass_peak(run):
+    """The median over the passes of each pass's slowest frame over its median."""
+    times = run.pass_times() if run is not None else None
+    if times is None or times.size == 0:
+        return float("nan")
+    return float(np.median(np.max(times, axis=0) / np.median(times, axis=0)))
+
+
+def front_nodes_per_pair(run):
+    """The mean over the measured frames of every front's nodes (self, cross, T_R's) over the pairs."""
+    fronts = sum(run.column(k).astype(float) for k in ("front_int", "front_ext", "front_inter", "front_rigid")
+                 if k in run.frames)
+    return float(np.mean(fronts / np.maximum(run.column("pairs").astype(float), 1.0)))
+
+
 def ms(x):
     return "—" if np.isnan(x) else f"{x:.4f}"
 
@@ -72,7 +88,8 @@ def main():
     bases = {b: index(os.path.join(args.dir, b)) for b in args.base}
     scenes = sorted({s for (s, _) in new}, key=lambda s: new[(s, next(p for (t, p) in new if t == s))].triangles)
 
-    header = ["scene", "triangles", "pairs", "c mean / median / p95", "c pass p95/median"]
+    header = ["scene", "triangles", "pairs", "c mean / median / p95", "c pass p95/median", "c pass max/median",
+              "c front nodes a pair"]
     header += [f"{p} mean" for p in NEW[1:]] + ["c peak MiB"]
     for b in args.base:
         header += [f"{b} c", f"{b} b", f"{b} c ÷ new c"]
@@ -83,7 +100,7 @@ def main():
             continue
         row = [s, f"{c.triangles:,}", f"{c.stat('pairs_mean'):,.0f}",
                f"{mean(c):.4f} / {c.stat('t_total_ms_median'):.4f} / {c.stat('t_total_ms_p95'):.4f}",
-               f"{single_pass_tail(c):.2f}"]
+               f"{single_pass_tail(c):.2f}", f"{single_pass_peak(c):.2f}", f"{front_nodes_per_pair(c):.2f}"]
         row += [ms(mean(new.get((s, p)))) for p in NEW[1:]]
         row.append(f"{c.peak_bytes() / 2**20:.0f}")
         for b in args.base:

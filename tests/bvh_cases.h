@@ -443,7 +443,8 @@ inline void check_replayed_plans(const std::string& device, const ExactFrames& s
 // Pipeline c with Formula 2 forced into each branch by extreme settings: quality factor 0
 // makes every subtree with fronts degraded; thresholds pick the branch. Every frame must
 // stay exact and the forced decision must actually be taken.
-inline void check_forced_decisions(const std::string& device, const ExactFrames& scene, uint32_t cycle) {
+inline void check_forced_decisions(const std::string& device, const ExactFrames& scene, uint32_t cycle,
+                                   SplitRule split = SplitRule::rigid) {
   struct Forced {
     const char* decision;
     double refit, build;
@@ -454,6 +455,7 @@ inline void check_forced_decisions(const std::string& device, const ExactFrames&
                           Forced{"refit", 1.01, 1.01, nullptr}}) {
     PipelineConfig cfg = config_for(device, 0.5, 0.05, cycle);
     cfg.name = "c";
+    cfg.tree.split = split;
     cfg.tree.rebuild_ahead = AutoSwitch::off;  // a rebuild in its frame (check_rebuild_ahead has the other)
     cfg.restructure.quality = 0.0;
     cfg.restructure.min_leaves = 4;

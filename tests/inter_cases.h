@@ -27,6 +27,7 @@ struct InterCase {
   // Deformable objects the split puts in T_R (SplitRule::queries: only inters with T_D's
   // self-queried deformable objects name them).
   std::vector<std::string> deformable_in_rigid_tree = {};
+  SplitRule rule = SplitRule::rigid;  // --split-objects for the case's pipelines
 };
 
 inline void PrintTo(const InterCase& c, std::ostream* os) { *os << c.name; }
@@ -159,7 +160,7 @@ inline std::vector<InterCase> inter_cases(uint32_t res, uint32_t frames) {
       // The funnel and the ball as deforming colliders: T_R takes them, rebuilt with T_D.
       {"funnel_deforming_colliders",
        [=] { return all_deformable(funnel({"cloth"}, {{"cloth", "funnel"}, {"cloth", "ball"}})()); }, true, true,
-       false, {"funnel", "ball"}},
+       false, {"funnel", "ball"}, SplitRule::queries},
       // The ball deforming, the funnel rigid: T_R holds both kinds.
       {"funnel_deforming_ball",
        [=] {
@@ -167,7 +168,7 @@ inline std::vector<InterCase> inter_cases(uint32_t res, uint32_t frames) {
          s.topology.objects[object_named(s.topology, "ball")].rigid = false;
          return s;
        },
-       true, true, false, {"ball"}},
+       true, true, false, {"ball"}, SplitRule::queries},
   };
 }
 
@@ -229,7 +230,7 @@ inline bool in_rigid_tree(const InterCase& c, const SceneObject& o) {
 // in exactly one tree by its object's kind and queries.
 inline void check_split(const InterCase& c) {
   const SceneFrames s = c.make();
-  const ObjectSplit split = split_objects(s.topology);
+  const ObjectSplit split = split_objects(s.topology, c.rule);
   ASSERT_TRUE(split.split);
   EXPECT_EQ(split.deformable_self, c.deformable_self);
   EXPECT_EQ(split.cross, c.cross);
@@ -260,11 +261,14 @@ inline void check_inter_pipelines(const std::string& device, const InterCase& c)
   const auto& only = splitting_pipelines();
   for (uint32_t cycle : {1u, 3u}) {
     SCOPED_TRACE("front cycle " + std::to_string(cycle));
-    check_pipelines_on(config_for(device, 0.5, 0.05, cycle), scene, 0, only);
+    PipelineConfig cfg = config_for(device, 0.5, 0.05, cycle);
+    cfg.tree.split = c.rule;
+    check_pipelines_on(cfg, scene, 0, only);
     if (testing::Test::HasFatalFailure()) return;
   }
   SCOPED_TRACE("rebuild every 3 frames");
   PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
+  cfg.tree.split = c.rule;
   cfg.tree.rebuild_every = 3;
   check_pipelines_on(cfg, scene, 0, only);
 }
@@ -278,12 +282,13 @@ inline void check_inter_fronts(const std::string& device, const InterCase& c) {
   SCOPED_TRACE("scene " + c.name);
   const ExactFrames scene = exact_frames(StoredFrames(c.make()));
   const Topology& topo = scene.topology;
-  const uint32_t deformable = uint32_t(split_objects(topo).deformable_faces.size());
+  const uint32_t deformable = uint32_t(split_objects(topo, c.rule).deformable_faces.size());
   for (const std::string name : {"a", "b", "c", "unordered", "static", "periodic", "restructure",
                                  "radix-order", "reference", "bvh"}) {
     SCOPED_TRACE("pipeline " + name);
     PipelineConfig cfg = config_for(device, 8.0, 8.0, 2);
     cfg.name = name;
+    cfg.tree.split = c.rule;
     const std::vector<FrameStats> frames = run_exact(cfg, scene);
     ASSERT_EQ(frames.size(), scene.num_frames());
     for (size_t f = 0; f < frames.size(); ++f) {
@@ -312,7 +317,7 @@ inline void check_inter_fronts(const std::string& device, const InterCase& c) {
 inline void check_inter_decisions(const std::string& device, const InterCase& c) {
   SCOPED_TRACE("scene " + c.name);
   const ExactFrames scene = exact_frames(StoredFrames(c.make()));
-  for (uint32_t cycle : {1u, 2u}) check_forced_decisions(device, scene, cycle);
+  for (uint32_t cycle : {1u, 2u}) check_forced_decisions(device, scene, cycle, c.rule);
 }
 
 }  // namespace cdb::test

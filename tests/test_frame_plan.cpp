@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "error_of.h"
@@ -299,7 +300,7 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
     ASSERT_EQ(p.op(Query::self), FrontOp::update);
     EXPECT_TRUE(p.inspect);
     EXPECT_EQ(p.decision, Formula2::none);
-    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, k.leaves_in_candidates}});
+    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, k.leaves_in_candidates, 100000}});
     p = planner.plan(1000, 100);
     EXPECT_EQ(p.decision, k.decision);
     EXPECT_EQ(letter(p), k.op);
@@ -757,17 +758,47 @@ TEST(FramePlan, RestructuresOnlyWhereTheLastOnePaid) {
     planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 2.0});
     p = planner.plan(1000, 100);  // 2: update, inspection finds 200 leaves
     ASSERT_EQ(letter(p), 'u');
-    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, 200}});
+    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, 200, 1000}});
     p = planner.plan(1000, k.fronts_before);  // 3: the run's first restructure runs, to measure
     ASSERT_EQ(letter(p), 'r');
     EXPECT_FALSE(planner.restructure_price().measured());
     planner.finish(p, {.ms = k.restructure_ms, .front_nodes = k.fronts_before, .q_root = 2.0});
     p = planner.plan(1000, k.fronts_after);  // 4: update, the inspection finds 200 leaves again
     ASSERT_EQ(letter(p), 'u');
-    planner.finish(p, {.ms = 2.0, .front_nodes = k.fronts_after, .q_root = 2.5, .found = {4, 200}});
+    planner.finish(p, {.ms = 2.0, .front_nodes = k.fronts_after, .q_root = 2.5, .found = {4, 200, 1000}});
     EXPECT_TRUE(planner.restructure_price().measured());  // measured whether or not it decides
     p = planner.plan(1000, 100);  // 5: Formula 2 says restructure; the price decides
     EXPECT_EQ(letter(p), k.second) << k.restructure_ms;
     EXPECT_EQ(p.decision, k.second == 'r' ? Formula2::restructure : Formula2::refit);
+  }
+}
+
+// Before a restructure was measured, the bound decides: the front nodes in the candidates,
+// all removed for the stretch since the last maintenance (2 frames) at the steady frame's
+// cost per node (1 ms over 100 nodes), against one steady frame (1 ms). 1000 nodes would
+// save 20 ms: the restructure runs; 40 would save 0.8 ms: it only refits; 50 save 1 ms.
+// Off, it runs either way.
+TEST(FramePlan, FirstRestructureRunsWhereItsBoundPays) {
+  FrontStrategy c;
+  c.balance = c.restructure = true;
+  for (const auto& [priced, internal, expected] :
+       {std::tuple{true, 1000u, 'r'}, std::tuple{true, 40u, 'p'}, std::tuple{true, 50u, 'r'},
+        std::tuple{false, 40u, 'r'}}) {
+    SCOPED_TRACE(std::to_string(internal) + (priced ? " priced" : " unpriced"));
+    PipelineConfig config = cycle_config(2);
+    config.restructure.threshold_refit = 0.05;
+    config.restructure.threshold_build = 0.5;
+    config.restructure.priced = priced;
+    FramePlanner planner(c, config);
+    FramePlan p = planner.plan(1000, 100);  // 0: build
+    planner.finish(p, {.ms = 5.0, .front_nodes = 100, .q_root = 2.0});
+    p = planner.plan(1000, 100);  // 1: preserve
+    planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 2.0});
+    p = planner.plan(1000, 100);  // 2: update, inspection finds 200 leaves
+    ASSERT_EQ(letter(p), 'u');
+    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, 200, internal}});
+    p = planner.plan(1000, 100);  // 3
+    EXPECT_EQ(letter(p), expected);
+    EXPECT_EQ(p.decision, expected == 'r' ? Formula2::restructure : Formula2::refit);
   }
 }

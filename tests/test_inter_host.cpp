@@ -31,7 +31,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, HostInterDecisions, testing::ValuesIn(inter_dec
 // such object (the funnel with the ball, here) stays, and so does its partner.
 TEST(HostInter, UnsplitWithoutQueriesOrWithoutObjectsForTheSecondTree) {
   SceneFrames funnel = funnel_frames(12, 1);
-  EXPECT_FALSE(split_objects(funnel.topology).split);
+  EXPECT_FALSE(split_objects(funnel.topology, SplitRule::queries).split);
   auto expect_unsplit = [](const ObjectSplit& s) {
     EXPECT_FALSE(s.split);
     EXPECT_TRUE(s.deformable_self);
@@ -65,7 +65,7 @@ TEST(HostInter, ShippedInterScenesSplit) {
   for (const char* name : {"funnel-inter", "sphere-inter", "cloth-ball-inter"}) {
     SCOPED_TRACE(name);
     Scene s = open_scene(name, default_scenes_dir(), {{"res", 12}, {"frames", 3}});
-    const ObjectSplit split = split_objects(s.source->topology());
+    const ObjectSplit split = split_objects(s.source->topology(), SplitRule::rigid);
     EXPECT_TRUE(split.split);
     EXPECT_TRUE(split.deformable_self);
     EXPECT_TRUE(split.cross);

@@ -377,6 +377,11 @@ TEST(StaleScenesExact, Garment) { expect_all_pipelines_exact("garment", kSmallGa
 TEST(StaleScenesExact, GarmentAvatarQueries) {
   Scene s = open("garment-avatar", with(kSmallGarment, {{"body_subdivisions", 1}}));
   check_declared_queries("cpu", *s.source);
+  // The body in the second tree (--split-objects queries).
+  ASSERT_TRUE(split_objects(s.source->topology(), SplitRule::queries).rigid_tree_deforms);
+  PipelineConfig cfg = config_for("cpu", 0.5, 0.05, 2);
+  cfg.tree.split = SplitRule::queries;
+  check_pipelines_on(cfg, *s.source);
 }
 TEST(StaleScenesExact, ClothWave) { expect_all_pipelines_exact("cloth-wave-522k", {{"res", 24}, {"frames", 4}}); }
 

@@ -19,10 +19,12 @@
 
 namespace cdb {
 
-// What the inspection counts: degraded candidate subtrees, their leaves, and the sum of
-// their Q in thousandths (for the recorded mean).
+// What the inspection counts: degraded candidate subtrees, their leaves, the sum of their Q
+// in thousandths (for the recorded mean), and the front nodes in them (internal nodes of
+// the subtree, external ones on its leaves: at most what restructuring them can remove,
+// pipeline/restructure_price.h).
 struct InspectCounters {
-  unsigned long long candidates, candidate_leaves, candidate_q_milli;
+  unsigned long long candidates, candidate_leaves, candidate_q_milli, candidate_front_nodes;
 };
 
 struct InspectQualityFn {
@@ -41,10 +43,15 @@ struct InspectQualityFn {
 
   // Q(i) of Formula 1; false when no external front node lies under i (no leaf tests: the
   // subtree takes part in no collision and its quality does not matter).
+  CDB_HD_INLINE uint32_t internal_under(uint32_t i) const {
+    return internal_offset[i + (node_last[i] - node_first[i])] - internal_offset[i];
+  }
+  CDB_HD_INLINE uint32_t external_under(uint32_t i) const {
+    return external_offset[node_last[i] + 1] - external_offset[node_first[i]];
+  }
   CDB_HD_INLINE bool quality(uint32_t i, float& q) const {
-    const uint32_t s = node_first[i], t = node_last[i];
-    const uint32_t internal = internal_offset[i + (t - s)] - internal_offset[i];
-    const uint32_t external = external_offset[t + 1] - external_offset[s];
+    const uint32_t internal = internal_under(i);
+    const uint32_t external = external_under(i);
     if (external == 0) return false;
     q = float(internal) / float(external);
     return true;
@@ -71,6 +78,8 @@ struct InspectQualityFn {
     candidate_node[slot] = i;
     atomic_add_relaxed(&counters->candidate_leaves, static_cast<unsigned long long>(leaves_of(i)));
     atomic_add_relaxed(&counters->candidate_q_milli, static_cast<unsigned long long>(q * 1000.0f));
+    atomic_add_relaxed(&counters->candidate_front_nodes,
+                       static_cast<unsigned long long>(internal_under(i)) + external_under(i));
   }
 };
 

@@ -46,6 +46,6 @@ struct ObjectSplit {
   bool rigid_tree() const { return cross || rigid_self; }
 };
 
-ObjectSplit split_objects(const Topology& topology, SplitRule rule = SplitRule::queries);
+ObjectSplit split_objects(const Topology& topology, SplitRule rule);
 
 }  // namespace cdb

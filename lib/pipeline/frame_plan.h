@@ -37,6 +37,7 @@ struct FrontStrategy {
 // Degraded subtrees found by pipeline c's inspection: how many, and their leaves.
 struct Candidates {
   uint32_t count = 0, leaves = 0;
+  uint64_t front_nodes = 0;  // the front nodes in them (InspectCounters)
 };
 
 // One frame of a front pipeline.
@@ -325,7 +326,7 @@ class FramePlanner {
     if (share < config_.restructure.threshold_refit) return Formula2::refit;
     if (share >= config_.restructure.threshold_build) return Formula2::rebuild;
     // A restructure this run measured not to pay only refits (pipeline/restructure_price.h).
-    return price_.pays(pending_.leaves) ? Formula2::restructure : Formula2::refit;
+    return price_.pays(pending_.leaves, pending_.front_nodes) ? Formula2::restructure : Formula2::refit;
   }
 
   // What the maintenance rule runs on a refitted tree this frame (preserve: none due).

@@ -268,7 +268,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     if (!plan.inspect) return {};
     const InspectCounters& c = pairs_.last_counters().inspect;
     return {uint32_t(std::min<unsigned long long>(c.candidates, restructure_.max_candidates)),
-            uint32_t(c.candidate_leaves)};
+            uint32_t(c.candidate_leaves), uint64_t(c.candidate_front_nodes)};
   }
 
   // The build frame's generate and its ordering, per front node produced (a re-run after a

@@ -94,10 +94,12 @@ struct TreeConfig {
   // which a maintenance rebuilds (pipeline/tree_maintenance.h).
   double rebuild_growth = kRebuildGrowth;
   // Scenes with declared queries: which objects the second tree T_R takes
-  // (geometry/object_split.h). queries: the rigid objects and the deformable ones only an
-  // inter with the first tree names (an avatar), whose own self front would find nothing
-  // the queries keep; rigid: the rigid objects only.
-  SplitRule split = SplitRule::queries;
+  // (geometry/object_split.h). rigid: the rigid objects only; queries: also the deformable
+  // ones only an inter with the first tree names (an avatar), whose own self front finds
+  // nothing the queries keep. rigid by default: on the H200 the avatar apart ran the
+  // garment with its avatar and flamenco slower (their cloth's self pairs dominate, and a
+  // split scene builds no rebuild ahead; docs/experiments.md).
+  SplitRule split = SplitRule::rigid;
 };
 
 // Front maintenance of the front pipelines (pipeline/front_maintenance.h, frame_plan.h).
