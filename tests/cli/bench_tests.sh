@@ -79,7 +79,7 @@ mkdir -p "$tmp/bar/new" "$tmp/bar/base"
 "$cdbench" run --device cpu --quiet --scene funnel --set res=16 --frames 0:4 --repeat 2 --pipeline c,b,a,grid,hash \
   --out "$tmp/bar/new/funnel-{pipeline}.h5" >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; fail "cdbench run (bar)"; }
 cp "$tmp/bar/new/funnel-c.h5" "$tmp/bar/new/funnel-b.h5" "$tmp/bar/base/"
-check "bar_report scene row" 0 "^\| funnel \| [0-9,]+ \| [0-9,]+ \| [0-9.]+ / [0-9.]+ / [0-9.]+ \| [0-9.]+ \|( [0-9.]+ \|){4} [0-9]+ \| [0-9.]+ \| [0-9.]+ \| 1\.00x \|$" -- \
+check "bar_report scene row" 0 "^\| funnel \| [0-9,]+ \| [0-9,]+ \| [0-9.]+ / [0-9.]+ / [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|( [0-9.]+ \|){4} [0-9]+ \| [0-9.]+ \| [0-9.]+ \| 1\.00x \|$" -- \
   "$python" "$root/bench/bar_report.py" "$tmp/bar" --base base
 has "bar_report targets row" "$tmp/out" "^\| funnel \| [0-9.]+ \| — \| [abc] [0-9.]+ / (grid|hash) [0-9.]+ = [0-9.]+x \((met|not met)\) \| [0-9.]+ \| [0-9.]+ \((met|not met)\) \|$"
 
