@@ -41,6 +41,7 @@ std::span<const OptionRow> option_table() {
       {"compact-share", fronts, setting},
       {"rebuild-degraded", fronts, setting},
       {"rebuild-ahead", fronts, setting},
+      {"maintain-ahead", fronts, setting},
       {"rebuild-growth", fronts, setting},
       {"regenerate", fronts, setting},
       {"update-probe", fronts, setting},

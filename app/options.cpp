@@ -169,6 +169,11 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       ->group(kTuningGroup)
       ->check(finite_at_least(0))
       ->capture_default_str();
+  add_switch(cmd, "--maintain-ahead", c.tree.maintain_ahead,
+             "front pipelines that build ahead (--rebuild-ahead): each maintenance due (--front-cycle) is a rebuild "
+             "built ahead instead of an update or generate in its frame (pipeline c then never inspects); off: "
+             "maintenances run in their frames")
+      ->group(kTuningGroup);
   add_switch(cmd, "--rebuild-degraded", c.tree.rebuild_degraded,
              "front pipelines with --front-cycle auto: a maintenance rebuilds the tree and generates every front "
              "instead of updating once the rent the fronts paid on the tree since the build (the share of each "

@@ -802,3 +802,26 @@ TEST(FramePlan, FirstRestructureRunsWhereItsBoundPays) {
     EXPECT_EQ(p.decision, expected == 'r' ? Formula2::restructure : Formula2::refit);
   }
 }
+
+// --maintain-ahead where rebuilds are built ahead: each maintenance the cycle asks for (every
+// third frame since the fronts were generated) is a rebuild built ahead (A), adopted at the
+// next frame (D), which generated the fronts; no frame probes. Off: updates (u).
+TEST(FramePlan, MaintenancesAheadAreRebuildsBuiltAhead) {
+  for (const bool ahead : {false, true}) {
+    SCOPED_TRACE(ahead ? "maintained ahead" : "updated");
+    PipelineConfig cfg = cycle_config(3);
+    cfg.tree.maintain_ahead = ahead;
+    FramePlanner planner(FrontStrategy{}, cfg);
+    planner.reset({true, false, false}, 1, true);
+    std::string s;
+    for (int f = 0; f < 9; ++f) {
+      const FramePlan p = planner.plan(1000, 100, 0.0, true);
+      s += p.ahead ? 'A' : p.adopt ? 'D' : letter(p);
+      if (ahead) {
+        EXPECT_FALSE(p.probe) << "frame " << f;
+      }
+      planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 1.0});
+    }
+    EXPECT_EQ(s, ahead ? "bppADppAD" : "bppuppupp");
+  }
+}

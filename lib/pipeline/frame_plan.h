@@ -115,6 +115,8 @@ class FramePlanner {
     }
   }
   bool builds_ahead() const { return builds_ahead_; }
+  // --maintain-ahead: every maintenance after the first frame is a rebuild built ahead.
+  bool maintains_ahead() const { return builds_ahead_ && config_.tree.maintain_ahead && frame_ > 0; }
 
   // Before a run (reset): each frame runs the recorded step of `plan` instead of deciding
   // one; nullptr decides again. The plan forces the trees' build, refit or stale boxes,
@@ -236,11 +238,15 @@ class FramePlanner {
     // An adaptive one that comes due unprobed waits a frame for its probe, which sizes its
     // buffers and measures the tree (FrontMaintenance::update_near).
     FrontOp due = maintenance_op(front_nodes);
+    // --maintain-ahead: the maintenance is a rebuild built ahead, off the frames' critical
+    // path, and needs no probe.
+    const bool ahead_maintenance = maintains_ahead() && due != FrontOp::preserve && p.decision != Formula2::restructure;
     if (due != FrontOp::preserve && maintenance_.adaptive() && config_.fronts.update_probe && !probed_ &&
-        p.decision != Formula2::restructure)
+        p.decision != Formula2::restructure && !ahead_maintenance)
       due = FrontOp::preserve;
     p.rebuild = strategy_.rebuild_every_frame || p.decision == Formula2::rebuild ||
-                rebuild_due(frame_, config_.tree.rebuild_every) || (due != FrontOp::preserve && tree_.rebuild_due());
+                rebuild_due(frame_, config_.tree.rebuild_every) || (due != FrontOp::preserve && tree_.rebuild_due()) ||
+                ahead_maintenance;
     // --refit-every: between refits both trees keep their last boxes (not conservative).
     p.stale = !p.rebuild && !refit_due(frame_, config_.tree.refit_every);
     // The self fronts of T_D follow the maintenance rule, or restructure. The cross fronts
@@ -257,7 +263,7 @@ class FramePlanner {
     p.inspect = strategy_.restructure && q_ref_ > 0.0 &&
                 (p.op(Query::self) == FrontOp::update || (p.op(Query::self) == FrontOp::generate && !p.rebuild));
     // The probe rides on a preserve (a restructure frame's self fronts do not preserve).
-    p.probe = config_.fronts.update_probe && !p.rebuild && step(p).runs(FrontOp::preserve) &&
+    p.probe = config_.fronts.update_probe && !maintains_ahead() && !p.rebuild && step(p).runs(FrontOp::preserve) &&
               maintenance_.update_near(frame_, generated_, produced_, front_nodes);
     // Built ahead: the frame refits and preserves, and the rebuild runs beside it and the
     // frames after it (FramePlan::ahead), which preserve until it is adopted (in_flight).

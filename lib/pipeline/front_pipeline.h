@@ -356,10 +356,12 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     exec_.reserve_side();
   }
 
-  // The ahead frame's part: the faces' boxes on the frame's stream (the build's only read of
-  // the mesh, whose buffer the next frame's upload overwrites), then the build, its order,
-  // the generate and the fronts' ordering on the side stream.
+  // The ahead frame's part: room for the new self fronts (what the current ones hold, and a
+  // spare), the faces' boxes on the frame's stream (the build's only read of the mesh, whose
+  // buffer the next frame's upload overwrites), then the build, its order, the generate and
+  // the fronts' ordering on the side stream.
   void build_ahead(const MeshView& mesh) {
+    ahead_front_.reserve_like(exec_, self());
     timed(Phase::build, [&] { build_boxes(exec_, ahead_bvh_, mesh, mesh_.deformable()); });
     exec_.mark_side_fork();
     ahead_due_ = true;

@@ -386,6 +386,21 @@ class FrontQuery {
     return grew;
   }
 
+  // Before a generate of fronts like `o`'s (a build ahead's, beside the current fronts):
+  // room for as many nodes as `o` holds and a spare, so that a generate on the side fits and
+  // is not run again in the adopting frame unless contact grew past the spare. True if a
+  // buffer grew.
+  bool reserve_like(Exec& exec, const FrontQuery& o) {
+    if (!active_) return false;
+    bool grew = false;
+    for (int k = 0; k < 2; ++k) {
+      const size_t need = o.size(k) + o.size(k) / kAheadSpareDiv;
+      grew = reserve_headroom(exec, front_[k], need) || grew;
+    }
+    revision_ += grew;
+    return grew;
+  }
+
   // Exchanges the fronts with `o`'s, each query keeping its trees: fronts generated ahead on
   // a tree built ahead become current as that tree replaces this query's (Lbvh::swap).
   void swap_fronts(FrontQuery& o) {

@@ -90,6 +90,10 @@ struct TreeConfig {
   // (pipeline/front_pipeline.h); off: the rebuilding frame builds and generates itself.
   // auto: on the GPU, off on the host (where the side's work runs in the frame).
   AutoSwitch rebuild_ahead = AutoSwitch::automatic;
+  // Front pipelines that build ahead: each maintenance due (an update or a generate) is a
+  // rebuild built ahead instead, so that no frame waits for one; pipeline c then never
+  // inspects (its inspections follow updates).
+  bool maintain_ahead = false;
   // --rebuild-degraded: the growth of the fronts (an update's count over a rebuild's) past
   // which a maintenance rebuilds (pipeline/tree_maintenance.h).
   double rebuild_growth = kRebuildGrowth;
