@@ -13,6 +13,7 @@
 
 #include "cdbench/core/error.h"
 #include "cdbench/geometry/float_spacing.h"
+#include "scenes/load/frames_descriptor.h"
 #include "scenes/load/obj_sequence.h"
 #include "scenes/load/scene.h"
 #include "scenes/load/scene_label.h"
@@ -83,26 +84,29 @@ std::optional<uint64_t> written_frame(const std::filesystem::path& file) {
   return std::stoull(m[1].str());
 }
 
-// --out DIR may hold only frames an earlier `scenes generate` wrote: anything else there
-// (another scene's meshes, notes) would be mixed into the sequence that reads the
-// directory back. Those frames may be another scene's, kept on purpose: replaced only
-// with `overwrite`, as `run --out` replaces a file. Checked before any work.
+// --out DIR may hold only frames (and the frames' descriptor) an earlier `scenes generate`
+// wrote: anything else there (another scene's meshes, notes) would be mixed into the
+// sequence that reads the directory back. Those files may be another scene's, kept on
+// purpose: replaced only with `overwrite`, as `run --out` replaces a file. Checked before
+// any work.
 void check_generate_dir(const std::filesystem::path& dir, bool overwrite) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(dir, ec)) return;
   if (!fs::is_directory(dir, ec)) fail_usage("--out " + dir.string() + ": not a directory");
   size_t frames = 0;
+  bool described = false;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    if (!it->is_regular_file(ec) || !written_frame(it->path()))
+    const bool descriptor = it->path().filename() == kFramesDescriptorName;
+    if (!it->is_regular_file(ec) || !(written_frame(it->path()) || descriptor))
       fail_usage("--out " + dir.string() + ": holds " + it->path().filename().string() +
                  ", which `scenes generate` did not write; give an empty or new directory");
-    ++frames;
+    descriptor ? void(described = true) : void(++frames);
   }
   if (ec) fail("--out " + dir.string() + ": cannot list the directory: " + ec.message());
-  if (frames && !overwrite)
+  if ((frames || described) && !overwrite)
     fail_usage("--out " + dir.string() + ": holds " + std::to_string(frames) +
-               (frames == 1 ? " frame" : " frames") +
+               (frames == 1 ? " frame" : " frames") + (described ? std::string(" and ") + kFramesDescriptorName : "") +
                " an earlier generation wrote; pass --overwrite to replace them, or give an empty or new directory");
 }
 
@@ -129,8 +133,17 @@ int scenes_generate(const ScenesOptions& opts) {
   const Scene s = open_scene(opts.scene, dir, parse_set_overrides(opts.sets));
   write_obj_sequence(*s.source, opts.out_dir);
   const size_t removed = remove_stale_frames(opts.out_dir, s.source->num_frames());
+  const std::filesystem::path descriptor = std::filesystem::path(opts.out_dir) / kFramesDescriptorName;
+  const bool described = write_frames_descriptor(s.source->topology(), s.description, opts.out_dir);
+  std::error_code ec;
+  // An earlier generation's descriptor would give these frames another scene's objects.
+  if (!described && std::filesystem::exists(descriptor, ec) && !std::filesystem::remove(descriptor, ec))
+    fail(descriptor.string() + ": cannot remove the descriptor an earlier generation left: " + ec.message());
   std::printf("wrote %u frames of %s (%zu triangles) to %s\n", s.source->num_frames(), s.name.c_str(),
               s.source->topology().faces.size(), opts.out_dir.c_str());
+  if (described)
+    std::printf("wrote its objects and declared queries to %s: run it as --scene %s\n", descriptor.c_str(),
+                descriptor.c_str());
   if (removed)
     std::printf("removed %zu frames left there by an earlier generation (frame %u on)\n", removed,
                 s.source->num_frames());

@@ -62,19 +62,11 @@ each_binary() {
   done
 }
 
-# What `run --scene` is given for scene $1: its frames, or for garment-avatar a descriptor
-# over them that restores its two objects and declared queries (OBJ frames keep neither;
-# scenes/garment-avatar.json: 300 x 241 skirt vertices make 144,000 cloth triangles, then
-# the body's 16 x 5,126).
+# What `run --scene` is given for scene $1: its frames, or the descriptor `scenes generate`
+# wrote beside them where the scene declares queries (garment-avatar), which restores its
+# objects and queries (OBJ frames keep neither).
 scene_of() {
-  case $1 in
-    garment-avatar)
-      printf '%s\n' '{"frames": "garment-avatar", "objects": [{"name": "cloth", "faces": [0, 144000]},' \
-        '{"name": "body", "faces": [144000, 82016]}], "queries": {"self": ["cloth"], "inter": [["cloth", "body"]]}}' \
-        > "$frames/garment-avatar.json"
-      echo "$frames/garment-avatar.json" ;;
-    *) echo "$frames/$1" ;;
-  esac
+  if [[ -f "$frames/$1/scene.json" ]]; then echo "$frames/$1/scene.json"; else echo "$frames/$1"; fi
 }
 
 {

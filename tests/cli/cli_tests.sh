@@ -172,6 +172,20 @@ check "scenes generate over earlier frames refused" 2 "^cdbench: error: --out $t
 [[ ! -e $tmp/gen/frame_0002.obj ]] && echo "ok   refused generation wrote nothing" || fail "refused generation wrote frames"
 check "scenes generate --overwrite replaces them" 0 "wrote 3 frames of cloth-wave" -- \
   "$cdbench" scenes generate cloth-wave --set res=4 --set frames=3 --out "$tmp/gen" --overwrite
+# A scene with declared queries: its objects and queries go into DIR/scene.json, which runs
+# it with them (the same pairs by query as the scene itself); a scene without them, written
+# over it, removes it.
+check "scenes generate writes the queries' descriptor" 0 "wrote its objects and declared queries to $tmp/genq/scene.json" -- \
+  "$cdbench" scenes generate cloth-ball-inter --set res=12 --set frames=3 --out "$tmp/genq"
+direct=$("$cdbench" run --device cpu --quiet --scene cloth-ball-inter --set res=12 --set frames=3 2>&1 | grep -E "^  pairs ")
+described=$("$cdbench" run --device cpu --quiet --scene "$tmp/genq/scene.json" 2>&1 | grep -E "^  pairs ")
+[[ -n $direct && $described == "$direct" ]] && echo "ok   the descriptor runs the frames with their queries" ||
+  fail "the descriptor's pairs: '$described', the scene's: '$direct'"
+[[ $direct == *"(self "*", inter "* ]] && echo "ok   the scene's pairs are by query" || fail "no pairs by query: $direct"
+check "generate over a descriptor refused" 2 "holds 3 frames and scene.json an earlier generation wrote" -- \
+  "$cdbench" scenes generate cloth-wave --set res=4 --set frames=3 --out "$tmp/genq"
+"$cdbench" scenes generate cloth-wave --set res=4 --set frames=3 --out "$tmp/genq" --overwrite >/dev/null
+[[ ! -e $tmp/genq/scene.json ]] && echo "ok   a scene without queries removes the old descriptor" || fail "scene.json left"
 mkdir -p "$tmp/own-scenes"
 printf '{"generator": "funnel", "params": {"res": 4, "frames": 2}}' >"$tmp/own-scenes/tiny.json"
 check "scenes info takes --scenes-dir after the scene" 0 "^scene +tiny" -- "$cdbench" scenes info tiny --scenes-dir "$tmp/own-scenes"
