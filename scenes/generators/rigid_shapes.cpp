@@ -1,8 +1,9 @@
 #include "scenes/generators/rigid_shapes.h"
 
 #include <algorithm>
-#include <map>
 #include <utility>
+
+#include "scenes/generators/subdivision.h"
 
 namespace cdb::scene {
 
@@ -11,30 +12,15 @@ RigidMesh icosphere(uint32_t level, double radius) {
   RigidMesh m;
   m.vertices = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
                 {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  m.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-             {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-             {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  const std::vector<Tri> icosahedron = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                        {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                        {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (auto& v : m.vertices) v = normalized(v);
-  for (uint32_t l = 0; l < level; ++l) {
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoint;
-    auto mid = [&](uint32_t a, uint32_t b) {
-      const auto key = std::minmax(a, b);
-      auto it = midpoint.find(key);
-      if (it != midpoint.end()) return it->second;
-      m.vertices.push_back(normalized(m.vertices[a] + m.vertices[b]));
-      return midpoint[key] = uint32_t(m.vertices.size() - 1);
-    };
-    std::vector<Tri> faces;
-    faces.reserve(4 * m.faces.size());
-    for (const Tri& t : m.faces) {
-      const uint32_t ab = mid(t.v0, t.v1), bc = mid(t.v1, t.v2), ca = mid(t.v2, t.v0);
-      faces.push_back({t.v0, ab, ca});
-      faces.push_back({t.v1, bc, ab});
-      faces.push_back({t.v2, ca, bc});
-      faces.push_back({ab, bc, ca});
-    }
-    m.faces = std::move(faces);
-  }
+  // Each midpoint pushed onto the sphere as it is made (half the sum normalizes to the same
+  // bits as the sum: scaling by a power of two is exact).
+  const Subdivision s = subdivide(icosahedron, uint32_t(m.vertices.size()), level);
+  s.apply(m.vertices, [](dvec3 p) { return normalized(p); });
+  m.faces = s.faces;
   for (auto& v : m.vertices) v = radius * v;
   return m;
 }

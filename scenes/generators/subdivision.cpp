@@ -32,10 +32,13 @@ Subdivision subdivide(const std::vector<Tri>& faces, uint32_t vertices, uint32_t
   return s;
 }
 
-void Subdivision::apply(std::vector<dvec3>& positions) const {
+void Subdivision::apply(std::vector<dvec3>& positions, const std::function<dvec3(dvec3)>& project) const {
   positions.resize(base_vertices);
   positions.reserve(vertices());
-  for (const auto& [a, b] : midpoints) positions.push_back(0.5 * (positions[a] + positions[b]));
+  for (const auto& [a, b] : midpoints) {
+    const dvec3 m = 0.5 * (positions[a] + positions[b]);
+    positions.push_back(project ? project(m) : m);
+  }
 }
 
 }  // namespace cdb::scene

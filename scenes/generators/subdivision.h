@@ -4,6 +4,7 @@
 // only its triangles are smaller: a scene gets a finer mesh of the same shape, as a
 // simulation's collision mesh is often finer than the model it was skinned from.
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -20,8 +21,10 @@ struct Subdivision {
   std::vector<std::pair<uint32_t, uint32_t>> midpoints;
 
   uint32_t vertices() const { return base_vertices + uint32_t(midpoints.size()); }
-  // The coarse mesh's positions followed by the new vertices'.
-  void apply(std::vector<dvec3>& positions) const;
+  // The coarse mesh's positions followed by the new vertices'; with `project`, each new
+  // vertex is projected as it is made (onto the unit sphere: icosphere), so later midpoints
+  // are of projected vertices.
+  void apply(std::vector<dvec3>& positions, const std::function<dvec3(dvec3)>& project = {}) const;
 };
 
 // `levels` 0 gives the mesh as it is.
