@@ -205,13 +205,6 @@ nlohmann::ordered_json scene_json(const Scene& s) {
   nlohmann::ordered_json objects = nlohmann::ordered_json::array();
   for (const auto& ob : topo.objects)
     objects.push_back({{"name", ob.name}, {"first_face", ob.first_face}, {"faces", ob.num_faces}, {"rigid", ob.rigid}});
-  nlohmann::ordered_json queries = nullptr;  // every overlapping pair
-  if (topo.queries.declared) {
-    queries = {{"self", nlohmann::ordered_json::array()}, {"inter", nlohmann::ordered_json::array()}};
-    for (uint32_t o : topo.queries.self) queries["self"].push_back(topo.objects[o].name);
-    for (const auto& [a, b] : topo.queries.inter)
-      queries["inter"].push_back(nlohmann::ordered_json::array({topo.objects[a].name, topo.objects[b].name}));
-  }
   nlohmann::ordered_json precision = nullptr;
   if (const auto fs = first_frame_spacing(s))
     precision = {{"median_edge", fs->median_edge}, {"float_spacing", fs->spacing}, {"largest", fs->largest},
@@ -235,7 +228,7 @@ nlohmann::ordered_json scene_json(const Scene& s) {
           {"parameters", std::move(parameters)},
           {"box_faces", topo.box_faces},
           {"objects", std::move(objects)},
-          {"queries", std::move(queries)},
+          {"queries", queries_json(topo)},
           {"precision", std::move(precision)},
           {"frame_extents", std::move(frames)}};
 }

@@ -30,7 +30,7 @@ class BvhPipeline final : public QueryPipeline<Exec, Timer> {
     const bool rebuild = rebuild_due(frame, this->config_.tree.rebuild_every);
     if (!rebuild && !refit_due(frame, this->config_.tree.refit_every)) return "stale";
     update_hierarchy(this->exec_, this->timer_, rigid_bvh_, mesh, this->mesh_.rigid(),
-                     frame == 0 || (rebuild && this->mesh_.split().rigid_tree_deforms),
+                     this->mesh_.split().rigid_tree_builds(frame == 0, rebuild),
                      this->config_.tree.morton_bits, false, this->mesh_.face_object());
     return update_hierarchy(this->exec_, this->timer_, bvh_, mesh, this->mesh_.deformable(), rebuild,
                             this->config_.tree.morton_bits);

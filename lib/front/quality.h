@@ -41,14 +41,15 @@ struct InspectQualityFn {
 
   CDB_HD_INLINE uint32_t leaves_of(uint32_t i) const { return node_last[i] - node_first[i] + 1; }
 
-  // Q(i) of Formula 1; false when no external front node lies under i (no leaf tests: the
-  // subtree takes part in no collision and its quality does not matter).
+  // The internal front nodes whose node lies in subtree i, and the external ones whose leaf does.
   CDB_HD_INLINE uint32_t internal_under(uint32_t i) const {
     return internal_offset[i + (node_last[i] - node_first[i])] - internal_offset[i];
   }
   CDB_HD_INLINE uint32_t external_under(uint32_t i) const {
     return external_offset[node_last[i] + 1] - external_offset[node_first[i]];
   }
+  // Q(i) of Formula 1; false when no external front node lies under i (no leaf tests: the
+  // subtree takes part in no collision and its quality does not matter).
   CDB_HD_INLINE bool quality(uint32_t i, float& q) const {
     const uint32_t internal = internal_under(i);
     const uint32_t external = external_under(i);

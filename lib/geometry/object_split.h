@@ -44,6 +44,11 @@ struct ObjectSplit {
   // T_D also serves the T_D-T_R traversal: its refitted leaves are the query boxes.
   bool deformable_tree() const { return deformable_self || cross; }
   bool rigid_tree() const { return cross || rigid_self; }
+  // Whether T_R builds on a frame that builds T_D (`rebuild`): on the first frame, and with
+  // every rebuild where it deforms; refitted otherwise.
+  bool rigid_tree_builds(bool first_frame, bool rebuild) const {
+    return first_frame || (rebuild && rigid_tree_deforms);
+  }
 };
 
 ObjectSplit split_objects(const Topology& topology, SplitRule rule);

@@ -214,7 +214,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     const std::string op = update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild,
                                             config_.tree.morton_bits, strategy().radix_sort);
     update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(),
-                     planner_.frame() == 0 || (rebuild && mesh_.split().rigid_tree_deforms), config_.tree.morton_bits,
+                     mesh_.split().rigid_tree_builds(planner_.frame() == 0, rebuild), config_.tree.morton_bits,
                      strategy().radix_sort, mesh_.face_object());
     return op;
   }

@@ -4,11 +4,18 @@
 #include <cstring>
 #include <fstream>
 
-#include <nlohmann/json.hpp>
-
 #include "cdbench/core/error.h"
 
 namespace cdb {
+
+nlohmann::ordered_json queries_json(const Topology& topology) {
+  if (!topology.queries.declared) return nullptr;
+  nlohmann::ordered_json self = nlohmann::ordered_json::array(), inter = nlohmann::ordered_json::array();
+  for (uint32_t o : topology.queries.self) self.push_back(topology.objects.at(o).name);
+  for (const auto& [a, b] : topology.queries.inter)
+    inter.push_back({topology.objects.at(a).name, topology.objects.at(b).name});
+  return {{"self", std::move(self)}, {"inter", std::move(inter)}};
+}
 
 bool write_frames_descriptor(const Topology& topology, const std::string& description, const std::filesystem::path& dir) {
   if (!topology.queries.declared) return false;
@@ -20,11 +27,7 @@ bool write_frames_descriptor(const Topology& topology, const std::string& descri
     objects.push_back(std::move(entry));
   }
   d["objects"] = std::move(objects);
-  nlohmann::ordered_json self = nlohmann::ordered_json::array(), inter = nlohmann::ordered_json::array();
-  for (uint32_t o : topology.queries.self) self.push_back(topology.objects.at(o).name);
-  for (const auto& [a, b] : topology.queries.inter)
-    inter.push_back({topology.objects.at(a).name, topology.objects.at(b).name});
-  d["queries"] = {{"self", std::move(self)}, {"inter", std::move(inter)}};
+  d["queries"] = queries_json(topology);
 
   const std::filesystem::path file = dir / kFramesDescriptorName;
   const std::filesystem::path part = dir / (std::string(kFramesDescriptorName) + ".part");

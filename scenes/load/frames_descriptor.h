@@ -6,11 +6,17 @@
 #include <filesystem>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "cdbench/geometry/mesh.h"
 
 namespace cdb {
 
 inline constexpr const char* kFramesDescriptorName = "scene.json";
+
+// The declared queries by object name, as a descriptor's "queries" takes them ({"self":
+// [names], "inter": [[name, name]]}); null where none are declared (every pair).
+nlohmann::ordered_json queries_json(const Topology& topology);
 
 // Writes `dir`/scene.json for frames of `topology` when its queries are declared, written
 // whole or not at all (a failed write is removed and fails naming the file); returns whether
