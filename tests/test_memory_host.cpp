@@ -163,3 +163,53 @@ TEST(MemoryStats, FrontGrowthIsCountedAndExact) {
 }
 
 }  // namespace cdb::test
+
+namespace cdb::test {
+
+// --rebuild-ahead: the tree and fronts built ahead hold no build scratch and no produced
+// arrays of their own. The current tree and self fronts lend theirs for each build ahead and
+// get them back with the adoption, so at the peak one set of each is held, whatever its
+// buffers' names; and the run is as exact as its builds in frame.
+TEST(MemoryStats, BuildsAheadBorrowTheScratchAndProducedArrays) {
+  auto wave = make_generator("cloth-wave", {{"res", 32}, {"frames", 12}});
+  const Topology& topo = wave->topology();
+  PipelineConfig cfg;
+  cfg.device = "cpu";
+  cfg.name = "c";
+  cfg.launch.phase_timing = false;
+  cfg.tree.rebuild_ahead = AutoSwitch::on;
+  cfg.tree.rebuild_every = 3;
+  auto p = make_pipeline(cfg);
+  p->set_topology(topo);
+  std::vector<vec3f> v;
+  uint32_t adopted = 0;
+  for (uint32_t f = 0; f < wave->num_frames(); ++f) {
+    wave->frame(f, v);
+    const FrameStats s = p->run_frame(v);
+    adopted += s.plan && s.plan->trees == TreeStep::adopt;
+    const PairSetDiff d = diff_pair_sets(sweep_oracle_pairs(topo, v, false), p->sorted_pairs());
+    EXPECT_TRUE(d.equal()) << "frame " << f << ": " << d.missing_count << " missing";
+  }
+  ASSERT_GE(adopted, 2u);
+  const MemoryStats m = p->memory();
+  EXPECT_EQ(sum_at_peak(m), m.peak_bytes);
+  // An array keeps its name through the lending and the swaps: the second tree's and
+  // fronts' were never reserved.
+  for (const char* a : {"prim_lo", "build_lo", "build_left", "morton", "morton_sorted", "new_index", "temp"}) {
+    EXPECT_GT(bytes_of(m, std::string("bvh.") + a), 0u) << a;
+    EXPECT_EQ(bytes_of(m, std::string("ahead_bvh.") + a), 0u) << a;
+  }
+  for (const char* a : {"node_lo", "leaf_lo", "node_escape"}) {
+    EXPECT_GT(bytes_of(m, std::string("bvh.") + a), 0u) << a;
+    EXPECT_GT(bytes_of(m, std::string("ahead_bvh.") + a), 0u) << a;
+  }
+  for (const char* kind : {"_internal.", "_external."}) {
+    for (const char* a : {"raw_prim", "raw_node", "raw_mark", "order_counts"}) {
+      EXPECT_GT(bytes_of(m, std::string("front") + kind + a), 0u) << kind << a;
+      EXPECT_EQ(bytes_of(m, std::string("ahead_front") + kind + a), 0u) << kind << a;
+    }
+    EXPECT_GT(bytes_of(m, std::string("ahead_front") + kind + "prim"), 0u) << kind;
+  }
+}
+
+}  // namespace cdb::test

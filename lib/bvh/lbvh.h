@@ -14,6 +14,9 @@
 
 namespace cdb {
 
+// Whether a tree holds its build scratch or borrows another's (Lbvh::build_scratch).
+enum class BuildScratch { own, lent };
+
 // Storage of one ordered LBVH and the scratch its build needs, all from the executor's
 // memory. Sized once by reserve(num_leaves); a later reserve for more leaves is a logged
 // growth.
@@ -29,12 +32,10 @@ struct Lbvh {
   void reserve(Exec& exec, uint32_t n) {
     num_leaves = n;
     const size_t internal = n > 1 ? n - 1 : 0;
-    for (auto* a : {&leaf_lo, &leaf_hi, &prim_lo, &prim_hi, &build_lo, &build_hi}) a->reserve(n);
+    for (auto* a : {&leaf_lo, &leaf_hi}) a->reserve(n);
     for (auto* a : {&node_lo, &node_hi}) a->reserve(internal);
-    for (auto* a : {&leaf_prim, &leaf_parent, &leaf_escape, &prim_iota, &tile_start, &tile_scan}) a->reserve(n);
-    for (auto* a : {&node_left, &node_right, &node_parent, &node_escape, &node_first, &node_last,
-                    &build_left, &build_right, &build_parent, &build_first, &build_last,
-                    &other_bound, &new_index, &refit_flag})
+    for (auto* a : {&leaf_prim, &leaf_parent, &leaf_escape, &tile_start, &tile_scan}) a->reserve(n);
+    for (auto* a : {&node_left, &node_right, &node_parent, &node_escape, &node_first, &node_last, &refit_flag})
       a->reserve(internal);
     // refit.h counts arrivals without resetting them: every build zeroes them here.
     exec.fill(refit_flag.data(), internal, 0u);
@@ -51,16 +52,17 @@ struct Lbvh {
       for (auto* a : {&level_node, &level_code}) a->reserve(n);
       level_link.reserve(2 * size_t(n));
     }
-    for (auto* a : {&morton, &morton_sorted}) a->reserve(n);
-    centroid_box.reserve(1);
-    size_t t = exec.sort_temp_bytes(n);
-    t = t > exec.scan_temp_bytes(size_t(n) + 1) ? t : exec.scan_temp_bytes(size_t(n) + 1);
-    t = t > exec.reduce_temp_bytes(n) ? t : exec.reduce_temp_bytes(n);
-    temp.reserve(t > 256 ? t : 256);
+    if (build_scratch == BuildScratch::own) reserve_build_scratch(exec, n);
+  }
+
+  // Exchanges the build scratch with `o`'s: a tree of lent scratch borrows that of a tree
+  // of as many leaves that builds nothing meanwhile, and gives it back the same way.
+  void swap_build_scratch(Lbvh& o) {
+    each_scratch_array([&](auto array, const char*) { std::swap(this->*array, o.*array); });
   }
 
   // Exchanges every buffer and size with `o` (a tree built ahead replaces the current one:
-  // pipeline/front_pipeline.h); the build settings above stay, the two trees share them.
+  // pipeline/front_pipeline.h); the build settings below stay, the two trees share them.
   void swap(Lbvh& o) {
     std::swap(num_leaves, o.num_leaves);
     std::swap(morton_bits, o.morton_bits);
@@ -106,6 +108,10 @@ struct Lbvh {
   // climb with hand-overs (bvh/refit.h); tests compare the two. Set before reserve. By
   // default as --refit-levels auto: on the GPU, not on the host.
   bool refit_levels = Exec::is_device;
+  // Whether reserve gives the tree its own build scratch. A tree built ahead (--rebuild-ahead)
+  // borrows the current tree's for its build (swap_build_scratch), which only refits
+  // meanwhile: a build ahead then costs the tree, not its scratch too (126 bytes a leaf).
+  BuildScratch build_scratch = BuildScratch::own;
 
   // The ordered tree.
   Array<vec4f> leaf_lo, leaf_hi;
@@ -117,8 +123,10 @@ struct Lbvh {
   // so internal nodes of segment l occupy [offset_log[l], offset_log[l+1]).
   Array<uint32_t> count_log, offset_log;
 
-  // Build scratch: boxes in input order, Morton keys, the unordered tree. A restructure,
-  // which replaces a build on its frame, borrows part of it (bvh/restructure.h).
+  // Build scratch: boxes in input order, Morton keys, the unordered tree, the sorts' and
+  // scans' temporary storage (the tiles' index at a build, the fronts' ordering of this
+  // tree: pipeline/front_query.h). A restructure, which replaces a build on its frame,
+  // borrows part of it (bvh/restructure.h); so does a tree built ahead (build_scratch).
   Array<vec4f> prim_lo, prim_hi;
   Array<Aabb<float>> centroid_box;
   Array<uint64_t> morton, morton_sorted;
@@ -144,14 +152,27 @@ struct Lbvh {
   Array<std::byte> temp;
 
  private:
+  void reserve_build_scratch(Exec& exec, uint32_t n) {
+    const size_t internal = n > 1 ? n - 1 : 0;
+    for (auto* a : {&prim_lo, &prim_hi, &build_lo, &build_hi}) a->reserve(n);
+    prim_iota.reserve(n);
+    for (auto* a : {&build_left, &build_right, &build_parent, &build_first, &build_last, &other_bound, &new_index})
+      a->reserve(internal);
+    for (auto* a : {&morton, &morton_sorted}) a->reserve(n);
+    centroid_box.reserve(1);
+    size_t t = exec.sort_temp_bytes(n);
+    t = t > exec.scan_temp_bytes(size_t(n) + 1) ? t : exec.scan_temp_bytes(size_t(n) + 1);
+    t = t > exec.reduce_temp_bytes(n) ? t : exec.reduce_temp_bytes(n);
+    temp.reserve(t > 256 ? t : 256);
+  }
+
   // Every buffer with its name, as f(&Lbvh::buffer, "buffer"): one list for the constructor's
-  // binding and for swap, so that neither can leave one out.
+  // binding and for swap, so that neither can leave one out; the build scratch's its own
+  // list (swap_build_scratch).
   template <class F>
   static void each_array(F&& f) {
     for (auto [array, buffer] : {std::pair{&Lbvh::leaf_lo, "leaf_lo"}, {&Lbvh::leaf_hi, "leaf_hi"},
                                  {&Lbvh::node_lo, "node_lo"}, {&Lbvh::node_hi, "node_hi"},
-                                 {&Lbvh::prim_lo, "prim_lo"}, {&Lbvh::prim_hi, "prim_hi"},
-                                 {&Lbvh::build_lo, "build_lo"}, {&Lbvh::build_hi, "build_hi"},
                                  {&Lbvh::span_lo, "span_lo"}, {&Lbvh::span_hi, "span_hi"}})
       f(array, buffer);
     for (auto [array, buffer] :
@@ -159,15 +180,25 @@ struct Lbvh {
           {&Lbvh::leaf_escape, "leaf_escape"}, {&Lbvh::node_left, "node_left"}, {&Lbvh::node_right, "node_right"},
           {&Lbvh::node_parent, "node_parent"}, {&Lbvh::node_escape, "node_escape"},
           {&Lbvh::node_first, "node_first"}, {&Lbvh::node_last, "node_last"}, {&Lbvh::count_log, "count_log"},
-          {&Lbvh::offset_log, "offset_log"}, {&Lbvh::prim_iota, "prim_iota"}, {&Lbvh::build_left, "build_left"},
-          {&Lbvh::build_right, "build_right"}, {&Lbvh::build_parent, "build_parent"},
-          {&Lbvh::build_first, "build_first"}, {&Lbvh::build_last, "build_last"},
-          {&Lbvh::other_bound, "other_bound"}, {&Lbvh::new_index, "new_index"}, {&Lbvh::refit_flag, "refit_flag"},
+          {&Lbvh::offset_log, "offset_log"}, {&Lbvh::refit_flag, "refit_flag"},
           {&Lbvh::tile_start, "tile_start"}, {&Lbvh::tile_scan, "tile_scan"}, {&Lbvh::tile_first, "tile_first"},
           {&Lbvh::tile_count, "tile_count"}, {&Lbvh::span_flag, "span_flag"}, {&Lbvh::span_scan, "span_scan"},
           {&Lbvh::span_count, "span_count"}, {&Lbvh::span_node, "span_node"}, {&Lbvh::span_parent, "span_parent"},
           {&Lbvh::span_child, "span_child"}, {&Lbvh::span_depth, "span_depth"},
           {&Lbvh::level_node, "level_node"}, {&Lbvh::level_code, "level_code"}, {&Lbvh::level_link, "level_link"}})
+      f(array, buffer);
+    each_scratch_array(f);
+  }
+  template <class F>
+  static void each_scratch_array(F&& f) {
+    for (auto [array, buffer] : {std::pair{&Lbvh::prim_lo, "prim_lo"}, {&Lbvh::prim_hi, "prim_hi"},
+                                 {&Lbvh::build_lo, "build_lo"}, {&Lbvh::build_hi, "build_hi"}})
+      f(array, buffer);
+    for (auto [array, buffer] :
+         {std::pair{&Lbvh::prim_iota, "prim_iota"}, {&Lbvh::build_left, "build_left"},
+          {&Lbvh::build_right, "build_right"}, {&Lbvh::build_parent, "build_parent"},
+          {&Lbvh::build_first, "build_first"}, {&Lbvh::build_last, "build_last"},
+          {&Lbvh::other_bound, "other_bound"}, {&Lbvh::new_index, "new_index"}})
       f(array, buffer);
     f(&Lbvh::morton, "morton");
     f(&Lbvh::morton_sorted, "morton_sorted");

@@ -8,6 +8,7 @@
 // external front (j a leaf), SoA.
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "cdbench/bvh/node_ref.h"
 #include "cdbench/core/append_stage.h"
@@ -74,6 +75,10 @@ struct FrontSink {
 
 };
 
+// Whether a front holds the arrays its operations produce into (the raw arrays and the
+// histogram's counters) or borrows another's (FrontArrays::swap_produced).
+enum class ProducedArrays { own, lent };
+
 // One kind of front: the current front (ordered or not) and the append target of the last
 // operation. The histogram sort scatters a produced front from the append target straight
 // into the current arrays, but only where every append of the frame fit (ScatterFrontFn,
@@ -81,7 +86,8 @@ struct FrontSink {
 // operation has read already, is dead; a frame that overflowed keeps it for its re-run.
 // Balance scatters the other way and swaps the two. So a front node costs 17 bytes of
 // capacity: prim and node on each side, and the produced node's mark (a third, sorted copy
-// made it 25). All five arrays keep one capacity (capacity()), which the swaps rely on.
+// made it 25). All five arrays keep one capacity (capacity()), which the swaps rely on; a
+// front that lent its produced arrays (swap_produced) has none until they come back.
 template <class Exec>
 struct FrontArrays {
   // `name` tells the fronts of one query apart in the growth log ("front", "inter_front").
@@ -92,13 +98,18 @@ struct FrontArrays {
                         {&tail_counts, "tail_counts"}, {&tail_offset_log, "tail_offset_log"}});
   }
   // Capacity for front nodes (all five arrays) and segment count (BVH nodes); `tails`: the
-  // counters of the tails that updates in place append (--update-in-place only).
-  void reserve(size_t capacity, size_t segments, bool tails) {
-    for (auto* a : {&prim, &node, &raw_prim, &raw_node}) a->reserve(capacity);
-    raw_mark.reserve(capacity);
+  // counters of the tails that updates in place append (--update-in-place only). With
+  // `produced` lent, only the current front and its offset log: the rest comes by
+  // swap_produced.
+  void reserve(size_t capacity, size_t segments, bool tails, ProducedArrays produced = ProducedArrays::own) {
+    for (auto* a : {&prim, &node}) a->reserve(capacity);
     segments_ = segments;
-    order_counts.reserve(3 * segments + 1);
     offset_log.reserve(segments + 1);
+    if (produced == ProducedArrays::own) {
+      for (auto* a : {&raw_prim, &raw_node}) a->reserve(capacity);
+      raw_mark.reserve(capacity);
+      order_counts.reserve(3 * segments + 1);
+    }
     if (tails) {
       tail_counts.reserve(3 * segments + 1);
       tail_offset_log.reserve(segments + 1);
@@ -108,6 +119,15 @@ struct FrontArrays {
     size_t c = raw_mark.capacity();
     for (auto* a : {&prim, &node, &raw_prim, &raw_node}) c = a->capacity() < c ? a->capacity() : c;
     return c;
+  }
+  // Exchanges the produced arrays (raw_*, order_counts) with `o`'s, of as many segments.
+  // Between frames they hold nothing: a front that only preserves meanwhile lends them to
+  // one generated beside it, whose ordering leaves its result in its current arrays.
+  void swap_produced(FrontArrays& o) {
+    std::swap(raw_prim, o.raw_prim);
+    std::swap(raw_node, o.raw_node);
+    std::swap(raw_mark, o.raw_mark);
+    std::swap(order_counts, o.order_counts);
   }
   bool has_tails() const { return tail_counts.capacity() >= 3 * segments_ + 1; }
 

@@ -76,6 +76,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     // fronts, which this run reserves again: waited for and dropped.
     exec_.drop_side();
     ahead_due_ = false;
+    give_back_lent();
     this->set_mesh(topology);
     const ObjectSplit& split = mesh_.split();
     bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.tree.refit_top_leaves;
@@ -347,20 +348,27 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
 
   // The second tree and its self fronts, sized as the current ones and active (a build runs
   // ahead only where T_D's self fronts do: can_build_ahead); its pairs are counted, not kept.
-  void reserve_ahead(const FrontSizing& sizing) {
+  // Neither holds what the current ones lend it for each build ahead (build_ahead): the
+  // tree's build scratch and the fronts' produced arrays.
+  void reserve_ahead(FrontSizing sizing) {
     ahead_bvh_.refit_top_max_leaves = bvh_.refit_top_max_leaves;
     ahead_bvh_.refit_levels = bvh_.refit_levels;
+    ahead_bvh_.build_scratch = BuildScratch::lent;
     ahead_bvh_.reserve(exec_, bvh_.num_leaves);
+    sizing.produced = ProducedArrays::lent;
     ahead_front_.plan(ahead_bvh_, ahead_bvh_, true, sizing);
     ahead_pairs_.reserve(0);
     exec_.reserve_side();
   }
 
-  // The ahead frame's part: room for the new self fronts (what the current ones hold, and a
-  // spare), the faces' boxes on the frame's stream (the build's only read of the mesh, whose
-  // buffer the next frame's upload overwrites), then the build, its order, the generate and
-  // the fronts' ordering on the side stream.
+  // The ahead frame's part: the current tree's build scratch and its self fronts' produced
+  // arrays lent to the ones built ahead (until it is adopted, T_D only refits and its fronts
+  // only preserve: FramePlanner::in_flight), room for the new self fronts (what the current
+  // ones hold, and a spare), the faces' boxes on the frame's stream (the build's only read of
+  // the mesh, whose buffer the next frame's upload overwrites), then the build, its order,
+  // the generate and the fronts' ordering on the side stream.
   void build_ahead(const MeshView& mesh) {
+    lend_to_ahead();
     ahead_front_.reserve_like(exec_, self());
     timed(Phase::build, [&] { build_boxes(exec_, ahead_bvh_, mesh, mesh_.deformable()); });
     exec_.mark_side_fork();
@@ -403,9 +411,25 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       c = &ahead_pairs_.read_counters(exec_);
     }
     ahead_front_.adopt(exec_, *c, sorts(FrontOp::generate));
+    // What was lent comes back with the tree and fronts built ahead: the swaps leave the
+    // second tree and fronts holding none of it again.
     bvh_.swap(ahead_bvh_);
     self().swap_fronts(ahead_front_);
+    lent_ = false;
     return ms;
+  }
+
+  void lend_to_ahead() {
+    bvh_.swap_build_scratch(ahead_bvh_);
+    self().lend_produced(ahead_front_);
+    lent_ = true;
+  }
+  // A build ahead dropped unadopted (a new run) returns what it borrowed.
+  void give_back_lent() {
+    if (!lent_) return;
+    bvh_.swap_build_scratch(ahead_bvh_);
+    self().lend_produced(ahead_front_);
+    lent_ = false;
   }
 
   void inspect_quality() {
@@ -582,6 +606,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // --rebuild-ahead: the tree built ahead, its self fronts and the counters of their generate.
   bool builds_ahead_ = false;
   bool ahead_due_ = false;  // build_ahead() ran this frame; queue_ahead() queues the side's part
+  bool lent_ = false;       // the build ahead holds T_D's build scratch and self fronts' produced arrays
   Lbvh<Exec> ahead_bvh_;
   FrontQuery<Exec> ahead_front_;
   PairBuffer<Exec, FrontCounters> ahead_pairs_;

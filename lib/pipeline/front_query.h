@@ -32,6 +32,9 @@ struct FrontSizing {
   // Updates are sized by probes before they run (--update-probe): an adopted front then
   // keeps no spare (FrontQuery::adopt).
   bool probed = false;
+  // The produced arrays: the fronts' own, or lent by the current fronts for each build
+  // ahead (FrontQuery::lend_produced).
+  ProducedArrays produced = ProducedArrays::own;
 };
 
 // How a generate, update or restructure produces its fronts.
@@ -83,7 +86,8 @@ class FrontQuery {
     dropped_[0] = dropped_[1] = appended_[0] = appended_[1] = 0;
     if (!active_) return;
     const size_t cap = std::max<size_t>(1024, size_t(sizing.per_triangle * leaves.num_leaves));
-    for (int k = 0; k < 2; ++k) front_[k].reserve(cap, std::max<size_t>(segments(k), 1), sizing.in_place);
+    for (int k = 0; k < 2; ++k)
+      front_[k].reserve(cap, std::max<size_t>(segments(k), 1), sizing.in_place, sizing.produced);
   }
 
   bool active() const { return active_; }
@@ -399,6 +403,16 @@ class FrontQuery {
     }
     revision_ += grew;
     return grew;
+  }
+
+  // Exchanges the produced arrays with `o`'s (FrontArrays::swap_produced): this query's
+  // fronts, which only preserve until `o`'s replace them, lend them to `o`, planned on a
+  // tree of as many leaves with lent arrays; the exchange again gives them back. The fronts
+  // that hold no produced arrays have no capacity until then.
+  void lend_produced(FrontQuery& o) {
+    for (int k = 0; k < 2; ++k) front_[k].swap_produced(o.front_[k]);
+    ++revision_;
+    ++o.revision_;
   }
 
   // Exchanges the fronts with `o`'s, each query keeping its trees: fronts generated ahead on
