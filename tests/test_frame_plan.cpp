@@ -775,16 +775,18 @@ TEST(FramePlan, RestructuresOnlyWhereTheLastOnePaid) {
 
 // Before a restructure was measured, the bound decides: the front nodes in the candidates,
 // all removed for the stretch since the last maintenance (2 frames) at the steady frame's
-// cost per node (1 ms over 100 nodes), against one steady frame (1 ms). 1000 nodes would
-// save 20 ms: the restructure runs; 40 would save 0.8 ms: it only refits; 50 save 1 ms.
-// Off, it runs either way.
+// cost per node (1 ms over 100 nodes), against the update's cost over the steady frame, or
+// one steady frame (1 ms) where that is less. After a 2 ms update, 1000 nodes would save
+// 20 ms: the restructure runs; 40 would save 0.8 ms: it only refits; 50 save 1 ms. After a
+// 4 ms update (3 ms over preserving) 50 nodes no longer pay, 150 do. Off, it runs either way.
 TEST(FramePlan, FirstRestructureRunsWhereItsBoundPays) {
   FrontStrategy c;
   c.balance = c.restructure = true;
-  for (const auto& [priced, internal, expected] :
-       {std::tuple{true, 1000u, 'r'}, std::tuple{true, 40u, 'p'}, std::tuple{true, 50u, 'r'},
-        std::tuple{false, 40u, 'r'}}) {
-    SCOPED_TRACE(std::to_string(internal) + (priced ? " priced" : " unpriced"));
+  for (const auto& [priced, internal, update_ms, expected] :
+       {std::tuple{true, 1000u, 2.0, 'r'}, std::tuple{true, 40u, 2.0, 'p'}, std::tuple{true, 50u, 2.0, 'r'},
+        std::tuple{false, 40u, 2.0, 'r'}, std::tuple{true, 50u, 4.0, 'p'}, std::tuple{true, 150u, 4.0, 'r'}}) {
+    SCOPED_TRACE(std::to_string(internal) + (priced ? " priced" : " unpriced") + ", update " +
+                 std::to_string(update_ms) + " ms");
     PipelineConfig config = cycle_config(2);
     config.restructure.threshold_refit = 0.05;
     config.restructure.threshold_build = 0.5;
@@ -796,7 +798,7 @@ TEST(FramePlan, FirstRestructureRunsWhereItsBoundPays) {
     planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 2.0});
     p = planner.plan(1000, 100);  // 2: update, inspection finds 200 leaves
     ASSERT_EQ(letter(p), 'u');
-    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, 200, internal}});
+    planner.finish(p, {.ms = update_ms, .front_nodes = 100, .q_root = 2.5, .found = {4, 200, internal}});
     p = planner.plan(1000, 100);  // 3
     EXPECT_EQ(letter(p), expected);
     EXPECT_EQ(p.decision, expected == 'r' ? Formula2::restructure : Formula2::refit);

@@ -204,6 +204,7 @@ class FramePlanner {
       price_.observe_steady(ms, o.front_nodes);
     else
       price_.observe_other(o.front_nodes);
+    if (kind == FrameKind::updated && clean) price_.observe_update(ms);
     if (built || self == FrontOp::update || self == FrontOp::generate) {
       price_.maintained(frame_ - maintained_);
       maintained_ = frame_;

@@ -17,11 +17,12 @@
 // predicted, and one that pays keeps measuring each, so a restructure that grew dear or
 // stopped gaining gives way. Before the first of a run is measured, a bound decides: a
 // restructure removes at most the front nodes in its candidates (the inspection counts
-// them), and its frame costs at least a steady frame more than preserving (measured: 3.5x
-// a steady frame on flamenco, 4.8x on the garment with its avatar); it runs where removing
-// all of them for a stretch would pay for one more steady frame, so a scene whose
-// candidates hold few front nodes does not spend a restructure on learning that it does
-// not pay.
+// them), and its frame costs at least what the update before it cost over preserving:
+// both are one front pass over every front node that produces new ones (measured: a
+// restructure 3.5x a steady frame on flamenco, 4.8x on the garment with its avatar, whose
+// update before was 2.9x), and at least one steady frame. It runs where removing all of
+// them for a stretch would pay for that, so a scene whose candidates hold few front nodes
+// does not spend a restructure on learning that it does not pay.
 //
 // Figures (NVIDIA H200, one pass, phases timed): on flamenco a restructure of 3,217 leaves
 // cost 0.46 ms against a 0.13 ms steady frame and removed 6% of the front nodes; the
@@ -50,11 +51,12 @@ class RestructurePrice {
     return predicted_gain_ms(leaves) >= predicted_cost_ms(leaves);
   }
   // The bound: every front node in the candidates removed for the stretch, at a steady
-  // frame's cost per node, against one steady frame.
+  // frame's cost per node, against the last update's cost over preserving, or one steady
+  // frame where that was less or not measured.
   bool bound_pays(uint64_t front_nodes) const {
     const double steady = std::min(stretch_min_, last_stretch_min_);
     if (!(steady < kNone)) return true;
-    return double(front_nodes) * steady_per_node_ms_ * double(horizon_) >= steady;
+    return double(front_nodes) * steady_per_node_ms_ * double(horizon_) >= std::max(steady, update_over_steady_ms_);
   }
   double predicted_cost_ms(uint32_t leaves) const { return std::max(cost_per_leaf_ms_, 0.0) * double(leaves); }
   double predicted_gain_ms(uint32_t leaves) const {
@@ -77,6 +79,13 @@ class RestructurePrice {
     restructured_leaves_ = leaves;
     fronts_before_ = front_nodes;
     after_restructure_ = true;
+  }
+
+  // A frame that updated the fronts in `ms`, its operations run once: what it cost over the
+  // cheapest steady frame of its stretch, or of the last one (before the update ends it).
+  void observe_update(double ms) {
+    const double preserving = std::min(stretch_min_, last_stretch_min_);
+    if (preserving < kNone) update_over_steady_ms_ = std::max(0.0, ms - preserving);
   }
 
   // Any other frame after a restructure: its fronts measure the restructure's gain too.
@@ -105,6 +114,7 @@ class RestructurePrice {
   double cost_per_leaf_ms_ = -1.0;  // the last measured restructure's cost per leaf (-1: none)
   double gain_per_leaf_ = -1.0;     // front nodes it removed per leaf (-1: none)
   double steady_per_node_ms_ = 0.0;  // the last steady frame's time per front node
+  double update_over_steady_ms_ = 0.0;  // the last update's cost over a steady frame
   double stretch_min_ = kNone;       // the cheapest steady frame since the last maintenance
   double last_stretch_min_ = kNone;  // the same for the last stretch that had steady frames
   uint64_t horizon_ = 1;             // frames between the last two productions of the fronts
