@@ -169,10 +169,13 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       ->group(kTuningGroup)
       ->check(finite_at_least(0))
       ->capture_default_str();
-  add_switch(cmd, "--maintain-ahead", c.tree.maintain_ahead,
-             "front pipelines that build ahead (--rebuild-ahead): each maintenance due (--front-cycle) is a rebuild "
-             "built ahead instead of an update or generate in its frame (pipeline c then never inspects); off: "
-             "maintenances run in their frames")
+  add_choice<AutoSwitch>(
+      cmd, "--maintain-ahead", c.tree.maintain_ahead,
+      "front pipelines that build ahead (--rebuild-ahead): on: each maintenance due (--front-cycle) is a rebuild "
+      "built ahead instead of an update or generate in its frame (pipeline c then never inspects); off: "
+      "maintenances run in their frames; auto: the first in its frame, the next built ahead, then each the way "
+      "whose last cycle (the maintenance and the frames to the next) cost less per pair",
+      {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.tree.maintain_ahead))
       ->group(kTuningGroup);
   add_switch(cmd, "--rebuild-degraded", c.tree.rebuild_degraded,
              "front pipelines with --front-cycle auto: a maintenance rebuilds the tree and generates every front "

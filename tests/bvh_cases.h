@@ -521,21 +521,23 @@ inline AheadSteps count_ahead_steps(const std::vector<FrameStats>& frames) {
 // third frame (--rebuild-every) or from Formula 2 (c, every subtree a candidate), front and
 // pair buffers far too small (fronts built ahead outgrow theirs and are generated again at
 // the adoption): every frame exact, builds ahead in the plan and adopted, and the recorded
-// plan replayed on a fresh pipeline runs the same steps exactly; with --maintain-ahead the
-// front cycle's maintenances (every second frame) are the builds ahead. The reference
-// strategy and the radix orderings build in their frames.
+// plan replayed on a fresh pipeline runs the same steps exactly; with --maintain-ahead on
+// the front cycle's maintenances (every second frame) are the builds ahead, with auto they
+// run both ways. The reference strategy and the radix orderings build in their frames.
 inline void check_rebuild_ahead(const std::string& device, const ExactFrames& scene) {
   struct Case {
     const char* pipeline;
     uint32_t rebuild_every;
     bool formula2;
-    bool maintain_ahead = false;
+    AutoSwitch maintain_ahead = AutoSwitch::off;
   };
   for (const Case& c : {Case{"a", 2, false}, Case{"b", 3, false}, Case{"c", 2, false}, Case{"unordered", 2, false},
-                        Case{"periodic", 3, false}, Case{"c", 0, true}, Case{"b", 0, false, true},
-                        Case{"c", 0, false, true}}) {
+                        Case{"periodic", 3, false}, Case{"c", 0, true}, Case{"b", 0, false, AutoSwitch::on},
+                        Case{"c", 0, false, AutoSwitch::on}, Case{"b", 0, false, AutoSwitch::automatic},
+                        Case{"c", 0, false, AutoSwitch::automatic}}) {
     SCOPED_TRACE(std::string(c.pipeline) + (c.formula2 ? ", Formula 2 rebuilds" : ", rebuild every ") +
-                 (c.formula2 ? "" : std::to_string(c.rebuild_every)) + (c.maintain_ahead ? ", maintained ahead" : ""));
+                 (c.formula2 ? "" : std::to_string(c.rebuild_every)) + ", maintained ahead " +
+                 auto_switch_name(c.maintain_ahead));
     PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
     cfg.name = c.pipeline;
     cfg.tree.rebuild_ahead = AutoSwitch::on;

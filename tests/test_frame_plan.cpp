@@ -812,7 +812,7 @@ TEST(FramePlan, MaintenancesAheadAreRebuildsBuiltAhead) {
   for (const bool ahead : {false, true}) {
     SCOPED_TRACE(ahead ? "maintained ahead" : "updated");
     PipelineConfig cfg = cycle_config(3);
-    cfg.tree.maintain_ahead = ahead;
+    cfg.tree.maintain_ahead = ahead ? AutoSwitch::on : AutoSwitch::off;
     FramePlanner planner(FrontStrategy{}, cfg);
     planner.reset({true, false, false}, 1, true);
     std::string s;
@@ -825,5 +825,36 @@ TEST(FramePlan, MaintenancesAheadAreRebuildsBuiltAhead) {
       planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 1.0});
     }
     EXPECT_EQ(s, ahead ? "bppADppAD" : "bppuppupp");
+  }
+}
+
+// --maintain-ahead auto (fixed cycle 3 from the fronts' generate, builds ahead): the first
+// maintenance runs in its frame (u at 3), the next is built ahead (A at 6, adopted at 7, the
+// next due at 10); then each runs the way whose last cycle cost less per pair. Frames cost
+// 1 ms for 100 pairs, an update 3 ms. With the frames beside and after a build ahead at 2 ms
+// (a tree rebuilt worse), its cycle (6-9: 8 ms over 400 pairs) costs more than the update's
+// (3-5: 5 ms over 300): the next maintenances run in their frames. At 1 ms it costs less
+// (4 ms over 400): the next ones are built ahead.
+TEST(FramePlan, MaintenanceAutoTriesBothWaysThenRunsTheCheaper) {
+  for (const double beside_ms : {2.0, 1.0}) {
+    SCOPED_TRACE(std::to_string(beside_ms) + " ms beside a build ahead");
+    PipelineConfig cfg = cycle_config(3);
+    cfg.tree.maintain_ahead = AutoSwitch::automatic;
+    FramePlanner planner(FrontStrategy{}, cfg);
+    planner.reset({true, false, false}, 1, true);
+    std::string s;
+    bool after_ahead = false;
+    for (int f = 0; f < 16; ++f) {
+      const FramePlan p = planner.plan(1000, 100, 0.0, true);
+      const char step = p.ahead ? 'A' : p.adopt ? 'D' : letter(p);
+      s += step;
+      after_ahead = p.ahead || (after_ahead && step != 'u');
+      const double ms = step == 'b' ? 5.0 : step == 'u' ? 3.0 : after_ahead ? beside_ms : 1.0;
+      planner.finish(p, {.ms = ms, .front_nodes = 100, .q_root = 1.0, .pairs = 100});
+    }
+    EXPECT_GT(planner.maintenance_choice().cost(MaintenanceWay::in_frame), 0.0);
+    EXPECT_GT(planner.maintenance_choice().cost(MaintenanceWay::ahead), 0.0);
+    EXPECT_EQ(s.substr(0, 8), "bppuppAD");
+    EXPECT_EQ(s.substr(8), beside_ms > 1.0 ? "ppuppupp" : "ppADppAD") << s;
   }
 }

@@ -39,7 +39,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"refit_levels", auto_switch_name(c.tree.refit_levels)},
       {"rebuild_degraded", c.tree.rebuild_degraded},
       {"rebuild_ahead", auto_switch_name(c.tree.rebuild_ahead)},
-      {"maintain_ahead", c.tree.maintain_ahead},
+      {"maintain_ahead", auto_switch_name(c.tree.maintain_ahead)},
       {"rebuild_growth", c.tree.rebuild_growth},
       {"split_objects", split_rule_name(c.tree.split)},
       {"conservative", config_conservative(c)},

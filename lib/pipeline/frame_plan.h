@@ -10,11 +10,13 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "cdbench/core/error.h"
 #include "cdbench/pipeline/front_counters.h"
 #include "cdbench/pipeline/front_maintenance.h"
+#include "cdbench/pipeline/maintenance_choice.h"
 #include "cdbench/pipeline/pipeline.h"
 #include "cdbench/pipeline/plan_record.h"
 #include "cdbench/pipeline/restructure_price.h"
@@ -105,6 +107,7 @@ class FramePlanner {
     pending_ = {};
     q_ref_ = 0.0;
     maintenance_.reset();
+    choice_.reset();
     tree_.reset(wave, config_.tree.rebuild_growth);
     price_.reset();
     running_ = running;
@@ -115,8 +118,14 @@ class FramePlanner {
     }
   }
   bool builds_ahead() const { return builds_ahead_; }
-  // --maintain-ahead: every maintenance after the first frame is a rebuild built ahead.
-  bool maintains_ahead() const { return builds_ahead_ && config_.tree.maintain_ahead && frame_ > 0; }
+  // --maintain-ahead: the next maintenance after the first frame is a rebuild built ahead
+  // (on: every one; auto: where the last cycle begun so cost less, MaintenanceChoice).
+  bool maintains_ahead() const {
+    if (!builds_ahead_ || frame_ == 0) return false;
+    const AutoSwitch m = config_.tree.maintain_ahead;
+    return m == AutoSwitch::on || (m == AutoSwitch::automatic && choice_.ahead_due());
+  }
+  const MaintenanceChoice& maintenance_choice() const { return choice_; }
 
   // Before a run (reset): each frame runs the recorded step of `plan` instead of deciding
   // one; nullptr decides again. The plan forces the trees' build, refit or stale boxes,
@@ -217,6 +226,14 @@ class FramePlanner {
     if (strategy_.restructure && built) q_ref_ = o.q_root;
     if (p.inspect) pending_ = o.found;
     probed_ = p.probe;
+    // A cycle begins at each maintenance: a build ahead, or an update or generate of T_D's
+    // self fronts in its frame (a restructure continues its update's cycle).
+    const bool in_frame = !built && (self == FrontOp::update || self == FrontOp::generate);
+    choice_.observe(o.ms, o.pairs,
+                    p.rebuild ? std::optional{MaintenanceWay::none}
+                    : p.ahead ? std::optional{MaintenanceWay::ahead}
+                    : in_frame ? std::optional{MaintenanceWay::in_frame}
+                               : std::nullopt);
     if (p.ahead) in_flight_ = true;
     if (p.adopt) in_flight_ = false;
     ++frame_;
@@ -355,6 +372,7 @@ class FramePlanner {
   FrontMaintenance maintenance_;
   TreeMaintenance tree_;
   RestructurePrice price_;
+  MaintenanceChoice choice_;
   uint64_t frame_ = 0;
   uint64_t generated_ = 0;  // the last frame that generated T_D's self fronts
   uint64_t produced_ = 0;   // the last frame that produced any front

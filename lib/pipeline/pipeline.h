@@ -92,8 +92,9 @@ struct TreeConfig {
   AutoSwitch rebuild_ahead = AutoSwitch::automatic;
   // Front pipelines that build ahead: each maintenance due (an update or a generate) is a
   // rebuild built ahead instead, so that no frame waits for one; pipeline c then never
-  // inspects (its inspections follow updates).
-  bool maintain_ahead = false;
+  // inspects (its inspections follow updates). auto: the way whose last maintenance cycle
+  // cost less per pair (pipeline/maintenance_choice.h).
+  AutoSwitch maintain_ahead = AutoSwitch::automatic;
   // --rebuild-degraded: the growth of the fronts (an update's count over a rebuild's) past
   // which a maintenance rebuilds (pipeline/tree_maintenance.h).
   double rebuild_growth = kRebuildGrowth;
