@@ -349,6 +349,9 @@ inline PipelineConfig config_for(const std::string& device, double pairs_per_tri
   c.capacity.pairs_per_triangle = pairs_per_triangle;
   c.capacity.front_per_triangle = front_per_triangle;
   c.fronts.cycle = front_cycle;
+  // Maintenances in their frames, on the GPU as on the host, so that both run one plan
+  // (check_rebuild_ahead runs the other ways).
+  c.tree.maintain_ahead = AutoSwitch::off;
   return c;
 }
 

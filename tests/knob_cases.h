@@ -312,6 +312,7 @@ inline void check_update_probe(const std::string& device) {
         cfg.capacity.pairs_per_triangle = 64;
         cfg.capacity.front_per_triangle = 0.25;
         cfg.fronts.cycle = 2;
+        cfg.tree.maintain_ahead = AutoSwitch::off;  // every maintenance an update, on the GPU too
         cfg.fronts.update_probe = probe;
         cfg.fronts.update_in_place = in_place;
         auto p = make_pipeline(cfg);
