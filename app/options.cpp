@@ -174,7 +174,7 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       "front pipelines that build ahead (--rebuild-ahead): on: each maintenance due (--front-cycle) is a rebuild "
       "built ahead instead of an update or generate in its frame (pipeline c then never inspects); off: "
       "maintenances run in their frames; auto: the first in its frame, the next built ahead, then each the way "
-      "whose last cycle (the maintenance and the frames to the next) cost less per pair",
+      "whose last cycle (the maintenance and the frames to the next) cost less per pair (measured no faster than off)",
       {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.tree.maintain_ahead))
       ->group(kTuningGroup);
   add_switch(cmd, "--rebuild-degraded", c.tree.rebuild_degraded,

@@ -271,6 +271,8 @@ inline void check_update_knobs(const std::string& device) {
           cfg.fronts.update_in_place = knobs.in_place;
           cfg.fronts.compact_share = knobs.compact_share;
           cfg.fronts.regenerate = cycle == 0;  // adaptive maintenances may generate where measured cheaper
+          // Every variant runs one plan: maintenances in their frames (auto picks a way by times).
+          cfg.tree.maintain_ahead = AutoSwitch::off;
           auto p = make_pipeline(cfg);
           p->set_topology(scene->topology);
           for (uint32_t f = 0; f < scene->num_frames(); ++f) {

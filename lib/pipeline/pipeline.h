@@ -93,8 +93,9 @@ struct TreeConfig {
   // Front pipelines that build ahead: each maintenance due (an update or a generate) is a
   // rebuild built ahead instead, so that no frame waits for one; pipeline c then never
   // inspects (its inspections follow updates). auto: the way whose last maintenance cycle
-  // cost less per pair (pipeline/maintenance_choice.h).
-  AutoSwitch maintain_ahead = AutoSwitch::automatic;
+  // cost less per pair (pipeline/maintenance_choice.h); measured no faster than off
+  // (docs/front-maintenance.md "Maintenances built ahead").
+  AutoSwitch maintain_ahead = AutoSwitch::off;
   // --rebuild-degraded: the growth of the fronts (an update's count over a rebuild's) past
   // which a maintenance rebuilds (pipeline/tree_maintenance.h).
   double rebuild_growth = kRebuildGrowth;
