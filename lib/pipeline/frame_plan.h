@@ -121,9 +121,7 @@ class FramePlanner {
   // --maintain-ahead: the next maintenance after the first frame is a rebuild built ahead
   // (on: every one; auto: where the last cycle begun so cost less, MaintenanceChoice).
   bool maintains_ahead() const {
-    if (!builds_ahead_ || frame_ == 0) return false;
-    const AutoSwitch m = config_.tree.maintain_ahead;
-    return m == AutoSwitch::on || (m == AutoSwitch::automatic && choice_.ahead_due());
+    return builds_ahead_ && frame_ > 0 && switched_on(config_.tree.maintain_ahead, choice_.ahead_due());
   }
   const MaintenanceChoice& maintenance_choice() const { return choice_; }
 

@@ -76,7 +76,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     // fronts, which this run reserves again: waited for and dropped.
     exec_.drop_side();
     ahead_due_ = false;
-    give_back_lent();
+    if (lent_) exchange_lent();  // a build ahead dropped unadopted returns what it borrowed
     this->set_mesh(topology);
     const ObjectSplit& split = mesh_.split();
     bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.tree.refit_top_leaves;
@@ -368,7 +368,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // the mesh, whose buffer the next frame's upload overwrites), then the build, its order,
   // the generate and the fronts' ordering on the side stream.
   void build_ahead(const MeshView& mesh) {
-    lend_to_ahead();
+    exchange_lent();
     ahead_front_.reserve_like(exec_, self());
     timed(Phase::build, [&] { build_boxes(exec_, ahead_bvh_, mesh, mesh_.deformable()); });
     exec_.mark_side_fork();
@@ -419,17 +419,12 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     return ms;
   }
 
-  void lend_to_ahead() {
+  // Lends T_D's build scratch and self fronts' produced arrays to the build ahead, or, lent,
+  // takes them back: each exchange undoes the last.
+  void exchange_lent() {
     bvh_.swap_build_scratch(ahead_bvh_);
     self().lend_produced(ahead_front_);
-    lent_ = true;
-  }
-  // A build ahead dropped unadopted (a new run) returns what it borrowed.
-  void give_back_lent() {
-    if (!lent_) return;
-    bvh_.swap_build_scratch(ahead_bvh_);
-    self().lend_produced(ahead_front_);
-    lent_ = false;
+    lent_ = !lent_;
   }
 
   void inspect_quality() {

@@ -54,7 +54,7 @@ class RestructurePrice {
   // frame's cost per node, against the last update's cost over preserving, or one steady
   // frame where that was less or not measured.
   bool bound_pays(uint64_t front_nodes) const {
-    const double steady = std::min(stretch_min_, last_stretch_min_);
+    const double steady = preserving_ms();
     if (!(steady < kNone)) return true;
     return double(front_nodes) * steady_per_node_ms_ * double(horizon_) >= std::max(steady, update_over_steady_ms_);
   }
@@ -74,7 +74,7 @@ class RestructurePrice {
   // `front_nodes` nodes; `once`: it ran its operations once (a frame that grew a buffer
   // paid a one-off cost, not the restructure's).
   void observe_restructure(double ms, uint32_t leaves, uint64_t front_nodes, bool once) {
-    const double preserving = std::min(stretch_min_, last_stretch_min_);
+    const double preserving = preserving_ms();
     if (once && preserving < kNone && leaves > 0) cost_per_leaf_ms_ = std::max(0.0, ms - preserving) / double(leaves);
     restructured_leaves_ = leaves;
     fronts_before_ = front_nodes;
@@ -84,7 +84,7 @@ class RestructurePrice {
   // A frame that updated the fronts in `ms`, its operations run once: what it cost over the
   // cheapest steady frame of its stretch, or of the last one (before the update ends it).
   void observe_update(double ms) {
-    const double preserving = std::min(stretch_min_, last_stretch_min_);
+    const double preserving = preserving_ms();
     if (preserving < kNone) update_over_steady_ms_ = std::max(0.0, ms - preserving);
   }
 
@@ -102,6 +102,10 @@ class RestructurePrice {
   }
 
  private:
+  // What a frame costs preserving: the cheapest steady frame of this stretch or the last
+  // one that had one (kNone before any).
+  double preserving_ms() const { return std::min(stretch_min_, last_stretch_min_); }
+
   void gain_from(uint64_t front_nodes) {
     after_restructure_ = false;
     if (restructured_leaves_ == 0) return;
