@@ -3,7 +3,9 @@
 median over its passes of each pass's p95 and of its slowest frame over its median, the front
 nodes a pair), b, a, grid and hash, each base
 binary's c and b with base over new, and the targets: c at a third of the strongest peer's
-mean (the bar's scenes), the best of a/b/c against the best of grid and hash, c against b.
+mean (the bar's scenes), the best of a/b/c against the best of grid and hash, c against b,
+c's peak memory (with what the second tree and fronts of builds ahead held of it, /memory)
+against the first base's.
 
   bench/bar_report.py DIR [--base NAME ...] > report.md
 
@@ -90,9 +92,9 @@ def main():
 
     header = ["scene", "triangles", "pairs", "c mean / median / p95", "c pass p95/median", "c pass max/median",
               "c front nodes a pair"]
-    header += [f"{p} mean" for p in NEW[1:]] + ["c peak MiB"]
+    header += [f"{p} mean" for p in NEW[1:]] + ["c peak MiB", "of it built ahead"]
     for b in args.base:
-        header += [f"{b} c", f"{b} b", f"{b} c ÷ new c"]
+        header += [f"{b} c", f"{b} b", f"{b} c ÷ new c", f"{b} c peak MiB"]
     rows, targets = [], []
     for s in scenes:
         c = new.get((s, "c"))
@@ -103,9 +105,12 @@ def main():
                f"{single_pass_tail(c):.2f}", f"{single_pass_peak(c):.2f}", f"{front_nodes_per_pair(c):.2f}"]
         row += [ms(mean(new.get((s, p)))) for p in NEW[1:]]
         row.append(f"{c.peak_bytes() / 2**20:.0f}")
+        ahead = c.bytes_at_peak("ahead_")
+        row.append("—" if ahead is None else f"{ahead / 2**20:.0f}")
         for b in args.base:
             bc, bb = bases[b].get((s, "c")), bases[b].get((s, "b"))
-            row += [ms(mean(bc)), ms(mean(bb)), f"{mean(bc) / mean(c):.2f}x" if bc else "—"]
+            row += [ms(mean(bc)), ms(mean(bb)), f"{mean(bc) / mean(c):.2f}x" if bc else "—",
+                    f"{bc.peak_bytes() / 2**20:.0f}" if bc else "—"]
         rows.append(row)
 
         fronts = {p: mean(new.get((s, p))) for p in FRONTS}
@@ -123,6 +128,13 @@ def main():
         target.append(f"{cb:.3f}")
         tail = single_pass_tail(c)
         target.append(f"{tail:.2f} ({'met' if tail <= 2.0 else 'not met'})")
+        # Peak memory against the first base's c: at most as high.
+        first = bases[args.base[0]].get((s, "c")) if args.base else None
+        if first:
+            peak = c.peak_bytes() / first.peak_bytes()
+            target.append(f"{peak:.2f} ({'met' if peak <= 1.0 else 'not met'})")
+        elif args.base:
+            target.append("—")
         targets.append(target)
 
     runs = list(new.values()) + [r for b in bases.values() for r in b.values()]
@@ -136,9 +148,11 @@ def main():
     print("\n## Targets\n")
     print("c ≤ a third of the strongest peer's mean (the bar's scenes); the best of a/b/c at least as fast as the "
           "best of grid and hash; c over b (1 or less: c never slower); p95 at most twice the median in single "
-          "passes (the median over the passes of each pass's p95 over its median).\n")
+          "passes (the median over the passes of each pass's p95 over its median)" +
+          (f"; c's peak memory over {args.base[0]}'s c (1 or less)" if args.base else "") + ".\n")
     print("\n".join(cr.markdown_table(
-        ["scene", "c mean", "a third of the peer", "best front / best cell", "c ÷ b", "pass p95/median"], targets)))
+        ["scene", "c mean", "a third of the peer", "best front / best cell", "c ÷ b", "pass p95/median"] +
+        ([f"c peak ÷ {args.base[0]} c peak"] if args.base else []), targets)))
     return 0
 
 

@@ -148,6 +148,10 @@ class Run:
             # with each step as a plan file's line writes it (docs/usage.md "Plans"), empty
             # for pipelines without a frame plan and older files.
             self.plans = plan_steps(f["plans"]) if "plans" in f else {}
+            # What each buffer held at the run's memory peak (/memory), {name: bytes} in the
+            # executor's order; empty for files written before it was recorded.
+            self.memory = ({text(b): int(n) for b, n in zip(f["memory"]["buffer"][()], f["memory"]["bytes_at_peak"][()])}
+                           if "memory" in f else {})
         self.attrs = attrs
         # Runs group by the scene with its --set overrides (funnel[res=24]), never by the
         # descriptor's name alone; scene_name is the bare name.
@@ -228,6 +232,13 @@ class Run:
         if "pairs_self" not in self.frames:
             return None
         return {"self": self.frames["pairs_self"], "inter": self.frames["pairs_inter"]}
+
+    def bytes_at_peak(self, prefix=""):
+        """The bytes the buffers whose names start with `prefix` held at the memory peak
+        (/memory); None for files without it."""
+        if not self.memory:
+            return None
+        return sum(n for b, n in self.memory.items() if b.startswith(prefix))
 
     def peak_bytes(self):
         if self.summary is not None and "peak_bytes" in self.summary:

@@ -805,6 +805,34 @@ TEST(FramePlan, FirstRestructureRunsWhereItsBoundPays) {
   }
 }
 
+// The bound counts only the share of the candidates' front nodes that the fronts grew by
+// since their generate, per pair: fresh fronts held 100 nodes for 100 pairs. Grown to 200
+// for the same pairs, half would go: after a 2 ms update (1 ms over preserving, a 2-frame
+// stretch at 0.01 ms a node) 50 candidate nodes save 0.5 ms and only refit, 100 save 1 ms and
+// restructure. Not grown, none would go, and 1000 candidate nodes only refit.
+TEST(FramePlan, FirstRestructureBoundCountsTheFrontsGrowthSinceTheirGenerate) {
+  FrontStrategy c;
+  c.balance = c.restructure = true;
+  for (const auto& [candidate_nodes, fronts_now, expected] :
+       {std::tuple{50u, 200u, 'p'}, std::tuple{100u, 200u, 'r'}, std::tuple{1000u, 100u, 'p'}}) {
+    SCOPED_TRACE(std::to_string(candidate_nodes) + " candidate nodes of " + std::to_string(fronts_now));
+    PipelineConfig config = cycle_config(2);
+    config.restructure.threshold_refit = 0.05;
+    config.restructure.threshold_build = 0.5;
+    FramePlanner planner(c, config);
+    FramePlan p = planner.plan(1000, 100);  // 0: build
+    planner.finish(p, {.ms = 5.0, .front_nodes = 100, .q_root = 2.0, .pairs = 100});
+    p = planner.plan(1000, 100);  // 1: preserve from the fresh fronts
+    planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 2.0, .pairs = 100});
+    p = planner.plan(1000, 100);  // 2: update, inspection finds 200 leaves
+    ASSERT_EQ(letter(p), 'u');
+    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, 200, candidate_nodes}, .pairs = 100});
+    p = planner.plan(1000, fronts_now);  // 3
+    EXPECT_EQ(letter(p), expected);
+    EXPECT_EQ(p.decision, expected == 'r' ? Formula2::restructure : Formula2::refit);
+  }
+}
+
 // --maintain-ahead where rebuilds are built ahead: each maintenance the cycle asks for (every
 // third frame since the fronts were generated) is a rebuild built ahead (A), adopted at the
 // next frame (D), which generated the fronts; no frame probes. Off: updates (u).

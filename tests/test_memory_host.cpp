@@ -212,4 +212,44 @@ TEST(MemoryStats, BuildsAheadBorrowTheScratchAndProducedArrays) {
   }
 }
 
+// --rebuild-ahead reserves the second tree and fronts at a run's first build ahead: a run
+// that never builds one (a cloth wave, updates every third frame) peaks where it peaks
+// with builds ahead off, and holds no byte of either. The next run over the same pipeline
+// that builds ahead reserves them then.
+TEST(MemoryStats, SecondTreeReservedOnlyByABuildAhead) {
+  auto wave = make_generator("cloth-wave", {{"res", 32}, {"frames", 8}});
+  const Topology& topo = wave->topology();
+  auto run = [&](AutoSwitch ahead, uint32_t rebuild_every) {
+    PipelineConfig cfg;
+    cfg.device = "cpu";
+    cfg.name = "c";
+    cfg.launch.phase_timing = false;
+    cfg.tree.rebuild_ahead = ahead;
+    cfg.tree.rebuild_every = rebuild_every;
+    cfg.fronts.cycle = 3;  // a fixed cycle: both runs make one plan, whatever their frames' times
+    auto p = make_pipeline(cfg);
+    p->set_topology(topo);
+    std::vector<vec3f> v;
+    uint32_t ahead_frames = 0;
+    for (uint32_t f = 0; f < wave->num_frames(); ++f) {
+      wave->frame(f, v);
+      const FrameStats s = p->run_frame(v);
+      ahead_frames += s.plan && s.plan->trees == TreeStep::ahead;
+      const PairSetDiff d = diff_pair_sets(sweep_oracle_pairs(topo, v, false), p->sorted_pairs());
+      EXPECT_TRUE(d.equal()) << "frame " << f << ": " << d.missing_count << " missing";
+    }
+    return std::pair{p->memory(), ahead_frames};
+  };
+  const auto [off, off_ahead] = run(AutoSwitch::off, 0);
+  const auto [on, on_ahead] = run(AutoSwitch::on, 0);
+  EXPECT_EQ(off_ahead, 0u);
+  EXPECT_EQ(on_ahead, 0u);
+  EXPECT_EQ(on.peak_bytes, off.peak_bytes);
+  EXPECT_EQ(sum_at_peak(on, "ahead_"), 0u);
+  const auto [built, built_ahead] = run(AutoSwitch::on, 3);
+  ASSERT_GE(built_ahead, 1u);
+  EXPECT_GT(sum_at_peak(built, "ahead_bvh."), 0u);
+  EXPECT_GT(sum_at_peak(built, "ahead_front_"), 0u);
+}
+
 }  // namespace cdb::test

@@ -4,6 +4,7 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -365,6 +366,20 @@ TEST(ResultsFile, CompleteRunMatchesFrameStats) {
   EXPECT_TRUE(std::isnan(number_attr(f.id, "summary", "t_build_ms_mean")))
       << "build runs only on frame 0, a warm-up frame";
   EXPECT_EQ(number_attr(f.id, "summary", "peak_bytes"), double(run.final_memory.peak_bytes));
+  // /memory: each buffer at the peak, in the executor's order; they sum to the peak.
+  const auto buffers = texts(f.id, "memory/buffer");
+  const auto held = integers(f.id, "memory/bytes_at_peak");
+  ASSERT_EQ(buffers.size(), run.final_memory.at_peak.size());
+  ASSERT_EQ(held.size(), buffers.size());
+  ASSERT_FALSE(buffers.empty());
+  uint64_t sum = 0;
+  for (size_t i = 0; i < buffers.size(); ++i) {
+    EXPECT_EQ(buffers[i], run.final_memory.at_peak[i].buffer) << i;
+    EXPECT_EQ(held[i], run.final_memory.at_peak[i].bytes) << buffers[i];
+    sum += held[i];
+  }
+  EXPECT_EQ(sum, run.final_memory.peak_bytes);
+  EXPECT_NE(std::find(buffers.begin(), buffers.end(), "bvh.node_lo"), buffers.end());
 
   for (uint32_t i = 0; i < n; ++i) {
     char name[32];
@@ -393,9 +408,10 @@ TEST(ResultsFile, CompleteRunMatchesFrameStats) {
 TEST(ResultsFile, AbandonedRunKeepsItsFramesAndSaysWhy) {
   TempDir dir;
   const fs::path path = dir / "abandoned.h5";
+  RecordedRun run;
   {
     ResultsFile out(path, info_for("bvh", 10));
-    const RecordedRun run = run_into(out, "bvh", 3, false);
+    run = run_into(out, "bvh", 3, false);
     out.abandon(summarize_run(run.frames, 1), run.final_memory, "frame 3: something broke");
   }
   File f(path);
@@ -404,6 +420,7 @@ TEST(ResultsFile, AbandonedRunKeepsItsFramesAndSaysWhy) {
   EXPECT_EQ(string_attr(f.id, "/", "error"), "frame 3: something broke");
   EXPECT_EQ(rows_of(f.id, "frames/t_total_ms"), 3u);
   EXPECT_EQ(number_attr(f.id, "summary", "frames"), 3);
+  EXPECT_EQ(rows_of(f.id, "memory/buffer"), run.final_memory.at_peak.size());
   EXPECT_EQ(H5Lexists(f.id, "pairs", H5P_DEFAULT), 0);
   const ResultsOverview o = read_results_overview(path);
   EXPECT_EQ(o.status, "incomplete");

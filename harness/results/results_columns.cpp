@@ -89,4 +89,16 @@ const std::vector<PlanColumn>& plan_columns() {
   return columns;
 }
 
+const std::vector<MemoryColumn>& memory_columns() {
+  static const std::vector<MemoryColumn> columns = [] {
+    using T = ColumnType;
+    using R = const MemoryRow&;
+    return std::vector<MemoryColumn>{
+        {"buffer", T::text, "the executor buffer's name (tree and front prefixes: bvh., rigid_bvh., ahead_bvh., front_internal., ahead_front_external., ...)", [](R r) -> ColumnValue { return r.buffer.buffer; }},
+        {"bytes_at_peak", T::u64, "bytes the buffer held when the run's executor memory peaked (the rows sum to peak_bytes)", [](R r) -> ColumnValue { return uint64_t(r.buffer.bytes); }},
+    };
+  }();
+  return columns;
+}
+
 }  // namespace cdb

@@ -1,6 +1,7 @@
 #pragma once
-// The tables of a results file: /frames, one row per frame, and /plans, one row per pass and
-// frame of a front pipeline saying what the frame ran in that pass (pipeline/plan_record.h).
+// The tables of a results file: /frames, one row per frame, /plans, one row per pass and
+// frame of a front pipeline saying what the frame ran in that pass (pipeline/plan_record.h),
+// and /memory, one row per executor buffer that held memory at the run's peak.
 // Each column is one extendible dataset, a row appended at a time, its value read from the
 // row by `value`; a new FrameStats field becomes a column by adding one line to
 // frame_columns().
@@ -47,13 +48,20 @@ struct PlanRow {
   const PlanStep& step;
 };
 
+// One buffer at the run's memory peak (MemoryStats::at_peak).
+struct MemoryRow {
+  const BufferBytes& buffer;
+};
+
 using FrameColumn = TableColumn<FrameRow>;
 using PlanColumn = TableColumn<PlanRow>;
+using MemoryColumn = TableColumn<MemoryRow>;
 
 const std::vector<FrameColumn>& frame_columns();
 // /frames columns of a scene that declares queries only (FrameStats::query_pairs): made with
 // the first frame that has them; every frame of such a run does.
 const std::vector<FrameColumn>& query_pair_columns();
 const std::vector<PlanColumn>& plan_columns();
+const std::vector<MemoryColumn>& memory_columns();
 
 }  // namespace cdb

@@ -392,6 +392,23 @@ void ResultsFile::write_summary(const RunSummary& s, const MemoryStats& memory) 
   write_attr(loc, "peak_bytes", uint64_t(memory.peak_bytes), at);
   write_attr(loc, "allocations", uint64_t(memory.allocations), at);
   write_attr(loc, "growths", uint64_t(memory.growths), at);
+  write_memory(memory);
+}
+
+// /memory: what each buffer held at the peak, written with the summary (again, whole, where
+// an abandoned run's summary follows a written one).
+void ResultsFile::write_memory(const MemoryStats& memory) {
+  if (H5Lexists(file_.get(), "memory", H5P_DEFAULT) > 0)
+    check(H5Ldelete(file_.get(), "memory", H5P_DEFAULT), where_ + ": /memory", "delete group");
+  h5::Handle g = create_group(file_.get(), "memory", where_);
+  write_attr(g.get(), "description",
+             "the executor's buffers at the run's memory peak, in the order they were first allocated "
+             "(summary peak_bytes is their sum)",
+             where_ + ": /memory");
+  std::vector<h5::Handle> columns = create_columns(g.get(), "memory", memory_columns());
+  uint64_t rows = 0;
+  for (const BufferBytes& b : memory.at_peak)
+    append_row(memory_columns(), columns, rows, MemoryRow{b}, "memory", b.buffer);
 }
 
 void ResultsFile::finish(const RunSummary& summary, const MemoryStats& memory, const RunFindings& findings) {

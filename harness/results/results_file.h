@@ -154,6 +154,7 @@ class ResultsFile {
   std::vector<h5::Handle> create_columns(hid_t group, const std::string& group_name,
                                          const std::vector<TableColumn<Row>>& cols);
   void write_summary(const RunSummary& summary, const MemoryStats& memory);
+  void write_memory(const MemoryStats& memory);
   void close(const char* status);
   void flush_now_and_then();
   // Rethrows a system-side failure as "writing results to FILE failed: <reason>" and

@@ -214,9 +214,10 @@ class PairBuffer {
 
  public:
   static constexpr size_t kWords = sizeof(Counters) / sizeof(unsigned long long);
-  explicit PairBuffer(Exec& exec) {
-    pairs_.bind(exec.memory(), "pairs");
-    counters_.bind(exec.memory(), "counters");
+  // `prefix`: of the buffers' names (the memory report's), where a pipeline holds two.
+  explicit PairBuffer(Exec& exec, const std::string& prefix = "") {
+    pairs_.bind(exec.memory(), prefix + "pairs");
+    counters_.bind(exec.memory(), prefix + "counters");
   }
   void reserve(size_t capacity) {
     pairs_.reserve(std::max<size_t>(1024, capacity));

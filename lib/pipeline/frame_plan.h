@@ -212,6 +212,7 @@ class FramePlanner {
     else
       price_.observe_other(o.front_nodes);
     if (kind == FrameKind::updated && clean) price_.observe_update(ms);
+    price_.observe_fronts(o.front_nodes, o.pairs, built || self == FrontOp::generate);
     if (built || self == FrontOp::update || self == FrontOp::generate) {
       price_.maintained(frame_ - maintained_);
       maintained_ = frame_;
@@ -247,7 +248,7 @@ class FramePlanner {
   // The frame's plan from the frame counter, the measured costs and the last inspection.
   FramePlan decided(uint32_t leaves, uint64_t front_nodes) {
     FramePlan p;
-    p.decision = formula2(leaves);
+    p.decision = formula2(leaves, front_nodes);
     if (p.decision != Formula2::none) p.restructuring = pending_;
     pending_ = {};
     // A maintenance due on a degraded tree rebuilds it instead (pipeline/tree_maintenance.h).
@@ -342,13 +343,13 @@ class FramePlanner {
   // The paper prints the rebuild and restructure branches the other way round; restructuring
   // many subtrees costs more than a rebuild and restructuring few is what it is for, so here
   // a large share rebuilds (docs/design.md).
-  Formula2 formula2(uint32_t leaves) const {
+  Formula2 formula2(uint32_t leaves, uint64_t front_nodes) const {
     if (!strategy_.restructure || pending_.count == 0) return Formula2::none;
     const double share = double(pending_.leaves) / double(std::max<uint32_t>(leaves, 1));
     if (share < config_.restructure.threshold_refit) return Formula2::refit;
     if (share >= config_.restructure.threshold_build) return Formula2::rebuild;
     // A restructure this run measured not to pay only refits (pipeline/restructure_price.h).
-    return price_.pays(pending_.leaves, pending_.front_nodes) ? Formula2::restructure : Formula2::refit;
+    return price_.pays(pending_.leaves, pending_.front_nodes, front_nodes) ? Formula2::restructure : Formula2::refit;
   }
 
   // What the maintenance rule runs on a refitted tree this frame (preserve: none due).

@@ -66,7 +66,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       : Base(config), planner_(chosen, config), bvh_(exec_), rigid_bvh_(exec_, "rigid_bvh"), restructure_(exec_),
         queries_{{{exec_, "front", Query::self}, {exec_, "inter_front", Query::inter},
                   {exec_, "rigid_front", Query::rigid_self}}},
-        ahead_bvh_(exec_, "ahead_bvh"), ahead_front_(exec_, "ahead_front", Query::self), ahead_pairs_(exec_) {
+        ahead_bvh_(exec_, "ahead_bvh"), ahead_front_(exec_, "ahead_front", Query::self), ahead_pairs_(exec_, "ahead_") {
     radix_.bind(exec_.memory());
     if (strategy().restructure) check_restructure_config(config_);
   }
@@ -94,7 +94,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     if (strategy().radix_sort) radix_.reserve(exec_, capacity);
     if (strategy().restructure) restructure_.reserve(bvh_.num_leaves, config_.restructure.min_leaves);
     builds_ahead_ = can_build_ahead();
-    if (builds_ahead_) reserve_ahead(sizing);
+    if (builds_ahead_) plan_ahead(sizing);
     planner_.reset(running_queries(), exec_.resident_threads(), builds_ahead_);
     preserve_launch_ = {};
     exec_.sync();
@@ -346,19 +346,30 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
            !queries_[size_t(Query::inter)].active() && !queries_[size_t(Query::rigid_self)].active();
   }
 
-  // The second tree and its self fronts, sized as the current ones and active (a build runs
-  // ahead only where T_D's self fronts do: can_build_ahead); its pairs are counted, not kept.
-  // Neither holds what the current ones lend it for each build ahead (build_ahead): the
-  // tree's build scratch and the fronts' produced arrays.
-  void reserve_ahead(FrontSizing sizing) {
+  // The side stream and the settings of the second tree and its self fronts (active: a
+  // build runs ahead only where T_D's self fronts do, can_build_ahead); its pairs are
+  // counted, not kept. The tree, fronts and counters themselves are reserved by the run's
+  // first build ahead (reserve_ahead_tree): a run that never builds ahead, as the cloth
+  // waves, holds none of them (about 280 bytes a leaf).
+  void plan_ahead(FrontSizing sizing) {
     ahead_bvh_.refit_top_max_leaves = bvh_.refit_top_max_leaves;
     ahead_bvh_.refit_levels = bvh_.refit_levels;
     ahead_bvh_.build_scratch = BuildScratch::lent;
-    ahead_bvh_.reserve(exec_, bvh_.num_leaves);
     sizing.produced = ProducedArrays::lent;
-    ahead_front_.plan(ahead_bvh_, ahead_bvh_, true, sizing);
-    ahead_pairs_.reserve(0);
+    ahead_sizing_ = sizing;
+    ahead_reserved_ = false;
     exec_.reserve_side();
+  }
+
+  // The second tree and its self fronts, sized as the current ones; neither holds what the
+  // current ones lend it for each build ahead (build_ahead): the tree's build scratch and
+  // the fronts' produced arrays. Once a run (the first build ahead; counted growths).
+  void reserve_ahead_tree() {
+    if (ahead_reserved_) return;
+    ahead_bvh_.reserve(exec_, bvh_.num_leaves);
+    ahead_front_.plan(ahead_bvh_, ahead_bvh_, true, ahead_sizing_);
+    ahead_pairs_.reserve(0);
+    ahead_reserved_ = true;
   }
 
   // The ahead frame's part: the current tree's build scratch and its self fronts' produced
@@ -368,6 +379,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // the mesh, whose buffer the next frame's upload overwrites), then the build, its order,
   // the generate and the fronts' ordering on the side stream.
   void build_ahead(const MeshView& mesh) {
+    reserve_ahead_tree();
     exchange_lent();
     ahead_front_.reserve_like(exec_, self());
     timed(Phase::build, [&] { build_boxes(exec_, ahead_bvh_, mesh, mesh_.deformable()); });
@@ -602,6 +614,8 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   bool builds_ahead_ = false;
   bool ahead_due_ = false;  // build_ahead() ran this frame; queue_ahead() queues the side's part
   bool lent_ = false;       // the build ahead holds T_D's build scratch and self fronts' produced arrays
+  bool ahead_reserved_ = false;  // this run reserved the second tree and fronts (reserve_ahead_tree)
+  FrontSizing ahead_sizing_;
   Lbvh<Exec> ahead_bvh_;
   FrontQuery<Exec> ahead_front_;
   PairBuffer<Exec, FrontCounters> ahead_pairs_;

@@ -20,9 +20,15 @@
 // them), and its frame costs at least what the update before it cost over preserving:
 // both are one front pass over every front node that produces new ones (measured: a
 // restructure 3.5x a steady frame on flamenco, 4.8x on the garment with its avatar, whose
-// update before was 2.9x), and at least one steady frame. It runs where removing all of
-// them for a stretch would pay for that, so a scene whose candidates hold few front nodes
-// does not spend a restructure on learning that it does not pay.
+// update before was 2.9x), and at least one steady frame. It runs where removing them for a
+// stretch would pay for that, so a scene whose candidates hold few front nodes does not
+// spend a restructure on learning that it does not pay. Not all of them go: the candidates'
+// fronts are regenerated, and a generated front holds as many nodes a pair as the fronts
+// had on the frame after their last generate or build. So of the candidates' nodes the
+// bound counts the share the fronts have grown by since, per pair (1 - fresh / now): on the
+// H200 at 7354d62 the first restructures of flamenco and the garment with its avatar came
+// where the fronts held 5.9 and 8.5 nodes a pair against 3.3 and 5.2 fresh, and neither paid
+// (c 1.12x and 1.15x b's mean, results/2026-12-03-h200/bar).
 //
 // Figures (NVIDIA H200, one pass, phases timed): on flamenco a restructure of 3,217 leaves
 // cost 0.46 ms against a 0.13 ms steady frame and removed 6% of the front nodes; the
@@ -42,21 +48,29 @@ class RestructurePrice {
 
   bool measured() const { return cost_per_leaf_ms_ >= 0.0 && gain_per_leaf_ >= 0.0; }
 
-  // Whether restructuring candidates of `leaves` leaves holding `front_nodes` front nodes
-  // is predicted to pay (always when disabled; by the bound before one was measured, and
-  // before a steady frame was, too).
-  bool pays(uint32_t leaves, uint64_t front_nodes) const {
+  // Whether restructuring candidates of `leaves` leaves holding `front_nodes` front nodes,
+  // of fronts of `all_front_nodes` in all, is predicted to pay (always when disabled; by the
+  // bound before one was measured, and before a steady frame was, too).
+  bool pays(uint32_t leaves, uint64_t front_nodes, uint64_t all_front_nodes) const {
     if (!enabled_) return true;
-    if (!measured()) return bound_pays(front_nodes);
+    if (!measured()) return bound_pays(front_nodes, all_front_nodes);
     return predicted_gain_ms(leaves) >= predicted_cost_ms(leaves);
   }
-  // The bound: every front node in the candidates removed for the stretch, at a steady
-  // frame's cost per node, against the last update's cost over preserving, or one steady
-  // frame where that was less or not measured.
-  bool bound_pays(uint64_t front_nodes) const {
+  // The bound: the candidates' front nodes in excess of fresh fronts (removable_share)
+  // removed for the stretch, at a steady frame's cost per node, against the last update's
+  // cost over preserving, or one steady frame where that was less or not measured.
+  bool bound_pays(uint64_t front_nodes, uint64_t all_front_nodes) const {
     const double steady = preserving_ms();
     if (!(steady < kNone)) return true;
-    return double(front_nodes) * steady_per_node_ms_ * double(horizon_) >= std::max(steady, update_over_steady_ms_);
+    return double(front_nodes) * removable_share(all_front_nodes) * steady_per_node_ms_ * double(horizon_) >=
+           std::max(steady, update_over_steady_ms_);
+  }
+  // The share of fronts of `all_front_nodes` nodes, for the last frame's pairs, that fronts
+  // as fresh as after a generate would not hold: 1 before a fresh front was measured.
+  double removable_share(uint64_t all_front_nodes) const {
+    if (fresh_per_pair_ <= 0.0 || last_pairs_ == 0 || all_front_nodes == 0) return 1.0;
+    const double now = double(all_front_nodes) / double(last_pairs_);
+    return std::clamp(1.0 - fresh_per_pair_ / now, 0.0, 1.0);
   }
   double predicted_cost_ms(uint32_t leaves) const { return std::max(cost_per_leaf_ms_, 0.0) * double(leaves); }
   double predicted_gain_ms(uint32_t leaves) const {
@@ -93,6 +107,15 @@ class RestructurePrice {
     if (after_restructure_) gain_from(front_nodes);
   }
 
+  // Every frame, after the calls above: the fronts it started from and the pairs it
+  // reported; `fresh`: it generated the fronts (a build, an adoption or a generate), so the
+  // next frame starts from fresh ones.
+  void observe_fronts(uint64_t front_nodes, uint64_t pairs, bool fresh) {
+    if (fresh_next_ && pairs > 0) fresh_per_pair_ = double(front_nodes) / double(pairs);
+    fresh_next_ = fresh;
+    last_pairs_ = pairs;
+  }
+
   // A maintenance (update, generate or build) `frames` frames after the last one: the
   // stretch a maintenance's fronts are kept. A new stretch of steady frames starts.
   void maintained(uint64_t frames) {
@@ -122,6 +145,9 @@ class RestructurePrice {
   double stretch_min_ = kNone;       // the cheapest steady frame since the last maintenance
   double last_stretch_min_ = kNone;  // the same for the last stretch that had steady frames
   uint64_t horizon_ = 1;             // frames between the last two productions of the fronts
+  double fresh_per_pair_ = 0.0;      // front nodes a pair on the frame after the last generate
+  bool fresh_next_ = false;          // the last frame generated the fronts
+  uint64_t last_pairs_ = 0;          // the pairs the last frame reported
   uint32_t restructured_leaves_ = 0;
   uint64_t fronts_before_ = 0;
   bool after_restructure_ = false;

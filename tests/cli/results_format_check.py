@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""docs/results-format.md against a results file: every root attribute, /frames and /plans
-dataset and /summary attribute the file has is documented in its section, and every name
+"""docs/results-format.md against a results file: every root attribute, /frames, /plans,
+/passes and /memory dataset and /summary attribute the file has is documented in its section, and every name
 documented there is in the file (`error` only in incomplete files, /plans only in a front
 pipeline's, pairs by query only for scenes that declare queries). A group's attributes other than its description are documented as `@name`. Prints each difference and exits 1.
 
@@ -12,7 +12,7 @@ import sys
 import h5py
 
 SECTIONS = {"## Root attributes": "/", "## `/frames/`": "frames", "## `/summary`": "summary", "## `/plans/`": "plans",
-            "## `/passes/`": "passes"}
+            "## `/passes/`": "passes", "## `/memory/`": "memory"}
 ABSENT_WHEN_COMPLETE = {"error"}
 # Only in files of scenes that declare queries.
 ONLY_WITH_QUERIES = {"pairs_self", "pairs_inter", "pairs_self_mean", "pairs_inter_mean"}
@@ -42,7 +42,7 @@ def main():
     with h5py.File(h5_path, "r") as f:
         present = {"/": list(f.attrs), "frames": list(f["frames"]), "summary": list(f["summary"].attrs)}
         queries = "pairs_self" in f["frames"]
-        for group in ("plans", "passes"):
+        for group in ("plans", "passes", "memory"):
             if group in f:
                 present[group] = list(f[group]) + [f"@{a}" for a in f[group].attrs if a != "description"]
         for section, names in present.items():
@@ -55,8 +55,9 @@ def main():
                 if not any(re.fullmatch(p, n) for n in names) and p not in optional:
                     problems.append(f"{section}: {p} is documented but not in the file")
         groups = sorted(f.keys())
-    if not {"frames", "summary", "passes"} <= set(groups) <= {"frames", "pairs", "plans", "passes", "summary"}:
-        problems.append(f"groups {groups}, documented: frames, summary, passes, pairs (with --save-pairs), "
+    if not {"frames", "summary", "passes", "memory"} <= set(groups) <= {"frames", "pairs", "plans", "passes", "summary",
+                                                                        "memory"}:
+        problems.append(f"groups {groups}, documented: frames, summary, passes, memory, pairs (with --save-pairs), "
                         "plans (front pipelines)")
     for p in problems:
         print(p)
