@@ -280,6 +280,7 @@ TEST(FramePlan, Formula2DecidesTheFrameAfterAnInspection) {
   PipelineConfig config = cycle_config(2);
   config.restructure.threshold_refit = 0.05;
   config.restructure.threshold_build = 0.5;
+  config.restructure.priced = false;  // Formula 2 alone (the price: RestructuresOnlyWhereTheLastOneSavedTime)
   struct Case {
     uint32_t leaves_in_candidates;
     Formula2 decision;
@@ -733,103 +734,87 @@ TEST(FramePlan, ReplayProbesWhereThePlanSays) {
   EXPECT_EQ(replayed_probes(recorded, false), std::vector<bool>(6, false));
 }
 
-// --restructure-price: after the first restructure of a run, the next runs only where the
-// measured gain (front nodes removed, priced at a steady frame's cost per node, kept for a
-// maintenance stretch) covers the measured cost (its frame over a steady one).
-TEST(FramePlan, RestructuresOnlyWhereTheLastOnePaid) {
+// Frames 1-3 steady at `first` + k x `growth` ms for 100 pairs from 100 front nodes (a
+// fixed cycle of 4 from the build); frame 4 updates in `update_ms` and its inspection finds
+// 200 of 1000 leaves holding `candidate_nodes` front nodes: Formula 2 says restructure, and
+// frame 5's plan is returned.
+FramePlan plan_after_inspection(FramePlanner& planner, double growth, double update_ms, uint32_t candidate_nodes) {
+  FramePlan p = planner.plan(1000, 100);  // 0: build
+  planner.finish(p, {.ms = 5.0, .front_nodes = 100, .q_root = 2.0, .pairs = 100});
+  for (int k = 0; k < 3; ++k) {
+    p = planner.plan(1000, 100);  // 1-3: preserve
+    EXPECT_EQ(letter(p), 'p');
+    planner.finish(p, {.ms = 1.0 + growth * k, .front_nodes = 100, .q_root = 2.0, .pairs = 100});
+  }
+  p = planner.plan(1000, 100);  // 4: update, inspected
+  EXPECT_EQ(letter(p), 'u');
+  planner.finish(p, {.ms = update_ms, .front_nodes = 100, .q_root = 2.5, .found = {4, 200, candidate_nodes},
+                     .pairs = 100});
+  return planner.plan(1000, 100);
+}
+
+PipelineConfig restructure_config(bool priced) {
+  PipelineConfig config = cycle_config(4);
+  config.restructure.threshold_refit = 0.05;
+  config.restructure.threshold_build = 0.5;
+  config.restructure.priced = priced;
+  return config;
+}
+
+// Before a restructure was measured, the bound decides: the last stretch's rent (frames 1-3
+// at 1, 1 + g, 1 + 2g ms: 3g over the cheapest) in the candidates' share of the fronts,
+// against the update's cost over preserving (update - 1 ms), or one steady frame (1 ms) where
+// that is less. g = 1: the candidates hold all 100 front nodes, 3 ms against 1: restructure;
+// 20 of them, 0.6 ms: only refit; after a 5 ms update (4 over preserving): only refit.
+// Fronts that grew no dearer (g = 0) pay no rent: only refit. Unpriced: the paper's rule.
+TEST(FramePlan, FirstRestructureRunsWhereTheLastStretchsRentPays) {
   FrontStrategy c;
   c.balance = c.restructure = true;
-  struct Case {
-    bool priced;
-    double restructure_ms;
-    uint64_t fronts_before, fronts_after;
-    char second;  // what the second Formula 2 restructure decision runs
-  };
-  for (const Case k : {Case{true, 10.0, 100, 100, 'p'}, Case{true, 1.5, 1000, 100, 'r'},
-                       Case{false, 10.0, 100, 100, 'r'}}) {
-    PipelineConfig config = cycle_config(2);
-    config.restructure.threshold_refit = 0.05;
-    config.restructure.threshold_build = 0.5;
-    config.restructure.priced = k.priced;
-    FramePlanner planner(c, config);
-    FramePlan p = planner.plan(1000, 100);  // 0: build
-    planner.finish(p, {.ms = 5.0, .front_nodes = 100, .q_root = 2.0});
-    p = planner.plan(1000, 100);  // 1: preserve, 1 ms from 100 front nodes
-    planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 2.0});
-    p = planner.plan(1000, 100);  // 2: update, inspection finds 200 leaves
-    ASSERT_EQ(letter(p), 'u');
-    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, 200, 1000}});
-    p = planner.plan(1000, k.fronts_before);  // 3: the run's first restructure runs, to measure
-    ASSERT_EQ(letter(p), 'r');
+  for (const auto& [priced, growth, update_ms, candidate_nodes, expected] :
+       {std::tuple{true, 1.0, 2.0, 100u, 'r'}, std::tuple{true, 1.0, 2.0, 20u, 'p'},
+        std::tuple{true, 1.0, 5.0, 100u, 'p'}, std::tuple{true, 0.0, 2.0, 100u, 'p'},
+        std::tuple{false, 0.0, 2.0, 100u, 'r'}}) {
+    SCOPED_TRACE(std::string(priced ? "priced" : "unpriced") + ", growth " + std::to_string(growth) + ", update " +
+                 std::to_string(update_ms) + " ms, " + std::to_string(candidate_nodes) + " candidate nodes");
+    FramePlanner planner(c, restructure_config(priced));
+    const FramePlan p = plan_after_inspection(planner, growth, update_ms, candidate_nodes);
+    EXPECT_EQ(letter(p), expected);
+    EXPECT_EQ(p.decision, expected == 'r' ? Formula2::restructure : Formula2::refit);
+    if (priced) {
+      EXPECT_DOUBLE_EQ(planner.restructure_price().last_rent_ms(), 3.0 * growth);
+    }
+  }
+}
+
+// After the first restructure (frame 5, 3 ms: 2 over preserving for 200 leaves), its
+// stretch (frames 6-7, steady at `after_ms` for 100 pairs) is compared with the plain one
+// after the build (frames 1-3: 2 ms a frame on average): the next restructure Formula 2 asks
+// for (after the update at 8, the cycle's) runs where the difference per pair, for the
+// 4-frame stretch, covers the measured 2 ms. At 1 ms a frame it saved 4 ms: restructure; at
+// 1.8, 0.8 ms: only refit; at 2.5 it cost more than the plain stretch: only refit. Front
+// nodes do not enter: the restructured fronts hold half as many.
+TEST(FramePlan, RestructuresOnlyWhereTheLastOneSavedTime) {
+  FrontStrategy c;
+  c.balance = c.restructure = true;
+  for (const auto& [after_ms, second] : {std::pair{1.0, 'r'}, std::pair{1.8, 'p'}, std::pair{2.5, 'p'}}) {
+    SCOPED_TRACE(std::to_string(after_ms) + " ms a frame after the restructure");
+    FramePlanner planner(c, restructure_config(true));
+    FramePlan p = plan_after_inspection(planner, 1.0, 2.0, 100);
+    ASSERT_EQ(letter(p), 'r');  // 5: the bound pays (FirstRestructureRunsWhereTheLastStretchsRentPays)
     EXPECT_FALSE(planner.restructure_price().measured());
-    planner.finish(p, {.ms = k.restructure_ms, .front_nodes = k.fronts_before, .q_root = 2.0});
-    p = planner.plan(1000, k.fronts_after);  // 4: update, the inspection finds 200 leaves again
+    planner.finish(p, {.ms = 3.0, .front_nodes = 100, .q_root = 2.0, .pairs = 100});
+    for (int f = 6; f < 8; ++f) {
+      p = planner.plan(1000, 50);  // fewer front nodes, whatever they cost
+      ASSERT_EQ(letter(p), 'p') << f;
+      planner.finish(p, {.ms = after_ms, .front_nodes = 50, .q_root = 2.0, .pairs = 100});
+    }
+    p = planner.plan(1000, 50);  // 8: update, the inspection finds 200 leaves again
     ASSERT_EQ(letter(p), 'u');
-    planner.finish(p, {.ms = 2.0, .front_nodes = k.fronts_after, .q_root = 2.5, .found = {4, 200, 1000}});
-    EXPECT_TRUE(planner.restructure_price().measured());  // measured whether or not it decides
-    p = planner.plan(1000, 100);  // 5: Formula 2 says restructure; the price decides
-    EXPECT_EQ(letter(p), k.second) << k.restructure_ms;
-    EXPECT_EQ(p.decision, k.second == 'r' ? Formula2::restructure : Formula2::refit);
-  }
-}
-
-// Before a restructure was measured, the bound decides: the front nodes in the candidates,
-// all removed for the stretch since the last maintenance (2 frames) at the steady frame's
-// cost per node (1 ms over 100 nodes), against the update's cost over the steady frame, or
-// one steady frame (1 ms) where that is less. After a 2 ms update, 1000 nodes would save
-// 20 ms: the restructure runs; 40 would save 0.8 ms: it only refits; 50 save 1 ms. After a
-// 4 ms update (3 ms over preserving) 50 nodes no longer pay, 150 do. Off, it runs either way.
-TEST(FramePlan, FirstRestructureRunsWhereItsBoundPays) {
-  FrontStrategy c;
-  c.balance = c.restructure = true;
-  for (const auto& [priced, internal, update_ms, expected] :
-       {std::tuple{true, 1000u, 2.0, 'r'}, std::tuple{true, 40u, 2.0, 'p'}, std::tuple{true, 50u, 2.0, 'r'},
-        std::tuple{false, 40u, 2.0, 'r'}, std::tuple{true, 50u, 4.0, 'p'}, std::tuple{true, 150u, 4.0, 'r'}}) {
-    SCOPED_TRACE(std::to_string(internal) + (priced ? " priced" : " unpriced") + ", update " +
-                 std::to_string(update_ms) + " ms");
-    PipelineConfig config = cycle_config(2);
-    config.restructure.threshold_refit = 0.05;
-    config.restructure.threshold_build = 0.5;
-    config.restructure.priced = priced;
-    FramePlanner planner(c, config);
-    FramePlan p = planner.plan(1000, 100);  // 0: build
-    planner.finish(p, {.ms = 5.0, .front_nodes = 100, .q_root = 2.0});
-    p = planner.plan(1000, 100);  // 1: preserve
-    planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 2.0});
-    p = planner.plan(1000, 100);  // 2: update, inspection finds 200 leaves
-    ASSERT_EQ(letter(p), 'u');
-    planner.finish(p, {.ms = update_ms, .front_nodes = 100, .q_root = 2.5, .found = {4, 200, internal}});
-    p = planner.plan(1000, 100);  // 3
-    EXPECT_EQ(letter(p), expected);
-    EXPECT_EQ(p.decision, expected == 'r' ? Formula2::restructure : Formula2::refit);
-  }
-}
-
-// The bound counts only the share of the candidates' front nodes that the fronts grew by
-// since their generate, per pair: fresh fronts held 100 nodes for 100 pairs. Grown to 200
-// for the same pairs, half would go: after a 2 ms update (1 ms over preserving, a 2-frame
-// stretch at 0.01 ms a node) 50 candidate nodes save 0.5 ms and only refit, 100 save 1 ms and
-// restructure. Not grown, none would go, and 1000 candidate nodes only refit.
-TEST(FramePlan, FirstRestructureBoundCountsTheFrontsGrowthSinceTheirGenerate) {
-  FrontStrategy c;
-  c.balance = c.restructure = true;
-  for (const auto& [candidate_nodes, fronts_now, expected] :
-       {std::tuple{50u, 200u, 'p'}, std::tuple{100u, 200u, 'r'}, std::tuple{1000u, 100u, 'p'}}) {
-    SCOPED_TRACE(std::to_string(candidate_nodes) + " candidate nodes of " + std::to_string(fronts_now));
-    PipelineConfig config = cycle_config(2);
-    config.restructure.threshold_refit = 0.05;
-    config.restructure.threshold_build = 0.5;
-    FramePlanner planner(c, config);
-    FramePlan p = planner.plan(1000, 100);  // 0: build
-    planner.finish(p, {.ms = 5.0, .front_nodes = 100, .q_root = 2.0, .pairs = 100});
-    p = planner.plan(1000, 100);  // 1: preserve from the fresh fronts
-    planner.finish(p, {.ms = 1.0, .front_nodes = 100, .q_root = 2.0, .pairs = 100});
-    p = planner.plan(1000, 100);  // 2: update, inspection finds 200 leaves
-    ASSERT_EQ(letter(p), 'u');
-    planner.finish(p, {.ms = 2.0, .front_nodes = 100, .q_root = 2.5, .found = {4, 200, candidate_nodes}, .pairs = 100});
-    p = planner.plan(1000, fronts_now);  // 3
-    EXPECT_EQ(letter(p), expected);
-    EXPECT_EQ(p.decision, expected == 'r' ? Formula2::restructure : Formula2::refit);
+    planner.finish(p, {.ms = 2.0, .front_nodes = 50, .q_root = 2.5, .found = {4, 200, 100}, .pairs = 100});
+    EXPECT_TRUE(planner.restructure_price().measured());
+    p = planner.plan(1000, 50);  // 9: Formula 2 says restructure; the price decides
+    EXPECT_EQ(letter(p), second);
+    EXPECT_EQ(p.decision, second == 'r' ? Formula2::restructure : Formula2::refit);
   }
 }
 

@@ -206,13 +206,10 @@ class FramePlanner {
     if (!built && p.changes_fronts()) tree_.maintained();
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
     if (self == FrontOp::restructure)
-      price_.observe_restructure(ms, p.restructuring.leaves, o.front_nodes, clean);
+      price_.observe_restructure(ms, p.restructuring.leaves, clean);
     else if (steady && clean)
-      price_.observe_steady(ms, o.front_nodes);
-    else
-      price_.observe_other(o.front_nodes);
+      price_.observe_steady(ms, o.pairs);
     if (kind == FrameKind::updated && clean) price_.observe_update(ms);
-    price_.observe_fronts(o.front_nodes, o.pairs, built || self == FrontOp::generate);
     if (built || self == FrontOp::update || self == FrontOp::generate) {
       price_.maintained(frame_ - maintained_);
       maintained_ = frame_;

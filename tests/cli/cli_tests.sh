@@ -298,7 +298,7 @@ check "schema version 5" 0 '"schema_version": 5' -- attrs "$out/funnel-res24.h5"
 cp "$out/funnel-res24.h5" "$tmp/future.h5"
 "$python" -c "import h5py, sys; f = h5py.File(sys.argv[1], 'r+'); f.attrs['schema_version'] = 99; f.close()" "$tmp/future.h5"
 check "report refuses a newer schema" 1 "future.h5: schema_version 99 is not one this cdbench reads \\(1 to 5\\)" -- "$cdbench" report "$tmp/future.h5"
-check "no /quality group; pipeline c's plans; every pass" 0 "^groups \['frames', 'passes', 'plans', 'summary'\]$" -- attrs "$out/funnel-res24.h5"
+check "no /quality group; pipeline c's plans; every pass; the memory peak" 0 "^groups \['frames', 'memory', 'passes', 'plans', 'summary'\]$" -- attrs "$out/funnel-res24.h5"
 check "description of what ran" 0 '"scene_description": "funnel: .*\(funnel\[res=24\]\)"' -- attrs "$out/funnel-res24.h5"
 check "numbers in params_json are numbers" 0 "^int int float str list \['res=24'\]$" -- "$python" -c "
 import h5py, json, sys
