@@ -262,9 +262,9 @@ void add_restructure(CLI::App* cmd, CommonOptions& o) {
       ->capture_default_str();
   add_switch(cmd, "--restructure-price", c.restructure.priced,
              "pipeline c: restructure only where this run measured a restructure to save more on the frames "
-             "after it than it costs (before one was measured: where removing its candidates' front nodes in excess of "
-             "fresh fronts, for a stretch, would save the update before it over a steady frame); off: wherever Formula "
-             "2 says (the paper)")
+             "after it than it costs, in time: the steady frames a restructure began against those an update alone "
+             "began (before one was measured: where the last stretch's rent, in its candidates' share of the fronts, "
+             "covers the update before it over a steady frame); off: wherever Formula 2 says (the paper)")
       ->group(kPipelineGroup);
 }
 
