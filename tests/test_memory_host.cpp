@@ -170,28 +170,47 @@ namespace cdb::test {
 // arrays of their own. The current tree and self fronts lend theirs for each build ahead and
 // get them back with the adoption, so at the peak one set of each is held, whatever its
 // buffers' names; and the run is as exact as its builds in frame.
-TEST(MemoryStats, BuildsAheadBorrowTheScratchAndProducedArrays) {
-  auto wave = make_generator("cloth-wave", {{"res", 32}, {"frames", 12}});
+namespace {
+
+// Pipeline c on the host over a cloth wave of `frames` frames at res 32, every frame checked
+// against the oracle: its memory, and how many frames built ahead and adopted.
+struct WaveRun {
+  MemoryStats memory;
+  uint32_t ahead = 0, adopted = 0;
+};
+
+WaveRun run_wave(uint32_t frames, AutoSwitch rebuild_ahead, uint32_t rebuild_every, uint32_t cycle = 0) {
+  auto wave = make_generator("cloth-wave", {{"res", 32}, {"frames", frames}});
   const Topology& topo = wave->topology();
   PipelineConfig cfg;
   cfg.device = "cpu";
   cfg.name = "c";
   cfg.launch.phase_timing = false;
-  cfg.tree.rebuild_ahead = AutoSwitch::on;
-  cfg.tree.rebuild_every = 3;
+  cfg.tree.rebuild_ahead = rebuild_ahead;
+  cfg.tree.rebuild_every = rebuild_every;
+  cfg.fronts.cycle = cycle;
   auto p = make_pipeline(cfg);
   p->set_topology(topo);
   std::vector<vec3f> v;
-  uint32_t adopted = 0;
+  WaveRun r;
   for (uint32_t f = 0; f < wave->num_frames(); ++f) {
     wave->frame(f, v);
     const FrameStats s = p->run_frame(v);
-    adopted += s.plan && s.plan->trees == TreeStep::adopt;
+    r.ahead += s.plan && s.plan->trees == TreeStep::ahead;
+    r.adopted += s.plan && s.plan->trees == TreeStep::adopt;
     const PairSetDiff d = diff_pair_sets(sweep_oracle_pairs(topo, v, false), p->sorted_pairs());
     EXPECT_TRUE(d.equal()) << "frame " << f << ": " << d.missing_count << " missing";
   }
-  ASSERT_GE(adopted, 2u);
-  const MemoryStats m = p->memory();
+  r.memory = p->memory();
+  return r;
+}
+
+}  // namespace
+
+TEST(MemoryStats, BuildsAheadBorrowTheScratchAndProducedArrays) {
+  const WaveRun r = run_wave(12, AutoSwitch::on, 3);
+  ASSERT_GE(r.adopted, 2u);
+  const MemoryStats& m = r.memory;
   EXPECT_EQ(sum_at_peak(m), m.peak_bytes);
   // An array keeps its name through the lending and the swaps: the second tree's and
   // fronts' were never reserved.
@@ -217,39 +236,17 @@ TEST(MemoryStats, BuildsAheadBorrowTheScratchAndProducedArrays) {
 // with builds ahead off, and holds no byte of either. The next run over the same pipeline
 // that builds ahead reserves them then.
 TEST(MemoryStats, SecondTreeReservedOnlyByABuildAhead) {
-  auto wave = make_generator("cloth-wave", {{"res", 32}, {"frames", 8}});
-  const Topology& topo = wave->topology();
-  auto run = [&](AutoSwitch ahead, uint32_t rebuild_every) {
-    PipelineConfig cfg;
-    cfg.device = "cpu";
-    cfg.name = "c";
-    cfg.launch.phase_timing = false;
-    cfg.tree.rebuild_ahead = ahead;
-    cfg.tree.rebuild_every = rebuild_every;
-    cfg.fronts.cycle = 3;  // a fixed cycle: both runs make one plan, whatever their frames' times
-    auto p = make_pipeline(cfg);
-    p->set_topology(topo);
-    std::vector<vec3f> v;
-    uint32_t ahead_frames = 0;
-    for (uint32_t f = 0; f < wave->num_frames(); ++f) {
-      wave->frame(f, v);
-      const FrameStats s = p->run_frame(v);
-      ahead_frames += s.plan && s.plan->trees == TreeStep::ahead;
-      const PairSetDiff d = diff_pair_sets(sweep_oracle_pairs(topo, v, false), p->sorted_pairs());
-      EXPECT_TRUE(d.equal()) << "frame " << f << ": " << d.missing_count << " missing";
-    }
-    return std::pair{p->memory(), ahead_frames};
-  };
-  const auto [off, off_ahead] = run(AutoSwitch::off, 0);
-  const auto [on, on_ahead] = run(AutoSwitch::on, 0);
-  EXPECT_EQ(off_ahead, 0u);
-  EXPECT_EQ(on_ahead, 0u);
-  EXPECT_EQ(on.peak_bytes, off.peak_bytes);
-  EXPECT_EQ(sum_at_peak(on, "ahead_"), 0u);
-  const auto [built, built_ahead] = run(AutoSwitch::on, 3);
-  ASSERT_GE(built_ahead, 1u);
-  EXPECT_GT(sum_at_peak(built, "ahead_bvh."), 0u);
-  EXPECT_GT(sum_at_peak(built, "ahead_front_"), 0u);
+  // A fixed cycle: both runs make one plan, whatever their frames' times.
+  const WaveRun off = run_wave(8, AutoSwitch::off, 0, 3);
+  const WaveRun on = run_wave(8, AutoSwitch::on, 0, 3);
+  EXPECT_EQ(off.ahead, 0u);
+  EXPECT_EQ(on.ahead, 0u);
+  EXPECT_EQ(on.memory.peak_bytes, off.memory.peak_bytes);
+  EXPECT_EQ(sum_at_peak(on.memory, "ahead_"), 0u);
+  const WaveRun built = run_wave(8, AutoSwitch::on, 3, 3);
+  ASSERT_GE(built.ahead, 1u);
+  EXPECT_GT(sum_at_peak(built.memory, "ahead_bvh."), 0u);
+  EXPECT_GT(sum_at_peak(built.memory, "ahead_front_"), 0u);
 }
 
 }  // namespace cdb::test
