@@ -25,18 +25,25 @@ std::vector<T> download(Exec& exec, const Array<T>& a, size_t n) {
   return out;
 }
 
+// The tree's boxes (bvh/node_box.h) as the two corners' arrays the checks read.
+template <class Exec>
+void download_boxes(Exec& exec, const Array<NodeBox>& a, size_t n, std::vector<vec4f>& lo, std::vector<vec4f>& hi) {
+  const std::vector<NodeBox> boxes = download(exec, a, n);
+  lo.resize(n);
+  hi.resize(n);
+  for (size_t k = 0; k < n; ++k) lo[k] = boxes[k].lo, hi[k] = boxes[k].hi;
+}
+
 template <class Exec>
 HostBvh download(Exec& exec, const Lbvh<Exec>& b) {
   HostBvh h;
   h.n = b.num_leaves;
   const size_t n = h.n, m = n > 1 ? n - 1 : 0;
-  h.leaf_lo = download(exec, b.leaf_lo, n);
-  h.leaf_hi = download(exec, b.leaf_hi, n);
+  download_boxes(exec, b.leaf_box, n, h.leaf_lo, h.leaf_hi);
   h.leaf_prim = download(exec, b.leaf_prim, n);
   h.leaf_parent = download(exec, b.leaf_parent, n);
   h.leaf_escape = download(exec, b.leaf_escape, n);
-  h.node_lo = download(exec, b.node_lo, m);
-  h.node_hi = download(exec, b.node_hi, m);
+  download_boxes(exec, b.node_box, m, h.node_lo, h.node_hi);
   h.node_left = download(exec, b.node_left, m);
   h.node_right = download(exec, b.node_right, m);
   h.node_parent = download(exec, b.node_parent, m);

@@ -218,7 +218,7 @@ TEST(MemoryStats, BuildsAheadBorrowTheScratchAndProducedArrays) {
     EXPECT_GT(bytes_of(m, std::string("bvh.") + a), 0u) << a;
     EXPECT_EQ(bytes_of(m, std::string("ahead_bvh.") + a), 0u) << a;
   }
-  for (const char* a : {"node_lo", "leaf_lo", "node_escape"}) {
+  for (const char* a : {"node_box", "leaf_box", "node_escape"}) {
     EXPECT_GT(bytes_of(m, std::string("bvh.") + a), 0u) << a;
     EXPECT_GT(bytes_of(m, std::string("ahead_bvh.") + a), 0u) << a;
   }

@@ -379,7 +379,7 @@ TEST(ResultsFile, CompleteRunMatchesFrameStats) {
     sum += held[i];
   }
   EXPECT_EQ(sum, run.final_memory.peak_bytes);
-  EXPECT_NE(std::find(buffers.begin(), buffers.end(), "bvh.node_lo"), buffers.end());
+  EXPECT_NE(std::find(buffers.begin(), buffers.end(), "bvh.node_box"), buffers.end());
 
   for (uint32_t i = 0; i < n; ++i) {
     char name[32];

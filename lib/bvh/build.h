@@ -9,7 +9,6 @@
 #include <cstdint>
 
 #include "cdbench/exec/balance.h"
-#include "cdbench/exec/gather.h"
 #include "cdbench/bvh/lbvh.h"
 #include "cdbench/bvh/node_ref.h"
 #include "cdbench/core/atomics.h"
@@ -26,6 +25,19 @@ struct SubsetFaceBoxFn {
   vec4f* lo;
   vec4f* hi;
   CDB_HD void operator()(uint32_t k) const { face_box(mesh, subset.face(k), lo[k], hi[k]); }
+};
+
+// The sorted leaves' boxes: leaf k takes the box of the face its key sort put there. The
+// link lanes are written by the depth-first layout (bvh/order.h).
+struct GatherLeafBoxesFn {
+  const uint32_t* order;
+  const vec4f* lo;
+  const vec4f* hi;
+  NodeBox* leaf_box;
+  CDB_HD void operator()(uint32_t k) const {
+    const uint32_t p = order[k];
+    leaf_box[k] = {lo[p], hi[p]};
+  }
 };
 
 // Sorted leaves name subset positions after the key sort; this makes them mesh faces.
@@ -104,7 +116,7 @@ CDB_HD_INLINE void apetrei_climb(const ApetreiTree& a, uint32_t i, uint32_t s, u
   uint32_t l = i, r = i;
   uint32_t current = leaf_ref(i);
   const BuildArrays& b = a.build;
-  vec4f lo = a.leaves.leaf_lo[i], hi = a.leaves.leaf_hi[i];
+  vec4f lo = a.leaves.leaf_box[i].lo, hi = a.leaves.leaf_box[i].hi;
   for (;;) {
     const bool parent_is_right_split =
         l == s || (r != t && split_delta(a.keys, r) < split_delta(a.keys, l - 1));
@@ -126,9 +138,9 @@ CDB_HD_INLINE void apetrei_climb(const ApetreiTree& a, uint32_t i, uint32_t s, u
       l = other;
       sibling = load_coherent(&b.left[parent]);
     }
-    const vec4f slo = is_leaf(sibling) ? a.leaves.leaf_lo[ref_index(sibling)]
+    const vec4f slo = is_leaf(sibling) ? a.leaves.leaf_box[ref_index(sibling)].lo
                                        : load_coherent(&b.lo[sibling]);
-    const vec4f shi = is_leaf(sibling) ? a.leaves.leaf_hi[ref_index(sibling)]
+    const vec4f shi = is_leaf(sibling) ? a.leaves.leaf_box[ref_index(sibling)].hi
                                        : load_coherent(&b.hi[sibling]);
     lo = min_xyz(lo, slo, 0);
     hi = max_xyz(hi, shi, 0);
@@ -182,8 +194,8 @@ void build_from_boxes(Exec& exec, Lbvh<Exec>& bvh, MortonBits bits, FaceSubset s
   exec.sort_pairs(bvh.morton.data(), bvh.morton_sorted.data(), bvh.prim_iota.data(),
                   bvh.leaf_prim.data(), n, static_cast<int>(bits), bvh.temp.data(),
                   bvh.temp.size());
-  gather(exec, n, bvh.leaf_prim.data(), bvh.prim_lo.data(), bvh.prim_hi.data(), bvh.leaf_lo.data(),
-         bvh.leaf_hi.data());
+  exec.for_each_n(n, GatherLeafBoxesFn{bvh.leaf_prim.data(), bvh.prim_lo.data(), bvh.prim_hi.data(),
+                                       bvh.leaf_box.data()});
   if (subset.faces) exec.for_each_n(n, SubsetLeafPrimFn{subset, bvh.leaf_prim.data()});
   if (n == 1) return;
   exec.fill(bvh.other_bound.data(), n - 1, kNoNode);

@@ -18,7 +18,8 @@ struct CrossQueryFn {
   BvhView tree;
   PairSink sink;
   CDB_HD void operator()(uint32_t i) const {
-    const vec4f lo = query.leaf_lo[i], hi = query.leaf_hi[i];
+    const NodeBox b = query.leaf_box[i];
+    const vec4f &lo = b.lo, &hi = b.hi;
     const uint32_t prim = lane_link(hi.w);
     traverse(tree, lo, hi, tree.root(), kNoNode, [&](uint32_t other) { sink.emit(prim, other); });
   }

@@ -32,8 +32,8 @@ struct Lbvh {
   void reserve(Exec& exec, uint32_t n) {
     num_leaves = n;
     const size_t internal = n > 1 ? n - 1 : 0;
-    for (auto* a : {&leaf_lo, &leaf_hi}) a->reserve(n);
-    for (auto* a : {&node_lo, &node_hi}) a->reserve(internal);
+    leaf_box.reserve(n);
+    node_box.reserve(internal);
     for (auto* a : {&leaf_prim, &leaf_parent, &leaf_escape, &tile_start, &tile_scan}) a->reserve(n);
     for (auto* a : {&node_left, &node_right, &node_parent, &node_escape, &node_first, &node_last, &refit_flag})
       a->reserve(internal);
@@ -70,14 +70,13 @@ struct Lbvh {
   }
 
   BvhView view() const {
-    return {num_leaves,        leaf_lo.data(),    leaf_hi.data(),   node_lo.data(),
-            node_hi.data(),    node_right.data(), node_first.data(), node_last.data()};
+    return {num_leaves, leaf_box.data(), node_box.data(), node_right.data(), node_first.data(), node_last.data()};
   }
 
   TreeArrays tree() {
-    return {leaf_lo.data(),     leaf_hi.data(),    leaf_prim.data(),   leaf_parent.data(), leaf_escape.data(),
-            node_lo.data(),     node_hi.data(),    node_left.data(),   node_right.data(),  node_parent.data(),
-            node_escape.data(), node_first.data(), node_last.data()};
+    return {leaf_box.data(),   leaf_prim.data(),   leaf_parent.data(), leaf_escape.data(), node_box.data(),
+            node_left.data(),  node_right.data(),  node_parent.data(), node_escape.data(), node_first.data(),
+            node_last.data()};
   }
   BuildArrays build() {
     return {build_lo.data(),    build_hi.data(),    build_left.data(), build_right.data(),
@@ -114,9 +113,9 @@ struct Lbvh {
   BuildScratch build_scratch = BuildScratch::own;
 
   // The ordered tree.
-  Array<vec4f> leaf_lo, leaf_hi;
+  Array<NodeBox> leaf_box;
   Array<uint32_t> leaf_prim, leaf_parent, leaf_escape;
-  Array<vec4f> node_lo, node_hi;
+  Array<NodeBox> node_box;
   Array<uint32_t> node_left, node_right, node_parent, node_escape, node_first, node_last;
   // Order log of the internal nodes (paper §3.2): count_log[l] is the LCL value of leaf l,
   // the number of internal nodes whose leftmost leaf is l; offset_log is its exclusive scan,
@@ -171,9 +170,9 @@ struct Lbvh {
   // list (swap_build_scratch).
   template <class F>
   static void each_array(F&& f) {
-    for (auto [array, buffer] : {std::pair{&Lbvh::leaf_lo, "leaf_lo"}, {&Lbvh::leaf_hi, "leaf_hi"},
-                                 {&Lbvh::node_lo, "node_lo"}, {&Lbvh::node_hi, "node_hi"},
-                                 {&Lbvh::span_lo, "span_lo"}, {&Lbvh::span_hi, "span_hi"}})
+    f(&Lbvh::leaf_box, "leaf_box");
+    f(&Lbvh::node_box, "node_box");
+    for (auto [array, buffer] : {std::pair{&Lbvh::span_lo, "span_lo"}, {&Lbvh::span_hi, "span_hi"}})
       f(array, buffer);
     for (auto [array, buffer] :
          {std::pair{&Lbvh::leaf_prim, "leaf_prim"}, {&Lbvh::leaf_parent, "leaf_parent"},

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 
+#include "cdbench/bvh/node_box.h"
 #include "cdbench/core/float_bits.h"
 #include "cdbench/core/hd.h"
 #include "cdbench/core/vec.h"
@@ -19,16 +20,16 @@ CDB_HD_INLINE uint32_t leaf_ref(uint32_t leaf) { return leaf | kLeafBit; }
 CDB_HD_INLINE uint32_t ref_index(uint32_t ref) { return ref & ~kLeafBit; }
 
 // A box carries its links in the spare lane of each corner, bit for bit: an internal
-// node's node_lo[k].w holds node_left[k] and node_hi[k].w node_escape[k]; a leaf's
-// leaf_lo[i].w holds leaf_escape[i] and leaf_hi[i].w leaf_prim[i]. bvh/traverse.h reads
+// node's node_box[k].lo.w holds node_left[k] and .hi.w node_escape[k]; a leaf's
+// leaf_box[i].lo.w holds leaf_escape[i] and .hi.w leaf_prim[i]. bvh/traverse.h reads
 // them with the box. Moved as raw bits, never as arithmetic floats.
 CDB_HD_INLINE float link_lane(uint32_t ref) { return bits_float(ref); }
 CDB_HD_INLINE uint32_t lane_link(float lane) { return float_bits(lane); }
 
 // Writes leaf i's lanes (the layout of bvh/order.h; the refit writes whole corners).
-CDB_HD_INLINE void set_leaf_lanes(vec4f* lo, vec4f* hi, uint32_t i, uint32_t escape, uint32_t prim) {
-  lo[i].w = link_lane(escape);
-  hi[i].w = link_lane(prim);
+CDB_HD_INLINE void set_leaf_lanes(NodeBox& box, uint32_t escape, uint32_t prim) {
+  box.lo.w = link_lane(escape);
+  box.hi.w = link_lane(prim);
 }
 
 }  // namespace cdb

@@ -53,14 +53,13 @@ struct DepthFirstLayout {
     const uint32_t escape = r == t ? last_escape : remap(build.right[r]);
     tree.node_escape[p] = escape;
     const vec4f lo = build.lo[k], hi = build.hi[k];
-    tree.node_lo[p] = {lo.x, lo.y, lo.z, link_lane(left)};
-    tree.node_hi[p] = {hi.x, hi.y, hi.z, link_lane(escape)};
+    tree.node_box[p] = {{lo.x, lo.y, lo.z, link_lane(left)}, {hi.x, hi.y, hi.z, link_lane(escape)}};
   }
   CDB_HD_INLINE void link_leaf(uint32_t i, uint32_t t, uint32_t last_escape) const {
     const uint32_t escape = i == t ? last_escape : remap(build.right[i]);
     tree.leaf_escape[i] = escape;
     tree.leaf_parent[i] = build.new_index[tree.leaf_parent[i]];
-    set_leaf_lanes(tree.leaf_lo, tree.leaf_hi, i, escape, tree.leaf_prim[i]);
+    set_leaf_lanes(tree.leaf_box[i], escape, tree.leaf_prim[i]);
   }
 };
 
@@ -91,7 +90,7 @@ struct SingleLeafFn {
   CDB_HD void operator()(uint32_t) const {
     tree.leaf_parent[0] = kNoNode;
     tree.leaf_escape[0] = kNoNode;
-    set_leaf_lanes(tree.leaf_lo, tree.leaf_hi, 0, kNoNode, tree.leaf_prim[0]);
+    set_leaf_lanes(tree.leaf_box[0], kNoNode, tree.leaf_prim[0]);
   }
 };
 

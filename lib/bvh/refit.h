@@ -66,8 +66,7 @@ struct RefitFn {
     vec4f lo, hi;
     const uint32_t prim = tree.leaf_prim[i], escape = tree.leaf_escape[i];
     face_box(mesh, prim, lo, hi);
-    tree.leaf_lo[i] = {lo.x, lo.y, lo.z, link_lane(escape)};
-    tree.leaf_hi[i] = {hi.x, hi.y, hi.z, link_lane(prim)};
+    tree.leaf_box[i] = {{lo.x, lo.y, lo.z, link_lane(escape)}, {hi.x, hi.y, hi.z, link_lane(prim)}};
     uint32_t child = leaf_ref(i), first = i, last = i;  // the subtree climbed so far
     uint32_t p = tree.leaf_parent[i];
     Links at = links(p);
@@ -94,8 +93,7 @@ struct RefitFn {
       }
       lo = min_xyz(lo, slo, link_lane(at.left));
       hi = max_xyz(hi, shi, link_lane(at.escape));
-      tree.node_lo[p] = lo;
-      tree.node_hi[p] = hi;
+      tree.node_box[p] = {lo, hi};
       child = p;
       first = p_first;
       last = p_last;

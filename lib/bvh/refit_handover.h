@@ -22,8 +22,9 @@ struct CounterReset {
 CDB_HD_INLINE bool span_handover(uint32_t* flag, uint32_t p, uint32_t sibling, const TreeArrays& tree, vec4f& slo,
                                  vec4f& shi) {
   if ((atomic_add_acq_rel(&flag[p], 1u) & 1u) == 0) return false;
-  slo = is_leaf(sibling) ? load_coherent(&tree.leaf_lo[ref_index(sibling)]) : load_coherent(&tree.node_lo[sibling]);
-  shi = is_leaf(sibling) ? load_coherent(&tree.leaf_hi[ref_index(sibling)]) : load_coherent(&tree.node_hi[sibling]);
+  const NodeBox* box = is_leaf(sibling) ? &tree.leaf_box[ref_index(sibling)] : &tree.node_box[sibling];
+  slo = load_coherent(&box->lo);
+  shi = load_coherent(&box->hi);
   return true;
 }
 

@@ -105,8 +105,7 @@ struct RefitLevelsFn {
       vec4f lo, hi;
       const uint32_t prim = tree.leaf_prim[i];
       face_box(mesh, prim, lo, hi);
-      tree.leaf_lo[i] = {lo.x, lo.y, lo.z, link_lane(tree.leaf_escape[i])};
-      tree.leaf_hi[i] = {hi.x, hi.y, hi.z, link_lane(prim)};
+      tree.leaf_box[i] = {{lo.x, lo.y, lo.z, link_lane(tree.leaf_escape[i])}, {hi.x, hi.y, hi.z, link_lane(prim)}};
       put(s.leaf[lane], lo, hi);
       if (i < last) {
         const uint32_t k = index.level_node[i], code = index.level_code[i];
@@ -130,8 +129,7 @@ struct RefitLevelsFn {
     hi = max_xyz(hi, ohi, s.escape_lane[lane]);
     put(s.node[lane], lo, hi);
     const uint32_t k = s.node_id[lane];
-    tree.node_lo[k] = lo;
-    tree.node_hi[k] = hi;
+    tree.node_box[k] = {lo, hi};
     if (depth == 0 && !stop_at_spanning) climb(k, tree.node_parent[k], lo, hi);
   }
 
@@ -154,8 +152,7 @@ struct RefitLevelsFn {
       if (!span_handover(flag, p, left == child ? right : left, tree, slo, shi)) return;
       lo = min_xyz(lo, slo, link_lane(left));
       hi = max_xyz(hi, shi, link_lane(escape));
-      tree.node_lo[p] = lo;
-      tree.node_hi[p] = hi;
+      tree.node_box[p] = {lo, hi};
       child = p;
       p = up;
     }

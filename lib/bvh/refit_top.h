@@ -75,9 +75,8 @@ struct RefitTopFn {
       for (uint32_t e = t; e < 2 * count; e += threads) {
         const uint32_t c = index.span_child[e];
         if (c == kNoNode) continue;
-        const vec4f lo = is_leaf(c) ? tree.leaf_lo[ref_index(c)] : tree.node_lo[c];
-        const vec4f hi = is_leaf(c) ? tree.leaf_hi[ref_index(c)] : tree.node_hi[c];
-        put(e / 2, e % 2, lo, hi, sh);
+        const NodeBox b = is_leaf(c) ? tree.leaf_box[ref_index(c)] : tree.node_box[c];
+        put(e / 2, e % 2, b.lo, b.hi, sh);
       }
       return;
     }
@@ -90,8 +89,8 @@ struct RefitTopFn {
         vec4f lo, hi;
         get(s, 0, lo, hi, sh);
         const uint32_t k = local ? sh.node[s] : index.span_node[s];
-        tree.node_lo[k] = {lo.x, lo.y, lo.z, local ? sh.left_lane[s] : link_lane(tree.node_left[k])};
-        tree.node_hi[k] = {hi.x, hi.y, hi.z, local ? sh.escape_lane[s] : link_lane(tree.node_escape[k])};
+        tree.node_box[k] = {{lo.x, lo.y, lo.z, local ? sh.left_lane[s] : link_lane(tree.node_left[k])},
+                            {hi.x, hi.y, hi.z, local ? sh.escape_lane[s] : link_lane(tree.node_escape[k])}};
       }
       return;
     }

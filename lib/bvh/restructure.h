@@ -134,7 +134,8 @@ struct RestructureKeyFn {
     const uint32_t tag = rs.candidates().slot_of_leaf(l);
     if (tag == 0) return;
     const uint32_t k = tag - 1, r = rs.node[k];
-    const vec4f u = unit_centroid(tree.leaf_lo[l], tree.leaf_hi[l], tree.node_lo[r], tree.node_hi[r]);
+    const NodeBox leaf = tree.leaf_box[l], root = tree.node_box[r];
+    const vec4f u = unit_centroid(leaf.lo, leaf.hi, root.lo, root.hi);
     const uint32_t m = rs.base[k] + (l - rs.first[k]);
     rs.keys[m] = (uint64_t(k) << kRestructureCodeBits) | morton_code(u, MortonBits::b30);
     rs.old_leaf[m] = l;
@@ -151,8 +152,9 @@ struct GatherMovedLeavesFn {
     rs.new_leaf[m] = rs.first[k] + (m - rs.base[k]);
     const uint32_t old = rs.old_leaf_sorted[m];
     rs.moved_prim[m] = tree.leaf_prim[old];
-    rs.moved_lo[m] = tree.leaf_lo[old];
-    rs.moved_hi[m] = tree.leaf_hi[old];
+    const NodeBox b = tree.leaf_box[old];
+    rs.moved_lo[m] = b.lo;
+    rs.moved_hi[m] = b.hi;
   }
 };
 
@@ -162,8 +164,7 @@ struct PlaceMovedLeavesFn {
   CDB_HD void operator()(uint32_t m) const {
     const uint32_t p = rs.new_leaf[m];
     tree.leaf_prim[p] = rs.moved_prim[m];
-    tree.leaf_lo[p] = rs.moved_lo[m];
-    tree.leaf_hi[p] = rs.moved_hi[m];
+    tree.leaf_box[p] = {rs.moved_lo[m], rs.moved_hi[m]};
     rs.keys_by_leaf[p] = rs.keys_sorted[m];
   }
 };

@@ -16,7 +16,8 @@ struct SelfQueryFn {
   BvhView bvh;
   PairSink sink;
   CDB_HD void operator()(uint32_t i) const {
-    const vec4f lo = bvh.leaf_lo[i], hi = bvh.leaf_hi[i];
+    const NodeBox b = bvh.leaf_box[i];
+    const vec4f &lo = b.lo, &hi = b.hi;
     const uint32_t prim = lane_link(hi.w);
     traverse(bvh, lo, hi, lane_link(lo.w), kNoNode, [&](uint32_t other) { sink.emit(prim, other); });
   }

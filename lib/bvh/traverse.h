@@ -25,16 +25,16 @@ struct NextNode {
 CDB_HD_INLINE NextNode next_node(const BvhView& bvh, uint32_t node, const vec4f& lo, const vec4f& hi) {
   const uint32_t k = ref_index(node);
   if (is_leaf(node)) {
-    const vec4f llo = bvh.leaf_lo[k], lhi = bvh.leaf_hi[k];
-    const uint32_t escape = lane_link(llo.w);
-    return {escape, escape, lane_link(lhi.w), overlaps(lo, hi, llo, lhi), true};
+    const NodeBox b = bvh.leaf_box[k];
+    const uint32_t escape = lane_link(b.lo.w);
+    return {escape, escape, lane_link(b.hi.w), overlaps(lo, hi, b.lo, b.hi), true};
   }
-  // The links ride in the box's spare lanes (node_ref.h): two loads from one 32-byte
-  // sector pair where four arrays took four lines.
-  const vec4f nlo = bvh.node_lo[k], nhi = bvh.node_hi[k];
-  const bool hit = overlaps(lo, hi, nlo, nhi);
-  const uint32_t escape = lane_link(nhi.w);
-  return {hit ? lane_link(nlo.w) : escape, escape, 0u, false, !hit};
+  // The links ride in the box's spare lanes (node_ref.h): two loads from one 32-byte sector
+  // (bvh/node_box.h) where four arrays took four lines.
+  const NodeBox b = bvh.node_box[k];
+  const bool hit = overlaps(lo, hi, b.lo, b.hi);
+  const uint32_t escape = lane_link(b.hi.w);
+  return {hit ? lane_link(b.lo.w) : escape, escape, 0u, false, !hit};
 }
 
 // What a step meets goes to callbacks, taken by value and inlined (no indirection in the

@@ -5,6 +5,7 @@
 // Lbvh::tree(), build() and refit_index() fill them.
 #include <cstdint>
 
+#include "cdbench/bvh/node_box.h"
 #include "cdbench/core/hd.h"
 #include "cdbench/core/vec.h"
 
@@ -12,9 +13,9 @@ namespace cdb {
 
 // The ordered tree (layout: bvh/bvh_view.h; link lanes: bvh/node_ref.h).
 struct TreeArrays {
-  vec4f *leaf_lo, *leaf_hi;
+  NodeBox* leaf_box;
   uint32_t *leaf_prim, *leaf_parent, *leaf_escape;
-  vec4f *node_lo, *node_hi;
+  NodeBox* node_box;
   uint32_t *node_left, *node_right, *node_parent, *node_escape, *node_first, *node_last;
 };
 

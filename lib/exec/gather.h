@@ -1,7 +1,7 @@
 #pragma once
 // Two arrays put into a new order by one permutation: out_a[k] = a[order[k]] and
 // out_b[k] = b[order[k]]. Every sort here sorts indices and then gathers what goes with
-// them: the sorted leaves' boxes (bvh/build.h), the sweep's sorted boxes, the hash's sorted
+// them: the sweep's sorted boxes, the hash's sorted
 // entries, the radix-ordered front.
 #include <cstddef>
 #include <cstdint>

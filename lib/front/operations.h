@@ -26,8 +26,8 @@ struct FrontTree {
 
   CDB_HD_INLINE bool overlaps_node(const vec4f& lo, const vec4f& hi, uint32_t ref) const {
     const uint32_t k = ref_index(ref);
-    return is_leaf(ref) ? overlaps(lo, hi, bvh.leaf_lo[k], bvh.leaf_hi[k])
-                        : overlaps(lo, hi, bvh.node_lo[k], bvh.node_hi[k]);
+    const NodeBox b = is_leaf(ref) ? bvh.leaf_box[k] : bvh.node_box[k];
+    return overlaps(lo, hi, b.lo, b.hi);
   }
   CDB_HD_INLINE uint32_t parent(uint32_t ref) const {
     return is_leaf(ref) ? leaf_parent[ref_index(ref)] : node_parent[ref];
@@ -41,8 +41,7 @@ struct FrontTree {
 // leaves; the two trees hold disjoint faces, so each pair is met once too.
 struct FrontView {
   FrontTree tree;
-  const vec4f* query_lo;
-  const vec4f* query_hi;
+  const NodeBox* query;  // the query leaves' boxes
   bool cross;
 
   // Where the query leaf with corner `lo` starts: a self front's leaf is the tree's own, and
@@ -83,8 +82,8 @@ struct GenerateFrontFn {
   CDB_HD FrontSink front_sink(Stage* stage) const { return front.staged(stage ? &stage->front : nullptr); }
   CDB_HD void operator()(uint32_t i, Stage* stage = nullptr) const {
     if (!spread_start(i, spread_shift, i)) return;
-    const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
-    traverse_range<true>(view, i, lo, hi, view.start(lo), kNoNode, pair_sink(stage), front_sink(stage));
+    const NodeBox b = view.query[i];
+    traverse_range<true>(view, i, b.lo, b.hi, view.start(b.lo), kNoNode, pair_sink(stage), front_sink(stage));
   }
 #if defined(__CUDACC__)
   // Every thread of the launch, i past the leaves included (those lanes only help).
@@ -96,9 +95,9 @@ struct GenerateFrontFn {
     TraversalTask t;
     uint32_t leaf = 0;
     if (i < n && spread_start(i, spread_shift, leaf)) {
-      const vec4f lo = view.query_lo[leaf], hi = view.query_hi[leaf];
-      const uint32_t start = view.start(lo);
-      t = {lo, hi, leaf, start, kNoNode, start != kNoNode};
+      const NodeBox b = view.query[leaf];
+      const uint32_t start = view.start(b.lo);
+      t = {b.lo, b.hi, leaf, start, kNoNode, start != kNoNode};
     }
     const FrontSink sink = front_sink(stage);
     traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t q, uint32_t stop) { sink.push(q, stop, 1); });
@@ -151,7 +150,8 @@ CDB_HD_INLINE void add_to_slots(unsigned long long* slots, const uint32_t (&n)[2
 // and the traversal left below j (query i | tag). `first`, if given, receives the step.
 CDB_HD_INLINE TraversalTask front_node_step(const FrontView& view, const PairSink& pairs, uint32_t i, uint32_t j,
                                             uint32_t tag, NextNode* first = nullptr) {
-  const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
+  const NodeBox b = view.query[i];
+  const vec4f &lo = b.lo, &hi = b.hi;
   const uint32_t q = lane_link(hi.w);
   const NextNode step = visit(view.tree.bvh, j, lo, hi, [&](uint32_t other) { pairs.emit(q, other); });
   if (first) *first = step;
@@ -275,7 +275,8 @@ template <class Sink>
 CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const PairSink& pairs, Sink& front,
                                                     uint32_t i, uint32_t j) {
   const FrontTree& tree = view.tree;
-  const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
+  const NodeBox b = view.query[i];
+  const vec4f &lo = b.lo, &hi = b.hi;
   const NextNode step = next_node(tree.bvh, j, lo, hi);
   if (step.leaf_hit) {
     pairs.emit(lane_link(hi.w), step.prim);
@@ -290,8 +291,8 @@ CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const
       front.push(i, child, 0);
       return {};
     }
-    const vec4f flo = tree.bvh.node_lo[father], fhi = tree.bvh.node_hi[father];
-    const bool left_child = lane_link(flo.w) == child, hit = overlaps(lo, hi, flo, fhi);
+    const NodeBox f = tree.bvh.node_box[father];
+    const bool left_child = lane_link(f.lo.w) == child, hit = overlaps(lo, hi, f.lo, f.hi);
     if (!left_child || hit) {
       if (left_child || hit) front.push(i, child, 0);
       return {};
@@ -475,7 +476,8 @@ struct MarkFrontFn {
   uint8_t* mark;
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t i = prim[e], j = node[e];
-    mark[e] = view.tree.overlaps_node(view.query_lo[i], view.query_hi[i], j) ? 1 : 0;
+    const NodeBox b = view.query[i];
+    mark[e] = view.tree.overlaps_node(b.lo, b.hi, j) ? 1 : 0;
   }
 };
 
@@ -491,7 +493,8 @@ struct MarkScatterFrontFn {
   SegmentScatter to;
   CDB_HD void operator()(uint32_t e) const {
     const uint32_t i = prim[e], j = node[e];
-    to.place(i, j, view.tree.overlaps_node(view.query_lo[i], view.query_hi[i], j));
+    const NodeBox b = view.query[i];
+    to.place(i, j, view.tree.overlaps_node(b.lo, b.hi, j));
   }
 };
 

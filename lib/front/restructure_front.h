@@ -78,11 +78,11 @@ struct RestructureFrontFn {
     const uint32_t i = prim[e], j = node[e];
     if (j == kFrontDropped) return {};
     if (j == kFrontRegenerate) {
-      const vec4f lo = view.query_lo[i], hi = view.query_hi[i];
+      const NodeBox b = view.query[i];
       const uint32_t c = cand.slot_of_leaf(i) - 1;
       // From leaf i's escape, which rides in its box (node_ref.h), to the subtree's.
-      const uint32_t from = lane_link(lo.w), to = cand.escape[c];
-      return {lo, hi, i, from, to, from != to};
+      const uint32_t from = lane_link(b.lo.w), to = cand.escape[c];
+      return {b.lo, b.hi, i, from, to, from != to};
     }
     front.push(i, j, 0);
     return front_node_step(view, pairs, i, j, kKeptQuery);

@@ -113,8 +113,7 @@ class FrontQuery {
   FrontView view() const {
     const Lbvh<Exec>& t = *tree_;
     return {{t.view(), t.leaf_parent.data(), t.node_parent.data()},
-            leaves_->leaf_lo.data(),
-            leaves_->leaf_hi.data(),
+            leaves_->leaf_box.data(),
             leaves_ != tree_};
   }
 
