@@ -36,6 +36,7 @@ std::span<const OptionRow> option_table() {
       {"preserve-warp", fronts, setting},
       {"update-warp", fronts, setting},
       {"preserve-bound", fronts, setting},
+      {"preserve-two-nodes", fronts, setting},
       {"order-updates", fronts, setting},
       {"update-in-place", fronts, setting},
       {"compact-share", fronts, setting},

@@ -152,6 +152,14 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
           std::to_string(kPreserveBoundedWaves) + " waves of the GPU's resident threads",
       {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.fronts.preserve_bound))
       ->group(kTuningGroup);
+  add_choice<AutoSwitch>(
+      cmd, "--preserve-two-nodes", c.fronts.preserve_two_nodes,
+      "front pipelines: each preserve thread takes two front nodes and gathers both nodes' boxes before it "
+      "tests either (two sets of loads in flight, half the threads; no register bound); auto: on cuda while "
+      "the fronts fill " +
+          std::to_string(kPreserveTwoNodesWaves) + " waves of the GPU's resident threads",
+      {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.fronts.preserve_two_nodes))
+      ->group(kTuningGroup);
   add_switch(cmd, "--order-updates", c.fronts.order_updates,
              "ordered front pipelines: histogram-sort the front each update produces (the paper); off: keep the "
              "update's output in its blocks' order and sort only generated and restructured fronts (b and c "

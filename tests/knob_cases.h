@@ -193,7 +193,8 @@ inline PipelineConfig growing_config(const std::string& device, const std::strin
 // --dependent-launch (kernels scheduled while their predecessors run, waiting for them on
 // the device), --preserve-warp and --preserve-bound (on with dependent launches, off
 // without) and --phase-timing off, each with the refit level by level and climbing
-// (--refit-levels): every pipeline reports exactly the oracle's pairs, every frame, with and
+// (--refit-levels), the first with two front nodes a preserve thread
+// (--preserve-two-nodes), the second with one: every pipeline reports exactly the oracle's pairs, every frame, with and
 // without frame graphs; with phases off no phase but the upload has a time and the frame
 // has one.
 inline void check_launch_knobs(const std::string& device, bool graph, bool dependent) {
@@ -208,13 +209,15 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
     cfg.launch.dependent_launch = dependent;
     cfg.fronts.preserve_warp = dependent ? AutoSwitch::on : AutoSwitch::off;
     cfg.fronts.preserve_bound = dependent ? AutoSwitch::on : AutoSwitch::off;
+    cfg.fronts.preserve_two_nodes = levels ? AutoSwitch::on : AutoSwitch::off;
     cfg.launch.phase_timing = false;
     auto p = make_pipeline(cfg);
     p->set_topology(funnel.topology);
     for (uint32_t f = 0; f < funnel.num_frames(); ++f) {
       const FrameStats s = p->run_frame(funnel.vertices[f]);
       const std::string where = name + (graph ? " graph" : "") + (dependent ? " dependent" : "") +
-                                (levels ? "" : " climbing refit") + " frame " + std::to_string(f);
+                                (levels ? " two nodes a preserve thread" : " climbing refit") + " frame " +
+                                std::to_string(f);
       EXPECT_GT(s.timing.total_ms, 0.0) << where;
       EXPECT_GT(s.timing.phase_ms[size_t(Phase::upload)], 0.0) << where;
       for (size_t ph = 0; ph < kPhaseCount; ++ph) {

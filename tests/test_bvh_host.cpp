@@ -6,6 +6,7 @@
 #include "scenes/load/scene.h"
 #include "cdbench/core/error.h"
 #include "cdbench/exec/host_exec.h"
+#include "cdbench/front/operations.h"
 #include "cdbench/front/warp_traversal.h"
 #include "registry/pipeline_kinds.h"
 
@@ -18,6 +19,25 @@ TEST_P(HostSoup, TreeValidAndPairsExact) { check_soup_case<HostExec>(GetParam())
 TEST_P(HostSoup, RadixOrderGivesTheHistogramOrder) { check_radix_order_matches<HostExec>(GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(Soups, HostSoup, testing::ValuesIn(soup_cases()), case_name);
+
+// Two front nodes a preserve thread (PreserveTwoNodesFn): its launch's threads take every
+// front node exactly once, each block's two halves coalesced, for any front size.
+TEST(PreserveTwoNodes, ThreadsTakeEveryFrontNodeOnce) {
+  using Two = PreserveTwoNodesFn<PreserveFrontFn<false>>;
+  for (uint32_t n : {0u, 1u, 255u, 256u, 257u, 511u, 512u, 513u, 1000u, 5121u}) {
+    const uint64_t threads = Two::threads_for(n);
+    EXPECT_EQ(threads % kStagedThreads, 0u) << n;
+    EXPECT_LT(2 * threads, uint64_t(n) + 2 * kStagedThreads + 1) << n;
+    std::vector<int> taken(n, 0);
+    for (uint32_t e = 0; e < threads; ++e) {
+      const uint32_t first = Two::first_node(e);
+      EXPECT_EQ(first % (2 * kStagedThreads), e % kStagedThreads) << n << " thread " << e;
+      for (uint32_t node : {first, first + kStagedThreads})
+        if (node < n) ++taken[node];
+    }
+    for (uint32_t k = 0; k < n; ++k) ASSERT_EQ(taken[k], 1) << n << " node " << k;
+  }
+}
 
 class HostBaselines : public testing::TestWithParam<BaselineCase> {};
 

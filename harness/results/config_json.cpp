@@ -30,6 +30,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"preserve_warp", auto_switch_name(c.fronts.preserve_warp)},
       {"update_warp", auto_switch_name(c.fronts.update_warp)},
       {"preserve_bound", auto_switch_name(c.fronts.preserve_bound)},
+      {"preserve_two_nodes", auto_switch_name(c.fronts.preserve_two_nodes)},
       {"order_updates", c.fronts.order_updates},
       {"update_in_place", c.fronts.update_in_place},
       {"compact_share", c.fronts.compact_share},

@@ -31,6 +31,12 @@ constexpr uint32_t min_blocks_per_sm() {
 // resident threads. Measured: H200, 1.03-1.05x from 5 waves up, 0.88x at 2.5 (docs/design.md).
 inline constexpr uint32_t kPreserveMinBlocks = 8;
 inline constexpr uint64_t kPreserveBoundedWaves = 4;
+// --preserve-two-nodes auto: two front nodes a preserve thread (PreserveTwoNodesFn) while
+// the fronts fill this many waves of resident threads, where each lane traverses alone
+// (kWarpSharingWaves). Measured (H200): the cloths of 522K, 1M and 10M triangles (45, 89
+// and 890 waves) 0.95x, 0.92x and 0.90x the time a frame; the garment (17 waves, shared in
+// warps) 1.15x.
+inline constexpr uint64_t kPreserveTwoNodesWaves = 32;
 // Threads of the one-block kernels (in_one_block): the hardware's limit, not a measurement.
 inline constexpr uint32_t kOneBlockThreads = 1024;
 // The reduction's block size and most partials. Not measured: a common choice.

@@ -158,6 +158,13 @@ CDB_HD_INLINE TraversalTask front_node_step(const FrontView& view, const PairSin
   return {lo, hi, i | tag, step.next, step.escape, !step.stop};
 }
 
+// A front node (i, j) with query leaf i's box and node j's box loaded; j kFrontDropped for
+// none (PreserveTwoNodesFn).
+struct GatheredFrontNode {
+  NodeBox query, node;
+  uint32_t i = 0, j = kFrontDropped;
+};
+
 // (2) Preserve: traverse from every stored front node; the front is not rewritten. On the
 // GPU the traversals left after the first step are shared out within each warp
 // (front/warp_traversal.h). kCountStops (a probe before an update): also count, per kind,
@@ -175,6 +182,7 @@ template <bool kCountStops>
 struct PreserveFrontFn {
   // A probe's block adds its counts to the slots once (PairCountStage).
   using Stage = std::conditional_t<kCountStops, PairCountStage, PairStage>;
+  static constexpr bool kCounts = kCountStops;
   static constexpr bool kWarpTraversal = true;
   static constexpr uint32_t kMinBlocksPerSm = kPreserveMinBlocks;
   FrontView view;
@@ -202,9 +210,24 @@ struct PreserveFrontFn {
     }
     return t;
   }
+  // The same with front node (i, j) and both its boxes gathered already (PreserveTwoNodesFn).
+  CDB_HD TraversalTask first_step(const GatheredFrontNode& g, Stage* stage, uint32_t (&met)[2]) const {
+    if (g.j == kFrontDropped) return {};
+    const NextNode step = next_node_in(g.node, g.j, g.query.lo, g.query.hi);
+    if (step.leaf_hit) pair_sink(stage).emit(lane_link(g.query.hi.w), step.prim);
+    if constexpr (kCountStops) {
+      if (step.stop && !step.leaf_hit) ++met[kInternalFront];
+      if (is_leaf(g.j)) ++met[kExternalFront];
+    }
+    return {g.query.lo, g.query.hi, g.i, step.next, step.escape, !step.stop};
+  }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
     uint32_t met[2] = {0, 0};
-    const TraversalTask t = first_step(e, stage, met);
+    rest_alone(first_step(e, stage, met), stage, met);
+  }
+  // The descent after a first step, by this lane alone; with kCountStops, `met` and the
+  // descent's stops go to the slots.
+  CDB_HD void rest_alone(const TraversalTask& t, Stage* stage, uint32_t (&met)[2]) const {
     if (t.busy) {
       const PairSink sink = pair_sink(stage);
       const uint32_t q = lane_link(t.hi.w);
@@ -465,6 +488,88 @@ struct BothFrontsFn {
     }
   }
 #endif
+};
+
+// Preserve over both kinds of front (as BothFrontsFn, no spread) with two front nodes a
+// thread (--preserve-two-nodes): thread l of block b (blocks of kStagedThreads) takes front
+// nodes 2 * kStagedThreads * b + l and kStagedThreads past it, both loads coalesced. It
+// gathers both nodes' boxes before it tests either, so that it has two sets of gathered
+// loads in flight where a thread of one node has one: the preserve of the large cloths
+// waits on those loads (docs/results.md). The launch has about half as many threads.
+// It runs without a register bound: it takes 48 registers, 40 warps an SM; under a bound of 6
+// blocks (40 registers, some spilled) it lost what two nodes gained (H200, docs/experiments.md).
+template <class F>
+struct PreserveTwoNodesFn {
+  using Stage = typename F::Stage;
+  F first, second;
+  uint32_t n0;
+  uint32_t n;  // front nodes of both kinds
+
+  // The threads a launch over n front nodes takes.
+  static constexpr uint64_t threads_for(uint64_t nodes) {
+    return (nodes + 2 * kStagedThreads - 1) / (2 * kStagedThreads) * kStagedThreads;
+  }
+  CDB_HD_INLINE static uint32_t first_node(uint32_t e) { return e + (e & ~(kStagedThreads - 1u)); }
+
+  // Front node e's indices and boxes; without branches, so that the loads of both of a
+  // thread's nodes are in flight together (a node past the fronts or dropped reads entry 0).
+  CDB_HD_INLINE GatheredFrontNode gather(uint32_t e) const {
+    const bool in = e < n, in_first = e < n0;
+    const uint32_t k = !in ? 0u : in_first ? e : e - n0;
+    const uint32_t* prim = in_first ? first.prim : second.prim;
+    const uint32_t* node = in_first ? first.node : second.node;
+    GatheredFrontNode g;
+    g.j = in ? node[k] : kFrontDropped;
+    g.i = in ? prim[k] : 0u;
+    const BvhView& bvh = first.view.tree.bvh;
+    const bool dropped = g.j == kFrontDropped;
+    g.query = first.view.query[dropped ? 0u : g.i];
+    g.node = (is_leaf(g.j) ? bvh.leaf_box : bvh.node_box)[dropped ? 0u : ref_index(g.j)];
+    return g;
+  }
+
+  // Both nodes' gathers, then both first steps, then each descent. warp() repeats the first
+  // lines: through a helper that filled arrays of both tasks, ptxas allocated the kernels
+  // anew (46 registers to 44), a change not measured on a GPU.
+  CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
+    const uint32_t e0 = first_node(e);
+    const GatheredFrontNode g0 = gather(e0), g1 = gather(e0 + kStagedThreads);
+    uint32_t met0[2] = {0, 0}, met1[2] = {0, 0};
+    const TraversalTask t0 = first.first_step(g0, stage, met0);
+    const TraversalTask t1 = first.first_step(g1, stage, met1);
+    first.rest_alone(t0, stage, met0);
+    first.rest_alone(resumed(t1), stage, met1);
+  }
+#if defined(__CUDACC__)
+  __device__ void flush(Stage& s) const { first.flush(s); }
+  // Every thread of the launch (those past the fronts only help): both first steps, then
+  // the rest of each shared out in the warp, one after the other.
+  __device__ void warp(uint32_t e, uint32_t threads, Stage* stage) const
+    requires F::kWarpTraversal
+  {
+    if (!first.share_in_warp) {
+      if (e < threads) (*this)(e, stage);
+      return;
+    }
+    const uint32_t e0 = first_node(e);
+    const GatheredFrontNode g0 = gather(e0), g1 = gather(e0 + kStagedThreads);
+    uint32_t met0[2] = {0, 0}, met1[2] = {0, 0};
+    const TraversalTask t0 = first.first_step(g0, stage, met0);
+    const TraversalTask t1 = first.first_step(g1, stage, met1);
+    first.rest_in_warp(t0, stage, met0);
+    first.rest_in_warp(resumed(t1), stage, met1);
+  }
+#endif
+
+ private:
+  // The second node's descent, held as its query leaf and range while the first's runs
+  // and its box loaded again after: a whole task held across the first descent cost the
+  // loop ten registers.
+  CDB_HD_INLINE TraversalTask resumed(const TraversalTask& t) const {
+    if (!t.busy) return {};
+    const NodeBox q = first.view.query[t.query];
+    return {q.lo, q.hi, t.query, t.node, t.end, true};
+  }
 };
 
 // (4) Balance: the opt mark each front node will take in the coming update (1 = sprout),

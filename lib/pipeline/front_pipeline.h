@@ -312,7 +312,8 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     const PreserveLaunch& preserve = preserve_launch_;
     const uint64_t choices = uint64_t(plan.stale) | uint64_t(preserve.staged) << 1 |
                              uint64_t(preserve.share_in_warp) << 2 |
-                             uint64_t(preserve.occupancy == Occupancy::bounded) << 3;
+                             uint64_t(preserve.occupancy == Occupancy::bounded) << 3 |
+                             uint64_t(preserve.two_nodes) << 4;
     const FrameGraphKey key{launch_revision(), uint64_t(reinterpret_cast<uintptr_t>(mesh.vertices)),
                             uint64_t(reinterpret_cast<uintptr_t>(mesh.prev_vertices)), choices};
     return graph_.run(exec_, timer_, key, launch);
@@ -573,15 +574,19 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // Preserve stages its pairs per block while blocks produce enough of them to pay for the
   // stage's flush (core/append_stage.h): at least kStagedPairsPerBlock per block of
   // front nodes in the frame just read back. The traversals are shared within warps as
-  // --preserve-warp says (AutoSwitch), and launched under its register bound as
-  // --preserve-bound says. The choices are part of the steady frame's key.
+  // --preserve-warp says (AutoSwitch), launched under its register bound as
+  // --preserve-bound says, and with two front nodes a thread as --preserve-two-nodes says
+  // (that launch has no bound). The choices are part of the steady frame's key.
   void choose_preserve_launch(uint64_t pairs) {
     const uint64_t fronts = front_nodes();
     const bool bounded =
         switched_on(config_.fronts.preserve_bound, fronts >= kPreserveBoundedWaves * exec_.resident_threads());
     preserve_launch_ = {.staged = pairs * kStagedThreads >= kStagedPairsPerBlock * fronts,
                         .share_in_warp = shares_in_warp(config_.fronts.preserve_warp, fronts),
-                        .occupancy = bounded ? Occupancy::bounded : Occupancy::plain};
+                        .occupancy = bounded ? Occupancy::bounded : Occupancy::plain,
+                        .two_nodes = switched_on(config_.fronts.preserve_two_nodes,
+                                                 Exec::is_device &&
+                                                     fronts >= kPreserveTwoNodesWaves * exec_.resident_threads())};
   }
 
   // After a probing frame's read-back, outside its timing: the preserving queries' buffers

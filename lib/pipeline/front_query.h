@@ -49,6 +49,7 @@ struct PreserveLaunch {
   bool staged = true;         // pairs staged per block, else appended directly (core/append_stage.h)
   bool share_in_warp = true;  // the traversals shared out in warps (CUDA)
   Occupancy occupancy = Occupancy::plain;  // under PreserveFrontFn's register bound or not (exec/tuning.h)
+  bool two_nodes = false;  // two front nodes a thread (PreserveTwoNodesFn), where nothing spreads
 };
 
 // How an update in place runs (FrontQuery::patch).
@@ -491,6 +492,18 @@ class FrontQuery {
       return p;
     };
     const uint32_t shift = spread_shift(exec, total(), fn.share_in_warp, kSpreadWavesPreserve);
+    // A probe takes one node a thread: with two it would add its counts twice a warp.
+    if constexpr (!Fn::kCounts) {
+      if (launch.two_nodes && shift == 0) {
+        using Two = PreserveTwoNodesFn<Fn>;
+        const Two two{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), uint32_t(total())};
+        if (launch.staged)
+          exec.for_each_staged(Two::threads_for(total()), two, Balance::uneven, launch.occupancy);
+        else
+          exec.for_each_n(Two::threads_for(total()), two, Balance::uneven, launch.occupancy);
+        return;
+      }
+    }
     const BothFrontsFn<Fn> both{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift};
     if (launch.staged)
       exec.for_each_staged(total() << shift, both, Balance::uneven, launch.occupancy);

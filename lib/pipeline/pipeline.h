@@ -149,6 +149,10 @@ struct FrontConfig {
   // (some spilled). automatic: while the fronts fill kPreserveBoundedWaves waves of
   // resident threads; a launch of a few waves is slower bounded.
   AutoSwitch preserve_bound = AutoSwitch::automatic;
+  // Preserve with two front nodes a thread, their gathered loads in flight together
+  // (PreserveTwoNodesFn, front/operations.h), where no launch spreads. automatic: on CUDA
+  // while the fronts fill kPreserveTwoNodesWaves waves of resident threads (exec/tuning.h).
+  AutoSwitch preserve_two_nodes = AutoSwitch::automatic;
 };
 
 // Pipeline c's inspection and Formula 2 (paper §4.1-4.2, docs/design.md "Quality and
