@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cdbench/core/error.h"
+#include "scenes/load/replace_file.h"
 
 namespace cdb {
 
@@ -22,14 +23,9 @@ void write_cell_status(const std::filesystem::path& file, const CellStatus& s) {
                             {"signal", s.signal},     {"seconds", s.seconds},     {"command", s.command},
                             {"log", s.log},           {"log_tail", s.log_tail},   {"job", s.job},
                             {"host", s.host}};
-  // Written whole to a temporary name and renamed, so a reader never sees half a file.
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << j.dump(2) << "\n";
-    if (!out) fail(tmp.string() + ": cannot write cell status");
-  }
-  std::filesystem::rename(tmp, file);
+  // Written whole and renamed into place, so a reader never sees half a file.
+  const std::string failed = replace_file(file, [&](std::ostream& out) { out << j.dump(2) << "\n"; }, std::ios::out);
+  if (!failed.empty()) fail(failed + " (the cell's status)");
 }
 
 namespace {

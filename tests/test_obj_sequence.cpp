@@ -13,6 +13,7 @@
 #include "cdbench/core/error.h"
 #include "scenes/load/input_files.h"
 #include "scenes/load/obj_sequence.h"
+#include "scenes/load/replace_file.h"
 
 namespace cdb::test {
 namespace {
@@ -48,6 +49,38 @@ std::string error_of(const fs::path& dir) {
     return e.what();
   }
   return "";
+}
+
+// What a directory holds besides `keep`.
+std::vector<std::string> others(const fs::path& dir, const std::string& keep) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename() != keep) names.push_back(e.path().filename().string());
+  return names;
+}
+
+// replace_file: the file whole in place and no temporary left; a write that cannot start
+// (a missing directory) and a rename that cannot land (a directory in the way) each name the
+// file and the system's reason, and leave no temporary either.
+TEST(ReplaceFile, WholeFileOrANamedFailureAndNoTemporary) {
+  FrameDir d;
+  const fs::path file = d.path() / "status.json";
+  EXPECT_EQ(replace_file(file, [](std::ostream& os) { os << "first\n"; }), "");
+  EXPECT_EQ(replace_file(file, [](std::ostream& os) { os << "second\n"; }), "");
+  std::ifstream in(file);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  EXPECT_EQ(text, "second\n");
+  EXPECT_TRUE(others(d.path(), "status.json").empty());
+
+  const fs::path missing = d.path() / "no-such-dir" / "frame.bin";
+  EXPECT_EQ(replace_file(missing, [](std::ostream& os) { os << "x"; }),
+            missing.string() + ": write failed: No such file or directory");
+
+  const fs::path blocked = d.path() / "blocked";
+  fs::create_directories(blocked / "inside");
+  const std::string failed = replace_file(blocked, [](std::ostream& os) { os << "x"; });
+  EXPECT_EQ(failed.rfind(blocked.string() + ": cannot move the written file into place: ", 0), 0u) << failed;
+  EXPECT_EQ(others(d.path(), "status.json"), std::vector<std::string>{"blocked"});
 }
 
 TEST(NaturalOrder, DigitRunsCompareByValue) {

@@ -1,6 +1,5 @@
 #include "scenes/load/archive_cache.h"
 
-#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -11,6 +10,7 @@
 #include <vector>
 
 #include "cdbench/core/error.h"
+#include "scenes/load/replace_file.h"
 
 namespace cdb {
 namespace {
@@ -95,14 +95,10 @@ std::filesystem::path extract_from_archive(const std::filesystem::path& archive,
     if (path.rfind("./", 0) == 0) path = path.substr(2);
     if (path != member || (type != '0' && type != 0)) continue;
     std::filesystem::create_directories(out.parent_path());
-    // Written under a temporary name and renamed, so a cut-off extraction is never read.
-    const std::filesystem::path partial = out.string() + ".partial." + std::to_string(::getpid());
-    {
-      std::ofstream f(partial, std::ios::binary);
-      f.write(data.data(), std::streamsize(size));
-      if (!f) fail(partial.string() + ": cannot write the extracted member");
-    }
-    std::filesystem::rename(partial, out);
+    // Written whole and renamed into place, so a cut-off extraction is never read.
+    const std::string failed =
+        replace_file(out, [&](std::ostream& f) { f.write(data.data(), std::streamsize(size)); });
+    if (!failed.empty()) fail(failed + " (extracting " + member + " from " + name + ")");
     return out;
   }
   fail(name + ": no member '" + member + "' in this archive");

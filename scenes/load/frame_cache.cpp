@@ -1,6 +1,5 @@
 #include "scenes/load/frame_cache.h"
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +13,7 @@
 #include "cdbench/core/content_hash.h"
 #include "cdbench/core/error.h"
 #include "scenes/load/archive_cache.h"
+#include "scenes/load/replace_file.h"
 
 namespace cdb {
 namespace {
@@ -90,21 +90,16 @@ class DiskCachedFrames final : public FrameSource {
   void write(const std::filesystem::path& file, uint32_t k, const std::vector<vec3d>& v) const {
     std::error_code ec;
     std::filesystem::create_directories(dir_, ec);
-    const std::filesystem::path part = file.string() + ".part" + std::to_string(getpid());
     FrameHeader h{};
     std::copy(kMagic, kMagic + 8, h.magic);
     h.frame = k;
     h.num_vertices = uint32_t(v.size());
     h.checksum = positions_checksum(v);
-    std::ofstream os(part, std::ios::binary | std::ios::trunc);
-    os.write(reinterpret_cast<const char*>(&h), sizeof h);
-    os.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(vec3d)));
-    os.close();
-    if (os) std::filesystem::rename(part, file, ec);
-    if (!os || ec) {
-      std::filesystem::remove(part, ec);
-      warn_once();
-    }
+    const std::string failed = replace_file(file, [&](std::ostream& os) {
+      os.write(reinterpret_cast<const char*>(&h), sizeof h);
+      os.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(vec3d)));
+    });
+    if (!failed.empty()) warn_once();
   }
 
   void warn_once() const {

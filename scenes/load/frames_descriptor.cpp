@@ -1,10 +1,7 @@
 #include "scenes/load/frames_descriptor.h"
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-
 #include "cdbench/core/error.h"
+#include "scenes/load/replace_file.h"
 
 namespace cdb {
 
@@ -30,25 +27,9 @@ bool write_frames_descriptor(const Topology& topology, const std::string& descri
   d["queries"] = queries_json(topology);
 
   const std::filesystem::path file = dir / kFramesDescriptorName;
-  const std::filesystem::path part = dir / (std::string(kFramesDescriptorName) + ".part");
-  {
-    std::ofstream os(part, std::ios::trunc);
-    os << d.dump(2) << '\n';
-    os.close();
-    if (!os) {
-      const int error = errno;
-      std::error_code ec;
-      std::filesystem::remove(part, ec);
-      fail(file.string() + ": write failed" + (error ? std::string(": ") + std::strerror(error) : "") +
-           " (nothing left there)");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(part, file, ec);
-  if (ec) {
-    std::filesystem::remove(part, ec);
-    fail(file.string() + ": cannot move the written descriptor into place: " + ec.message());
-  }
+  const std::string failed = replace_file(dir / kFramesDescriptorName,
+                                          [&](std::ostream& os) { os << d.dump(2) << '\n'; }, std::ios::out);
+  if (!failed.empty()) fail(failed + " (nothing left there)");
   return true;
 }
 
