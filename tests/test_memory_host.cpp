@@ -14,6 +14,7 @@
 #include "cdbench/exec/memory.h"
 #include "scenes/generators/generators.h"
 #include "cdbench/pipeline/pipeline.h"
+#include "cdbench/pipeline/plan_record.h"
 #include "registry/pipeline_kinds.h"
 
 namespace cdb::test {
@@ -247,6 +248,44 @@ TEST(MemoryStats, SecondTreeReservedOnlyByABuildAhead) {
   ASSERT_GE(built.ahead, 1u);
   EXPECT_GT(sum_at_peak(built.memory, "ahead_bvh."), 0u);
   EXPECT_GT(sum_at_peak(built.memory, "ahead_front_"), 0u);
+}
+
+// A probe before a maintenance that rebuilds the tree ahead grows no buffer: the build
+// generates its own self fronts (FrontQuery::reserve_like) and the current ones only
+// preserve until it is adopted. Before, the probe grew them to its bound for an update that
+// never came (the dragon's c on the host, one plan replayed: peak 852 against 587 MiB). The
+// same plan with an update after the probe grows them, and both report the same pairs.
+TEST(MemoryStats, AProbeBeforeABuildAheadGrowsNoBuffer) {
+  auto wave = make_generator("cloth-wave", {{"res", 48}, {"frames", 6}});
+  const std::string head = "cdbench-plan 1\n0 build self=generate\n1 refit self=preserve\n2 refit self=preserve probe\n";
+  std::vector<uint64_t> pairs[2];
+  size_t grown_by_probe[2] = {0, 0};
+  for (int ahead = 0; ahead < 2; ++ahead) {
+    const std::string rest = ahead ? "3 ahead self=preserve\n4 adopt self=preserve\n5 refit self=preserve\n"
+                                   : "3 refit self=update\n4 refit self=preserve\n5 refit self=preserve\n";
+    PipelineConfig cfg;
+    cfg.device = "cpu";
+    cfg.name = "b";
+    cfg.tree.rebuild_ahead = AutoSwitch::on;
+    cfg.capacity.front_per_triangle = 0.5;  // below the need: the first frame measures it
+    cfg.launch.phase_timing = false;
+    auto p = make_pipeline(cfg);
+    p->replay_plan(std::make_shared<const RecordedPlan>(parse_plan(head + rest, "p.txt")));
+    p->set_topology(wave->topology());
+    std::vector<vec3f> v;
+    size_t before_probe = 0;
+    for (uint32_t f = 0; f < wave->num_frames(); ++f) {
+      wave->frame(f, v);
+      const FrameStats s = p->run_frame(v);
+      pairs[ahead].push_back(s.pairs);
+      if (f == 1) before_probe = p->memory().current_bytes;
+      if (f == 2) grown_by_probe[ahead] = p->memory().current_bytes - before_probe;
+      if (f == 3) EXPECT_NE(s.op.find(ahead ? "ahead" : "update"), std::string::npos) << s.op;
+    }
+  }
+  EXPECT_EQ(grown_by_probe[1], 0u);
+  EXPECT_GT(grown_by_probe[0], 0u);
+  EXPECT_EQ(pairs[0], pairs[1]);
 }
 
 }  // namespace cdb::test

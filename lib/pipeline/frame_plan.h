@@ -94,6 +94,15 @@ class FramePlanner {
   double probed_growth() const { return tree_.probed_growth(); }
   // The growth past which a maintenance rebuilds (TreeMaintenance, --rebuild-growth).
   double rebuild_growth() const { return tree_.rebuild_growth(); }
+  // After a probing frame's finish(): whether the maintenance probed for rebuilds the tree
+  // ahead instead of updating the fronts. A replayed plan says so in its next step; a
+  // decided one rebuilds where the probe found the tree degraded (decided(): the next
+  // maintenance follows this probe, and an unprobed one waits for another).
+  bool next_maintenance_builds_ahead() const {
+    if (!builds_ahead_) return false;
+    if (replay_) return frame_ < replay_->frames.size() && replay_->frames[frame_].step.trees == TreeStep::ahead;
+    return tree_.rebuild_due();
+  }
   const RestructurePrice& restructure_price() const { return price_; }
 
   // A new run over the frames: the first frame builds. `running`: the queries that run in

@@ -152,6 +152,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
                            .first_pass_ms = first_pass_ms,
                            .ahead_ms = ahead_ms});
     if (plan.probe) stats.fronts.rebuild_growth = planner_.probed_growth();
+    if (run.probe) reserve_for_update(run, pairs_.last_counters());
     choose_preserve_launch(stats.pairs);
     return stats;
   }
@@ -237,7 +238,6 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     if (again) return false;
     for (Query q : kQueries)
       if (run.op(q) != FrontOp::preserve) query(q).adopt(exec_, c, sorts(run.op(q)));
-    if (run.probe) reserve_for_update(run, c);
     return true;
   }
 
@@ -589,11 +589,19 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
                                                      fronts >= kPreserveTwoNodesWaves * exec_.resident_threads())};
   }
 
-  // After a probing frame's read-back, outside its timing: the preserving queries' buffers
-  // grow to what an update of their fronts can produce, so the update runs once.
+  // After a probing frame, outside its timing, once the planner has judged the probe: the
+  // preserving queries' buffers grow to what an update of their fronts can produce, so the
+  // update runs once. Not T_D's self fronts where the maintenance probed rebuilds the tree
+  // ahead: the build generates its own (FrontQuery::reserve_like) and the current ones only
+  // preserve until it is adopted. Their bound, grown for an update that never came, was the
+  // largest part of the dragon's peak (a probe's bound counts every front node that does not
+  // descend once, before the update's pruning merges them: 2.3 times the largest front the
+  // host's run made, docs/design.md "Memory").
   void reserve_for_update(const FramePlan& plan, const FrontCounters& c) {
+    const bool rebuilt_ahead = planner_.next_maintenance_builds_ahead();
     for (Query q : kQueries)
-      if (plan.op(q) == FrontOp::preserve) query(q).reserve_for_update(exec_, c);
+      if (plan.op(q) == FrontOp::preserve && !(q == Query::self && rebuilt_ahead))
+        query(q).reserve_for_update(exec_, c);
   }
 
   // (4) Balance, before each update: the fronts' content is unchanged.
