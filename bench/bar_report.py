@@ -127,7 +127,7 @@ def main():
                       f"{best_front} {fronts[best_front]:.4f} / {best_cell} {cells[best_cell]:.4f} = "
                       f"{ratio:.2f}x ({'met' if ratio >= 1.0 else 'not met'})")
         cb = fronts["c"] / fronts["b"]
-        target.append(f"{cb:.3f}")
+        target.append("—" if np.isnan(cb) else f"{cb:.3f}")
         tail = single_pass_tail(c)
         target.append(f"{tail:.2f} ({'met' if tail <= 2.0 else 'not met'})")
         # Peak memory against the first base's c: at most as high.
