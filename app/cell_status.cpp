@@ -24,7 +24,7 @@ void write_cell_status(const std::filesystem::path& file, const CellStatus& s) {
                             {"log", s.log},           {"log_tail", s.log_tail},   {"job", s.job},
                             {"host", s.host}};
   // Written whole and renamed into place, so a reader never sees half a file.
-  const std::string failed = replace_file(file, [&](std::ostream& out) { out << j.dump(2) << "\n"; }, std::ios::out);
+  const std::string failed = replace_file(file, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
   if (!failed.empty()) fail(failed + " (the cell's status)");
 }
 

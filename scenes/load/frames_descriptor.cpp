@@ -27,8 +27,7 @@ bool write_frames_descriptor(const Topology& topology, const std::string& descri
   d["queries"] = queries_json(topology);
 
   const std::filesystem::path file = dir / kFramesDescriptorName;
-  const std::string failed = replace_file(dir / kFramesDescriptorName,
-                                          [&](std::ostream& os) { os << d.dump(2) << '\n'; }, std::ios::out);
+  const std::string failed = replace_file(file, [&](std::ostream& os) { os << d.dump(2) << '\n'; });
   if (!failed.empty()) fail(failed + " (nothing left there)");
   return true;
 }

@@ -9,14 +9,13 @@
 
 namespace cdb {
 
-std::string replace_file(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write,
-                         std::ios::openmode mode) {
+std::string replace_file(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write) {
   // The process id keeps two processes that fill one cache from writing one temporary.
   const std::filesystem::path part = file.string() + ".part." + std::to_string(::getpid());
   std::error_code ignored;
   errno = 0;
   {
-    std::ofstream os(part, mode | std::ios::out | std::ios::trunc);
+    std::ofstream os(part, std::ios::binary | std::ios::trunc);
     if (os) write(os);
     os.close();
     if (!os) {

@@ -4,17 +4,15 @@
 // cache, an archive member's extraction, the frames descriptor, a sweep cell's status.
 #include <filesystem>
 #include <functional>
-#include <ios>
 #include <ostream>
 #include <string>
 
 namespace cdb {
 
-// Writes `file` from what `write` puts on the stream (opened with `mode`, truncating).
+// Writes `file` from what `write` puts on the stream (binary, truncating).
 // Returns "" once the file is in place, else what went wrong, naming `file` and the
 // system's reason; the temporary is removed either way. The caller decides what a failure
 // costs: the caches warn and go on, the others fail.
-std::string replace_file(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write,
-                         std::ios::openmode mode = std::ios::binary);
+std::string replace_file(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write);
 
 }  // namespace cdb
