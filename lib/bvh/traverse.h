@@ -22,25 +22,7 @@ struct NextNode {
   bool stop;        // a leaf, or an internal node that misses: where a front records a node
 };
 
-CDB_HD_INLINE NextNode next_node(const BvhView& bvh, uint32_t node, const vec4f& lo, const vec4f& hi) {
-  const uint32_t k = ref_index(node);
-  if (is_leaf(node)) {
-    const NodeBox b = bvh.leaf_box[k];
-    const uint32_t escape = lane_link(b.lo.w);
-    return {escape, escape, lane_link(b.hi.w), overlaps(lo, hi, b.lo, b.hi), true};
-  }
-  // The links ride in the box's spare lanes (node_ref.h): two loads from one 32-byte sector
-  // (bvh/node_box.h) where four arrays took four lines.
-  const NodeBox b = bvh.node_box[k];
-  const bool hit = overlaps(lo, hi, b.lo, b.hi);
-  const uint32_t escape = lane_link(b.hi.w);
-  return {hit ? lane_link(b.lo.w) : escape, escape, 0u, false, !hit};
-}
-
-// next_node's step with the node's box loaded already (PreserveTwoNodesFn). next_node keeps
-// its own body: written through this one, ptxas allocated every traversal kernel anew (the
-// bounded preserve 32 registers without its spills, the staged update 37 instead of 41), a
-// change not measured on a GPU.
+// next_node's step with the node's box loaded already (PreserveTwoNodesFn).
 CDB_HD_INLINE NextNode next_node_in(const NodeBox& b, uint32_t node, const vec4f& lo, const vec4f& hi) {
   const bool hit = overlaps(lo, hi, b.lo, b.hi);
   if (is_leaf(node)) {
@@ -49,6 +31,15 @@ CDB_HD_INLINE NextNode next_node_in(const NodeBox& b, uint32_t node, const vec4f
   }
   const uint32_t escape = lane_link(b.hi.w);
   return {hit ? lane_link(b.lo.w) : escape, escape, 0u, false, !hit};
+}
+
+// The links ride in the box's spare lanes (node_ref.h): two loads from one 32-byte sector
+// (bvh/node_box.h) where four arrays took four lines. One body with next_node_in: ptxas
+// then allocates the traversal kernels fewer registers (the bounded preserve 32 without its
+// spills, the staged update 37 where it had 41).
+CDB_HD_INLINE NextNode next_node(const BvhView& bvh, uint32_t node, const vec4f& lo, const vec4f& hi) {
+  const uint32_t k = ref_index(node);
+  return next_node_in(is_leaf(node) ? bvh.leaf_box[k] : bvh.node_box[k], node, lo, hi);
 }
 
 // What a step meets goes to callbacks, taken by value and inlined (no indirection in the
