@@ -30,6 +30,7 @@ std::span<const OptionRow> option_table() {
       {"morton-bits", hierarchy, setting},
       {"refit-levels", hierarchy, setting},
       {"refit-top-leaves", hierarchy, setting},
+      {"build-pieces", hierarchy, setting},
       {"split-objects", hierarchy, setting},
       {"front-cycle", fronts, setting},
       {"cuda-graph", fronts, setting},

@@ -232,6 +232,13 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       "with --device cuda, off on the cpu",
       {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.tree.refit_levels))
       ->group(kTuningGroup);
+  add_choice<AutoSwitch>(
+      cmd, "--build-pieces", c.tree.build_pieces,
+      "front pipelines and bvh: a build keys each leaf by its connected piece first (faces sharing a vertex; 2 "
+      "to 4096 pieces), placed by its first face, so every piece gets subtrees of its own and a refitted tree "
+      "loosens only above the pieces as they move apart; off: plain Morton codes; auto: on",
+      {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.tree.build_pieces))
+      ->group(kTuningGroup);
   cmd->add_option("--refit-top-leaves", c.tree.refit_top_leaves,
                   "front pipelines and bvh: trees of up to this many leaves refit their top (the nodes whose leaves "
                   "span refit tiles) in one block of threads, larger trees hand it over between blocks; 0: always "

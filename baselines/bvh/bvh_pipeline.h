@@ -25,6 +25,8 @@ class BvhPipeline final : public QueryPipeline<Exec, Timer> {
     rigid_bvh_.reserve(this->exec_, this->mesh_.rigid().count);
   }
 
+  bool builds_trees() const override { return true; }
+
   std::string prepare(const MeshView& mesh) override {
     const uint64_t frame = this->frame();
     const bool rebuild = rebuild_due(frame, this->config_.tree.rebuild_every);
@@ -33,7 +35,7 @@ class BvhPipeline final : public QueryPipeline<Exec, Timer> {
                      this->mesh_.split().rigid_tree_builds(frame == 0, rebuild),
                      this->config_.tree.morton_bits, false, this->mesh_.face_object());
     return update_hierarchy(this->exec_, this->timer_, bvh_, mesh, this->mesh_.deformable(), rebuild,
-                            this->config_.tree.morton_bits);
+                            this->config_.tree.morton_bits, false, nullptr, this->mesh_.pieces());
   }
 
   // The traversals the scene's queries need (all of the one tree's pairs when unsplit).

@@ -38,6 +38,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"update_probe", c.fronts.update_probe},
       {"refit_top_leaves", c.tree.refit_top_leaves},
       {"refit_levels", auto_switch_name(c.tree.refit_levels)},
+      {"build_pieces", auto_switch_name(c.tree.build_pieces)},
       {"rebuild_degraded", c.tree.rebuild_degraded},
       {"rebuild_ahead", auto_switch_name(c.tree.rebuild_ahead)},
       {"maintain_ahead", auto_switch_name(c.tree.maintain_ahead)},

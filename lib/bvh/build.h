@@ -64,6 +64,28 @@ struct CentroidFn {
 inline constexpr int kGroupBits = 6;
 static_assert((size_t(1) << kGroupBits) >= kMaxQueryObjects, "a group index per object");
 
+// A piece ordered key (--build-pieces, geometry/mesh_pieces.h): per subset position its
+// piece, per piece the subset position of its first face. The key puts the Morton code of
+// the piece's first face, cut to kPieceCellBits, above the piece index (piece_bits) above
+// the leaf's own code, so each piece's leaves are contiguous and form subtrees of their own,
+// and the levels above them are a Morton tree over the pieces as they lie at the build.
+struct PieceOrder {
+  const uint32_t* leaf_piece = nullptr;
+  const uint32_t* piece_first = nullptr;
+  uint32_t piece_bits = 0;
+  CDB_HD_INLINE bool on() const { return leaf_piece != nullptr; }
+};
+
+// Bits of a piece's place (its first face's cell) at the top of a piece ordered key: 7 a
+// dimension of the 63-bit code, 3 of the 30-bit one.
+CDB_HD_INLINE int piece_cell_bits(MortonBits bits) { return 3 * (int(bits) / 9); }
+
+// Whether a key of `bits` keeps a leaf's own code of at least a cell a dimension beside the
+// piece's cell and index.
+inline bool piece_order_fits(MortonBits bits, uint32_t piece_bits) {
+  return int(bits) - piece_cell_bits(bits) - int(piece_bits) >= 3;
+}
+
 struct MortonFn {
   const vec4f* lo;
   const vec4f* hi;
@@ -76,11 +98,20 @@ struct MortonFn {
   // bits), so each group's leaves are contiguous and form their own subtrees.
   const uint32_t* face_group;
   FaceSubset subset;
+  PieceOrder pieces;
   CDB_HD void operator()(uint32_t i) const {
     const Aabb<float> s = *centroid_box;
     const uint64_t code = morton_code(unit_centroid(lo[i], hi[i], s.lo, s.hi), bits);
-    keys[i] = face_group ? (uint64_t(face_group[subset.face(i)]) << (int(bits) - kGroupBits)) | (code >> kGroupBits)
-                         : code;
+    const int b = int(bits);
+    if (pieces.on()) {
+      const uint32_t piece = pieces.leaf_piece[i];
+      const uint32_t f = pieces.piece_first[piece];
+      const int cell = piece_cell_bits(bits), below = b - cell - int(pieces.piece_bits);
+      const uint64_t place = morton_code(unit_centroid(lo[f], hi[f], s.lo, s.hi), bits) >> (b - cell);
+      keys[i] = (place << (b - cell)) | (uint64_t(piece) << below) | (code >> (b - below));
+    } else {
+      keys[i] = face_group ? (uint64_t(face_group[subset.face(i)]) << (b - kGroupBits)) | (code >> kGroupBits) : code;
+    }
     iota[i] = i;
   }
 };
@@ -183,14 +214,14 @@ void build_boxes(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, FaceSubset s
 // The rest of the build from those boxes: Morton codes, radix sort, Apetrei build.
 template <class Exec>
 void build_from_boxes(Exec& exec, Lbvh<Exec>& bvh, MortonBits bits, FaceSubset subset,
-                      const uint32_t* face_group = nullptr) {
+                      const uint32_t* face_group = nullptr, PieceOrder pieces = {}) {
   const uint32_t n = subset.count;
   bvh.morton_bits = bits;
   if (n == 0) return;
   exec.reduce_box(n, CentroidFn{bvh.prim_lo.data(), bvh.prim_hi.data()}, bvh.centroid_box.data(),
                   bvh.temp.data(), bvh.temp.size());
   exec.for_each_n(n, MortonFn{bvh.prim_lo.data(), bvh.prim_hi.data(), bvh.centroid_box.data(), bits,
-                              bvh.morton.data(), bvh.prim_iota.data(), face_group, subset});
+                              bvh.morton.data(), bvh.prim_iota.data(), face_group, subset, pieces});
   exec.sort_pairs(bvh.morton.data(), bvh.morton_sorted.data(), bvh.prim_iota.data(),
                   bvh.leaf_prim.data(), n, static_cast<int>(bits), bvh.temp.data(),
                   bvh.temp.size());
@@ -208,12 +239,13 @@ void build_from_boxes(Exec& exec, Lbvh<Exec>& bvh, MortonBits bits, FaceSubset s
 // sort, Apetrei build. Leaves end up sorted, holding mesh face indices; internal nodes are
 // in build order until order_depth_first runs. With `face_group` (per mesh face, < 2^6)
 // each group's faces form their own subtrees (MortonFn): a tree that is only refitted
-// while its groups move apart (rigid objects) loosens only the few nodes above them.
+// while its groups move apart (rigid objects) loosens only the few nodes above them; with
+// `pieces` (PieceOrder) so do the mesh's connected pieces.
 template <class Exec>
 void build_hierarchy(Exec& exec, Lbvh<Exec>& bvh, const MeshView& mesh, MortonBits bits,
-                     FaceSubset subset, const uint32_t* face_group = nullptr) {
+                     FaceSubset subset, const uint32_t* face_group = nullptr, PieceOrder pieces = {}) {
   build_boxes(exec, bvh, mesh, subset);
-  build_from_boxes(exec, bvh, bits, subset, face_group);
+  build_from_boxes(exec, bvh, bits, subset, face_group, pieces);
 }
 
 // The hierarchy over all of the mesh's faces.

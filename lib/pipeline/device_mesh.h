@@ -17,6 +17,7 @@
 #include "cdbench/core/pair_sink.h"
 #include "cdbench/geometry/face_subset.h"
 #include "cdbench/geometry/mesh.h"
+#include "cdbench/geometry/mesh_pieces.h"
 #include "cdbench/geometry/object_split.h"
 #include "cdbench/pipeline/pipeline.h"
 
@@ -33,6 +34,8 @@ class DeviceMesh {
     partners_.bind(exec.memory(), "mesh.partners");
     deformable_faces_.bind(exec.memory(), "mesh.deformable_faces");
     rigid_faces_.bind(exec.memory(), "mesh.rigid_faces");
+    leaf_piece_.bind(exec.memory(), "mesh.leaf_piece");
+    piece_first_.bind(exec.memory(), "mesh.piece_first");
     bounds_.bind(exec.memory(), "mesh.bounds");
     grid_.bind(exec.memory(), "mesh.box_grid");
     grid_temp_.bind(exec.memory(), "mesh.bounds_temp");
@@ -41,6 +44,7 @@ class DeviceMesh {
     if (topology.faces.size() > kMaxLeaves) fail("scene has more triangles than 2^31-1");
     num_vertices_ = topology.num_vertices;
     num_faces_ = static_cast<uint32_t>(topology.faces.size());
+    pieces_ = {};
     vertices_[0].reserve(num_vertices_);
     if (swept_) vertices_[1].reserve(num_vertices_);
     exec.reserve_upload(num_vertices_ * sizeof(vec3f));
@@ -66,6 +70,25 @@ class DeviceMesh {
     upload_table(deformable_faces_, split_.deformable_faces);
     upload_table(rigid_faces_, split_.rigid_faces);
   }
+  // T_D's connected pieces for a piece ordered build (--build-pieces): found on the host once
+  // a topology, after set_topology, by the pipelines that build trees. `wanted` off, one
+  // piece, or more than 2^kMaxPieceBits, or too many for `bits`' keys: none, and the build
+  // keys are plain Morton codes. Returns the pieces found (0 where not wanted).
+  uint32_t set_pieces(Exec& exec, const Topology& topology, bool wanted, MortonBits bits) {
+    pieces_ = {};
+    if (!wanted || deformable().count == 0) return 0;
+    const MeshPieces p = mesh_pieces(topology.faces, topology.num_vertices, split_.deformable_faces);
+    const uint32_t piece_bits = cdb::piece_bits(p.count());
+    if (p.count() < 2 || piece_bits > kMaxPieceBits || !piece_order_fits(bits, piece_bits)) return p.count();
+    leaf_piece_.reserve(p.leaf_piece.size());
+    exec.copy_from_host(leaf_piece_.data(), p.leaf_piece.data(), p.leaf_piece.size());
+    piece_first_.reserve(p.piece_first.size());
+    exec.copy_from_host(piece_first_.data(), p.piece_first.data(), p.piece_first.size());
+    pieces_ = {leaf_piece_.data(), piece_first_.data(), piece_bits};
+    return p.count();
+  }
+  // The piece order of T_D's builds; off (the default PieceOrder) where set_pieces found none.
+  PieceOrder pieces() const { return pieces_; }
   // Which trees and traversals the scene's queries need (geometry/object_split.h).
   const ObjectSplit& split() const { return split_; }
   // The faces of T_D (every face when the scene is not split) and of T_R; none when no
@@ -146,6 +169,8 @@ class DeviceMesh {
   Array<uint32_t> face_object_;
   Array<uint64_t> partners_;
   Array<uint32_t> deformable_faces_, rigid_faces_;
+  Array<uint32_t> leaf_piece_, piece_first_;
+  PieceOrder pieces_;
   ObjectSplit split_;
   bool queries_declared_ = false;
   uint32_t num_vertices_ = 0, num_faces_ = 0;
@@ -188,17 +213,18 @@ void record_timings(const Timer& timer, FrameStats& stats) {
 }
 
 // Rebuild (build + depth-first order, by histogram or, for the radix baseline, by a key
-// sort) or refit the hierarchy over `faces` (grouped by `face_group` if given: build.h);
+// sort) or refit the hierarchy over `faces` (grouped by `face_group` or ordered by `pieces`
+// if given: build.h);
 // returns which ran.
 template <class Exec, class Timer>
 std::string update_hierarchy(Exec& exec, Timer& timer, Lbvh<Exec>& bvh, const MeshView& mesh,
                              FaceSubset faces, bool rebuild, MortonBits bits, bool radix_order = false,
-                             const uint32_t* face_group = nullptr) {
+                             const uint32_t* face_group = nullptr, PieceOrder pieces = {}) {
   if (!rebuild) {
     time_phase(timer, Phase::refit, [&] { refit(exec, bvh, mesh); });
     return "refit";
   }
-  time_phase(timer, Phase::build, [&] { build_hierarchy(exec, bvh, mesh, bits, faces, face_group); });
+  time_phase(timer, Phase::build, [&] { build_hierarchy(exec, bvh, mesh, bits, faces, face_group, pieces); });
   time_phase(timer, Phase::order,
              [&] { radix_order ? order_depth_first_radix(exec, bvh) : order_depth_first(exec, bvh); });
   return "build";

@@ -77,7 +77,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     exec_.drop_side();
     ahead_due_ = false;
     if (lent_) exchange_lent();  // a build ahead dropped unadopted returns what it borrowed
-    this->set_mesh(topology);
+    this->set_mesh(topology, true);
     const ObjectSplit& split = mesh_.split();
     bvh_.refit_top_max_leaves = rigid_bvh_.refit_top_max_leaves = config_.tree.refit_top_leaves;
     bvh_.refit_levels = rigid_bvh_.refit_levels = switched_on(config_.tree.refit_levels, Exec::is_device);
@@ -214,7 +214,8 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // with T_D where it holds deformable objects (every front is generated then).
   std::string update_trees(const MeshView& mesh, bool rebuild) {
     const std::string op = update_hierarchy(exec_, timer_, bvh_, mesh, mesh_.deformable(), rebuild,
-                                            config_.tree.morton_bits, strategy().radix_sort);
+                                            config_.tree.morton_bits, strategy().radix_sort, nullptr,
+                                            mesh_.pieces());
     update_hierarchy(exec_, timer_, rigid_bvh_, mesh, mesh_.rigid(),
                      mesh_.split().rigid_tree_builds(planner_.frame() == 0, rebuild), config_.tree.morton_bits,
                      strategy().radix_sort, mesh_.face_object());
@@ -395,7 +396,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     if (!ahead_due_) return;
     ahead_due_ = false;
     exec_.on_side([&] {
-      build_from_boxes(exec_, ahead_bvh_, config_.tree.morton_bits, mesh_.deformable());
+      build_from_boxes(exec_, ahead_bvh_, config_.tree.morton_bits, mesh_.deformable(), nullptr, mesh_.pieces());
       order_depth_first(exec_, ahead_bvh_);
       generate_ahead();
     });

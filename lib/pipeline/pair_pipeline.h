@@ -38,10 +38,13 @@ class PairPipeline : public Pipeline {
   }
 
   // set_topology's part every pipeline shares: the mesh, the pair filters and the pair
-  // buffer sized per triangle. Returns the face count.
-  uint32_t set_mesh(const Topology& topology) {
+  // buffer sized per triangle; for a pipeline that builds trees, T_D's pieces
+  // (--build-pieces). Returns the face count.
+  uint32_t set_mesh(const Topology& topology, bool builds_trees = false) {
     restart_rounding();
     mesh_.set_topology(exec_, topology, config_.tree.split);
+    if (builds_trees)
+      mesh_.set_pieces(exec_, topology, switched_on(config_.tree.build_pieces, true), config_.tree.morton_bits);
     pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);
     pairs_.filter_queries(mesh_.face_object(), mesh_.partners());
     pairs_.reserve(size_t(config_.capacity.pairs_per_triangle * mesh_.num_faces()));
@@ -70,7 +73,7 @@ class QueryPipeline : public PairPipeline<Exec, Timer, Counters> {
  public:
   using Base::run_frame;
   void set_topology(const Topology& topology) final {
-    reserve(this->set_mesh(topology));
+    reserve(this->set_mesh(topology, builds_trees()));
     frame_ = 0;
     this->exec_.sync();
   }
@@ -102,6 +105,8 @@ class QueryPipeline : public PairPipeline<Exec, Timer, Counters> {
   using Base::Base;
   // Buffers for `faces` triangles.
   virtual void reserve(uint32_t faces) = 0;
+  // Whether the pipeline builds hierarchies over the mesh (its tree options apply).
+  virtual bool builds_trees() const { return false; }
   // The frame's upkeep before its query (boxes, sort, build, refit); returns what ran.
   virtual std::string prepare(const MeshView& mesh) = 0;
   // Before each run of the query: a structure that settle found outgrown is built again.

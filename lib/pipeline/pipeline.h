@@ -81,6 +81,10 @@ struct TreeConfig {
   // auto: on the GPU (its refit 13% faster on the 1M cloth), off on the host, where a tile
   // runs on one thread and its lanes once per level (funnel refit 0.233 against 0.200 ms).
   AutoSwitch refit_levels = AutoSwitch::automatic;
+  // Builds of T_D key each leaf by its connected piece first (bvh/build.h PieceOrder), so
+  // every piece of up to 2^12 has subtrees of its own and a refitted tree loosens only above
+  // the pieces as they move apart; off: plain Morton codes. auto: see switched_on's use.
+  AutoSwitch build_pieces = AutoSwitch::automatic;
   // Front pipelines under --front-cycle auto: a maintenance rebuilds the tree (and generates
   // every front) instead of updating once the rent the fronts paid on the degraded tree pays
   // for it (pipeline/tree_maintenance.h); off: only --rebuild-every and pipeline c's Formula 2.
