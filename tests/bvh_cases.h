@@ -16,6 +16,7 @@
 #include "cdbench/bvh/refit.h"
 #include "cdbench/bvh/restructure.h"
 #include "cdbench/bvh/self_query.h"
+#include "cdbench/geometry/mesh_pieces.h"
 #include "bvh_checks.h"
 #include "cdbench/core/pair_set.h"
 #include "scenes/generators/generators.h"
@@ -741,6 +742,62 @@ void check_refit_counter_reset() {
     EXPECT_EQ(after, zeroed ? std::vector<unsigned long long>(kCount, 0ull) : poison);
     EXPECT_TRUE(same_boxes(download(exec, bvh), plain)) << "boxes differ with the counters zeroed on the way";
   }
+}
+
+// A piece ordered build (--build-pieces) over `source`'s first frame, with the pieces
+// mesh_pieces finds: a valid tree whose every piece's leaves are contiguous and span one
+// subtree (an internal node, or the leaf of a one-face piece, covering exactly them), and a
+// self query that reports exactly the oracle's pairs, before and after a refit to the last
+// frame. Returns the pieces.
+template <class Exec>
+uint32_t check_piece_order(const FrameSource& source, MortonBits bits) {
+  const Topology& topo = source.topology();
+  Exec exec;
+  Lbvh<Exec> bvh(exec);
+  TestMesh<Exec> m(exec, topo);
+  const MeshPieces pieces = mesh_pieces(topo.faces, topo.num_vertices, {});
+  Array<uint32_t> leaf_piece(exec.memory(), "test.leaf_piece"), piece_first(exec.memory(), "test.piece_first");
+  leaf_piece.reserve(pieces.leaf_piece.size());
+  piece_first.reserve(pieces.piece_first.size());
+  exec.copy_from_host(leaf_piece.data(), pieces.leaf_piece.data(), pieces.leaf_piece.size());
+  exec.copy_from_host(piece_first.data(), pieces.piece_first.data(), pieces.piece_first.size());
+  const PieceOrder order{leaf_piece.data(), piece_first.data(), piece_bits(pieces.count())};
+  EXPECT_TRUE(piece_order_fits(bits, order.piece_bits)) << pieces.count() << " pieces";
+  std::vector<vec3f> v;
+  source.frame(0, v);
+  m.upload(exec, v);
+  const MeshView mesh = m.view();
+  build_hierarchy(exec, bvh, mesh, bits, FaceSubset{nullptr, mesh.num_faces}, nullptr, order);
+  order_depth_first(exec, bvh);
+  const HostBvh h = download(exec, bvh);
+  EXPECT_EQ(check_bvh(h, topo, v), "");
+  // Each piece's leaves: the range [first, last] of leaf positions, which must hold
+  // nothing else, and a node spanning exactly it.
+  const uint32_t n = uint32_t(h.leaf_prim.size());
+  std::vector<uint32_t> first(pieces.count(), n), last(pieces.count(), 0), size(pieces.count(), 0);
+  for (uint32_t k = 0; k < n; ++k) {
+    const uint32_t p = pieces.leaf_piece[h.leaf_prim[k]];
+    first[p] = std::min(first[p], k);
+    last[p] = std::max(last[p], k);
+    ++size[p];
+  }
+  std::vector<bool> spanned(pieces.count(), false);
+  for (uint32_t p = 0; p < pieces.count(); ++p) spanned[p] = size[p] == 1;
+  for (size_t j = 0; j < h.node_first.size(); ++j) {
+    const uint32_t p = pieces.leaf_piece[h.leaf_prim[h.node_first[j]]];
+    if (h.node_first[j] == first[p] && h.node_last[j] == last[p]) spanned[p] = true;
+  }
+  for (uint32_t p = 0; p < pieces.count(); ++p) {
+    EXPECT_EQ(last[p] - first[p] + 1, size[p]) << "piece " << p << " is not contiguous";
+    EXPECT_TRUE(spanned[p]) << "no subtree spans piece " << p;
+    if (testing::Test::HasFailure()) break;
+  }
+  expect_self_query_exact(exec, bvh, topo, v, m.pairs, m.count, 0);
+  source.frame(source.num_frames() - 1, v);
+  m.upload(exec, v);
+  refit(exec, bvh, mesh);
+  expect_self_query_exact(exec, bvh, topo, v, m.pairs, m.count, source.num_frames() - 1);
+  return pieces.count();
 }
 
 // The radix-sort ordering of the BVH gives the histogram ordering's tree, node for node.

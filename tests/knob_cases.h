@@ -230,6 +230,32 @@ inline void check_launch_knobs(const std::string& device, bool graph, bool depen
   }
 }
 
+// --build-pieces on and off: every pipeline reports exactly the oracle's pairs every frame on
+// scenes of many pieces (falling spheres and cones; a soup, every triangle its own piece),
+// with fronts maintained every 3 frames and a rebuild every 4 (bvh).
+inline void check_build_pieces(const std::string& device) {
+  const ExactFrames bodies = exact_frames(*make_generator(
+      "n-body", {{"spheres", 24}, {"cones", 2}, {"sphere_level", 1}, {"frames", 8}, {"warmup", 0}, {"speed", 3.0}}));
+  const ExactFrames soup = exact_frames(*fast_soup(6));
+  for (const ExactFrames* scene : {&bodies, &soup})
+    for (AutoSwitch pieces : {AutoSwitch::on, AutoSwitch::off})
+      for (const auto& name : pipeline_names()) {
+        PipelineConfig cfg = growing_config(device, name);
+        cfg.tree.build_pieces = pieces;
+        cfg.tree.rebuild_every = 4;
+        cfg.fronts.cycle = 3;
+        auto p = make_pipeline(cfg);
+        p->set_topology(scene->topology);
+        for (uint32_t f = 0; f < scene->num_frames(); ++f) {
+          p->run_frame(scene->vertices[f]);
+          const PairSetDiff d = diff_pair_sets(scene->pairs[f], p->sorted_pairs());
+          ASSERT_TRUE(d.equal()) << name << (scene == &soup ? " soup" : " bodies") << " pieces "
+                                 << auto_switch_name(pieces) << " frame " << f << ": " << d.missing_count
+                                 << " missing, " << d.unexpected_count << " extra";
+        }
+      }
+}
+
 // How an update's front is kept: --order-updates, --update-warp, --update-in-place and
 // --compact-share.
 struct UpdateKnobs {

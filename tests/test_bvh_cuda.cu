@@ -40,6 +40,19 @@ TEST_P(CudaSoup, TreeValidAndPairsExact) { check_soup_case<CudaExec>(GetParam())
 
 TEST_P(CudaSoup, RadixOrderGivesTheHistogramOrder) { check_radix_order_matches<CudaExec>(GetParam()); }
 
+// Piece ordered builds: falling spheres and cones (each its own piece), a soup (every
+// triangle one, 1200), and the funnel (its cloth and its funnel), in 63- and 30-bit keys.
+TEST(CudaPieces, EachPieceSpansOneSubtree) {
+  for (MortonBits bits : {MortonBits::b63, MortonBits::b30}) {
+    EXPECT_EQ(check_piece_order<CudaExec>(*make_generator("n-body", {{"spheres", 40}, {"cones", 3}, {"sphere_level", 1},
+                                                                {"frames", 6}, {"warmup", 0}}),
+                                     bits), 43u);
+    EXPECT_EQ(check_piece_order<CudaExec>(*make_generator("soup", {{"triangles", 1200}, {"frames", 2}, {"seed", 3}}), bits),
+              1200u);
+    EXPECT_GE(check_piece_order<CudaExec>(*make_generator("funnel", {{"res", 20}, {"frames", 6}}), bits), 2u);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Soups, CudaSoup, testing::ValuesIn(soup_cases()), case_name);
 
 class CudaBaselines : public OnGpu<testing::TestWithParam<BaselineCase>> {};
@@ -277,6 +290,8 @@ TEST_F(CudaKnobs, DependentLaunchesAndUntimedPhasesKeepEveryPipelineExact) {
   for (bool graph : {false, true})
     for (bool dependent : {false, true}) check_launch_knobs("cuda", graph, dependent);
 }
+
+TEST_F(CudaKnobs, PieceOrderedBuildsKeepEveryPipelineExact) { check_build_pieces("cuda"); }
 
 TEST_F(CudaKnobs, UpdateVariantsKeepEveryPipelineExact) {
   check_update_knobs("cuda");

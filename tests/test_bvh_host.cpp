@@ -18,6 +18,19 @@ TEST_P(HostSoup, TreeValidAndPairsExact) { check_soup_case<HostExec>(GetParam())
 
 TEST_P(HostSoup, RadixOrderGivesTheHistogramOrder) { check_radix_order_matches<HostExec>(GetParam()); }
 
+// Piece ordered builds: falling spheres and cones (each its own piece), a soup (every
+// triangle one, 1200), and the funnel (its cloth and its funnel), in 63- and 30-bit keys.
+TEST(HostPieces, EachPieceSpansOneSubtree) {
+  for (MortonBits bits : {MortonBits::b63, MortonBits::b30}) {
+    EXPECT_EQ(check_piece_order<HostExec>(*make_generator("n-body", {{"spheres", 40}, {"cones", 3}, {"sphere_level", 1},
+                                                                {"frames", 6}, {"warmup", 0}}),
+                                     bits), 43u);
+    EXPECT_EQ(check_piece_order<HostExec>(*make_generator("soup", {{"triangles", 1200}, {"frames", 2}, {"seed", 3}}), bits),
+              1200u);
+    EXPECT_GE(check_piece_order<HostExec>(*make_generator("funnel", {{"res", 20}, {"frames", 6}}), bits), 2u);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Soups, HostSoup, testing::ValuesIn(soup_cases()), case_name);
 
 // Two front nodes a preserve thread (PreserveTwoNodesFn): its launch's threads take every

@@ -3,6 +3,7 @@
 
 #include "cdbench/core/outward_rounding.h"
 #include "cdbench/exec/host_exec.h"
+#include "cdbench/geometry/mesh_pieces.h"
 #include "inter_cases.h"
 #include "knob_cases.h"
 #include "offset_cases.h"
@@ -213,6 +214,29 @@ TEST(HostKnobs, LazyRefitOnSplitTreesKeepsBothTreesStale) {
 }
 
 TEST(HostKnobs, UntimedPhasesKeepEveryPipelineExact) { check_launch_knobs("cpu", false, false); }
+
+TEST(HostKnobs, PieceOrderedBuildsKeepEveryPipelineExact) { check_build_pieces("cpu"); }
+
+// Faces sharing a vertex are one piece, numbered by first face; a face with a vertex out of
+// range is its own; a subset numbers its own positions.
+TEST(MeshPieces, ConnectedFacesShareAPiece) {
+  const std::vector<Tri> faces = {{0, 1, 2}, {5, 6, 7}, {2, 3, 4}, {8, 9, 99}, {7, 8, 9}};
+  const MeshPieces all = mesh_pieces(faces, 10, {});
+  EXPECT_EQ(all.leaf_piece, (std::vector<uint32_t>{0, 1, 0, 2, 1}));
+  EXPECT_EQ(all.piece_first, (std::vector<uint32_t>{0, 1, 3}));
+  const MeshPieces some = mesh_pieces(faces, 10, {4, 2, 0});
+  EXPECT_EQ(some.leaf_piece, (std::vector<uint32_t>{0, 1, 1}));
+  EXPECT_EQ(some.piece_first, (std::vector<uint32_t>{0, 1}));
+  EXPECT_EQ(mesh_pieces({}, 0, {}).count(), 0u);
+  EXPECT_EQ(piece_bits(0), 0u);
+  EXPECT_EQ(piece_bits(1), 0u);
+  EXPECT_EQ(piece_bits(2), 1u);
+  EXPECT_EQ(piece_bits(3), 2u);
+  EXPECT_EQ(piece_bits(4096), 12u);
+  EXPECT_EQ(piece_bits(4097), 13u);
+  EXPECT_TRUE(piece_order_fits(MortonBits::b63, kMaxPieceBits));
+  EXPECT_TRUE(piece_order_fits(MortonBits::b30, kMaxPieceBits));
+}
 
 TEST(HostKnobs, UpdateVariantsKeepEveryPipelineExact) { check_update_knobs("cpu"); }
 
