@@ -8,6 +8,7 @@
 
 #include "cdbench/core/build_info.h"
 #include "cdbench/core/error.h"
+#include "cdbench/geometry/mesh_pieces.h"
 #include "scenes/load/scene_label.h"
 #include "cdbench/pipeline/device_probe.h"
 #include "registry/pipeline_kinds.h"
@@ -236,7 +237,8 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       cmd, "--build-pieces", c.tree.build_pieces,
       "front pipelines and bvh: a build keys each leaf by its connected piece first (faces sharing a vertex; 2 "
       "to 4096 pieces), placed by its first face, so every piece gets subtrees of its own and a refitted tree "
-      "loosens only above the pieces as they move apart; off: plain Morton codes; auto: on",
+      "loosens only above the pieces as they move apart; off: plain Morton codes; auto: where the pieces average "
+      "at least " + std::to_string(kPieceMinMeanFaces) + " faces (objects, not a soup of triangles or boxes)",
       {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.tree.build_pieces))
       ->group(kTuningGroup);
   cmd->add_option("--refit-top-leaves", c.tree.refit_top_leaves,

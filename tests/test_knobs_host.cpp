@@ -4,6 +4,7 @@
 #include "cdbench/core/outward_rounding.h"
 #include "cdbench/exec/host_exec.h"
 #include "cdbench/geometry/mesh_pieces.h"
+#include "cdbench/pipeline/device_mesh.h"
 #include "inter_cases.h"
 #include "knob_cases.h"
 #include "offset_cases.h"
@@ -216,6 +217,26 @@ TEST(HostKnobs, LazyRefitOnSplitTreesKeepsBothTreesStale) {
 TEST(HostKnobs, UntimedPhasesKeepEveryPipelineExact) { check_launch_knobs("cpu", false, false); }
 
 TEST(HostKnobs, PieceOrderedBuildsKeepEveryPipelineExact) { check_build_pieces("cpu"); }
+
+// --build-pieces: auto orders the falling bodies (43 pieces of 80 or 64 faces) and not a soup
+// (every face a piece), on orders both; off and a cloth (one piece) neither.
+TEST(HostKnobs, BuildPiecesAutoTakesObjectsNotASoup) {
+  HostExec exec;
+  DeviceMesh<HostExec> mesh(exec);
+  const auto bodies = make_generator("n-body", {{"spheres", 40}, {"cones", 3}, {"sphere_level", 1}, {"frames", 1}});
+  const auto soup = make_generator("soup", {{"triangles", 1200}, {"frames", 1}});
+  const auto cloth = make_generator("cloth-wave", {{"res", 16}, {"frames", 1}});
+  const auto ordered = [&](const FrameSource& source, AutoSwitch choice) {
+    mesh.set_topology(exec, source.topology(), SplitRule::rigid);
+    mesh.set_pieces(exec, source.topology(), choice, MortonBits::b63);
+    return mesh.pieces().on();
+  };
+  EXPECT_TRUE(ordered(*bodies, AutoSwitch::automatic));
+  EXPECT_FALSE(ordered(*soup, AutoSwitch::automatic));
+  EXPECT_TRUE(ordered(*soup, AutoSwitch::on));
+  EXPECT_FALSE(ordered(*bodies, AutoSwitch::off));
+  EXPECT_FALSE(ordered(*cloth, AutoSwitch::on));
+}
 
 // Faces sharing a vertex are one piece, numbered by first face; a face with a vertex out of
 // range is its own; a subset numbers its own positions.

@@ -13,6 +13,10 @@ namespace cdb {
 
 // Pieces a piece ordered build takes at most: the piece index takes up to 12 key bits.
 inline constexpr uint32_t kMaxPieceBits = 12;
+// --build-pieces auto orders by pieces of at least this many faces on average: objects, not
+// a soup of separate triangles or boxes, whose keys would order a cell's faces by piece
+// index instead of by place.
+inline constexpr uint32_t kPieceMinMeanFaces = 16;
 
 struct MeshPieces {
   // Per subset position: its piece, numbered in the order of the pieces' first faces.

@@ -71,15 +71,20 @@ class DeviceMesh {
     upload_table(rigid_faces_, split_.rigid_faces);
   }
   // T_D's connected pieces for a piece ordered build (--build-pieces): found on the host once
-  // a topology, after set_topology, by the pipelines that build trees. `wanted` off, one
-  // piece, or more than 2^kMaxPieceBits, or too many for `bits`' keys: none, and the build
-  // keys are plain Morton codes. Returns the pieces found (0 where not wanted).
-  uint32_t set_pieces(Exec& exec, const Topology& topology, bool wanted, MortonBits bits) {
+  // a topology, after set_topology, by the pipelines that build trees. Off, one piece, more
+  // than 2^kMaxPieceBits, too many for `bits`' keys, or (auto) pieces of fewer than
+  // kPieceMinMeanFaces faces on average (a soup, particles, boxes: the keys would order the
+  // faces of a cell by piece index, not by place): none, and the build keys are plain
+  // Morton codes. Returns the pieces found (0 where off).
+  uint32_t set_pieces(Exec& exec, const Topology& topology, AutoSwitch choice, MortonBits bits) {
     pieces_ = {};
-    if (!wanted || deformable().count == 0) return 0;
+    if (choice == AutoSwitch::off || deformable().count == 0) return 0;
     const MeshPieces p = mesh_pieces(topology.faces, topology.num_vertices, split_.deformable_faces);
     const uint32_t piece_bits = cdb::piece_bits(p.count());
-    if (p.count() < 2 || piece_bits > kMaxPieceBits || !piece_order_fits(bits, piece_bits)) return p.count();
+    const bool small = p.leaf_piece.size() < size_t(kPieceMinMeanFaces) * p.count();
+    if (p.count() < 2 || piece_bits > kMaxPieceBits || !piece_order_fits(bits, piece_bits) ||
+        (choice == AutoSwitch::automatic && small))
+      return p.count();
     leaf_piece_.reserve(p.leaf_piece.size());
     exec.copy_from_host(leaf_piece_.data(), p.leaf_piece.data(), p.leaf_piece.size());
     piece_first_.reserve(p.piece_first.size());

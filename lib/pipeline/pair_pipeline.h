@@ -44,7 +44,7 @@ class PairPipeline : public Pipeline {
     restart_rounding();
     mesh_.set_topology(exec_, topology, config_.tree.split);
     if (builds_trees)
-      mesh_.set_pieces(exec_, topology, switched_on(config_.tree.build_pieces, true), config_.tree.morton_bits);
+      mesh_.set_pieces(exec_, topology, config_.tree.build_pieces, config_.tree.morton_bits);
     pairs_.skip_adjacent(config_.skip_adjacent ? mesh_.face_vertices() : nullptr);
     pairs_.filter_queries(mesh_.face_object(), mesh_.partners());
     pairs_.reserve(size_t(config_.capacity.pairs_per_triangle * mesh_.num_faces()));

@@ -83,7 +83,8 @@ struct TreeConfig {
   AutoSwitch refit_levels = AutoSwitch::automatic;
   // Builds of T_D key each leaf by its connected piece first (bvh/build.h PieceOrder), so
   // every piece of up to 2^12 has subtrees of its own and a refitted tree loosens only above
-  // the pieces as they move apart; off: plain Morton codes. auto: see switched_on's use.
+  // the pieces as they move apart; off: plain Morton codes; auto: where the pieces average
+  // kPieceMinMeanFaces faces or more (DeviceMesh::set_pieces).
   AutoSwitch build_pieces = AutoSwitch::automatic;
   // Front pipelines under --front-cycle auto: a maintenance rebuilds the tree (and generates
   // every front) instead of updating once the rent the fronts paid on the degraded tree pays
