@@ -34,9 +34,10 @@ CDB_HD_INLINE NextNode next_node_in(const NodeBox& b, uint32_t node, const vec4f
 }
 
 // The links ride in the box's spare lanes (node_ref.h): two loads from one 32-byte sector
-// (bvh/node_box.h) where four arrays took four lines. One body with next_node_in: ptxas
-// then allocates the traversal kernels fewer registers (the bounded preserve 32 without its
-// spills, the staged update 37 where it had 41).
+// (bvh/node_box.h) where four arrays took four lines. The box is loaded by kind, then one
+// body tests it: with a body a kind, ptxas (sm_90, -v) gave every traversal kernel more
+// registers (preserve 40 where this gives 32, the staged update 41 against 34, generate 38
+// against 32, the self query 32 against 27) and the bounded preserve 56-72 spilled bytes.
 CDB_HD_INLINE NextNode next_node(const BvhView& bvh, uint32_t node, const vec4f& lo, const vec4f& hi) {
   const uint32_t k = ref_index(node);
   return next_node_in(is_leaf(node) ? bvh.leaf_box[k] : bvh.node_box[k], node, lo, hi);
