@@ -66,7 +66,7 @@ static_assert((size_t(1) << kGroupBits) >= kMaxQueryObjects, "a group index per 
 
 // A piece ordered key (--build-pieces, geometry/mesh_pieces.h): per subset position its
 // piece, per piece the subset position of its first face. The key puts the Morton code of
-// the piece's first face, cut to kPieceCellBits, above the piece index (piece_bits) above
+// the piece's first face, cut to piece_cell_bits, above the piece index (piece_bits) above
 // the leaf's own code, so each piece's leaves are contiguous and form subtrees of their own,
 // and the levels above them are a Morton tree over the pieces as they lie at the build.
 struct PieceOrder {

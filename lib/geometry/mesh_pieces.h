@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "cdbench/geometry/face_subset.h"
 #include "cdbench/geometry/mesh.h"
 
 namespace cdb {

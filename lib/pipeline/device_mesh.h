@@ -55,42 +55,35 @@ class DeviceMesh {
       grid_.reserve(1);
       grid_temp_.reserve(exec.reduce_temp_bytes(num_vertices_));
     }
-    const auto upload_table = [&exec](auto& array, const auto& table) {
-      array.reserve(table.size());
-      exec.copy_from_host(array.data(), table.data(), table.size());
-    };
-    upload_table(faces_, topology.faces);
+    upload_table(exec, faces_, topology.faces);
     queries_declared_ = topology.queries.declared;
     if (queries_declared_) {
       const PairFilterTables t = pair_filter_tables(topology.objects, topology.queries, num_faces_);
-      upload_table(face_object_, t.face_object);
-      upload_table(partners_, t.partners);
+      upload_table(exec, face_object_, t.face_object);
+      upload_table(exec, partners_, t.partners);
     }
     split_ = split_objects(topology, split_rule);
-    upload_table(deformable_faces_, split_.deformable_faces);
-    upload_table(rigid_faces_, split_.rigid_faces);
+    upload_table(exec, deformable_faces_, split_.deformable_faces);
+    upload_table(exec, rigid_faces_, split_.rigid_faces);
   }
   // T_D's connected pieces for a piece ordered build (--build-pieces): found on the host once
   // a topology, after set_topology, by the pipelines that build trees. Off, one piece, more
   // than 2^kMaxPieceBits, too many for `bits`' keys, or (auto) pieces of fewer than
   // kPieceMinMeanFaces faces on average (a soup, particles, boxes: the keys would order the
   // faces of a cell by piece index, not by place): none, and the build keys are plain
-  // Morton codes. Returns the pieces found (0 where off).
-  uint32_t set_pieces(Exec& exec, const Topology& topology, AutoSwitch choice, MortonBits bits) {
+  // Morton codes.
+  void set_pieces(Exec& exec, const Topology& topology, AutoSwitch choice, MortonBits bits) {
     pieces_ = {};
-    if (choice == AutoSwitch::off || deformable().count == 0) return 0;
+    if (choice == AutoSwitch::off || deformable().count == 0) return;
     const MeshPieces p = mesh_pieces(topology.faces, topology.num_vertices, split_.deformable_faces);
     const uint32_t piece_bits = cdb::piece_bits(p.count());
     const bool small = p.leaf_piece.size() < size_t(kPieceMinMeanFaces) * p.count();
     if (p.count() < 2 || piece_bits > kMaxPieceBits || !piece_order_fits(bits, piece_bits) ||
         (choice == AutoSwitch::automatic && small))
-      return p.count();
-    leaf_piece_.reserve(p.leaf_piece.size());
-    exec.copy_from_host(leaf_piece_.data(), p.leaf_piece.data(), p.leaf_piece.size());
-    piece_first_.reserve(p.piece_first.size());
-    exec.copy_from_host(piece_first_.data(), p.piece_first.data(), p.piece_first.size());
+      return;
+    upload_table(exec, leaf_piece_, p.leaf_piece);
+    upload_table(exec, piece_first_, p.piece_first);
     pieces_ = {leaf_piece_.data(), piece_first_.data(), piece_bits};
-    return p.count();
   }
   // The piece order of T_D's builds; off (the default PieceOrder) where set_pieces found none.
   PieceOrder pieces() const { return pieces_; }
@@ -166,6 +159,12 @@ class DeviceMesh {
   uint32_t num_faces() const { return num_faces_; }
 
  private:
+  // A host table into an executor array sized to it.
+  template <class T>
+  static void upload_table(Exec& exec, Array<T>& array, const std::vector<T>& table) {
+    array.reserve(table.size());
+    exec.copy_from_host(array.data(), table.data(), table.size());
+  }
   const vec3f* previous() const { return swept_ && have_previous_ ? vertices_[current_ ^ 1u].data() : nullptr; }
 
   Array<vec3f> vertices_[2];  // current_ is this frame's; the other the previous frame's
