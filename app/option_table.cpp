@@ -47,6 +47,7 @@ std::span<const OptionRow> option_table() {
       {"rebuild-growth", fronts, setting},
       {"regenerate", fronts, setting},
       {"update-probe", fronts, setting},
+      {"update-ahead", fronts, setting},
       {"restructure-quality", restructure, setting},
       {"restructure-min-leaves", restructure, setting},
       {"restructure-max-fraction", restructure, setting},

@@ -186,6 +186,14 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       "whose last cycle (the maintenance and the frames to the next) cost less per pair (measured no faster than off)",
       {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.tree.maintain_ahead))
       ->group(kTuningGroup);
+  add_choice<AutoSwitch>(
+      cmd, "--update-ahead", c.fronts.update_ahead,
+      "front pipelines that build ahead (--rebuild-ahead): on: a due update of the fronts runs on the side stream "
+      "(from the current fronts, against a copy of the tree's boxes) while the frames preserve, and the first frame "
+      "that finds it done adopts the updated fronts (pipeline c then inspects nothing after it); off: updates run "
+      "in their frames; auto: on",
+      {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.fronts.update_ahead))
+      ->group(kTuningGroup);
   add_switch(cmd, "--rebuild-degraded", c.tree.rebuild_degraded,
              "front pipelines with --front-cycle auto: a maintenance rebuilds the tree and generates every front "
              "instead of updating once the rent the fronts paid on the tree since the build (the share of each "

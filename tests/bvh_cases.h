@@ -493,6 +493,7 @@ inline void check_forced_decisions(const std::string& device, const ExactFrames&
 // the next and every front preserved while one runs (plan_record.cpp checks the rest).
 struct AheadSteps {
   size_t aheads = 0, adopts = 0;
+  size_t update_aheads = 0, update_adopts = 0;  // --update-ahead's
 };
 inline AheadSteps count_ahead_steps(const std::vector<FrameStats>& frames) {
   AheadSteps n;
@@ -501,18 +502,20 @@ inline AheadSteps count_ahead_steps(const std::vector<FrameStats>& frames) {
     EXPECT_TRUE(frames[k].plan.has_value()) << "frame " << k;
     if (!frames[k].plan) continue;
     const PlanStep& s = *frames[k].plan;
-    if (s.trees == TreeStep::ahead) {
-      EXPECT_FALSE(in_flight) << "frame " << k << ": ahead while one runs";
+    const bool launches = s.trees == TreeStep::ahead || s.trees == TreeStep::update_ahead;
+    const bool adopts = s.trees == TreeStep::adopt || s.trees == TreeStep::adopt_update;
+    if (launches) {
+      EXPECT_FALSE(in_flight) << "frame " << k << ": " << tree_step_name(s.trees) << " while one runs";
       in_flight = true;
-      ++n.aheads;
+      ++(s.trees == TreeStep::ahead ? n.aheads : n.update_aheads);
     }
-    if (s.trees == TreeStep::adopt) {
-      EXPECT_TRUE(in_flight) << "frame " << k << ": adopt without a build ahead";
+    if (adopts) {
+      EXPECT_TRUE(in_flight) << "frame " << k << ": " << tree_step_name(s.trees) << " without side work";
       in_flight = false;
-      ++n.adopts;
+      ++(s.trees == TreeStep::adopt ? n.adopts : n.update_adopts);
     }
     EXPECT_FALSE(in_flight && s.trees == TreeStep::build) << "frame " << k << ": a build while one runs ahead";
-    if (in_flight || s.trees == TreeStep::adopt) {
+    if (in_flight || adopts) {
       EXPECT_FALSE(s.runs(FrontOp::update) || s.runs(FrontOp::generate) || s.runs(FrontOp::restructure))
           << "frame " << k << ": " << format_plan_step(s);
     }
@@ -527,26 +530,36 @@ inline AheadSteps count_ahead_steps(const std::vector<FrameStats>& frames) {
 // the adoption): every frame exact, builds ahead in the plan and adopted, and the recorded
 // plan replayed on a fresh pipeline runs the same steps exactly; with --maintain-ahead on
 // the front cycle's maintenances (every second frame) are the builds ahead, with auto they
-// run both ways. The reference strategy and the radix orderings build in their frames.
+// run both ways; with --update-ahead on the cycle's updates run on the side (their fronts
+// outgrow the small buffers, so the adopting frames update them again). The reference
+// strategy and the radix orderings build in their frames.
 inline void check_rebuild_ahead(const std::string& device, const ExactFrames& scene) {
   struct Case {
     const char* pipeline;
     uint32_t rebuild_every;
     bool formula2;
     AutoSwitch maintain_ahead = AutoSwitch::off;
+    AutoSwitch update_ahead = AutoSwitch::off;
   };
   for (const Case& c : {Case{"a", 2, false}, Case{"b", 3, false}, Case{"c", 2, false}, Case{"unordered", 2, false},
                         Case{"periodic", 3, false}, Case{"c", 0, true}, Case{"b", 0, false, AutoSwitch::on},
                         Case{"c", 0, false, AutoSwitch::on}, Case{"b", 0, false, AutoSwitch::automatic},
-                        Case{"c", 0, false, AutoSwitch::automatic}}) {
+                        Case{"c", 0, false, AutoSwitch::automatic},
+                        Case{"a", 0, false, AutoSwitch::off, AutoSwitch::on},
+                        Case{"b", 0, false, AutoSwitch::off, AutoSwitch::on},
+                        Case{"c", 0, false, AutoSwitch::off, AutoSwitch::on},
+                        Case{"unordered", 0, false, AutoSwitch::off, AutoSwitch::on},
+                        Case{"periodic", 0, false, AutoSwitch::off, AutoSwitch::on},
+                        Case{"b", 3, false, AutoSwitch::off, AutoSwitch::on}}) {
     SCOPED_TRACE(std::string(c.pipeline) + (c.formula2 ? ", Formula 2 rebuilds" : ", rebuild every ") +
                  (c.formula2 ? "" : std::to_string(c.rebuild_every)) + ", maintained ahead " +
-                 auto_switch_name(c.maintain_ahead));
+                 auto_switch_name(c.maintain_ahead) + ", updated ahead " + auto_switch_name(c.update_ahead));
     PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
     cfg.name = c.pipeline;
     cfg.tree.rebuild_ahead = AutoSwitch::on;
     cfg.tree.rebuild_every = c.rebuild_every;
     cfg.tree.maintain_ahead = c.maintain_ahead;
+    cfg.fronts.update_ahead = c.update_ahead;
     if (c.formula2) {
       cfg.restructure.quality = 0.0;
       cfg.restructure.min_leaves = 4;
@@ -556,10 +569,20 @@ inline void check_rebuild_ahead(const std::string& device, const ExactFrames& sc
     const std::vector<FrameStats> recorded = run_exact(cfg, scene);
     if (testing::Test::HasFailure()) return;
     const AheadSteps n = count_ahead_steps(recorded);
+    const bool updates_ahead = c.update_ahead == AutoSwitch::on;
     if (scene.topology.faces.size() > 1 && !c.formula2) {
-      EXPECT_GT(n.aheads, 0u);
+      if (!updates_ahead || c.rebuild_every > 0) {
+        EXPECT_GT(n.aheads, 0u);
+      }
+      if (updates_ahead) {
+        EXPECT_GT(n.update_aheads, 0u);
+      }
+    }
+    if (!updates_ahead) {
+      EXPECT_EQ(n.update_aheads, 0u);
     }
     EXPECT_GE(n.adopts + 1, n.aheads);
+    EXPECT_GE(n.update_adopts + 1, n.update_aheads);
     auto plan = std::make_shared<RecordedPlan>();
     plan->source = c.pipeline;
     plan->records_probes = true;

@@ -841,6 +841,40 @@ TEST(FramePlan, MaintenancesAheadAreRebuildsBuiltAhead) {
   }
 }
 
+// --update-ahead where rebuilds are built ahead: each update the cycle asks for (every third
+// frame since the fronts were generated) runs on the side (U: every front preserved in the
+// frame, nothing probed or inspected) and is adopted at the next frame (V), which counts as
+// the update: the cycle goes on from the fronts' generate as with updates in their frames.
+// The adopting frame is priced as an update (its time and the side's), and a rebuild due
+// stays a build ahead. Off, or where nothing builds ahead: updates in their frames (u).
+TEST(FramePlan, UpdatesAheadRunOnTheSideAndAreAdoptedAsUpdates) {
+  for (const bool ahead : {false, true}) {
+    for (const bool builds_ahead : {false, true}) {
+      SCOPED_TRACE(std::string(ahead ? "updated ahead" : "updated in the frame") +
+                   (builds_ahead ? ", builds ahead" : ", builds in the frame"));
+      PipelineConfig cfg = cycle_config(3);
+      cfg.fronts.update_ahead = ahead ? AutoSwitch::on : AutoSwitch::off;
+      FramePlanner planner(FrontStrategy{.restructure = true}, cfg);
+      planner.reset({true, false, false}, 1, builds_ahead);
+      EXPECT_EQ(planner.updates_ahead(), ahead && builds_ahead);
+      std::string s;
+      for (int f = 0; f < 9; ++f) {
+        const FramePlan p = planner.plan(1000, 100, 0.0, true);
+        const char step = p.ahead ? (p.ahead_update ? 'U' : 'A') : p.adopt ? (p.ahead_update ? 'V' : 'D') : letter(p);
+        s += step;
+        if (step == 'U' || step == 'V') {
+          EXPECT_FALSE(p.probe || p.inspect || p.balance) << "frame " << f;
+          EXPECT_FALSE(p.changes_fronts()) << "frame " << f;
+          EXPECT_EQ(planner.step(p).trees, step == 'U' ? TreeStep::update_ahead : TreeStep::adopt_update);
+        }
+        planner.finish(p, {.ms = step == 'V' ? 2.0 : 1.0, .front_nodes = 100, .q_root = 1.0, .pairs = 100,
+                           .ahead_ms = step == 'V' ? 1.5 : -1.0});
+      }
+      EXPECT_EQ(s, ahead && builds_ahead ? "bppUVpUVp" : "bppuppupp");
+    }
+  }
+}
+
 // --maintain-ahead auto (fixed cycle 3 from the fronts' generate, builds ahead): the first
 // maintenance runs in its frame (u at 3), the next is built ahead (A at 6, adopted at 7, the
 // next due at 10); then each runs the way whose last cycle cost less per pair. Frames cost

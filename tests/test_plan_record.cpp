@@ -39,6 +39,8 @@ RecordedPlan plan_of(const std::string& letters, const std::string& source = "pl
       case 's': s = step(TreeStep::stale, FrontOp::preserve); break;
       case 'a': s = step(TreeStep::ahead, FrontOp::preserve); break;
       case 'd': s = step(TreeStep::adopt, FrontOp::preserve); break;
+      case 'U': s = step(TreeStep::update_ahead, FrontOp::preserve); break;
+      case 'V': s = step(TreeStep::adopt_update, FrontOp::preserve); break;
     }
     plan.frames.push_back({uint32_t(k), s, 0});
   }
@@ -101,8 +103,8 @@ TEST(PlanRecord, ParseErrorsNameTheFileLineAndField) {
       {h + "2 refit self=preserve\n",
        "p.txt line 3 field 1 ('2'): frame 2 after frame 0: a plan lists consecutive frames"},
       {h + "1 rebuild self=preserve\n",
-       "p.txt line 3 field 2 ('rebuild'): expected the trees' step: build, refit, stale, ahead or adopt"},
-      {h + "1\n", "p.txt line 3 field 2: missing the trees' step (build, refit, stale, ahead or adopt)"},
+       "p.txt line 3 field 2 ('rebuild'): expected the trees' step: build, refit, stale, ahead, adopt, update-ahead or adopt-update"},
+      {h + "1\n", "p.txt line 3 field 2: missing the trees' step (build, refit, stale, ahead, adopt, update-ahead or adopt-update)"},
       {h + "1 refit self=updte\n",
        "p.txt line 3 field 3 ('self=updte'): unknown operation 'updte' (generate, preserve, update, restructure)"},
       {h + "1 refit self=update cross=update\n",
@@ -131,6 +133,14 @@ TEST(PlanRecord, FrameListsAndOutline) {
   EXPECT_EQ(ahead.frames[1].step.trees, TreeStep::ahead);
   EXPECT_EQ(ahead.frames[2].step.trees, TreeStep::adopt);
   EXPECT_EQ(format_plan_step(ahead.frames[1].step), "ahead self=preserve");
+  EXPECT_EQ(plan_outline(plan_of("bpUVpUpV")),
+            "build: 0; update: —; generate: —; restructure: —; updated ahead: 2,5; adopted: 3,7");
+  const RecordedPlan updated =
+      parse_plan("cdbench-plan 1\n0 build self=generate\n1 update-ahead self=preserve\n2 adopt-update self=preserve\n",
+                 "p.txt");
+  EXPECT_EQ(updated.frames[1].step.trees, TreeStep::update_ahead);
+  EXPECT_EQ(updated.frames[2].step.trees, TreeStep::adopt_update);
+  EXPECT_EQ(format_plan_step(updated.frames[2].step), "adopt-update self=preserve");
   RecordedPlan restructure = plan_of("bur");
   restructure.frames[2].step.op(Query::inter) = FrontOp::generate;  // part of the restructure, not a maintenance
   EXPECT_EQ(plan_outline(restructure), "build: 0; update: 1; generate: —; restructure: 2");
@@ -212,6 +222,18 @@ TEST(PlanRecord, StepsAPipelineCannotRunAreRefused) {
   p = plan_of("buapd");
   p.frames[2].step.decision = Formula2::rebuild;
   EXPECT_EQ(error(p, kPipelineCAhead), "no error");
+  // Updates ahead: the same rules, each adopted by its own kind of adoption.
+  EXPECT_EQ(error(plan_of("bpUpVpapdUV"), kPipelineCAhead), "no error");
+  EXPECT_EQ(error(plan_of("bpUV"), kPipelineC),
+            "plan.txt frame 2: update-ahead, but this run does not build ahead (--rebuild-ahead, which needs a front "
+            "pipeline with the histogram sort, no rigid objects and --refit-every 1)");
+  EXPECT_EQ(error(plan_of("bpUd"), kPipelineCAhead), "plan.txt frame 3: adopt, but no build ahead runs");
+  EXPECT_EQ(error(plan_of("bpaV"), kPipelineCAhead), "plan.txt frame 3: adopt-update, but no update ahead runs");
+  EXPECT_EQ(error(plan_of("bpUa"), kPipelineCAhead),
+            "plan.txt frame 3: ahead, but the last update ahead was not adopted yet");
+  EXPECT_EQ(error(plan_of("bpUb"), kPipelineCAhead), "plan.txt frame 3: build, but an update ahead was not adopted yet");
+  EXPECT_EQ(error(plan_of("bpUuV"), kPipelineCAhead),
+            "plan.txt frame 3: while an update ahead runs every front is preserved; self updates");
   // Stale boxes only where the run's --refit-every keeps them.
   EXPECT_EQ(error(plan_of("bspsp"), {false, false, 2}), "no error");
   EXPECT_EQ(error(plan_of("bspsp"), kPipelineA), "plan.txt frame 1: stale, but this run refits here (--refit-every 1)");

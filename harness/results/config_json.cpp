@@ -36,6 +36,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"compact_share", c.fronts.compact_share},
       {"regenerate", c.fronts.regenerate},
       {"update_probe", c.fronts.update_probe},
+      {"update_ahead", auto_switch_name(c.fronts.update_ahead)},
       {"refit_top_leaves", c.tree.refit_top_leaves},
       {"refit_levels", auto_switch_name(c.tree.refit_levels)},
       {"build_pieces", auto_switch_name(c.tree.build_pieces)},

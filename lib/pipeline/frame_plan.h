@@ -51,6 +51,9 @@ struct FramePlan {
   // fronts with those built ahead, then refits and preserves (adopt).
   bool ahead = false;
   bool adopt = false;
+  // --update-ahead: what runs on the side (ahead) or is adopted (adopt) is an update of
+  // T_D's self fronts on the current tree, not a new tree: adopting replaces the fronts only.
+  bool ahead_update = false;
   // Each front query's operation, by Query (pipeline/front_counters.h).
   std::array<FrontOp, kQueryCount> ops = {FrontOp::preserve, FrontOp::preserve, FrontOp::preserve};
   // The updates write into the current fronts (FrontConfig::update_in_place), not whole
@@ -112,7 +115,7 @@ class FramePlanner {
   // the pipeline can: FrontPipeline).
   void reset(const QuerySet& running = {true, true, true}, uint64_t wave = 1, bool builds_ahead = false) {
     frame_ = generated_ = produced_ = maintained_ = 0;
-    probed_ = in_flight_ = false;
+    probed_ = in_flight_ = in_flight_update_ = false;
     pending_ = {};
     q_ref_ = 0.0;
     maintenance_.reset();
@@ -121,12 +124,15 @@ class FramePlanner {
     price_.reset();
     running_ = running;
     builds_ahead_ = builds_ahead;
+    updates_ahead_ = builds_ahead && switched_on(config_.fronts.update_ahead, true);
     if (replay_) {
       check_plan_queries(*replay_, running_);
       check_plan_steps(*replay_, target(builds_ahead_));
     }
   }
   bool builds_ahead() const { return builds_ahead_; }
+  // --update-ahead: due updates of T_D's self fronts run on the side stream (reset).
+  bool updates_ahead() const { return updates_ahead_; }
   // --maintain-ahead: the next maintenance after the first frame is a rebuild built ahead
   // (on: every one; auto: where the last cycle begun so cost less, MaintenanceChoice).
   bool maintains_ahead() const {
@@ -166,8 +172,8 @@ class FramePlanner {
   PlanStep step(const FramePlan& p) const {
     PlanStep s;
     s.trees = p.rebuild ? TreeStep::build
-              : p.ahead ? TreeStep::ahead
-              : p.adopt ? TreeStep::adopt
+              : p.ahead ? (p.ahead_update ? TreeStep::update_ahead : TreeStep::ahead)
+              : p.adopt ? (p.ahead_update ? TreeStep::adopt_update : TreeStep::adopt)
               : p.stale ? TreeStep::stale
                         : TreeStep::refit;
     for (Query q : kQueries)
@@ -192,11 +198,13 @@ class FramePlanner {
     double first_pass_ms = -1.0;  // a frame that ran again: its first pass, without upload
     double ahead_ms = -1.0;       // an adopting frame: what the build ahead took on its stream
   };
-  // An adopting frame counts as the build: its cost is the frame's plus the build ahead's,
-  // which ran beside earlier frames (a bound: it shared the device with them).
+  // An adopting frame counts as the build (or, adopting fronts updated ahead, as the
+  // update): its cost is the frame's plus the side's, which ran beside earlier frames (a
+  // bound: it shared the device with them).
   void finish(const FramePlan& p, const Outcome& o) {
     const FrontOp self = p.op(Query::self);
-    const bool built = p.rebuild || p.adopt;
+    const bool adopted_update = p.adopt && p.ahead_update;
+    const bool built = p.rebuild || (p.adopt && !p.ahead_update);
     const bool steady = p.steady() && !p.stale && !p.adopt, clean = o.ran_once && !o.recorded;
     // A build frame that ran again is priced by its first pass: the growth and the second
     // pass are one-offs, and counted whole they made the first maintenance's price a guess
@@ -205,6 +213,7 @@ class FramePlanner {
                       : p.adopt                                          ? o.ms + std::max(o.ahead_ms, 0.0)
                                                                          : o.ms;
     const FrameKind kind = built                       ? FrameKind::built
+                           : adopted_update            ? FrameKind::updated
                            : steady                    ? FrameKind::steady
                            : self == FrontOp::update   ? FrameKind::updated
                            : self == FrontOp::generate ? FrameKind::generated
@@ -212,19 +221,20 @@ class FramePlanner {
     maintenance_.observe({.kind = kind, .ms = ms, .front_nodes = o.front_nodes, .once = clean});
     tree_.observe(o.front_nodes, o.pairs, p.probe ? o.update_yield : 0);
     if (built) tree_.built();
-    if (!built && p.changes_fronts()) tree_.maintained();
+    const bool fronts_changed = p.changes_fronts() || adopted_update;
+    if (!built && fronts_changed) tree_.maintained();
     if (p.rebuild && o.generate_per_node_ms >= 0.0) maintenance_.observe_build_generate(o.generate_per_node_ms);
     if (self == FrontOp::restructure)
       price_.observe_restructure(ms, p.restructuring.leaves, clean);
     else if (steady && clean)
       price_.observe_steady(ms, o.pairs);
     if (kind == FrameKind::updated && clean) price_.observe_update(ms);
-    if (built || self == FrontOp::update || self == FrontOp::generate) {
+    if (built || self == FrontOp::update || self == FrontOp::generate || adopted_update) {
       price_.maintained(frame_ - maintained_);
       maintained_ = frame_;
     }
     if (built || self == FrontOp::generate) generated_ = frame_;
-    if (built || p.changes_fronts()) {
+    if (built || fronts_changed) {
       produced_ = frame_;
       maintenance_.produced();
     }
@@ -232,20 +242,25 @@ class FramePlanner {
     if (p.inspect) pending_ = o.found;
     probed_ = p.probe;
     // A cycle begins at each maintenance: a build ahead, or an update or generate of T_D's
-    // self fronts in its frame (a restructure continues its update's cycle).
-    const bool in_frame = !built && (self == FrontOp::update || self == FrontOp::generate);
+    // self fronts (in its frame, or an update ahead: not a new tree, so --maintain-ahead
+    // auto prices it as an update; a restructure continues its update's cycle).
+    const bool in_frame =
+        (!built && (self == FrontOp::update || self == FrontOp::generate)) || (p.ahead && p.ahead_update);
     choice_.observe(o.ms, o.pairs,
-                    p.rebuild ? std::optional{MaintenanceWay::none}
-                    : p.ahead ? std::optional{MaintenanceWay::ahead}
+                    p.rebuild                    ? std::optional{MaintenanceWay::none}
+                    : p.ahead && !p.ahead_update ? std::optional{MaintenanceWay::ahead}
                     : in_frame ? std::optional{MaintenanceWay::in_frame}
                                : std::nullopt);
-    if (p.ahead) in_flight_ = true;
-    if (p.adopt) in_flight_ = false;
+    if (p.ahead) {
+      in_flight_ = true;
+      in_flight_update_ = p.ahead_update;
+    }
+    if (p.adopt) in_flight_ = in_flight_update_ = false;
     ++frame_;
   }
 
   uint64_t frame() const { return frame_; }
-  // A build ahead runs: launched, not adopted yet.
+  // A build or update ahead runs: launched, not adopted yet.
   bool ahead_in_flight() const { return in_flight_; }
   // Q of the root after the last rebuild (pipeline c's reference quality; 0 before one).
   double q_ref() const { return q_ref_; }
@@ -298,6 +313,14 @@ class FramePlanner {
       p.inspect = p.probe = false;
       p.restructuring = {};
     }
+    // --update-ahead: a due update of T_D's self fronts runs on the side from the current
+    // fronts (FramePlan::ahead_update); the frame and the ones after it preserve until the
+    // updated fronts are adopted. Pipeline c inspects nothing after it.
+    if (updates_ahead_ && frame_ > 0 && !p.rebuild && !p.ahead && p.op(Query::self) == FrontOp::update) {
+      p.ahead = p.ahead_update = true;
+      p.ops = {FrontOp::preserve, FrontOp::preserve, FrontOp::preserve};
+      p.inspect = p.probe = false;
+    }
     return p;
   }
 
@@ -307,6 +330,7 @@ class FramePlanner {
   FramePlan in_flight(bool ahead_done) {
     FramePlan p;
     p.adopt = ahead_done;
+    p.ahead_update = in_flight_update_;
     pending_ = {};
     return p;
   }
@@ -325,8 +349,9 @@ class FramePlanner {
     FramePlan p;
     p.rebuild = s.trees == TreeStep::build;
     p.stale = s.trees == TreeStep::stale;
-    p.ahead = s.trees == TreeStep::ahead;
-    p.adopt = s.trees == TreeStep::adopt;
+    p.ahead = s.trees == TreeStep::ahead || s.trees == TreeStep::update_ahead;
+    p.adopt = s.trees == TreeStep::adopt || s.trees == TreeStep::adopt_update;
+    p.ahead_update = s.trees == TreeStep::update_ahead || s.trees == TreeStep::adopt_update;
     for (Query q : kQueries) p.op(q) = s.op(q).value_or(FrontOp::preserve);
     p.decision = s.decision;
     p.inspect = s.inspect;
@@ -384,7 +409,9 @@ class FramePlanner {
   uint64_t maintained_ = 0; // the last frame that built, updated or generated T_D's self fronts
   bool probed_ = false;     // the last frame probed
   bool builds_ahead_ = false;  // rebuilds after the first frame are built ahead (reset)
-  bool in_flight_ = false;  // a build ahead runs: launched, not adopted yet
+  bool updates_ahead_ = false;  // due updates of T_D's self fronts run on the side (reset)
+  bool in_flight_ = false;  // a build or update ahead runs: launched, not adopted yet
+  bool in_flight_update_ = false;  // what runs is an update ahead
   Candidates pending_;      // found by the last inspection, decided on the next frame
   QuerySet running_ = {true, true, true};       // the queries that run in the scene
   std::shared_ptr<const RecordedPlan> replay_;  // the plan replayed, or none

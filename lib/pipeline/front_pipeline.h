@@ -112,7 +112,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
     const FramePlan plan =
         planner_.plan(bvh_.num_leaves, front_nodes(), disorder(), planner_.ahead_in_flight() && exec_.side_done());
-    const double ahead_ms = plan.adopt ? adopt_ahead() : -1.0;
+    const double ahead_ms = plan.adopt ? adopt_ahead(plan.ahead_update) : -1.0;
     const uint64_t fronts = front_nodes();
     // The first frame's generate is timed, phases on or off, where maintenances may
     // generate: what a generate costs bounds a maintenance generate before one ran
@@ -199,10 +199,10 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // The trees' upkeep and the work that must not be re-run with the front pass: balance
   // before updates, the restructure of T_D. Returns the frame's op (hierarchy + self front).
   std::string prepare_trees(const MeshView& mesh, const FramePlan& plan) {
-    if (plan.ahead) build_ahead(mesh);
+    if (plan.ahead) plan.ahead_update ? update_ahead() : build_ahead(mesh);
     const std::string op = plan.stale    ? "stale"
-                           : plan.ahead  ? "refit-ahead"
-                           : plan.adopt  ? "adopt"
+                           : plan.ahead  ? (plan.ahead_update ? "refit-update-ahead" : "refit-ahead")
+                           : plan.adopt  ? (plan.ahead_update ? "adopt-update" : "adopt")
                            : plan.steady() ? "refit"
                                            : update_trees(mesh, plan.rebuild);
     if (plan.balance) balance(plan);
@@ -387,6 +387,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     timed(Phase::build, [&] { build_boxes(exec_, ahead_bvh_, mesh, mesh_.deformable()); });
     exec_.mark_side_fork();
     ahead_due_ = true;
+    ahead_updates_ = false;
   }
 
   // The side's part of a build ahead, queued once the frame's own front pass is: its 30-odd
@@ -395,6 +396,10 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   void queue_ahead() {
     if (!ahead_due_) return;
     ahead_due_ = false;
+    if (ahead_updates_) {
+      exec_.on_side([&] { update_fronts_ahead(); });
+      return;
+    }
     exec_.on_side([&] {
       build_from_boxes(exec_, ahead_bvh_, config_.tree.morton_bits, mesh_.deformable(), nullptr, mesh_.pieces());
       order_depth_first(exec_, ahead_bvh_);
@@ -413,21 +418,75 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     ahead_front_.order(exec_, ahead_pairs_, fit);
   }
 
+  // --update-ahead, the frame that would update: as build_ahead lends (the tree's build
+  // scratch, which no build needs meanwhile, and the self fronts' produced arrays, which the
+  // update ahead produces into), with room in the second fronts for what the current ones
+  // were sized to (their probe), then T_D's boxes copied into the second tree's (the boxes
+  // of the frame before: this frame's refit follows), which the side's update reads while
+  // the frames' refits rewrite T_D's. The tree's shape is unchanged until the adoption
+  // (the frames in flight only refit), so the update reads T_D's own links.
+  void update_ahead() {
+    reserve_ahead_tree();
+    const std::array<size_t, 2> capacity = {self().front(kInternalFront).capacity(),
+                                            self().front(kExternalFront).capacity()};
+    exchange_lent();
+    ahead_front_.reserve_for_update_of(exec_, self(), capacity);
+    timed(Phase::update, [&] {
+      exec_.copy(ahead_bvh_.leaf_box.data(), bvh_.leaf_box.data(), bvh_.num_leaves);
+      if (bvh_.num_leaves > 1) exec_.copy(ahead_bvh_.node_box.data(), bvh_.node_box.data(), bvh_.num_leaves - 1);
+    });
+    exec_.mark_side_fork();
+    ahead_due_ = ahead_updates_ = true;
+  }
+
+  // T_D's links with the second tree's copy of its boxes: what an update ahead traverses.
+  FrontView update_ahead_view() const {
+    FrontView v = self().view();
+    v.tree.bvh.leaf_box = ahead_bvh_.leaf_box.data();
+    v.tree.bvh.node_box = ahead_bvh_.node_box.data();
+    v.query = ahead_bvh_.leaf_box.data();
+    return v;
+  }
+
+  // The side's part of an update ahead (or its re-run in the adopting frame): the current
+  // self fronts updated into the second fronts, then ordered as an update's are.
+  void update_fronts_ahead() {
+    ahead_pairs_.reset_counters(exec_);
+    ahead_front_.update_from(exec_, ahead_pairs_,
+                             {.histogram = counts(FrontOp::update),
+                              .share_in_warp = shares_in_warp(config_.fronts.update_warp, self().total())},
+                             self(), update_ahead_view());
+    if (!sorts(FrontOp::update)) {
+      if (counts(FrontOp::update)) ahead_front_.offsets(exec_);
+      return;
+    }
+    FrameFit fit;
+    ahead_front_.add_to_fit(fit, ahead_pairs_, false);
+    ahead_front_.order(exec_, ahead_pairs_, fit);
+  }
+
   // The adopt frame's part, before its refit: waits for the side (done already where the
   // planner decided; a replayed adopt may wait), reads the new fronts' sizes (the frame's
-  // second read-back), generates them again in the frame where they outgrew their buffers,
-  // then swaps tree and self fronts with the current ones. Returns the side's milliseconds.
-  double adopt_ahead() {
+  // second read-back), produces them again in the frame where they outgrew their buffers,
+  // then swaps tree and self fronts with the current ones; fronts updated ahead (`update`)
+  // swap alone, and the build scratch comes back on its own. Returns the side's milliseconds.
+  double adopt_ahead(bool update) {
     const double ms = exec_.finish_side();
     const FrontCounters* c = &ahead_pairs_.read_counters(exec_);
     while (ahead_front_.grow_if_needed(exec_, *c)) {
-      timed(Phase::generate, [&] { generate_ahead(); });
+      if (update)
+        timed(Phase::update, [&] { update_fronts_ahead(); });
+      else
+        timed(Phase::generate, [&] { generate_ahead(); });
       c = &ahead_pairs_.read_counters(exec_);
     }
-    ahead_front_.adopt(exec_, *c, sorts(FrontOp::generate));
+    ahead_front_.adopt(exec_, *c, sorts(update ? FrontOp::update : FrontOp::generate));
     // What was lent comes back with the tree and fronts built ahead: the swaps leave the
     // second tree and fronts holding none of it again.
-    bvh_.swap(ahead_bvh_);
+    if (update)
+      bvh_.swap_build_scratch(ahead_bvh_);
+    else
+      bvh_.swap(ahead_bvh_);
     self().swap_fronts(ahead_front_);
     lent_ = false;
     return ms;
@@ -626,7 +685,8 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   typename Exec::FrameGraph graph_;  // the steady frame's recording (--cuda-graph)
   // --rebuild-ahead: the tree built ahead, its self fronts and the counters of their generate.
   bool builds_ahead_ = false;
-  bool ahead_due_ = false;  // build_ahead() ran this frame; queue_ahead() queues the side's part
+  bool ahead_due_ = false;  // build_ahead() or update_ahead() ran this frame; queue_ahead() queues the side's part
+  bool ahead_updates_ = false;  // the side's work is an update ahead (update_ahead), not a build
   bool lent_ = false;       // the build ahead holds T_D's build scratch and self fronts' produced arrays
   bool ahead_reserved_ = false;  // this run reserved the second tree and fronts (reserve_ahead_tree)
   FrontSizing ahead_sizing_;

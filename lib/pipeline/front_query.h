@@ -183,15 +183,22 @@ class FrontQuery {
   }
 
   // (3) Update: sprout and prune (Alg. 1). Both kinds in one launch.
-  void update(Exec& exec, Pairs& pairs, const ProduceMode& mode) {
+  void update(Exec& exec, Pairs& pairs, const ProduceMode& mode) { update_from(exec, pairs, mode, *this, view()); }
+
+  // (3) Update of `source`'s current fronts (a query of a tree of as many leaves) against
+  // the tree `tree`, produced into this query's produced arrays. An update ahead
+  // (pipeline/front_pipeline.h) reads the current self fronts, which only preserve until
+  // these replace them, against a copy of T_D's boxes that the frames' refits leave alone.
+  void update_from(Exec& exec, Pairs& pairs, const ProduceMode& mode, const FrontQuery& source, const FrontView& tree) {
     if (!active_) return;
     const FrontSink sink = produce_sink(exec, pairs, mode.histogram);
     auto pass = [&](const FrontArrays<Exec>& f) {
-      return UpdateFrontFn{view(), pairs.sink(), sink, f.prim.data(), f.node.data(), mode.share_in_warp};
+      return UpdateFrontFn{tree, pairs.sink(), sink, f.prim.data(), f.node.data(), mode.share_in_warp};
     };
-    const uint32_t shift = spread_shift(exec, total(), mode.share_in_warp, kSpreadWavesUpdate);
-    exec.for_each_staged(total() << shift,
-                         BothFrontsFn<UpdateFrontFn>{pass(front_[0]), pass(front_[1]), uint32_t(front_[0].size), shift},
+    const uint32_t shift = spread_shift(exec, source.total(), mode.share_in_warp, kSpreadWavesUpdate);
+    exec.for_each_staged(source.total() << shift,
+                         BothFrontsFn<UpdateFrontFn>{pass(source.front_[0]), pass(source.front_[1]),
+                                                     uint32_t(source.front_[0].size), shift},
                          Balance::uneven);
   }
 
@@ -399,6 +406,20 @@ class FrontQuery {
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
       const size_t need = o.size(k) + o.size(k) / kAheadSpareDiv;
+      grew = reserve_headroom(exec, front_[k], need) || grew;
+    }
+    revision_ += grew;
+    return grew;
+  }
+
+  // Before an update ahead of `o`'s fronts, which `o` sized for the update (its probe,
+  // reserve_for_update): room for what `o`'s arrays hold (`capacity`, read before `o` lent
+  // them), and at least `o`'s fronts and a spare. True if a buffer grew.
+  bool reserve_for_update_of(Exec& exec, const FrontQuery& o, const std::array<size_t, 2>& capacity) {
+    if (!active_) return false;
+    bool grew = false;
+    for (int k = 0; k < 2; ++k) {
+      const size_t need = std::max(capacity[k], o.size(k) + o.size(k) / kAheadSpareDiv);
       grew = reserve_headroom(exec, front_[k], need) || grew;
     }
     revision_ += grew;

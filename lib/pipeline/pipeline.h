@@ -142,6 +142,11 @@ struct FrontConfig {
   // to that after their frame (pipeline/frame_plan.h, probe); off: an update that outgrows
   // them grows them inside its frame and runs again.
   bool update_probe = true;
+  // Front pipelines that build ahead (--rebuild-ahead): a due update of T_D's self fronts
+  // runs on the side stream, from the current fronts against a copy of the tree's boxes,
+  // while the frames preserve the current fronts; the first frame that finds it done adopts
+  // the updated fronts (pipeline/front_pipeline.h). Off: updates run in their frames.
+  AutoSwitch update_ahead = AutoSwitch::off;
   // Preserve and update on CUDA (front/warp_traversal.h): share each front node's
   // traversal with the idle lanes of its warp. automatic: while the fronts fit in
   // kWarpSharingWaves (exec/tuning.h) waves of the GPU's resident threads, where the

@@ -18,10 +18,15 @@ std::optional<T> named(const std::string& word, const T (&values)[N], const char
   return std::nullopt;
 }
 
-constexpr TreeStep kTreeSteps[] = {TreeStep::build, TreeStep::refit, TreeStep::stale, TreeStep::ahead,
-                                    TreeStep::adopt};
+constexpr TreeStep kTreeSteps[] = {TreeStep::build, TreeStep::refit,        TreeStep::stale,       TreeStep::ahead,
+                                    TreeStep::adopt, TreeStep::update_ahead, TreeStep::adopt_update};
+constexpr const char* kTreeStepList = "build, refit, stale, ahead, adopt, update-ahead or adopt-update";
 constexpr FrontOp kFrontOps[] = {FrontOp::generate, FrontOp::preserve, FrontOp::update, FrontOp::restructure};
 constexpr Formula2 kDecisions[] = {Formula2::refit, Formula2::restructure, Formula2::rebuild};
+
+// What a step that launches side work calls it in messages, and with its article.
+const char* side_work_name(TreeStep t) { return t == TreeStep::update_ahead ? "update ahead" : "build ahead"; }
+std::string a_side_work(TreeStep t) { return (t == TreeStep::update_ahead ? "an " : "a ") + std::string(side_work_name(t)); }
 
 std::vector<std::string> split_fields(const std::string& text) {
   std::vector<std::string> fields;
@@ -71,7 +76,7 @@ PlanStep parse_plan_step(const std::string& text, const std::string& where, size
     const std::string at = where + " field " + std::to_string(first_field + i) + " ('" + quoted(f) + "'): ";
     if (i == 0) {
       const std::optional<TreeStep> trees = named(f, kTreeSteps, tree_step_name);
-      if (!trees) fail(at + "expected the trees' step: build, refit, stale, ahead or adopt");
+      if (!trees) fail(at + "expected the trees' step: " + kTreeStepList);
       s.trees = *trees;
       continue;
     }
@@ -101,7 +106,7 @@ PlanStep parse_plan_step(const std::string& text, const std::string& where, size
     s.op(*q) = *op;
   }
   if (fields.empty())
-    fail(where + " field " + std::to_string(first_field) + ": missing the trees' step (build, refit, stale, ahead or adopt)");
+    fail(where + " field " + std::to_string(first_field) + ": missing the trees' step (" + kTreeStepList + ")");
   return s;
 }
 
@@ -163,12 +168,14 @@ std::string frame_list_text(const std::vector<uint32_t>& frames) {
 }
 
 std::string plan_outline(const RecordedPlan& plan) {
-  std::vector<uint32_t> build, update, generate, restructure, stale, ahead, adopt;
+  std::vector<uint32_t> build, update, generate, restructure, stale, ahead, adopt, update_ahead, adopt_update;
   for (const PlannedFrame& f : plan.frames) {
     const PlanStep& s = f.step;
     if (s.trees == TreeStep::build) build.push_back(f.frame);
     if (s.trees == TreeStep::ahead) ahead.push_back(f.frame);
     if (s.trees == TreeStep::adopt) adopt.push_back(f.frame);
+    if (s.trees == TreeStep::update_ahead) update_ahead.push_back(f.frame);
+    if (s.trees == TreeStep::adopt_update) adopt_update.push_back(f.frame);
     if (s.trees == TreeStep::stale) stale.push_back(f.frame);
     if (s.runs(FrontOp::update)) update.push_back(f.frame);
     // A build generates every front, and a restructure regenerates the cross fronts: those
@@ -182,6 +189,8 @@ std::string plan_outline(const RecordedPlan& plan) {
   if (!stale.empty()) text += "; stale: " + frame_list_text(stale);
   if (!ahead.empty() || !adopt.empty())
     text += "; built ahead: " + frame_list_text(ahead) + "; adopted: " + frame_list_text(adopt);
+  if (!update_ahead.empty() || !adopt_update.empty())
+    text += "; updated ahead: " + frame_list_text(update_ahead) + "; adopted: " + frame_list_text(adopt_update);
   return text;
 }
 
@@ -211,28 +220,41 @@ void check_plan_frames(const RecordedPlan& plan, uint32_t first, uint32_t last) 
 }
 
 void check_plan_steps(const RecordedPlan& plan, const ReplayTarget& target) {
-  bool ahead = false;  // a build ahead runs: launched, not adopted yet
+  // The side's work in flight: launched, not adopted yet (a build ahead, or an update ahead).
+  bool ahead = false;
+  TreeStep launched = TreeStep::ahead;  // which, while one runs
   for (size_t k = 0; k < plan.frames.size(); ++k) {
     const PlanStep& s = plan.frames[k].step;
     const auto refuse = [&](const std::string& why) { fail(plan.where(k) + ": " + why); };
     const bool built = s.trees == TreeStep::build;
-    if ((s.trees == TreeStep::ahead || s.trees == TreeStep::adopt) && !target.builds_ahead)
+    const bool launches = s.trees == TreeStep::ahead || s.trees == TreeStep::update_ahead;
+    const bool adopts = s.trees == TreeStep::adopt || s.trees == TreeStep::adopt_update;
+    if ((launches || adopts) && !target.builds_ahead)
       refuse(std::string(tree_step_name(s.trees)) +
              ", but this run does not build ahead (--rebuild-ahead, which needs a front pipeline with the histogram "
              "sort, no rigid objects and --refit-every 1)");
-    if (s.trees == TreeStep::ahead && ahead) refuse("ahead, but the last build ahead was not adopted yet");
-    if (s.trees == TreeStep::adopt && !ahead) refuse("adopt, but no build ahead runs");
-    if (built && ahead) refuse("build, but a build ahead was not adopted yet");
-    const bool in_flight = ahead || s.trees == TreeStep::ahead;
+    if (launches && ahead)
+      refuse(std::string(tree_step_name(s.trees)) + ", but the last " + side_work_name(launched) +
+             " was not adopted yet");
+    if (s.trees == TreeStep::adopt && !(ahead && launched == TreeStep::ahead)) refuse("adopt, but no build ahead runs");
+    if (s.trees == TreeStep::adopt_update && !(ahead && launched == TreeStep::update_ahead))
+      refuse("adopt-update, but no update ahead runs");
+    if (built && ahead) refuse("build, but " + a_side_work(launched) + " was not adopted yet");
+    const bool in_flight = ahead || launches;
+    const std::string running = a_side_work(ahead ? launched : s.trees);
     if (in_flight) {
       for (Query q : kQueries)
         if (s.op(q) && *s.op(q) != FrontOp::preserve)
-          refuse(std::string("while a build ahead runs every front is preserved; ") + query_name(q) + " " +
+          refuse("while " + running + " runs every front is preserved; " + query_name(q) + " " +
                  front_op_name(*s.op(q)) + "s");
-      if (s.inspect || s.probe) refuse("while a build ahead runs nothing is inspected or probed");
+      if (s.inspect || s.probe)
+        refuse("while " + running + " runs nothing is inspected or probed");
     }
-    if (s.trees == TreeStep::ahead) ahead = true;
-    if (s.trees == TreeStep::adopt) ahead = false;
+    if (launches) {
+      ahead = true;
+      launched = s.trees;
+    }
+    if (adopts) ahead = false;
     if (k == 0 && !built)
       refuse(std::string("the first frame must build the trees (it has ") + tree_step_name(s.trees) + ")");
     for (Query q : kQueries) {

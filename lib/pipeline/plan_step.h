@@ -42,15 +42,19 @@ inline const char* formula2_name(Formula2 d) {
 
 // The hierarchy's upkeep in a frame: built, refitted, or (--refit-every) left stale; with
 // --rebuild-ahead, refitted while a new tree and its fronts are built on a side stream
-// (ahead), or replaced by that tree, which is then refitted (adopt).
-enum class TreeStep { build, refit, stale, ahead, adopt };
+// (ahead), or replaced by that tree, which is then refitted (adopt); with --update-ahead,
+// refitted while T_D's self fronts are updated on the side stream (update-ahead), or
+// refitted after those updated fronts replace the current ones (adopt-update).
+enum class TreeStep { build, refit, stale, ahead, adopt, update_ahead, adopt_update };
 
 inline const char* tree_step_name(TreeStep t) {
-  return t == TreeStep::build   ? "build"
-         : t == TreeStep::refit ? "refit"
-         : t == TreeStep::stale ? "stale"
-         : t == TreeStep::ahead ? "ahead"
-                                : "adopt";
+  return t == TreeStep::build          ? "build"
+         : t == TreeStep::refit        ? "refit"
+         : t == TreeStep::stale        ? "stale"
+         : t == TreeStep::ahead        ? "ahead"
+         : t == TreeStep::adopt        ? "adopt"
+         : t == TreeStep::update_ahead ? "update-ahead"
+                                       : "adopt-update";
 }
 
 struct PlanStep {
