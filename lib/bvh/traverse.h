@@ -22,6 +22,26 @@ struct NextNode {
   bool stop;        // a leaf, or an internal node that misses: where a front records a node
 };
 
+// Each kind loads its box in a branch of its own, from its own array. Loaded through one
+// address chosen by kind (one body for both, through next_node_in), nvcc split each box into
+// eight 4-byte loads: the PTX of the staged preserve kernel at 474c354 held 8 of its 36
+// 16-byte loads, and 42 loads of one float, and the steady frames ran 0.60-0.91x of
+// 1c78245's on the H100 (results/2026-12-07-h100/bar). tests/cli/ptx_tests.sh keeps it so.
+CDB_HD_INLINE NextNode next_node(const BvhView& bvh, uint32_t node, const vec4f& lo, const vec4f& hi) {
+  const uint32_t k = ref_index(node);
+  if (is_leaf(node)) {
+    const NodeBox b = bvh.leaf_box[k];
+    const uint32_t escape = lane_link(b.lo.w);
+    return {escape, escape, lane_link(b.hi.w), overlaps(lo, hi, b.lo, b.hi), true};
+  }
+  // The links ride in the box's spare lanes (node_ref.h): two loads from one 32-byte sector
+  // (bvh/node_box.h) where four arrays took four lines.
+  const NodeBox b = bvh.node_box[k];
+  const bool hit = overlaps(lo, hi, b.lo, b.hi);
+  const uint32_t escape = lane_link(b.hi.w);
+  return {hit ? lane_link(b.lo.w) : escape, escape, 0u, false, !hit};
+}
+
 // next_node's step with the node's box loaded already (PreserveTwoNodesFn).
 CDB_HD_INLINE NextNode next_node_in(const NodeBox& b, uint32_t node, const vec4f& lo, const vec4f& hi) {
   const bool hit = overlaps(lo, hi, b.lo, b.hi);
@@ -31,16 +51,6 @@ CDB_HD_INLINE NextNode next_node_in(const NodeBox& b, uint32_t node, const vec4f
   }
   const uint32_t escape = lane_link(b.hi.w);
   return {hit ? lane_link(b.lo.w) : escape, escape, 0u, false, !hit};
-}
-
-// The links ride in the box's spare lanes (node_ref.h): two loads from one 32-byte sector
-// (bvh/node_box.h) where four arrays took four lines. The box is loaded by kind, then one
-// body tests it: with a body a kind, ptxas (sm_90, -v) gave every traversal kernel more
-// registers (preserve 40 where this gives 32, the staged update 41 against 34, generate 38
-// against 32, the self query 32 against 27) and the bounded preserve 56-72 spilled bytes.
-CDB_HD_INLINE NextNode next_node(const BvhView& bvh, uint32_t node, const vec4f& lo, const vec4f& hi) {
-  const uint32_t k = ref_index(node);
-  return next_node_in(is_leaf(node) ? bvh.leaf_box[k] : bvh.node_box[k], node, lo, hi);
 }
 
 // What a step meets goes to callbacks, taken by value and inlined (no indirection in the
