@@ -31,6 +31,9 @@ CELLS = ["grid", "hash"]
 # is a third of it.
 PEER_MS = {"cloth-wave": 0.141, "spheres": 0.417, "cloth-wave-522k": 0.642, "cloth-wave-1m": 1.116,
            "crumple": 0.381, "garment": 0.720, "cloth-wave-10m": 10.80}
+# The card PEER_MS was measured on: a run on another card gives the third of the peer with no
+# verdict (its times and the peer's are not of one card).
+PEER_DEVICE = "NVIDIA H200"
 
 
 def index(directory):
@@ -119,8 +122,13 @@ def main():
         best_cell = min(cells, key=lambda p: np.inf if np.isnan(cells[p]) else cells[p])
         peer = PEER_MS.get(s)
         target = [s, f"{mean(c):.4f}"]
-        target.append(f"{peer / 3:.4f} ({'met' if mean(c) <= peer / 3 else 'not met'}; {peer / mean(c):.2f}x the peer)"
-                      if peer else "—")
+        if not peer:
+            target.append("—")
+        elif c.device != PEER_DEVICE:
+            target.append(f"{peer / 3:.4f} (the peer's on the {PEER_DEVICE}; no verdict on the {c.device})")
+        else:
+            target.append(f"{peer / 3:.4f} ({'met' if mean(c) <= peer / 3 else 'not met'}; "
+                          f"{peer / mean(c):.2f}x the peer)")
         ratio = cells[best_cell] / fronts[best_front]
         # A scene where no cell method ran (a run of c alone) has no such comparison.
         target.append("—" if np.isnan(ratio) else
