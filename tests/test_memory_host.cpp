@@ -178,9 +178,11 @@ namespace {
 struct WaveRun {
   MemoryStats memory;
   uint32_t ahead = 0, adopted = 0;
+  uint32_t updated_ahead = 0;  // --update-ahead's adoptions
 };
 
-WaveRun run_wave(uint32_t frames, AutoSwitch rebuild_ahead, uint32_t rebuild_every, uint32_t cycle = 0) {
+WaveRun run_wave(uint32_t frames, AutoSwitch rebuild_ahead, uint32_t rebuild_every, uint32_t cycle = 0,
+                 AutoSwitch update_ahead = AutoSwitch::off) {
   auto wave = make_generator("cloth-wave", {{"res", 32}, {"frames", frames}});
   const Topology& topo = wave->topology();
   PipelineConfig cfg;
@@ -190,6 +192,7 @@ WaveRun run_wave(uint32_t frames, AutoSwitch rebuild_ahead, uint32_t rebuild_eve
   cfg.tree.rebuild_ahead = rebuild_ahead;
   cfg.tree.rebuild_every = rebuild_every;
   cfg.fronts.cycle = cycle;
+  cfg.fronts.update_ahead = update_ahead;
   auto p = make_pipeline(cfg);
   p->set_topology(topo);
   std::vector<vec3f> v;
@@ -199,6 +202,7 @@ WaveRun run_wave(uint32_t frames, AutoSwitch rebuild_ahead, uint32_t rebuild_eve
     const FrameStats s = p->run_frame(v);
     r.ahead += s.plan && s.plan->trees == TreeStep::ahead;
     r.adopted += s.plan && s.plan->trees == TreeStep::adopt;
+    r.updated_ahead += s.plan && s.plan->trees == TreeStep::adopt_update;
     const PairSetDiff d = diff_pair_sets(sweep_oracle_pairs(topo, v, false), p->sorted_pairs());
     EXPECT_TRUE(d.equal()) << "frame " << f << ": " << d.missing_count << " missing";
   }
@@ -248,6 +252,19 @@ TEST(MemoryStats, SecondTreeReservedOnlyByABuildAhead) {
   ASSERT_GE(built.ahead, 1u);
   EXPECT_GT(sum_at_peak(built.memory, "ahead_bvh."), 0u);
   EXPECT_GT(sum_at_peak(built.memory, "ahead_front_"), 0u);
+}
+
+// --update-ahead reserves of the second tree its boxes alone (the copy of T_D's the side's
+// update reads, 32 bytes a node), with the second self fronts: a cloth wave updated ahead
+// every third frame, never rebuilt, holds no other byte of the second tree at its peak.
+TEST(MemoryStats, AnUpdateAheadReservesTheSecondTreesBoxesAlone) {
+  const WaveRun r = run_wave(9, AutoSwitch::on, 0, 3, AutoSwitch::on);
+  ASSERT_GE(r.updated_ahead, 1u);
+  EXPECT_EQ(r.ahead, 0u);
+  const size_t boxes = bytes_of(r.memory, "ahead_bvh.leaf_box") + bytes_of(r.memory, "ahead_bvh.node_box");
+  EXPECT_GT(boxes, 0u);
+  EXPECT_EQ(sum_at_peak(r.memory, "ahead_bvh."), boxes);
+  EXPECT_GT(sum_at_peak(r.memory, "ahead_front_"), 0u);
 }
 
 // A probe before a maintenance that rebuilds the tree ahead grows no buffer: the build

@@ -55,6 +55,15 @@ struct Lbvh {
     if (build_scratch == BuildScratch::own) reserve_build_scratch(exec, n);
   }
 
+  // The boxes alone, for `n` leaves: a tree that holds a copy of another's boxes and is
+  // traversed through that one's links (an update ahead: pipeline/front_pipeline.h).
+  // reserve() reserves the rest later where the tree is built after all.
+  void reserve_boxes(uint32_t n) {
+    num_leaves = n;
+    leaf_box.reserve(n);
+    node_box.reserve(n > 1 ? n - 1 : 0);
+  }
+
   // Exchanges the build scratch with `o`'s: a tree of lent scratch borrows that of a tree
   // of as many leaves that builds nothing meanwhile, and gives it back the same way.
   void swap_build_scratch(Lbvh& o) {

@@ -359,7 +359,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     ahead_bvh_.build_scratch = BuildScratch::lent;
     sizing.produced = ProducedArrays::lent;
     ahead_sizing_ = sizing;
-    ahead_reserved_ = false;
+    ahead_reserved_ = ahead_fronts_reserved_ = false;
     exec_.reserve_side();
   }
 
@@ -369,9 +369,18 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   void reserve_ahead_tree() {
     if (ahead_reserved_) return;
     ahead_bvh_.reserve(exec_, bvh_.num_leaves);
+    reserve_ahead_fronts();
+    ahead_reserved_ = true;
+  }
+
+  // What an update ahead needs of them (update_ahead): the second tree's boxes, for the copy
+  // of T_D's, and the second self fronts. Once a run (the first update or build ahead).
+  void reserve_ahead_fronts() {
+    if (ahead_fronts_reserved_) return;
+    ahead_bvh_.reserve_boxes(bvh_.num_leaves);
     ahead_front_.plan(ahead_bvh_, ahead_bvh_, true, ahead_sizing_);
     ahead_pairs_.reserve(0);
-    ahead_reserved_ = true;
+    ahead_fronts_reserved_ = true;
   }
 
   // The ahead frame's part: the current tree's build scratch and its self fronts' produced
@@ -424,9 +433,10 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // were sized to (their probe), then T_D's boxes copied into the second tree's (the boxes
   // of the frame before: this frame's refit follows), which the side's update reads while
   // the frames' refits rewrite T_D's. The tree's shape is unchanged until the adoption
-  // (the frames in flight only refit), so the update reads T_D's own links.
+  // (the frames in flight only refit), so the update reads T_D's own links, and the second
+  // tree holds its boxes alone until a build ahead needs the rest.
   void update_ahead() {
-    reserve_ahead_tree();
+    reserve_ahead_fronts();
     const std::array<size_t, 2> capacity = {self().front(kInternalFront).capacity(),
                                             self().front(kExternalFront).capacity()};
     exchange_lent();
@@ -689,6 +699,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   bool ahead_updates_ = false;  // the side's work is an update ahead (update_ahead), not a build
   bool lent_ = false;       // the build ahead holds T_D's build scratch and self fronts' produced arrays
   bool ahead_reserved_ = false;  // this run reserved the second tree and fronts (reserve_ahead_tree)
+  bool ahead_fronts_reserved_ = false;  // ... its boxes and the second fronts (reserve_ahead_fronts)
   FrontSizing ahead_sizing_;
   Lbvh<Exec> ahead_bvh_;
   FrontQuery<Exec> ahead_front_;
