@@ -124,7 +124,6 @@ class FramePlanner {
     price_.reset();
     running_ = running;
     builds_ahead_ = builds_ahead;
-    updates_ahead_ = builds_ahead && switched_on(config_.fronts.update_ahead, true);
     if (replay_) {
       check_plan_queries(*replay_, running_);
       check_plan_steps(*replay_, target(builds_ahead_));
@@ -132,7 +131,7 @@ class FramePlanner {
   }
   bool builds_ahead() const { return builds_ahead_; }
   // --update-ahead: due updates of T_D's self fronts run on the side stream (reset).
-  bool updates_ahead() const { return updates_ahead_; }
+  bool updates_ahead() const { return builds_ahead_ && switched_on(config_.fronts.update_ahead, true); }
   // --maintain-ahead: the next maintenance after the first frame is a rebuild built ahead
   // (on: every one; auto: where the last cycle begun so cost less, MaintenanceChoice).
   bool maintains_ahead() const {
@@ -316,7 +315,7 @@ class FramePlanner {
     // --update-ahead: a due update of T_D's self fronts runs on the side from the current
     // fronts (FramePlan::ahead_update); the frame and the ones after it preserve until the
     // updated fronts are adopted. Pipeline c inspects nothing after it.
-    if (updates_ahead_ && frame_ > 0 && !p.rebuild && !p.ahead && p.op(Query::self) == FrontOp::update) {
+    if (updates_ahead() && frame_ > 0 && !p.rebuild && !p.ahead && p.op(Query::self) == FrontOp::update) {
       p.ahead = p.ahead_update = true;
       p.ops = {FrontOp::preserve, FrontOp::preserve, FrontOp::preserve};
       p.inspect = p.probe = false;
@@ -409,7 +408,6 @@ class FramePlanner {
   uint64_t maintained_ = 0; // the last frame that built, updated or generated T_D's self fronts
   bool probed_ = false;     // the last frame probed
   bool builds_ahead_ = false;  // rebuilds after the first frame are built ahead (reset)
-  bool updates_ahead_ = false;  // due updates of T_D's self fronts run on the side (reset)
   bool in_flight_ = false;  // a build or update ahead runs: launched, not adopted yet
   bool in_flight_update_ = false;  // what runs is an update ahead
   Candidates pending_;      // found by the last inspection, decided on the next frame

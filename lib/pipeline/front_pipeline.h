@@ -131,7 +131,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       }
       if (run.inspect) inspect_quality();
       timer_.stop_frame();
-      queue_ahead();
+      queue_ahead(plan.ahead_update);
       if (adopt(run, pairs_.read_counters(exec_))) break;
       if (first) first_pass_ms = timer_.frame_ms() - timer_.phase_ms(Phase::upload);
       ++stats.timing.query_reruns;
@@ -396,16 +396,16 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     timed(Phase::build, [&] { build_boxes(exec_, ahead_bvh_, mesh, mesh_.deformable()); });
     exec_.mark_side_fork();
     ahead_due_ = true;
-    ahead_updates_ = false;
   }
 
   // The side's part of a build ahead, queued once the frame's own front pass is: its 30-odd
   // launches (the build's sorts and scans, the generate, the ordering) queued first would
   // hold the frame's launches back on the host while the frame's stream waits for them.
-  void queue_ahead() {
+  // `update`: the side's work is an update ahead (update_ahead), not a build.
+  void queue_ahead(bool update) {
     if (!ahead_due_) return;
     ahead_due_ = false;
-    if (ahead_updates_) {
+    if (update) {
       exec_.on_side([&] { update_fronts_ahead(); });
       return;
     }
@@ -421,7 +421,16 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     ahead_front_.generate(exec_, ahead_pairs_,
                           {.histogram = histogram_sorted(),
                            .share_in_warp = shares_in_warp(config_.fronts.update_warp, ahead_front_.query_leaves())});
-    if (!sorts(FrontOp::generate)) return;
+    order_ahead(FrontOp::generate);
+  }
+
+  // The second fronts that `op` produced on the side, ordered as the frame's would be
+  // (order_produced): sorted, or only counted per tree node, or kept as produced.
+  void order_ahead(FrontOp op) {
+    if (!sorts(op)) {
+      if (counts(op)) ahead_front_.offsets(exec_);
+      return;
+    }
     FrameFit fit;
     ahead_front_.add_to_fit(fit, ahead_pairs_, false);
     ahead_front_.order(exec_, ahead_pairs_, fit);
@@ -440,13 +449,13 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     const std::array<size_t, 2> capacity = {self().front(kInternalFront).capacity(),
                                             self().front(kExternalFront).capacity()};
     exchange_lent();
-    ahead_front_.reserve_for_update_of(exec_, self(), capacity);
+    ahead_front_.reserve_like(exec_, self(), capacity);
     timed(Phase::update, [&] {
       exec_.copy(ahead_bvh_.leaf_box.data(), bvh_.leaf_box.data(), bvh_.num_leaves);
       if (bvh_.num_leaves > 1) exec_.copy(ahead_bvh_.node_box.data(), bvh_.node_box.data(), bvh_.num_leaves - 1);
     });
     exec_.mark_side_fork();
-    ahead_due_ = ahead_updates_ = true;
+    ahead_due_ = true;
   }
 
   // T_D's links with the second tree's copy of its boxes: what an update ahead traverses.
@@ -466,13 +475,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
                              {.histogram = counts(FrontOp::update),
                               .share_in_warp = shares_in_warp(config_.fronts.update_warp, self().total())},
                              self(), update_ahead_view());
-    if (!sorts(FrontOp::update)) {
-      if (counts(FrontOp::update)) ahead_front_.offsets(exec_);
-      return;
-    }
-    FrameFit fit;
-    ahead_front_.add_to_fit(fit, ahead_pairs_, false);
-    ahead_front_.order(exec_, ahead_pairs_, fit);
+    order_ahead(FrontOp::update);
   }
 
   // The adopt frame's part, before its refit: waits for the side (done already where the
@@ -696,7 +699,6 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // --rebuild-ahead: the tree built ahead, its self fronts and the counters of their generate.
   bool builds_ahead_ = false;
   bool ahead_due_ = false;  // build_ahead() or update_ahead() ran this frame; queue_ahead() queues the side's part
-  bool ahead_updates_ = false;  // the side's work is an update ahead (update_ahead), not a build
   bool lent_ = false;       // the build ahead holds T_D's build scratch and self fronts' produced arrays
   bool ahead_reserved_ = false;  // this run reserved the second tree and fronts (reserve_ahead_tree)
   bool ahead_fronts_reserved_ = false;  // ... its boxes and the second fronts (reserve_ahead_fronts)

@@ -399,27 +399,15 @@ class FrontQuery {
 
   // Before a generate of fronts like `o`'s (a build ahead's, beside the current fronts):
   // room for as many nodes as `o` holds and a spare, so that a generate on the side fits and
-  // is not run again in the adopting frame unless contact grew past the spare. True if a
-  // buffer grew.
-  bool reserve_like(Exec& exec, const FrontQuery& o) {
+  // is not run again in the adopting frame unless contact grew past the spare. Before an
+  // update ahead of `o`'s fronts, which `o` sized for the update (its probe,
+  // reserve_for_update), room for at least `at_least` too: what `o`'s arrays held before `o`
+  // lent them. True if a buffer grew.
+  bool reserve_like(Exec& exec, const FrontQuery& o, const std::array<size_t, 2>& at_least = {0, 0}) {
     if (!active_) return false;
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
-      const size_t need = o.size(k) + o.size(k) / kAheadSpareDiv;
-      grew = reserve_headroom(exec, front_[k], need) || grew;
-    }
-    revision_ += grew;
-    return grew;
-  }
-
-  // Before an update ahead of `o`'s fronts, which `o` sized for the update (its probe,
-  // reserve_for_update): room for what `o`'s arrays hold (`capacity`, read before `o` lent
-  // them), and at least `o`'s fronts and a spare. True if a buffer grew.
-  bool reserve_for_update_of(Exec& exec, const FrontQuery& o, const std::array<size_t, 2>& capacity) {
-    if (!active_) return false;
-    bool grew = false;
-    for (int k = 0; k < 2; ++k) {
-      const size_t need = std::max(capacity[k], o.size(k) + o.size(k) / kAheadSpareDiv);
+      const size_t need = std::max(at_least[k], o.size(k) + o.size(k) / kAheadSpareDiv);
       grew = reserve_headroom(exec, front_[k], need) || grew;
     }
     revision_ += grew;

@@ -241,8 +241,8 @@ void check_plan_steps(const RecordedPlan& plan, const ReplayTarget& target) {
       refuse("adopt-update, but no update ahead runs");
     if (built && ahead) refuse("build, but " + a_side_work(launched) + " was not adopted yet");
     const bool in_flight = ahead || launches;
-    const std::string running = a_side_work(ahead ? launched : s.trees);
     if (in_flight) {
+      const std::string running = a_side_work(ahead ? launched : s.trees);
       for (Query q : kQueries)
         if (s.op(q) && *s.op(q) != FrontOp::preserve)
           refuse("while " + running + " runs every front is preserved; " + query_name(q) + " " +
