@@ -530,8 +530,8 @@ inline AheadSteps count_ahead_steps(const std::vector<FrameStats>& frames) {
 // the adoption): every frame exact, builds ahead in the plan and adopted, and the recorded
 // plan replayed on a fresh pipeline runs the same steps exactly; with --maintain-ahead on
 // the front cycle's maintenances (every second frame) are the builds ahead, with auto they
-// run both ways; with --update-ahead on the cycle's updates run on the side (their fronts
-// outgrow the small buffers, so the adopting frames update them again). The reference
+// run both ways; with --update-ahead on the cycle's updates run on the side (with buffers
+// this small an adopting frame may have to update them again). The reference
 // strategy and the radix orderings build in their frames.
 inline void check_rebuild_ahead(const std::string& device, const ExactFrames& scene) {
   struct Case {
