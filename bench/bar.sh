@@ -16,6 +16,8 @@
 #   CDBENCH      the new binary (default: the bundle's bin/cdbench)
 #   BAR_SCENES   scenes to run (default: the fourteen above)
 #   BAR_CAP      seconds after which no further scene starts (default 540)
+#   NEW_ARGS     options given to the new binary alone (ones the base binaries lack), e.g.
+#                "--update-ahead on"; the report's log names them
 #   SCENE_DATA   directory holding BCN_Epileptic.X and cgal-data.tar.gz, for machines
 #                without assimp-testmodels and libcgal-demo (flamenco, garment, dragon)
 set -uo pipefail
@@ -55,7 +57,8 @@ each_binary() {
   if (( index % 2 == 1 )); then order=(${BASE_BIN:-} new); fi
   for entry in "${order[@]}"; do
     if [[ $entry == new ]]; then
-      run "$bin" "$out/new" "$scene" "$name" c,b,a,grid,hash "$@"
+      # shellcheck disable=SC2086
+      run "$bin" "$out/new" "$scene" "$name" c,b,a,grid,hash "$@" ${NEW_ARGS:-}
     else
       run "${entry#*=}" "$out/${entry%%=*}" "$scene" "$name" c,b "$@"
     fi
@@ -72,6 +75,7 @@ scene_of() {
 {
   nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem,temperature.gpu --format=csv
   "$bin" --version | head -3
+  echo "new binary's options: ${NEW_ARGS:-none}"
   i=0
   for s in $scenes; do
     (( $(date +%s) - start > cap )) && { echo "cap: $s and later scenes not run"; break; }
