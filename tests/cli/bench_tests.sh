@@ -83,6 +83,9 @@ cp "$tmp/bar/new/funnel-c.h5" "$tmp/bar/new/funnel-b.h5" "$tmp/bar/base/"
 check "bar_report scene row" 0 "^\| funnel \| [0-9,]+ \| [0-9,]+ \| [0-9.]+ / [0-9.]+ / [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|( [0-9.]+ \|){4} [0-9]+ \| 0 \| [0-9.]+ \| [0-9.]+ \| 1\.00x \| [0-9]+ \|$" -- \
   "$python" "$root/bench/bar_report.py" "$tmp/bar" --base base
 has "bar_report targets row" "$tmp/out" "^\| funnel \| [0-9.]+ \| — \| [abc] [0-9.]+ / (grid|hash) [0-9.]+ = [0-9.]+x \((met|not met)\) \| [0-9.]+ \| [0-9.]+ \((met|not met)\) \| 1\.00 \(met\) \|$"
+# The base beside new, c and b: the same files, so base over new is 1.00 and the peaks equal.
+has "bar_report base beside new" "$tmp/out" "^## base beside new$"
+has "bar_report base beside new c row" "$tmp/out" "^\| funnel \| c \| ([0-9.]+) / ([0-9.]+) \| \1 / \2 \| 1\.00 \| ([0-9.]+) \| \3 \| ([0-9]+) \| \4 \|$"
 # A run of c alone (no b, no cell method, no base): those columns are dashes, not nan.
 mkdir -p "$tmp/bar-c/new"
 cp "$tmp/bar/new/funnel-c.h5" "$tmp/bar-c/new/"
