@@ -106,7 +106,8 @@ double MeasuringLoop::EarlierPasses::noise_of_means(uint32_t warmup) const {
   return mean_and_noise(means).second;
 }
 
-// Frame k of the recording pass becomes the mean over all passes; pair counts must agree.
+// Frame k of the recording pass becomes the mean over all passes (its allocations the most
+// of any pass); pair counts must agree.
 // Passes whose plan step differs from the recording pass's are counted (plan_mixed), and
 // their ops join the frame's op.
 void MeasuringLoop::EarlierPasses::merge_into(size_t k, uint32_t frame, FrameStats& s) const {
@@ -122,6 +123,8 @@ void MeasuringLoop::EarlierPasses::merge_into(size_t k, uint32_t frame, FrameSta
            " (--repeat needs a deterministic pipeline)");
     totals.push_back(e.timing.total_ms);
     for (size_t q = 0; q < kPhaseCount; ++q) phase[q] += e.timing.phase_ms[q];
+    // A pass's first allocations (the first pass's) are what a frame may hide.
+    s.timing.allocations = std::max(s.timing.allocations, e.timing.allocations);
     if (e.plan == s.plan) continue;
     ++s.plan_mixed;
     if (std::find(ops.begin(), ops.end(), e.op) == ops.end()) ops.push_back(e.op);

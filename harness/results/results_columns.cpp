@@ -24,6 +24,7 @@ const std::vector<FrameColumn>& frame_columns() {
         {"bytes_floor", T::u64, "bytes the frame must move at least: 12 per vertex and per face read, 8 per pair written", [](R r) -> ColumnValue { return r.stats.timing.bytes_floor; }},
         {"t_ahead_ms", T::f64, "--rebuild-ahead: on a frame that adopted a build ahead, what the build ran on its side stream beside earlier frames, ms (not in t_total_ms; 0: none)", [](R r) -> ColumnValue { return r.stats.timing.ahead_ms; }},
         {"query_reruns", T::u32, "queries re-run because a buffer grew", [](R r) -> ColumnValue { return uint64_t(r.stats.timing.query_reruns); }},
+        {"allocations", T::u32, "front pipelines: buffers allocated between the frame's start and stop, its first run, the most of any --repeat pass (growths after a read-back come after the stop; 0 elsewhere)", [](R r) -> ColumnValue { return uint64_t(r.stats.timing.allocations); }},
         {"front_int", T::u64, "internal front nodes after the frame", [](R r) -> ColumnValue { return r.stats.fronts.internal; }},
         {"front_ext", T::u64, "external front nodes after the frame", [](R r) -> ColumnValue { return r.stats.fronts.external; }},
         {"front_inter", T::u64, "split scene: front nodes of the deformable leaves against the rigid tree after the frame", [](R r) -> ColumnValue { return r.stats.fronts.inter; }},

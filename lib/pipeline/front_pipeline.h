@@ -109,9 +109,11 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   FrameStats run_frame(const FrameVertices& vertices) override {
     FrameStats stats;
     pairs_.reserve_ahead();
-    const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
     const FramePlan plan =
         planner_.plan(bvh_.num_leaves, front_nodes(), disorder(), planner_.ahead_in_flight() && exec_.side_done());
+    if (plan.ahead) reserve_ahead(plan.ahead_update);
+    const size_t allocations = exec_.memory().stats().allocations;
+    const MeshView mesh = begin_frame(exec_, timer_, mesh_, vertices);
     const double ahead_ms = plan.adopt ? adopt_ahead(plan.ahead_update) : -1.0;
     const uint64_t fronts = front_nodes();
     // The first frame's generate is timed, phases on or off, where maintenances may
@@ -131,6 +133,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       }
       if (run.inspect) inspect_quality();
       timer_.stop_frame();
+      if (first) stats.timing.allocations = uint32_t(exec_.memory().stats().allocations - allocations);
       queue_ahead(plan.ahead_update);
       if (adopt(run, pairs_.read_counters(exec_))) break;
       if (first) first_pass_ms = timer_.frame_ms() - timer_.phase_ms(Phase::upload);
@@ -381,6 +384,28 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     ahead_front_.plan(ahead_bvh_, ahead_bvh_, true, ahead_sizing_);
     ahead_pairs_.reserve(0);
     ahead_fronts_reserved_ = true;
+  }
+
+  // Before the frame that forks a build or update ahead starts its timing: the buffers that
+  // build_ahead or update_ahead asks for, so that the frame allocates nothing. Reserved
+  // inside it, the second tree and fronts of a run's first build or update ahead made that
+  // frame 5-19x a steady one on the H100 (the avatar's c, its first pass: 3.22 against 0.25
+  // ms; results/2026-12-08-h100/bar), as growths after a read-back are kept out of a frame.
+  // The lending is undone here and redone by the frame, which then finds every array sized.
+  void reserve_ahead(bool update) {
+    if (update) {
+      reserve_ahead_fronts();
+    } else {
+      reserve_ahead_tree();
+    }
+    const std::array<size_t, 2> capacity = {self().front(kInternalFront).capacity(),
+                                            self().front(kExternalFront).capacity()};
+    exchange_lent();
+    if (update)
+      ahead_front_.reserve_like(exec_, self(), capacity);
+    else
+      ahead_front_.reserve_like(exec_, self());
+    exchange_lent();
   }
 
   // The ahead frame's part: the current tree's build scratch and its self fronts' produced
