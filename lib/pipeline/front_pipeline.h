@@ -386,25 +386,29 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     ahead_fronts_reserved_ = true;
   }
 
-  // Before the frame that forks a build or update ahead starts its timing: the buffers that
-  // build_ahead or update_ahead asks for, so that the frame allocates nothing. Reserved
-  // inside it, the second tree and fronts of a run's first build or update ahead made that
-  // frame 5-19x a steady one on the H100 (the avatar's c, its first pass: 3.22 against 0.25
-  // ms; results/2026-12-08-h100/bar), as growths after a read-back are kept out of a frame.
-  // The lending is undone here and redone by the frame, which then finds every array sized.
-  void reserve_ahead(bool update) {
-    if (update) {
+  // What a fork lends and the room it needs: T_D's build scratch and its self fronts'
+  // produced arrays lent to the second tree and fronts, reserved once a run, with room for
+  // what the current fronts hold and a spare (a build) or were sized to by their probe (an
+  // update). Left lent: the forking frame's work runs on them.
+  void lend_ahead(bool update) {
+    if (update)
       reserve_ahead_fronts();
-    } else {
+    else
       reserve_ahead_tree();
-    }
     const std::array<size_t, 2> capacity = {self().front(kInternalFront).capacity(),
                                             self().front(kExternalFront).capacity()};
     exchange_lent();
-    if (update)
-      ahead_front_.reserve_like(exec_, self(), capacity);
-    else
-      ahead_front_.reserve_like(exec_, self());
+    ahead_front_.reserve_like(exec_, self(), update ? capacity : std::array<size_t, 2>{0, 0});
+  }
+
+  // Before the frame that forks a build or update ahead starts its timing: lend_ahead, then
+  // the lending undone, so that the frame's own lend_ahead finds every array sized and the
+  // frame allocates nothing. Reserved inside it, the second tree and fronts of a run's first
+  // build or update ahead made that frame 5-19x a steady one on the H100 (the avatar's c, its
+  // first pass: 3.22 against 0.25 ms; results/2026-12-08-h100/bar), as growths after a
+  // read-back are kept out of a frame.
+  void reserve_ahead(bool update) {
+    lend_ahead(update);
     exchange_lent();
   }
 
@@ -415,9 +419,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // the mesh, whose buffer the next frame's upload overwrites), then the build, its order,
   // the generate and the fronts' ordering on the side stream.
   void build_ahead(const MeshView& mesh) {
-    reserve_ahead_tree();
-    exchange_lent();
-    ahead_front_.reserve_like(exec_, self());
+    lend_ahead(false);
     timed(Phase::build, [&] { build_boxes(exec_, ahead_bvh_, mesh, mesh_.deformable()); });
     exec_.mark_side_fork();
     ahead_due_ = true;
@@ -470,11 +472,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // (the frames in flight only refit), so the update reads T_D's own links, and the second
   // tree holds its boxes alone until a build ahead needs the rest.
   void update_ahead() {
-    reserve_ahead_fronts();
-    const std::array<size_t, 2> capacity = {self().front(kInternalFront).capacity(),
-                                            self().front(kExternalFront).capacity()};
-    exchange_lent();
-    ahead_front_.reserve_like(exec_, self(), capacity);
+    lend_ahead(true);
     timed(Phase::update, [&] {
       exec_.copy(ahead_bvh_.leaf_box.data(), bvh_.leaf_box.data(), bvh_.num_leaves);
       if (bvh_.num_leaves > 1) exec_.copy(ahead_bvh_.node_box.data(), bvh_.node_box.data(), bvh_.num_leaves - 1);
