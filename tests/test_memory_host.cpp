@@ -179,7 +179,8 @@ struct WaveRun {
   MemoryStats memory;
   uint32_t ahead = 0, adopted = 0;
   uint32_t updated_ahead = 0;  // --update-ahead's adoptions
-  uint32_t forks = 0, forks_allocating = 0;  // frames that fork a build or update ahead; of them, allocating in their timing
+  // Frames that fork a build or update ahead, and of them those allocating inside their time.
+  uint32_t forks = 0, forks_allocating = 0;
 };
 
 WaveRun run_wave(uint32_t frames, AutoSwitch rebuild_ahead, uint32_t rebuild_every, uint32_t cycle = 0,

@@ -238,8 +238,8 @@ struct FrameTiming {
   double total_noise = 0.0;   // relative standard deviation of total_ms over them (0: one pass)
   uint32_t query_reruns = 0;  // queries re-run because the pair buffer had to grow
   uint32_t host_syncs = 0;    // host-device synchronizations in the frame (target: 1)
-  // Buffers allocated between the frame's start and stop (its first pass; growths after a
-  // read-back come after the stop). Front pipelines fill it; 0 elsewhere.
+  // Buffers allocated between the frame's start and stop in its first run (not a re-run
+  // after a growth, which comes after the stop). Front pipelines fill it; 0 elsewhere.
   uint32_t allocations = 0;
   // --rebuild-ahead, on a frame that adopted a build ahead: what that build ran on its side
   // stream, beside earlier frames (not part of total_ms); 0 elsewhere.
