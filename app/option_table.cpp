@@ -44,6 +44,7 @@ std::span<const OptionRow> option_table() {
       {"rebuild-degraded", fronts, setting},
       {"rebuild-ahead", fronts, setting},
       {"maintain-ahead", fronts, setting},
+      {"ahead-generate", fronts, setting},
       {"rebuild-growth", fronts, setting},
       {"regenerate", fronts, setting},
       {"update-probe", fronts, setting},

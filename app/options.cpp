@@ -209,6 +209,17 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       "--refit-every above 1",
       {"auto", "on", "off"}, parse_auto_switch, auto_switch_name(c.tree.rebuild_ahead))
       ->group(kTuningGroup);
+  add_choice<bool>(
+      cmd, "--ahead-generate", c.tree.ahead_placed,
+      "front pipelines that build ahead (--rebuild-ahead): how the fronts built ahead are generated on the side "
+      "stream. scatter: one generate into the produced arrays the current fronts lend, then the histogram sort's "
+      "scatter into arrays of their own (three sets of front arrays at the peak); place: two generates, the first "
+      "counting each tree node's front nodes, the second putting each at its sorted place straight into the lent "
+      "arrays (two sets, as a build in its frame; the side's traversals run twice). Builds ahead scatter with "
+      "--update-ahead on",
+      {"scatter", "place"}, [](const std::string& w) { return w == "place"; },
+      c.tree.ahead_placed ? "place" : "scatter")
+      ->group(kTuningGroup);
   add_choice<SplitRule>(
       cmd, "--split-objects", c.tree.split,
       "front pipelines and bvh on scenes with declared queries: rigid: a second tree takes the rigid objects; "

@@ -531,7 +531,9 @@ inline AheadSteps count_ahead_steps(const std::vector<FrameStats>& frames) {
 // plan replayed on a fresh pipeline runs the same steps exactly; with --maintain-ahead on
 // the front cycle's maintenances (every second frame) are the builds ahead, with auto they
 // run both ways; with --update-ahead on the cycle's updates run on the side (with buffers
-// this small an adopting frame may have to update them again). The reference
+// this small an adopting frame may have to update them again); with --ahead-generate place
+// the fronts built ahead are generated twice, in order, into the arrays the current fronts
+// lend (with --update-ahead on, builds ahead scatter as before). The reference
 // strategy and the radix orderings build in their frames.
 inline void check_rebuild_ahead(const std::string& device, const ExactFrames& scene) {
   struct Case {
@@ -540,6 +542,7 @@ inline void check_rebuild_ahead(const std::string& device, const ExactFrames& sc
     bool formula2;
     AutoSwitch maintain_ahead = AutoSwitch::off;
     AutoSwitch update_ahead = AutoSwitch::off;
+    bool placed = false;  // --ahead-generate place
   };
   for (const Case& c : {Case{"a", 2, false}, Case{"b", 3, false}, Case{"c", 2, false}, Case{"unordered", 2, false},
                         Case{"periodic", 3, false}, Case{"c", 0, true}, Case{"b", 0, false, AutoSwitch::on},
@@ -550,16 +553,26 @@ inline void check_rebuild_ahead(const std::string& device, const ExactFrames& sc
                         Case{"c", 0, false, AutoSwitch::off, AutoSwitch::on},
                         Case{"unordered", 0, false, AutoSwitch::off, AutoSwitch::on},
                         Case{"periodic", 0, false, AutoSwitch::off, AutoSwitch::on},
-                        Case{"b", 3, false, AutoSwitch::off, AutoSwitch::on}}) {
+                        Case{"b", 3, false, AutoSwitch::off, AutoSwitch::on},
+                        Case{"a", 2, false, AutoSwitch::off, AutoSwitch::off, true},
+                        Case{"b", 3, false, AutoSwitch::off, AutoSwitch::off, true},
+                        Case{"c", 2, false, AutoSwitch::off, AutoSwitch::off, true},
+                        Case{"unordered", 2, false, AutoSwitch::off, AutoSwitch::off, true},
+                        Case{"periodic", 3, false, AutoSwitch::off, AutoSwitch::off, true},
+                        Case{"c", 0, true, AutoSwitch::off, AutoSwitch::off, true},
+                        Case{"c", 0, false, AutoSwitch::on, AutoSwitch::off, true},
+                        Case{"b", 3, false, AutoSwitch::off, AutoSwitch::on, true}}) {
     SCOPED_TRACE(std::string(c.pipeline) + (c.formula2 ? ", Formula 2 rebuilds" : ", rebuild every ") +
                  (c.formula2 ? "" : std::to_string(c.rebuild_every)) + ", maintained ahead " +
-                 auto_switch_name(c.maintain_ahead) + ", updated ahead " + auto_switch_name(c.update_ahead));
+                 auto_switch_name(c.maintain_ahead) + ", updated ahead " + auto_switch_name(c.update_ahead) +
+                 (c.placed ? ", placed" : ""));
     PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
     cfg.name = c.pipeline;
     cfg.tree.rebuild_ahead = AutoSwitch::on;
     cfg.tree.rebuild_every = c.rebuild_every;
     cfg.tree.maintain_ahead = c.maintain_ahead;
     cfg.fronts.update_ahead = c.update_ahead;
+    cfg.tree.ahead_placed = c.placed;
     if (c.formula2) {
       cfg.restructure.quality = 0.0;
       cfg.restructure.min_leaves = 4;
@@ -595,18 +608,19 @@ inline void check_rebuild_ahead(const std::string& device, const ExactFrames& sc
   }
   // A pass that ends with its build ahead in flight (the last frame rebuilds), then another
   // pass on the same pipeline, as the run loop's warm-up and repeats do: it starts clean,
-  // exact from its first frame.
+  // exact from its first frame, the fronts generated ahead scattered or placed.
   if (scene.num_frames() >= 3) {
     ExactFrames odd = scene;
     const size_t frames = odd.num_frames() % 2 == 1 ? odd.num_frames() : odd.num_frames() - 1;
     odd.vertices.resize(frames);
     odd.pairs.resize(frames);
-    {
-      SCOPED_TRACE("c, a pass after one ending in flight");
+    for (bool placed : {false, true}) {
+      SCOPED_TRACE(std::string("c, a pass after one ending in flight") + (placed ? ", placed" : ""));
       PipelineConfig cfg = config_for(device, 0.5, 0.05, 2);
       cfg.name = "c";
       cfg.tree.rebuild_ahead = AutoSwitch::on;
       cfg.tree.rebuild_every = 2;
+      cfg.tree.ahead_placed = placed;
       auto p = make_pipeline(cfg);
       const std::vector<FrameStats> first = run_exact(*p, cfg, odd);
       if (scene.topology.faces.size() > 1) {

@@ -184,7 +184,7 @@ struct WaveRun {
 };
 
 WaveRun run_wave(uint32_t frames, AutoSwitch rebuild_ahead, uint32_t rebuild_every, uint32_t cycle = 0,
-                 AutoSwitch update_ahead = AutoSwitch::off) {
+                 AutoSwitch update_ahead = AutoSwitch::off, bool placed = false) {
   auto wave = make_generator("cloth-wave", {{"res", 32}, {"frames", frames}});
   const Topology& topo = wave->topology();
   PipelineConfig cfg;
@@ -195,6 +195,7 @@ WaveRun run_wave(uint32_t frames, AutoSwitch rebuild_ahead, uint32_t rebuild_eve
   cfg.tree.rebuild_every = rebuild_every;
   cfg.fronts.cycle = cycle;
   cfg.fronts.update_ahead = update_ahead;
+  cfg.tree.ahead_placed = placed;
   auto p = make_pipeline(cfg);
   p->set_topology(topo);
   std::vector<vec3f> v;
@@ -257,6 +258,34 @@ TEST(MemoryStats, SecondTreeReservedOnlyByABuildAhead) {
   ASSERT_GE(built.ahead, 1u);
   EXPECT_GT(sum_at_peak(built.memory, "ahead_bvh."), 0u);
   EXPECT_GT(sum_at_peak(built.memory, "ahead_front_"), 0u);
+}
+
+// --ahead-generate place: the fronts built ahead are generated in order into the produced
+// arrays the current fronts lend, which come back as the current fronts' arrays with the
+// adoption, the old current ones becoming the produced ones: the second fronts hold no front
+// arrays of their own, the current fronts' arrays are those of the scatter's run (the same
+// spare), and the run peaks lower than with the scatter by at least the second fronts' own
+// arrays, exact on every frame. A fixed plan (builds every third frame, no update): both
+// runs build and generate the same fronts.
+TEST(MemoryStats, FrontsPlacedAheadHoldNoFrontArraysOfTheirOwn) {
+  const WaveRun scatter = run_wave(12, AutoSwitch::on, 3, 50);
+  const WaveRun placed = run_wave(12, AutoSwitch::on, 3, 50, AutoSwitch::off, true);
+  ASSERT_GE(placed.adopted, 2u);
+  EXPECT_EQ(placed.adopted, scatter.adopted);
+  EXPECT_EQ(placed.forks_allocating, 0u);
+  const MemoryStats& m = placed.memory;
+  EXPECT_EQ(sum_at_peak(m), m.peak_bytes);
+  size_t own = 0;  // the scatter's second fronts' own arrays at its peak
+  for (const char* kind : {"_internal.", "_external."}) {
+    for (const char* a : {"prim", "node", "raw_prim", "raw_node", "raw_mark", "order_counts"}) {
+      EXPECT_EQ(bytes_of(m, std::string("ahead_front") + kind + a), 0u) << kind << a;
+      EXPECT_LE(bytes_of(m, std::string("front") + kind + a), bytes_of(scatter.memory, std::string("front") + kind + a))
+          << kind << a;
+    }
+    for (const char* a : {"prim", "node"}) own += bytes_of(scatter.memory, std::string("ahead_front") + kind + a);
+  }
+  EXPECT_GT(own, 0u);
+  EXPECT_LE(m.peak_bytes + own, scatter.memory.peak_bytes);
 }
 
 // --update-ahead reserves of the second tree its boxes alone (the copy of T_D's the side's

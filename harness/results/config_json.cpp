@@ -43,6 +43,7 @@ nlohmann::json to_json(const PipelineConfig& c) {
       {"rebuild_degraded", c.tree.rebuild_degraded},
       {"rebuild_ahead", auto_switch_name(c.tree.rebuild_ahead)},
       {"maintain_ahead", auto_switch_name(c.tree.maintain_ahead)},
+      {"ahead_generate", c.tree.ahead_placed ? "place" : "scatter"},
       {"rebuild_growth", c.tree.rebuild_growth},
       {"split_objects", split_rule_name(c.tree.split)},
       {"conservative", config_conservative(c)},

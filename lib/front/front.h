@@ -76,8 +76,10 @@ struct FrontSink {
 };
 
 // Whether a front holds the arrays its operations produce into (the raw arrays and the
-// histogram's counters) or borrows another's (FrontArrays::swap_produced).
-enum class ProducedArrays { own, lent };
+// histogram's counters) or borrows another's (FrontArrays::swap_produced), or holds no
+// front arrays at all and borrows another's produced arrays as its current ones, which it
+// is generated into in order (FrontQuery::generate_placed).
+enum class ProducedArrays { own, lent, lent_as_current };
 
 // One kind of front: the current front (ordered or not) and the append target of the last
 // operation. The histogram sort scatters a produced front from the append target straight
@@ -102,7 +104,8 @@ struct FrontArrays {
   // `produced` lent, only the current front and its offset log: the rest comes by
   // swap_produced.
   void reserve(size_t capacity, size_t segments, bool tails, ProducedArrays produced = ProducedArrays::own) {
-    for (auto* a : {&prim, &node}) a->reserve(capacity);
+    if (produced != ProducedArrays::lent_as_current)
+      for (auto* a : {&prim, &node}) a->reserve(capacity);
     segments_ = segments;
     offset_log.reserve(segments + 1);
     if (produced == ProducedArrays::own) {
@@ -126,6 +129,17 @@ struct FrontArrays {
   void swap_produced(FrontArrays& o) {
     std::swap(raw_prim, o.raw_prim);
     std::swap(raw_node, o.raw_node);
+    std::swap(raw_mark, o.raw_mark);
+    std::swap(order_counts, o.order_counts);
+  }
+  // Exchanges the produced arrays with `o`'s current ones (prim and node; with `counters`,
+  // raw_mark and order_counts with `o`'s too): lent to a front that is generated into them
+  // in order (ProducedArrays::lent_as_current), or, once `o`'s fronts were swapped in
+  // with their counters, given back for `o`'s old current arrays.
+  void swap_produced_with_current(FrontArrays& o, bool counters) {
+    std::swap(raw_prim, o.prim);
+    std::swap(raw_node, o.node);
+    if (!counters) return;
     std::swap(raw_mark, o.raw_mark);
     std::swap(order_counts, o.order_counts);
   }

@@ -70,16 +70,19 @@ CDB_HD_INLINE void traverse_range(const FrontView& v, uint32_t i, const vec4f& l
 // each warp (front/warp_traversal.h) when share_in_warp: a generate is one whole traversal
 // per leaf, the longest traversals of any front operation, and alone the warps ran at 8 to
 // 10 of 32 lanes (Nsight Compute, docs/experiments.md).
-// 2^spread_shift threads run each leaf (warp_traversal.h, "Spread launches").
+// 2^spread_shift threads run each leaf (warp_traversal.h, "Spread launches"). The front's
+// nodes go to `front`: appended (FrontSink), or each at its sorted place (PlacedFrontSink,
+// front/ordering.h).
+template <class Sink = FrontSink>
 struct GenerateFrontFn {
   using Stage = PairFrontStage;
   FrontView view;
   PairSink pairs;
-  FrontSink front;
+  Sink front;
   bool share_in_warp = false;
   uint32_t spread_shift = 0;
   CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
-  CDB_HD FrontSink front_sink(Stage* stage) const { return front.staged(stage ? &stage->front : nullptr); }
+  CDB_HD Sink front_sink(Stage* stage) const { return front.staged(stage ? &stage->front : nullptr); }
   CDB_HD void operator()(uint32_t i, Stage* stage = nullptr) const {
     if (!spread_start(i, spread_shift, i)) return;
     const NodeBox b = view.query[i];
@@ -99,7 +102,7 @@ struct GenerateFrontFn {
       const uint32_t start = view.start(b.lo);
       t = {b.lo, b.hi, leaf, start, kNoNode, start != kNoNode};
     }
-    const FrontSink sink = front_sink(stage);
+    const Sink sink = front_sink(stage);
     traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t q, uint32_t stop) { sink.push(q, stop, 1); });
   }
   __device__ void flush(Stage& s) const {

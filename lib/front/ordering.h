@@ -29,6 +29,37 @@ struct SegmentScatter {
   }
 };
 
+// Where a second generate of a front puts its nodes: each straight at its sorted place, by
+// the offset log that the first generate's count log was scanned into (a generate runs the
+// same traversals each time, so it meets the same nodes). A front produced this way needs no
+// unordered copy to scatter from (FrontQuery::generate_placed). A kind whose first generate
+// counted more nodes than its arrays hold places nothing: the caller grows them and
+// generates again. A generate's nodes all take the sprout mark (SegmentScatter::place): they
+// fill each segment from its back, as the scatter of a generated front does.
+struct PlacedFrontSink {
+  const uint32_t* offset_log[2];
+  uint32_t* cursor_back[2];
+  uint32_t* prim[2];
+  uint32_t* node[2];
+  const unsigned long long* count;  // count[kind]: the first generate's
+  unsigned long long capacity[2];
+
+  CDB_HD_INLINE PlacedFrontSink staged(FrontStage*) const { return *this; }
+  // The kind's arrays are picked by selects (FrontSink::push says why).
+  CDB_HD_INLINE void push(uint32_t i, uint32_t ref, uint8_t) const {
+    const bool ext = is_leaf(ref);
+    if (count[ext ? 1 : 0] > (ext ? capacity[1] : capacity[0])) return;
+    const uint32_t key = ref_index(ref);
+    const uint32_t* log = ext ? offset_log[1] : offset_log[0];
+    const uint32_t pos = log[key + 1] - 1 - claim_one(&(ext ? cursor_back[1] : cursor_back[0])[key]);
+    (ext ? prim[1] : prim[0])[pos] = i;
+    (ext ? node[1] : node[0])[pos] = ref;
+  }
+#if defined(__CUDACC__)
+  __device__ void flush(FrontStage&) const {}
+#endif
+};
+
 // Whether every append of a frame so far fit its buffer: the pairs and the fronts each
 // query produced, as counted on the device (each count may exceed its capacity: the frame
 // then grows the buffer and runs again). A scatter into a current front runs only when all

@@ -360,7 +360,10 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     ahead_bvh_.refit_top_max_leaves = bvh_.refit_top_max_leaves;
     ahead_bvh_.refit_levels = bvh_.refit_levels;
     ahead_bvh_.build_scratch = BuildScratch::lent;
-    sizing.produced = ProducedArrays::lent;
+    // An update ahead produces into the second fronts' produced arrays and orders into
+    // their own: fronts placed ahead hold neither.
+    places_ahead_ = config_.tree.ahead_placed && !switched_on(config_.fronts.update_ahead, true);
+    sizing.produced = places_ahead_ ? ProducedArrays::lent_as_current : ProducedArrays::lent;
     ahead_sizing_ = sizing;
     ahead_reserved_ = ahead_fronts_reserved_ = false;
     exec_.reserve_side();
@@ -443,11 +446,18 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     });
   }
 
+  // --ahead-generate place: generated twice, into the arrays the current fronts lend, in
+  // order (FrontQuery::generate_placed); scatter: generated into the lent produced arrays,
+  // then ordered into the second fronts' own.
   void generate_ahead() {
     ahead_pairs_.reset_counters(exec_);
-    ahead_front_.generate(exec_, ahead_pairs_,
-                          {.histogram = histogram_sorted(),
-                           .share_in_warp = shares_in_warp(config_.fronts.update_warp, ahead_front_.query_leaves())});
+    const ProduceMode mode{.histogram = histogram_sorted(),
+                           .share_in_warp = shares_in_warp(config_.fronts.update_warp, ahead_front_.query_leaves())};
+    if (places_ahead_) {
+      ahead_front_.generate_placed(exec_, ahead_pairs_, mode);
+      return;
+    }
+    ahead_front_.generate(exec_, ahead_pairs_, mode);
     order_ahead(FrontOp::generate);
   }
 
@@ -524,6 +534,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     else
       bvh_.swap(ahead_bvh_);
     self().swap_fronts(ahead_front_);
+    if (places_ahead_) self().take_back_produced(exec_, ahead_front_);
     lent_ = false;
     return ms;
   }
@@ -723,6 +734,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   bool builds_ahead_ = false;
   bool ahead_due_ = false;  // build_ahead() or update_ahead() ran this frame; queue_ahead() queues the side's part
   bool lent_ = false;       // the build ahead holds T_D's build scratch and self fronts' produced arrays
+  bool places_ahead_ = false;  // --ahead-generate place: the second fronts are generated into the lent arrays
   bool ahead_reserved_ = false;  // this run reserved the second tree and fronts (reserve_ahead_tree)
   bool ahead_fronts_reserved_ = false;  // ... its boxes and the second fronts (reserve_ahead_fronts)
   FrontSizing ahead_sizing_;

@@ -33,7 +33,8 @@ struct FrontSizing {
   // keeps no spare (FrontQuery::adopt).
   bool probed = false;
   // The produced arrays: the fronts' own, or lent by the current fronts for each build
-  // ahead (FrontQuery::lend_produced).
+  // ahead (FrontQuery::lend_produced), as produced arrays or as the current arrays that a
+  // build ahead is generated into in order (FrontQuery::generate_placed).
   ProducedArrays produced = ProducedArrays::own;
 };
 
@@ -82,6 +83,7 @@ class FrontQuery {
     active_ = active;
     in_place_ = sizing.in_place;
     probed_ = sizing.probed;
+    produced_ = sizing.produced;
     for (auto& f : front_) f.size = 0;
     ++revision_;
     dropped_[0] = dropped_[1] = appended_[0] = appended_[1] = 0;
@@ -136,7 +138,50 @@ class FrontQuery {
     const FrontSink sink = produce_sink(exec, pairs, mode.histogram);
     const uint32_t shift = spread_shift(exec, leaves_->num_leaves, mode.share_in_warp, kSpreadWavesGenerate);
     exec.for_each_staged(size_t(leaves_->num_leaves) << shift,
-                         GenerateFrontFn{view(), pairs.sink(), sink, mode.share_in_warp, shift}, Balance::uneven);
+                         GenerateFrontFn<FrontSink>{view(), pairs.sink(), sink, mode.share_in_warp, shift},
+                         Balance::uneven);
+  }
+
+  // (1) Generate into the current arrays, in order, for fronts that hold no others
+  // (ProducedArrays::lent_as_current: a build ahead's, in the arrays the current fronts
+  // lend it). With the histogram sort: a generate that only counts each tree node's front
+  // nodes, the count log's scan, then a generate that puts each node at its sorted place
+  // (PlacedFrontSink); unordered: one generate appending to them. The traversals run twice,
+  // on the side stream, and the unordered copy that a generate and its scatter need, a third
+  // set of front arrays beside the current fronts and these, is never held.
+  void generate_placed(Exec& exec, Pairs& pairs, const ProduceMode& mode) {
+    if (!active_) return;
+    if (produced_ != ProducedArrays::lent_as_current) fail("a placed generate ran on fronts that hold produced arrays");
+    if (mode.histogram) zero_order_counts(exec);
+    FrontSink append{};
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      append.prim[k] = mode.histogram ? nullptr : f.prim.data();
+      append.node[k] = mode.histogram ? nullptr : f.node.data();
+      append.mark[k] = mode.histogram ? nullptr : f.raw_mark.data();
+      append.capacity[k] = mode.histogram ? 0 : room(k);  // counting: nothing stored
+      append.count_log[k] = mode.histogram ? f.count_log() : nullptr;
+    }
+    append.count = counters(pairs)->produced;
+    const uint32_t shift = spread_shift(exec, leaves_->num_leaves, mode.share_in_warp, kSpreadWavesGenerate);
+    const size_t threads = size_t(leaves_->num_leaves) << shift;
+    exec.for_each_staged(threads, GenerateFrontFn<FrontSink>{view(), pairs.sink(), append, mode.share_in_warp, shift},
+                         Balance::uneven);
+    if (!mode.histogram) return;
+    offsets(exec);
+    PlacedFrontSink place{};
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      place.offset_log[k] = f.offset_log.data();
+      place.cursor_back[k] = f.cursor_back();
+      place.prim[k] = f.prim.data();
+      place.node[k] = f.node.data();
+      place.capacity[k] = room(k);
+    }
+    place.count = counters(pairs)->produced;
+    exec.for_each_staged(threads,
+                         GenerateFrontFn<PlacedFrontSink>{view(), pairs.sink(), place, mode.share_in_warp, shift},
+                         Balance::uneven);
   }
 
   // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch.
@@ -391,7 +436,9 @@ class FrontQuery {
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
       const size_t need = size_t(c.query[index_].produced[k]);
-      grew = reserve_headroom(exec, front_[k], need, need + need / kRegrowSpareDiv) || grew;
+      grew = (produced_ == ProducedArrays::lent_as_current ? reserve_placed(k, need, need + need / kRegrowSpareDiv)
+                                                           : reserve_headroom(exec, front_[k], need, need + need / kRegrowSpareDiv)) ||
+             grew;
     }
     revision_ += grew;
     return grew;
@@ -408,7 +455,9 @@ class FrontQuery {
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
       const size_t need = std::max(at_least[k], o.size(k) + o.size(k) / kAheadSpareDiv);
-      grew = reserve_headroom(exec, front_[k], need) || grew;
+      grew = (produced_ == ProducedArrays::lent_as_current ? reserve_placed(k, need, need)
+                                                           : reserve_headroom(exec, front_[k], need)) ||
+             grew;
     }
     revision_ += grew;
     return grew;
@@ -418,8 +467,30 @@ class FrontQuery {
   // fronts, which only preserve until `o`'s replace them, lend them to `o`, planned on a
   // tree of as many leaves with lent arrays; the exchange again gives them back. The fronts
   // that hold no produced arrays have no capacity until then.
+  // To fronts planned with ProducedArrays::lent_as_current they are lent as their current
+  // arrays (generate_placed), with the mark and the histogram's counters.
   void lend_produced(FrontQuery& o) {
-    for (int k = 0; k < 2; ++k) front_[k].swap_produced(o.front_[k]);
+    for (int k = 0; k < 2; ++k) {
+      if (o.produced_ == ProducedArrays::lent_as_current)
+        front_[k].swap_produced_with_current(o.front_[k], true);
+      else
+        front_[k].swap_produced(o.front_[k]);
+    }
+    ++revision_;
+    ++o.revision_;
+  }
+
+  // After swap_fronts with fronts generated into lent arrays (lend_produced to
+  // ProducedArrays::lent_as_current): this query's fronts are those arrays, with the mark
+  // and counters they were lent with, and `o` holds the old current arrays, which become
+  // this query's produced arrays; `o` is left holding no front arrays again. Without probes,
+  // room ahead for an update, as adopt keeps.
+  void take_back_produced(Exec& exec, FrontQuery& o) {
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      f.swap_produced_with_current(o.front_[k], false);
+      if (!probed_) reserve_headroom(exec, f, f.size + f.size / 4, f.size + f.size / 2);
+    }
     ++revision_;
     ++o.revision_;
   }
@@ -438,23 +509,45 @@ class FrontQuery {
 
   // The produced fronts become current: ordered ones were scattered into the current
   // arrays already (order, radix_order); unordered ones are the raw arrays, swapped in.
+  // Fronts generated in place (generate_placed) are in their current arrays already, and
+  // keep no room here: they take the current fronts' place, and take_back_produced keeps it.
   void adopt(Exec& exec, const FrontCounters& c, bool ordered) {
     if (!active_) return;
+    const bool placed = produced_ == ProducedArrays::lent_as_current;
     for (int k = 0; k < 2; ++k) {
       FrontArrays<Exec>& f = front_[k];
-      if (!ordered) {
+      if (!ordered && !placed) {
         std::swap(f.prim, f.raw_prim);
         std::swap(f.node, f.raw_node);
       }
       f.size = size_t(c.query[index_].produced[k]);
       dropped_[k] = appended_[k] = 0;
       // Without probes an update may outgrow the front it starts from: room ahead for it.
-      if (!probed_) reserve_headroom(exec, f, f.size + f.size / 4, f.size + f.size / 2);
+      if (!probed_ && !placed) reserve_headroom(exec, f, f.size + f.size / 4, f.size + f.size / 2);
     }
     ++revision_;
   }
 
  private:
+  // Front nodes kind k's arrays hold: for fronts generated in place, their lent current
+  // arrays and mark (they hold no others).
+  size_t room(int k) const {
+    const FrontArrays<Exec>& f = front_[k];
+    if (produced_ != ProducedArrays::lent_as_current) return f.capacity();
+    return std::min({f.prim.capacity(), f.node.capacity(), f.raw_mark.capacity()});
+  }
+
+  // Fronts generated in place: their lent arrays hold `need` nodes, or all grow to `want`.
+  // They hold nothing between a build ahead's frames (the generate writes them whole), so
+  // nothing is copied.
+  bool reserve_placed(int k, size_t need, size_t want) {
+    FrontArrays<Exec>& f = front_[k];
+    if (room(k) >= need) return false;
+    for (auto* a : {&f.prim, &f.node}) a->reserve(want);
+    f.raw_mark.reserve(want);
+    return true;
+  }
+
   // Nodes an update in place can append to kind k: the room past the front's end, which
   // its raw arrays (where a sorted tail is produced first) hold too.
   size_t append_room(int k) const {
@@ -557,6 +650,7 @@ class FrontQuery {
   uint64_t revision_ = 0;
   bool active_ = false;
   bool in_place_ = false;  // updates may run in place (plan)
+  ProducedArrays produced_ = ProducedArrays::own;  // (plan)
   bool probed_ = true;     // updates are sized by probes (plan)
 };
 
