@@ -108,8 +108,9 @@ inline constexpr size_t kProbeSpareDiv = 8;
 // exactly, the spare is for the fronts that the next frames produce before a probe sizes
 // them (generates after a rebuild, restructures). Not measured apart: the probe's spare.
 inline constexpr size_t kRegrowSpareDiv = 8;
-// Spare over the current self fronts that a build ahead's fronts get (FrontQuery::
-// reserve_like): they are generated on a new tree frames later, while contact may grow. On
+// Spare over what a build ahead's fronts are expected to hold (FrontPipeline::
+// build_expected, FrontQuery::reserve_ahead): they are generated on a new tree frames
+// later, while contact may grow. On
 // the flag (host executor, every maintenance built ahead) an eighth let one adoption in
 // five outgrow its fronts (126K internal nodes generated against 97K held when it was
 // launched) and generate them again in its frame; half held all five.

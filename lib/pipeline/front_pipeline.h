@@ -39,6 +39,7 @@
 // --refit-every 1.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -76,6 +77,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     // fronts, which this run reserves again: waited for and dropped.
     exec_.drop_side();
     ahead_due_ = false;
+    fresh_ = {};
     if (lent_) exchange_lent();  // a build ahead dropped unadopted returns what it borrowed
     this->set_mesh(topology, true);
     const ObjectSplit& split = mesh_.split();
@@ -141,6 +143,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     }
     timer_.force_phases(false);
     describe(plan, stats);
+    if (plan.rebuild || (plan.adopt && !plan.ahead_update)) note_fresh_fronts(stats.pairs);
     stats.timing.ahead_ms = std::max(ahead_ms, 0.0);
     const double generate_per_node = time_generate ? price_generate(stats) : -1.0;
     planner_.finish(plan, {.ms = stats.timing.total_ms,
@@ -400,8 +403,30 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
       reserve_ahead_tree();
     const std::array<size_t, 2> capacity = {self().front(kInternalFront).capacity(),
                                             self().front(kExternalFront).capacity()};
+    const std::array<size_t, 2> expected =
+        update ? std::array<size_t, 2>{self().size(kInternalFront), self().size(kExternalFront)} : build_expected();
     exchange_lent();
-    ahead_front_.reserve_like(exec_, self(), update ? capacity : std::array<size_t, 2>{0, 0});
+    ahead_front_.reserve_ahead(exec_, expected, update ? capacity : std::array<size_t, 2>{0, 0});
+  }
+
+  // The self fronts a build ahead is expected to generate, per kind: fresh fronts on a new
+  // tree, so the fronts last generated on one (a build in its frame, or a build ahead at its
+  // adoption), scaled by the pairs since where those grew, and at most what the current
+  // fronts hold. The current fronts alone are a poor guide once updates on a degrading tree
+  // have grown them: n-body's held 7.67M internal nodes when its second build ahead forked,
+  // and it generated 2.24M (c on the host, replaying the H100 bar's plan).
+  std::array<size_t, 2> build_expected() const {
+    std::array<size_t, 2> n = {self().size(kInternalFront), self().size(kExternalFront)};
+    if (!fresh_.known) return n;
+    const double growth = std::max(1.0, double(pairs_.count()) / double(std::max<uint64_t>(fresh_.pairs, 1)));
+    for (int k = 0; k < 2; ++k) n[k] = std::min(n[k], size_t(std::ceil(double(fresh_.nodes[k]) * growth)));
+    return n;
+  }
+
+  // After a frame that built T_D and generated its self fronts, or adopted a build ahead's:
+  // their sizes and the frame's pairs (build_expected).
+  void note_fresh_fronts(uint64_t pairs) {
+    fresh_ = {.nodes = {self().size(kInternalFront), self().size(kExternalFront)}, .pairs = pairs, .known = true};
   }
 
   // Before the frame that forks a build or update ahead starts its timing: lend_ahead, then
@@ -699,7 +724,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   // After a probing frame, outside its timing, once the planner has judged the probe: the
   // preserving queries' buffers grow to what an update of their fronts can produce, so the
   // update runs once. Not T_D's self fronts where the maintenance probed rebuilds the tree
-  // ahead: the build generates its own (FrontQuery::reserve_like) and the current ones only
+  // ahead: the build generates its own (FrontQuery::reserve_ahead) and the current ones only
   // preserve until it is adopted. Their bound, grown for an update that never came, was the
   // largest part of the dragon's peak (a probe's bound counts every front node that does not
   // descend once, before the update's pruning merges them: 2.3 times the largest front the
@@ -735,6 +760,13 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   bool ahead_due_ = false;  // build_ahead() or update_ahead() ran this frame; queue_ahead() queues the side's part
   bool lent_ = false;       // the build ahead holds T_D's build scratch and self fronts' produced arrays
   bool places_ahead_ = false;  // --ahead-generate place: the second fronts are generated into the lent arrays
+  // The self fronts last generated on a new tree, and the pairs of their geometry
+  // (note_fresh_fronts): what a build ahead's fronts are sized from (build_expected).
+  struct FreshFronts {
+    std::array<size_t, 2> nodes{};
+    uint64_t pairs = 0;
+    bool known = false;
+  } fresh_;
   bool ahead_reserved_ = false;  // this run reserved the second tree and fronts (reserve_ahead_tree)
   bool ahead_fronts_reserved_ = false;  // ... its boxes and the second fronts (reserve_ahead_fronts)
   FrontSizing ahead_sizing_;

@@ -444,17 +444,17 @@ class FrontQuery {
     return grew;
   }
 
-  // Before a generate of fronts like `o`'s (a build ahead's, beside the current fronts):
-  // room for as many nodes as `o` holds and a spare, so that a generate on the side fits and
-  // is not run again in the adopting frame unless contact grew past the spare. Before an
-  // update ahead of `o`'s fronts, which `o` sized for the update (its probe,
-  // reserve_for_update), room for at least `at_least` too: what `o`'s arrays held before `o`
-  // lent them. True if a buffer grew.
-  bool reserve_like(Exec& exec, const FrontQuery& o, const std::array<size_t, 2>& at_least = {0, 0}) {
+  // Before a build ahead generates these fronts beside the current ones, or an update ahead
+  // updates the current ones into them: room for `expected` nodes of each kind and half
+  // again (kAheadSpareDiv), so that the side's work fits and is not run again in the
+  // adopting frame unless contact grew past the spare, and for at least `at_least` (an update
+  // ahead: what the current fronts' arrays held, sized for the update by their probe,
+  // reserve_for_update, before they lent them). True if a buffer grew.
+  bool reserve_ahead(Exec& exec, const std::array<size_t, 2>& expected, const std::array<size_t, 2>& at_least) {
     if (!active_) return false;
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
-      const size_t need = std::max(at_least[k], o.size(k) + o.size(k) / kAheadSpareDiv);
+      const size_t need = std::max(at_least[k], expected[k] + expected[k] / kAheadSpareDiv);
       grew = (produced_ == ProducedArrays::lent_as_current ? reserve_placed(k, need, need)
                                                            : reserve_headroom(exec, front_[k], need)) ||
              grew;
