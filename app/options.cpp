@@ -211,12 +211,11 @@ void add_tuning(CLI::App* cmd, CommonOptions& o) {
       ->group(kTuningGroup);
   add_choice<bool>(
       cmd, "--ahead-generate", c.tree.ahead_placed,
-      "front pipelines that build ahead (--rebuild-ahead): how the fronts built ahead are generated on the side "
-      "stream. scatter: one generate into the produced arrays the current fronts lend, then the histogram sort's "
-      "scatter into arrays of their own (three sets of front arrays at the peak); place: two generates, the first "
-      "counting each tree node's front nodes, the second putting each at its sorted place straight into the lent "
-      "arrays (two sets, as a build in its frame; the side's traversals run twice). Builds ahead scatter with "
-      "--update-ahead on",
+      "front pipelines that build ahead (--rebuild-ahead): how the fronts built or updated ahead are produced on "
+      "the side stream. scatter: one generate or update into the produced arrays the current fronts lend, then the "
+      "histogram sort's scatter into arrays of their own (three sets of front arrays at the peak); place: two, the "
+      "first counting each tree node's front nodes, the second putting each at its sorted place straight into the "
+      "lent arrays (two sets, as in a frame; the side's traversals run twice)",
       {"scatter", "place"}, [](const std::string& w) { return w == "place"; },
       c.tree.ahead_placed ? "place" : "scatter")
       ->group(kTuningGroup);

@@ -532,8 +532,8 @@ inline AheadSteps count_ahead_steps(const std::vector<FrameStats>& frames) {
 // the front cycle's maintenances (every second frame) are the builds ahead, with auto they
 // run both ways; with --update-ahead on the cycle's updates run on the side (with buffers
 // this small an adopting frame may have to update them again); with --ahead-generate place
-// the fronts built ahead are generated twice, in order, into the arrays the current fronts
-// lend (with --update-ahead on, builds ahead scatter as before). The reference
+// the fronts built or updated ahead are produced twice, in order, into the arrays the
+// current fronts lend. The reference
 // strategy and the radix orderings build in their frames.
 inline void check_rebuild_ahead(const std::string& device, const ExactFrames& scene) {
   struct Case {
@@ -561,7 +561,11 @@ inline void check_rebuild_ahead(const std::string& device, const ExactFrames& sc
                         Case{"periodic", 3, false, AutoSwitch::off, AutoSwitch::off, true},
                         Case{"c", 0, true, AutoSwitch::off, AutoSwitch::off, true},
                         Case{"c", 0, false, AutoSwitch::on, AutoSwitch::off, true},
-                        Case{"b", 3, false, AutoSwitch::off, AutoSwitch::on, true}}) {
+                        Case{"b", 3, false, AutoSwitch::off, AutoSwitch::on, true},
+                        Case{"a", 0, false, AutoSwitch::off, AutoSwitch::on, true},
+                        Case{"c", 0, false, AutoSwitch::off, AutoSwitch::on, true},
+                        Case{"unordered", 0, false, AutoSwitch::off, AutoSwitch::on, true},
+                        Case{"periodic", 0, false, AutoSwitch::off, AutoSwitch::on, true}}) {
     SCOPED_TRACE(std::string(c.pipeline) + (c.formula2 ? ", Formula 2 rebuilds" : ", rebuild every ") +
                  (c.formula2 ? "" : std::to_string(c.rebuild_every)) + ", maintained ahead " +
                  auto_switch_name(c.maintain_ahead) + ", updated ahead " + auto_switch_name(c.update_ahead) +

@@ -347,6 +347,26 @@ TEST(MemoryStats, AnUpdateAheadReservesTheSecondTreesBoxesAlone) {
   EXPECT_GT(sum_at_peak(r.memory, "ahead_front_"), 0u);
 }
 
+// --ahead-generate place with --update-ahead on: the updates ahead too are produced in
+// order into the arrays the current fronts lend, so the second fronts hold no front arrays
+// of their own and the run peaks lower than with the scatter by at least theirs; every frame
+// exact. A cloth wave updated ahead every third frame.
+TEST(MemoryStats, PlacedUpdatesAheadHoldNoFrontArraysOfTheirOwn) {
+  const WaveRun scatter = run_wave(9, AutoSwitch::on, 0, 3, AutoSwitch::on);
+  const WaveRun placed = run_wave(9, AutoSwitch::on, 0, 3, AutoSwitch::on, true);
+  ASSERT_GE(placed.updated_ahead, 1u);
+  EXPECT_EQ(placed.updated_ahead, scatter.updated_ahead);
+  EXPECT_EQ(placed.forks_allocating, 0u);
+  size_t own = 0;
+  for (const char* kind : {"_internal.", "_external."}) {
+    for (const char* a : {"prim", "node", "raw_prim", "raw_node", "raw_mark"})
+      EXPECT_EQ(bytes_of(placed.memory, std::string("ahead_front") + kind + a), 0u) << kind << a;
+    for (const char* a : {"prim", "node"}) own += bytes_of(scatter.memory, std::string("ahead_front") + kind + a);
+  }
+  EXPECT_GT(own, 0u);
+  EXPECT_LE(placed.memory.peak_bytes + own, scatter.memory.peak_bytes);
+}
+
 // The frame that forks a build or an update ahead allocates nothing between its start and
 // stop: the second tree and fronts it needs are reserved before its timing starts
 // (FrontPipeline::reserve_ahead). Reserved inside it, a run's first fork cost 5-19x a

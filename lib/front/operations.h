@@ -328,21 +328,24 @@ CDB_HD_INLINE TraversalTask update_front_node_first(const FrontView& view, const
   }
 }
 
+// The front's nodes go to `front`: appended (FrontSink), or each at its sorted place
+// (PlacedFrontSink, front/ordering.h).
+template <class Sink = FrontSink>
 struct UpdateFrontFn {
   using Stage = PairFrontStage;
   static constexpr bool kWarpTraversal = true;
   FrontView view;
   PairSink pairs;
-  FrontSink front;
+  Sink front;
   const uint32_t* prim;
   const uint32_t* node;
   bool share_in_warp = true;  // on the GPU: each lane sprouts alone when false
   CDB_HD PairSink pair_sink(Stage* stage) const { return pairs.staged(stage ? &stage->pairs : nullptr); }
-  CDB_HD FrontSink front_sink(Stage* stage) const { return front.staged(stage ? &stage->front : nullptr); }
+  CDB_HD Sink front_sink(Stage* stage) const { return front.staged(stage ? &stage->front : nullptr); }
   CDB_HD TraversalTask first_step(uint32_t e, Stage* stage) const {
     const uint32_t j = node[e];
     if (j == kFrontDropped) return {};
-    const FrontSink sink = front_sink(stage);
+    const Sink sink = front_sink(stage);
     return update_front_node_first(view, pair_sink(stage), sink, prim[e], j);
   }
   CDB_HD void operator()(uint32_t e, Stage* stage = nullptr) const {
@@ -351,7 +354,7 @@ struct UpdateFrontFn {
   }
 #if defined(__CUDACC__)
   __device__ void rest_in_warp(const TraversalTask& t, Stage* stage) const {
-    const FrontSink sink = front_sink(stage);
+    const Sink sink = front_sink(stage);
     traverse_in_warp(view.tree.bvh, t, pair_sink(stage), [&](uint32_t i, uint32_t stop) { sink.push(i, stop, 1); });
   }
   __device__ void flush(Stage& s) const {

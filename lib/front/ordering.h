@@ -29,29 +29,31 @@ struct SegmentScatter {
   }
 };
 
-// Where a second generate of a front puts its nodes: each straight at its sorted place, by
-// the offset log that the first generate's count log was scanned into (a generate runs the
-// same traversals each time, so it meets the same nodes). A front produced this way needs no
-// unordered copy to scatter from (FrontQuery::generate_placed). A kind whose first generate
-// counted more nodes than its arrays hold places nothing: the caller grows them and
-// generates again. A generate's nodes all take the sprout mark (SegmentScatter::place): they
-// fill each segment from its back, as the scatter of a generated front does.
+// Where the second run of a generate or an update puts its front nodes: each straight at its
+// sorted place, by the offset log that the first run's count log was scanned into (the
+// operation runs the same traversals each time, so it meets the same nodes). A front
+// produced this way needs no unordered copy to scatter from (FrontQuery::produce_placed).
+// Within node j's segment, sprout-marked nodes fill from the back and prune-marked from the
+// front, as SegmentScatter places them. A kind whose first run counted more nodes than its
+// arrays hold places nothing: the caller grows them and runs the operation again.
 struct PlacedFrontSink {
   const uint32_t* offset_log[2];
+  uint32_t* cursor_front[2];
   uint32_t* cursor_back[2];
   uint32_t* prim[2];
   uint32_t* node[2];
-  const unsigned long long* count;  // count[kind]: the first generate's
+  const unsigned long long* count;  // count[kind]: the first run's
   unsigned long long capacity[2];
 
   CDB_HD_INLINE PlacedFrontSink staged(FrontStage*) const { return *this; }
   // The kind's arrays are picked by selects (FrontSink::push says why).
-  CDB_HD_INLINE void push(uint32_t i, uint32_t ref, uint8_t) const {
+  CDB_HD_INLINE void push(uint32_t i, uint32_t ref, uint8_t m) const {
     const bool ext = is_leaf(ref);
     if (count[ext ? 1 : 0] > (ext ? capacity[1] : capacity[0])) return;
     const uint32_t key = ref_index(ref);
     const uint32_t* log = ext ? offset_log[1] : offset_log[0];
-    const uint32_t pos = log[key + 1] - 1 - claim_one(&(ext ? cursor_back[1] : cursor_back[0])[key]);
+    const uint32_t pos = m ? log[key + 1] - 1 - claim_one(&(ext ? cursor_back[1] : cursor_back[0])[key])
+                           : log[key] + claim_one(&(ext ? cursor_front[1] : cursor_front[0])[key]);
     (ext ? prim[1] : prim[0])[pos] = i;
     (ext ? node[1] : node[0])[pos] = ref;
   }

@@ -363,9 +363,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     ahead_bvh_.refit_top_max_leaves = bvh_.refit_top_max_leaves;
     ahead_bvh_.refit_levels = bvh_.refit_levels;
     ahead_bvh_.build_scratch = BuildScratch::lent;
-    // An update ahead produces into the second fronts' produced arrays and orders into
-    // their own: fronts placed ahead hold neither.
-    places_ahead_ = config_.tree.ahead_placed && !switched_on(config_.fronts.update_ahead, true);
+    places_ahead_ = config_.tree.ahead_placed;
     sizing.produced = places_ahead_ ? ProducedArrays::lent_as_current : ProducedArrays::lent;
     ahead_sizing_ = sizing;
     ahead_reserved_ = ahead_fronts_reserved_ = false;
@@ -527,12 +525,17 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
 
   // The side's part of an update ahead (or its re-run in the adopting frame): the current
   // self fronts updated into the second fronts, then ordered as an update's are.
+  // With --ahead-generate place, updated twice, into the arrays the current fronts lend, in
+  // order where updates are sorted (FrontQuery::update_placed_from).
   void update_fronts_ahead() {
     ahead_pairs_.reset_counters(exec_);
-    ahead_front_.update_from(exec_, ahead_pairs_,
-                             {.histogram = counts(FrontOp::update),
-                              .share_in_warp = shares_in_warp(config_.fronts.update_warp, self().total())},
-                             self(), update_ahead_view());
+    const ProduceMode mode{.histogram = counts(FrontOp::update),
+                           .share_in_warp = shares_in_warp(config_.fronts.update_warp, self().total())};
+    if (places_ahead_) {
+      ahead_front_.update_placed_from(exec_, ahead_pairs_, mode, sorts(FrontOp::update), self(), update_ahead_view());
+      return;
+    }
+    ahead_front_.update_from(exec_, ahead_pairs_, mode, self(), update_ahead_view());
     order_ahead(FrontOp::update);
   }
 
@@ -759,7 +762,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   bool builds_ahead_ = false;
   bool ahead_due_ = false;  // build_ahead() or update_ahead() ran this frame; queue_ahead() queues the side's part
   bool lent_ = false;       // the build ahead holds T_D's build scratch and self fronts' produced arrays
-  bool places_ahead_ = false;  // --ahead-generate place: the second fronts are generated into the lent arrays
+  bool places_ahead_ = false;  // --ahead-generate place: the second fronts are produced into the lent arrays
   // The self fronts last generated on a new tree, and the pairs of their geometry
   // (note_fresh_fronts): what a build ahead's fronts are sized from (build_expected).
   struct FreshFronts {

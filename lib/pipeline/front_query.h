@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "cdbench/exec/balance.h"
@@ -142,46 +143,37 @@ class FrontQuery {
                          Balance::uneven);
   }
 
-  // (1) Generate into the current arrays, in order, for fronts that hold no others
-  // (ProducedArrays::lent_as_current: a build ahead's, in the arrays the current fronts
-  // lend it). With the histogram sort: a generate that only counts each tree node's front
-  // nodes, the count log's scan, then a generate that puts each node at its sorted place
-  // (PlacedFrontSink); unordered: one generate appending to them. The traversals run twice,
-  // on the side stream, and the unordered copy that a generate and its scatter need, a third
-  // set of front arrays beside the current fronts and these, is never held.
+  // (1) Generate into the current arrays, for fronts that hold no others
+  // (ProducedArrays::lent_as_current: a build ahead's, in the arrays the current fronts lend
+  // it), in order with the histogram sort (produce_placed).
   void generate_placed(Exec& exec, Pairs& pairs, const ProduceMode& mode) {
     if (!active_) return;
-    if (produced_ != ProducedArrays::lent_as_current) fail("a placed generate ran on fronts that hold produced arrays");
-    if (mode.histogram) zero_order_counts(exec);
-    FrontSink append{};
-    for (int k = 0; k < 2; ++k) {
-      FrontArrays<Exec>& f = front_[k];
-      append.prim[k] = mode.histogram ? nullptr : f.prim.data();
-      append.node[k] = mode.histogram ? nullptr : f.node.data();
-      append.mark[k] = mode.histogram ? nullptr : f.raw_mark.data();
-      append.capacity[k] = mode.histogram ? 0 : room(k);  // counting: nothing stored
-      append.count_log[k] = mode.histogram ? f.count_log() : nullptr;
-    }
-    append.count = counters(pairs)->produced;
     const uint32_t shift = spread_shift(exec, leaves_->num_leaves, mode.share_in_warp, kSpreadWavesGenerate);
     const size_t threads = size_t(leaves_->num_leaves) << shift;
-    exec.for_each_staged(threads, GenerateFrontFn<FrontSink>{view(), pairs.sink(), append, mode.share_in_warp, shift},
-                         Balance::uneven);
-    if (!mode.histogram) return;
-    offsets(exec);
-    PlacedFrontSink place{};
-    for (int k = 0; k < 2; ++k) {
-      FrontArrays<Exec>& f = front_[k];
-      place.offset_log[k] = f.offset_log.data();
-      place.cursor_back[k] = f.cursor_back();
-      place.prim[k] = f.prim.data();
-      place.node[k] = f.node.data();
-      place.capacity[k] = room(k);
-    }
-    place.count = counters(pairs)->produced;
-    exec.for_each_staged(threads,
-                         GenerateFrontFn<PlacedFrontSink>{view(), pairs.sink(), place, mode.share_in_warp, shift},
-                         Balance::uneven);
+    produce_placed(exec, pairs, mode, mode.histogram, [&](const auto& sink) {
+      using Sink = std::decay_t<decltype(sink)>;
+      exec.for_each_staged(threads, GenerateFrontFn<Sink>{view(), pairs.sink(), sink, mode.share_in_warp, shift},
+                           Balance::uneven);
+    });
+  }
+
+  // (3) Update of `source`'s current fronts against `tree` (as update_from), into the
+  // current arrays of fronts that hold no others (an update ahead's), in order where
+  // `sorted` (produce_placed).
+  void update_placed_from(Exec& exec, Pairs& pairs, const ProduceMode& mode, bool sorted, const FrontQuery& source,
+                          const FrontView& tree) {
+    if (!active_) return;
+    const uint32_t shift = spread_shift(exec, source.total(), mode.share_in_warp, kSpreadWavesUpdate);
+    produce_placed(exec, pairs, mode, sorted, [&](const auto& sink) {
+      using Fn = UpdateFrontFn<std::decay_t<decltype(sink)>>;
+      auto pass = [&](const FrontArrays<Exec>& f) {
+        return Fn{tree, pairs.sink(), sink, f.prim.data(), f.node.data(), mode.share_in_warp};
+      };
+      exec.for_each_staged(source.total() << shift,
+                           BothFrontsFn<Fn>{pass(source.front_[0]), pass(source.front_[1]),
+                                            uint32_t(source.front_[0].size), shift},
+                           Balance::uneven);
+    });
   }
 
   // (2) Preserve: the current fronts are traversed, not rewritten. Both kinds in one launch.
@@ -238,11 +230,11 @@ class FrontQuery {
     if (!active_) return;
     const FrontSink sink = produce_sink(exec, pairs, mode.histogram);
     auto pass = [&](const FrontArrays<Exec>& f) {
-      return UpdateFrontFn{tree, pairs.sink(), sink, f.prim.data(), f.node.data(), mode.share_in_warp};
+      return UpdateFrontFn<FrontSink>{tree, pairs.sink(), sink, f.prim.data(), f.node.data(), mode.share_in_warp};
     };
     const uint32_t shift = spread_shift(exec, source.total(), mode.share_in_warp, kSpreadWavesUpdate);
     exec.for_each_staged(source.total() << shift,
-                         BothFrontsFn<UpdateFrontFn>{pass(source.front_[0]), pass(source.front_[1]),
+                         BothFrontsFn<UpdateFrontFn<FrontSink>>{pass(source.front_[0]), pass(source.front_[1]),
                                                      uint32_t(source.front_[0].size), shift},
                          Balance::uneven);
   }
@@ -529,6 +521,46 @@ class FrontQuery {
   }
 
  private:
+  // An operation (`run`, given the sink to produce into) producing fronts that hold no
+  // arrays but the current ones (ProducedArrays::lent_as_current), into them. `sorted`: run
+  // twice, first only counting each tree node's front nodes (the count log; nothing is
+  // stored), then, the count log scanned into the offset log, putting each node at its
+  // sorted place (PlacedFrontSink); the traversals run twice, and the unordered copy that an
+  // operation and its scatter need, a third set of front arrays beside the current fronts
+  // and these, is never held. Otherwise run once, appending to them, counted per tree node
+  // where `mode.histogram` (their offset log then follows).
+  template <class Run>
+  void produce_placed(Exec& exec, Pairs& pairs, const ProduceMode& mode, bool sorted, const Run& run) {
+    if (produced_ != ProducedArrays::lent_as_current) fail("fronts that hold produced arrays were produced in place");
+    if (sorted && !mode.histogram) fail("fronts placed in order without their count log");
+    if (mode.histogram) zero_order_counts(exec);
+    FrontSink append{};
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      append.prim[k] = sorted ? nullptr : f.prim.data();
+      append.node[k] = sorted ? nullptr : f.node.data();
+      append.mark[k] = sorted ? nullptr : f.raw_mark.data();
+      append.capacity[k] = sorted ? 0 : room(k);  // counting: nothing stored
+      append.count_log[k] = mode.histogram ? f.count_log() : nullptr;
+    }
+    append.count = counters(pairs)->produced;
+    run(append);
+    if (mode.histogram) offsets(exec);
+    if (!sorted) return;
+    PlacedFrontSink place{};
+    for (int k = 0; k < 2; ++k) {
+      FrontArrays<Exec>& f = front_[k];
+      place.offset_log[k] = f.offset_log.data();
+      place.cursor_front[k] = f.cursor_front();
+      place.cursor_back[k] = f.cursor_back();
+      place.prim[k] = f.prim.data();
+      place.node[k] = f.node.data();
+      place.capacity[k] = room(k);
+    }
+    place.count = counters(pairs)->produced;
+    run(place);
+  }
+
   // Front nodes kind k's arrays hold: for fronts generated in place, their lent current
   // arrays and mark (they hold no others).
   size_t room(int k) const {

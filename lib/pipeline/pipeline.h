@@ -101,12 +101,12 @@ struct TreeConfig {
   // cost less per pair (pipeline/maintenance_choice.h); measured no faster than off
   // (docs/front-maintenance.md "Maintenances built ahead").
   AutoSwitch maintain_ahead = AutoSwitch::off;
-  // Builds ahead: the second self fronts are generated twice, counting each tree node's
-  // front nodes and then placing each at its sorted place, straight into the produced
-  // arrays the current fronts lend (front/ordering.h PlacedFrontSink): two sets of front
-  // arrays at the peak, as a build in its frame, for a second traversal on the side stream.
-  // Off: one generate into the lent arrays, then the histogram sort's scatter into arrays of
-  // the second fronts' own (three sets). Not with --update-ahead, whose updates need those.
+  // Builds and updates ahead: the second self fronts are generated (or updated) twice,
+  // counting each tree node's front nodes and then placing each at its sorted place,
+  // straight into the produced arrays the current fronts lend (front/ordering.h
+  // PlacedFrontSink): two sets of front arrays at the peak, as a build or update in its
+  // frame, for a second traversal on the side stream. Off: one run into the lent arrays,
+  // then the histogram sort's scatter into arrays of the second fronts' own (three sets).
   bool ahead_placed = false;
   // --rebuild-degraded: the growth of the fronts (an update's count over a rebuild's) past
   // which a maintenance rebuilds (pipeline/tree_maintenance.h).
