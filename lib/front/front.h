@@ -78,7 +78,7 @@ struct FrontSink {
 // Whether a front holds the arrays its operations produce into (the raw arrays and the
 // histogram's counters) or borrows another's (FrontArrays::swap_produced), or holds no
 // front arrays at all and borrows another's produced arrays as its current ones, which it
-// is generated into in order (FrontQuery::generate_placed).
+// is placed into in order (FrontQuery::produce_placed).
 enum class ProducedArrays { own, lent, lent_as_current };
 
 // One kind of front: the current front (ordered or not) and the append target of the last
@@ -133,8 +133,8 @@ struct FrontArrays {
     std::swap(order_counts, o.order_counts);
   }
   // Exchanges the produced arrays with `o`'s current ones (prim and node; with `counters`,
-  // raw_mark and order_counts with `o`'s too): lent to a front that is generated into them
-  // in order (ProducedArrays::lent_as_current), or, once `o`'s fronts were swapped in
+  // raw_mark and order_counts with `o`'s too): lent to a front that is placed into them in
+  // order (ProducedArrays::lent_as_current), or, once `o`'s fronts were swapped in
   // with their counters, given back for `o`'s old current arrays.
   void swap_produced_with_current(FrontArrays& o, bool counters) {
     std::swap(raw_prim, o.prim);

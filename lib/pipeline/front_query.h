@@ -34,8 +34,8 @@ struct FrontSizing {
   // keeps no spare (FrontQuery::adopt).
   bool probed = false;
   // The produced arrays: the fronts' own, or lent by the current fronts for each build
-  // ahead (FrontQuery::lend_produced), as produced arrays or as the current arrays that a
-  // build ahead is generated into in order (FrontQuery::generate_placed).
+  // ahead (FrontQuery::lend_produced), as produced arrays or as the current arrays that the
+  // work ahead is placed into in order (FrontQuery::produce_placed).
   ProducedArrays produced = ProducedArrays::own;
 };
 
@@ -428,9 +428,7 @@ class FrontQuery {
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
       const size_t need = size_t(c.query[index_].produced[k]);
-      grew = (produced_ == ProducedArrays::lent_as_current ? reserve_placed(k, need, need + need / kRegrowSpareDiv)
-                                                           : reserve_headroom(exec, front_[k], need, need + need / kRegrowSpareDiv)) ||
-             grew;
+      grew = reserve_room(exec, k, need, need + need / kRegrowSpareDiv) || grew;
     }
     revision_ += grew;
     return grew;
@@ -447,9 +445,7 @@ class FrontQuery {
     bool grew = false;
     for (int k = 0; k < 2; ++k) {
       const size_t need = std::max(at_least[k], expected[k] + expected[k] / kAheadSpareDiv);
-      grew = (produced_ == ProducedArrays::lent_as_current ? reserve_placed(k, need, need)
-                                                           : reserve_headroom(exec, front_[k], need)) ||
-             grew;
+      grew = reserve_room(exec, k, need, need) || grew;
     }
     revision_ += grew;
     return grew;
@@ -460,7 +456,7 @@ class FrontQuery {
   // tree of as many leaves with lent arrays; the exchange again gives them back. The fronts
   // that hold no produced arrays have no capacity until then.
   // To fronts planned with ProducedArrays::lent_as_current they are lent as their current
-  // arrays (generate_placed), with the mark and the histogram's counters.
+  // arrays (produce_placed), with the mark and the histogram's counters.
   void lend_produced(FrontQuery& o) {
     for (int k = 0; k < 2; ++k) {
       if (o.produced_ == ProducedArrays::lent_as_current)
@@ -472,7 +468,7 @@ class FrontQuery {
     ++o.revision_;
   }
 
-  // After swap_fronts with fronts generated into lent arrays (lend_produced to
+  // After swap_fronts with fronts placed into lent arrays (lend_produced to
   // ProducedArrays::lent_as_current): this query's fronts are those arrays, with the mark
   // and counters they were lent with, and `o` holds the old current arrays, which become
   // this query's produced arrays; `o` is left holding no front arrays again. Without probes,
@@ -501,8 +497,8 @@ class FrontQuery {
 
   // The produced fronts become current: ordered ones were scattered into the current
   // arrays already (order, radix_order); unordered ones are the raw arrays, swapped in.
-  // Fronts generated in place (generate_placed) are in their current arrays already, and
-  // keep no room here: they take the current fronts' place, and take_back_produced keeps it.
+  // Placed fronts (produce_placed) are in their current arrays already, and keep no room
+  // here: they take the current fronts' place, and take_back_produced keeps it.
   void adopt(Exec& exec, const FrontCounters& c, bool ordered) {
     if (!active_) return;
     const bool placed = produced_ == ProducedArrays::lent_as_current;
@@ -531,7 +527,7 @@ class FrontQuery {
   // where `mode.histogram` (their offset log then follows).
   template <class Run>
   void produce_placed(Exec& exec, Pairs& pairs, const ProduceMode& mode, bool sorted, const Run& run) {
-    if (produced_ != ProducedArrays::lent_as_current) fail("fronts that hold produced arrays were produced in place");
+    if (produced_ != ProducedArrays::lent_as_current) fail("fronts that hold produced arrays were placed");
     if (sorted && !mode.histogram) fail("fronts placed in order without their count log");
     if (mode.histogram) zero_order_counts(exec);
     FrontSink append{};
@@ -561,18 +557,19 @@ class FrontQuery {
     run(place);
   }
 
-  // Front nodes kind k's arrays hold: for fronts generated in place, their lent current
-  // arrays and mark (they hold no others).
+  // Front nodes kind k's arrays hold: for placed fronts, their lent current arrays and mark
+  // (they hold no others).
   size_t room(int k) const {
     const FrontArrays<Exec>& f = front_[k];
     if (produced_ != ProducedArrays::lent_as_current) return f.capacity();
     return std::min({f.prim.capacity(), f.node.capacity(), f.raw_mark.capacity()});
   }
 
-  // Fronts generated in place: their lent arrays hold `need` nodes, or all grow to `want`.
-  // They hold nothing between a build ahead's frames (the generate writes them whole), so
-  // nothing is copied.
-  bool reserve_placed(int k, size_t need, size_t want) {
+  // Kind k's arrays hold `need` nodes, or grow to `want` (reserve_headroom). Placed
+  // fronts' lent arrays hold nothing before the side's run writes them whole, so nothing is
+  // copied into them.
+  bool reserve_room(Exec& exec, int k, size_t need, size_t want) {
+    if (produced_ != ProducedArrays::lent_as_current) return reserve_headroom(exec, front_[k], need, want);
     FrontArrays<Exec>& f = front_[k];
     if (room(k) >= need) return false;
     for (auto* a : {&f.prim, &f.node}) a->reserve(want);
