@@ -363,8 +363,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     ahead_bvh_.refit_top_max_leaves = bvh_.refit_top_max_leaves;
     ahead_bvh_.refit_levels = bvh_.refit_levels;
     ahead_bvh_.build_scratch = BuildScratch::lent;
-    places_ahead_ = config_.tree.ahead_placed;
-    sizing.produced = places_ahead_ ? ProducedArrays::lent_as_current : ProducedArrays::lent;
+    sizing.produced = places_ahead() ? ProducedArrays::lent_as_current : ProducedArrays::lent;
     ahead_sizing_ = sizing;
     ahead_reserved_ = ahead_fronts_reserved_ = false;
     exec_.reserve_side();
@@ -392,8 +391,9 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
 
   // What a fork lends and the room it needs: T_D's build scratch and its self fronts'
   // produced arrays lent to the second tree and fronts, reserved once a run, with room for
-  // what the current fronts hold and a spare (a build) or were sized to by their probe (an
-  // update). Left lent: the forking frame's work runs on them.
+  // what a build is expected to generate (build_expected) or for the current fronts and what
+  // their probe sized them to (an update), and a spare. Left lent: the forking frame's work
+  // runs on them.
   void lend_ahead(bool update) {
     if (update)
       reserve_ahead_fronts();
@@ -476,7 +476,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     ahead_pairs_.reset_counters(exec_);
     const ProduceMode mode{.histogram = histogram_sorted(),
                            .share_in_warp = shares_in_warp(config_.fronts.update_warp, ahead_front_.query_leaves())};
-    if (places_ahead_) {
+    if (places_ahead()) {
       ahead_front_.generate_placed(exec_, ahead_pairs_, mode);
       return;
     }
@@ -531,7 +531,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     ahead_pairs_.reset_counters(exec_);
     const ProduceMode mode{.histogram = counts(FrontOp::update),
                            .share_in_warp = shares_in_warp(config_.fronts.update_warp, self().total())};
-    if (places_ahead_) {
+    if (places_ahead()) {
       ahead_front_.update_placed_from(exec_, ahead_pairs_, mode, sorts(FrontOp::update), self(), update_ahead_view());
       return;
     }
@@ -562,7 +562,7 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
     else
       bvh_.swap(ahead_bvh_);
     self().swap_fronts(ahead_front_);
-    if (places_ahead_) self().take_back_produced(exec_, ahead_front_);
+    if (places_ahead()) self().take_back_produced(exec_, ahead_front_);
     lent_ = false;
     return ms;
   }
@@ -592,6 +592,8 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   }
 
   bool histogram_sorted() const { return strategy().ordered && !strategy().radix_sort; }
+  // --ahead-generate place: the second fronts are produced in order into the lent arrays.
+  bool places_ahead() const { return config_.tree.ahead_placed; }
 
   // Whether the front an operation produces is sorted (--order-updates off: not an update's
   // with the histogram sort), and whether it is counted per tree node: for the sort, or for
@@ -762,9 +764,9 @@ class FrontPipeline final : public PairPipeline<Exec, Timer, FrontCounters> {
   bool builds_ahead_ = false;
   bool ahead_due_ = false;  // build_ahead() or update_ahead() ran this frame; queue_ahead() queues the side's part
   bool lent_ = false;       // the build ahead holds T_D's build scratch and self fronts' produced arrays
-  bool places_ahead_ = false;  // --ahead-generate place: the second fronts are produced into the lent arrays
-  // The self fronts last generated on a new tree, and the pairs of their geometry
-  // (note_fresh_fronts): what a build ahead's fronts are sized from (build_expected).
+  // The self fronts last generated on a new tree, and the pairs of the frame that built or
+  // adopted them (note_fresh_fronts): what a build ahead's fronts are sized from
+  // (build_expected).
   struct FreshFronts {
     std::array<size_t, 2> nodes{};
     uint64_t pairs = 0;
